@@ -1,0 +1,93 @@
+!> Kane's equations in the paper's form a_ij xddot_j = f_i:
+!! a_ij (eq 17), the generalized active forces F_i (eq 19) and f_i (eq 18).
+module hn_kane
+    use hn_kinds, only: wp, zero
+    use hn_rotation, only: cross
+    use hn_tree, only: body_tree_t
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t
+    implicit none
+    private
+
+    public :: a_ij, generalized_active_forces, f_i
+
+contains
+
+    !> Generalized mass matrix (eq 17):
+    !! a_ij = sum_p m_p v_pik v_pjk + omega_pik I_pkn omega_pjn.
+    !! Only pairs within one body's chain contribute.
+    pure subroutine a_ij(tree, kin, a)
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        real(wp), intent(out) :: a(:, :)        !! (n,n) symmetric positive definite
+        integer :: p, ii, jj, i, j, nc
+        real(wp) :: m, iw(3)
+        a = zero
+        do p = 1, tree%nbody
+            m = tree%mass(p)
+            nc = tree%chain_len(p)
+            do jj = 1, nc
+                j = tree%chain(jj, p)
+                iw = matmul(kin%inertia_r(:, :, p), kin%w(:, j, p))
+                do ii = 1, jj
+                    i = tree%chain(ii, p)
+                    a(i, j) = a(i, j) + m*dot_product(kin%vp(:, i, p), kin%vp(:, j, p)) &
+                              + dot_product(kin%w(:, i, p), iw)
+                end do
+            end do
+        end do
+        do j = 1, size(a, 2)
+            do i = j + 1, size(a, 1)
+                a(i, j) = a(j, i)
+            end do
+        end do
+    end subroutine a_ij
+
+    !> Generalized active forces (eq 19): F_i = v_pik F_pk + omega_pik M_pk
+    !! plus the generalized forces applied directly to coordinates.
+    pure subroutine generalized_active_forces(tree, kin, loads, fa)
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        type(body_loads_t), intent(in) :: loads
+        real(wp), intent(out) :: fa(:)
+        call project_on_partials(tree, kin, loads%force, loads%moment, fa)
+        fa = fa + loads%q(1:size(fa))
+    end subroutine generalized_active_forces
+
+    !> Right-hand side (eq 18): f_i = F_i - sum_p [ m_p v_pik (dv_pqk/dt) xdot_q
+    !!   + omega_pik ( I_pkn (domega_pqn/dt) xdot_q + (omega_p x I_p omega_p)_k ) ].
+    pure subroutine f_i(tree, kin, loads, f)
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        type(body_loads_t), intent(in) :: loads
+        real(wp), intent(out) :: f(:)
+        real(wp) :: fstar(3, tree%nbody), mstar(3, tree%nbody), iw(3)
+        integer :: p
+        do p = 1, tree%nbody
+            iw = matmul(kin%inertia_r(:, :, p), kin%omega(:, p))
+            fstar(:, p) = loads%force(:, p) - tree%mass(p)*kin%a0(:, p)
+            mstar(:, p) = loads%moment(:, p) - matmul(kin%inertia_r(:, :, p), kin%alpha0(:, p)) &
+                          - cross(kin%omega(:, p), iw)
+        end do
+        call project_on_partials(tree, kin, fstar, mstar, f)
+        f = f + loads%q(1:size(f))
+    end subroutine f_i
+
+    !> g_i = v_pik F_pk + omega_pik M_pk for per-body vectors F, M.
+    pure subroutine project_on_partials(tree, kin, force, moment, g)
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        real(wp), intent(in) :: force(:, :), moment(:, :)
+        real(wp), intent(out) :: g(:)
+        integer :: p, ii, i
+        g = zero
+        do p = 1, tree%nbody
+            do ii = 1, tree%chain_len(p)
+                i = tree%chain(ii, p)
+                g(i) = g(i) + dot_product(kin%vp(:, i, p), force(:, p)) &
+                       + dot_product(kin%w(:, i, p), moment(:, p))
+            end do
+        end do
+    end subroutine project_on_partials
+
+end module hn_kane

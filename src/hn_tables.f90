@@ -1,0 +1,148 @@
+!> Time tables: piecewise-linear interpolation, exact integrals of a
+!! piecewise-linear table, and natural cubic splines.
+module hn_tables
+    use hn_kinds, only: wp, zero, one
+    implicit none
+    private
+
+    public :: table_t, table_set, table_value, table_segment, spline_t, spline_set, spline_eval
+
+    !> A sampled function y(t), t strictly increasing.
+    type :: table_t
+        real(wp), allocatable :: t(:)  !! abscissae [s]
+        real(wp), allocatable :: y(:)  !! ordinates
+    end type table_t
+
+    !> Natural cubic spline through (t, y) with second derivatives m.
+    type :: spline_t
+        real(wp), allocatable :: t(:), y(:), m(:)
+    end type spline_t
+
+contains
+
+    !> Store a table; stat = i > 0 when t(i) does not increase, -1 when empty.
+    pure subroutine table_set(tab, t, y, stat)
+        type(table_t), intent(out) :: tab
+        real(wp), intent(in) :: t(:), y(:)
+        integer, intent(out) :: stat
+        integer :: i
+        stat = 0
+        if (size(t) < 1 .or. size(t) /= size(y)) then
+            stat = -1; return
+        end if
+        do i = 2, size(t)
+            if (.not. (t(i) > t(i - 1))) then
+                stat = i; return
+            end if
+        end do
+        tab%t = t
+        tab%y = y
+    end subroutine table_set
+
+    !> Segment index i with t(i) <= tt < t(i+1), clamped to [1, n-1]
+    !! (0 for a one-point table). Binary search.
+    pure integer function table_segment(t, tt) result(i)
+        real(wp), intent(in) :: t(:), tt
+        integer :: lo, hi, mid
+        if (size(t) < 2) then
+            i = 0; return
+        end if
+        lo = 1; hi = size(t)
+        if (tt <= t(1)) then
+            i = 1; return
+        end if
+        if (tt >= t(hi)) then
+            i = hi - 1; return
+        end if
+        do while (hi - lo > 1)
+            mid = (lo + hi)/2
+            if (t(mid) <= tt) then
+                lo = mid
+            else
+                hi = mid
+            end if
+        end do
+        i = lo
+    end function table_segment
+
+    !> Linear interpolation; constant end values outside the table.
+    pure real(wp) function table_value(tab, tt) result(y)
+        type(table_t), intent(in) :: tab
+        real(wp), intent(in) :: tt
+        integer :: i
+        real(wp) :: s
+        i = table_segment(tab%t, tt)
+        if (i == 0) then
+            y = tab%y(1)
+        else if (tt <= tab%t(1)) then
+            y = tab%y(1)
+        else if (tt >= tab%t(size(tab%t))) then
+            y = tab%y(size(tab%y))
+        else
+            s = (tt - tab%t(i))/(tab%t(i + 1) - tab%t(i))
+            y = (one - s)*tab%y(i) + s*tab%y(i + 1)
+        end if
+    end function table_value
+
+    !> Natural cubic spline (zero second derivative at both ends).
+    pure subroutine spline_set(sp, t, y, stat)
+        type(spline_t), intent(out) :: sp
+        real(wp), intent(in) :: t(:), y(:)
+        integer, intent(out) :: stat
+        integer :: n, i
+        real(wp) :: h(size(t)), diag(size(t)), rhs(size(t)), w
+        type(table_t) :: check
+        call table_set(check, t, y, stat)
+        if (stat /= 0) return
+        n = size(t)
+        sp%t = t; sp%y = y
+        allocate (sp%m(n))
+        sp%m = zero
+        if (n < 3) return
+        do i = 1, n - 1
+            h(i) = t(i + 1) - t(i)
+        end do
+        ! tridiagonal system for interior second derivatives (Thomas algorithm)
+        do i = 2, n - 1
+            diag(i) = 2.0_wp*(h(i - 1) + h(i))
+            rhs(i) = 6.0_wp*((y(i + 1) - y(i))/h(i) - (y(i) - y(i - 1))/h(i - 1))
+        end do
+        do i = 3, n - 1
+            w = h(i - 1)/diag(i - 1)
+            diag(i) = diag(i) - w*h(i - 1)
+            rhs(i) = rhs(i) - w*rhs(i - 1)
+        end do
+        sp%m(n - 1) = rhs(n - 1)/diag(n - 1)
+        do i = n - 2, 2, -1
+            sp%m(i) = (rhs(i) - h(i)*sp%m(i + 1))/diag(i)
+        end do
+    end subroutine spline_set
+
+    !> Value, first and second derivative of a spline; linear extrapolation
+    !! with the end slope outside the table.
+    pure subroutine spline_eval(sp, tt, y, yd, ydd)
+        type(spline_t), intent(in) :: sp
+        real(wp), intent(in) :: tt
+        real(wp), intent(out) :: y, yd, ydd
+        integer :: i, n
+        real(wp) :: h, a, b, tc
+        n = size(sp%t)
+        if (n == 1) then
+            y = sp%y(1); yd = zero; ydd = zero; return
+        end if
+        tc = min(max(tt, sp%t(1)), sp%t(n))
+        i = table_segment(sp%t, tc)
+        h = sp%t(i + 1) - sp%t(i)
+        a = (sp%t(i + 1) - tc)/h
+        b = (tc - sp%t(i))/h
+        y = a*sp%y(i) + b*sp%y(i + 1) + ((a**3 - a)*sp%m(i) + (b**3 - b)*sp%m(i + 1))*h**2/6.0_wp
+        yd = (sp%y(i + 1) - sp%y(i))/h - (3.0_wp*a**2 - one)/6.0_wp*h*sp%m(i) &
+             + (3.0_wp*b**2 - one)/6.0_wp*h*sp%m(i + 1)
+        ydd = a*sp%m(i) + b*sp%m(i + 1)
+        if (tt /= tc) then
+            y = y + yd*(tt - tc)
+            ydd = zero
+        end if
+    end subroutine spline_eval
+
+end module hn_tables
