@@ -9,7 +9,7 @@ module hn_kane
     implicit none
     private
 
-    public :: a_ij, generalized_active_forces, f_i
+    public :: a_ij, generalized_active_forces, f_i, equivalent_body_loads
 
 contains
 
@@ -72,6 +72,61 @@ contains
         call project_on_partials(tree, kin, fstar, mstar, f)
         f = f + loads%q(1:size(f))
     end subroutine f_i
+
+    !> Resultant force and moment on every body equivalent to the body loads
+    !! plus the generalized forces q on coordinates: q on the translations of
+    !! body k becomes a force pair at its joint point, q on its rotations a
+    !! couple pair M with u_m . M = q_m (u_m the Bryant axes; M has no
+    !! component along a locked axis). stat = k when the Bryant axes of body
+    !! k are singular (cos(beta) = 0) and q acts on its rotations.
+    pure subroutine equivalent_body_loads(tree, kin, loads, force, moment, stat)
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        type(body_loads_t), intent(in) :: loads
+        real(wp), intent(out) :: force(:, :), moment(:, :)   !! (3, nb) in R
+        integer, intent(out) :: stat
+        integer :: k, p, m, j
+        real(wp) :: ft(3), qr(3), u(3, 3), c(3), det, adj(3, 3)
+        stat = 0
+        force = loads%force
+        moment = loads%moment
+        do k = 1, tree%nbody
+            p = tree%parent(k)
+            ft = zero; qr = zero
+            do m = 1, 6
+                j = tree%dof_index(m, k)
+                if (j == 0) cycle
+                if (m <= 3) then
+                    ft = ft + kin%axes(:, m, k)*loads%q(j)
+                else
+                    qr(m - 3) = loads%q(j)
+                end if
+            end do
+            if (any(ft /= zero)) then
+                force(:, k) = force(:, k) + ft
+                moment(:, k) = moment(:, k) + cross(kin%joint(:, k) - kin%r(:, k), ft)
+                if (p > 0) then
+                    force(:, p) = force(:, p) - ft
+                    moment(:, p) = moment(:, p) - cross(kin%joint(:, k) - kin%r(:, p), ft)
+                end if
+            end if
+            if (any(qr /= zero)) then
+                ! solve u^T c = qr (zero component along the axis of a locked rotation)
+                u = kin%axes(:, 4:6, k)
+                adj(:, 1) = cross(u(:, 2), u(:, 3))
+                adj(:, 2) = cross(u(:, 3), u(:, 1))
+                adj(:, 3) = cross(u(:, 1), u(:, 2))
+                det = dot_product(u(:, 1), adj(:, 1))
+                if (abs(det) < 1.0e-12_wp) then
+                    stat = k
+                    cycle
+                end if
+                c = matmul(adj, qr)/det
+                moment(:, k) = moment(:, k) + c
+                if (p > 0) moment(:, p) = moment(:, p) - c
+            end if
+        end do
+    end subroutine equivalent_body_loads
 
     !> g_i = v_pik F_pk + omega_pik M_pk for per-body vectors F, M.
     pure subroutine project_on_partials(tree, kin, force, moment, g)

@@ -1,0 +1,87 @@
+!> The cross-checking dump: at requested times, every body's mass,
+!! inertia, rotation matrix, mass-centre position, velocity and
+!! acceleration, angular velocity and acceleration, and resultant applied
+!! force and moment about the mass centre (all in R), with x, xdot, a_ij,
+!! f_i and xddot. Layout in docs/output-format.md (group /dump).
+module hn_dump
+    use hn_kinds, only: wp, msglen
+    use hn_model, only: model_t
+    use hn_dynamics, only: dyn_workspace_t
+    use hn_kinematics, only: body_accelerations
+    use hn_kane, only: equivalent_body_loads
+    use hn_tree, only: dof_label
+    use hn_h5, only: h5_file_t
+    implicit none
+    private
+
+    public :: dump_open, dump_record
+
+contains
+
+    !> Create group /dump with the constant body tables and empty series.
+    subroutine dump_open(h5, model)
+        type(h5_file_t), intent(inout) :: h5
+        type(model_t), intent(in) :: model
+        integer :: nb, n, j
+        character(len=:), allocatable :: labels
+        nb = model%tree%nbody
+        n = model%tree%ndof
+        call h5%group('/dump')
+        call h5%write_real('/dump/mass', model%tree%mass, [nb])
+        call h5%write_real('/dump/inertia', model%tree%inertia, [3, 3, nb])
+        call h5%attr_string('/dump/inertia', 'units', 'kg m^2, centroidal, body frame')
+        labels = ''
+        do j = 1, n
+            labels = labels//trim(dof_label(model%tree, j))//' '
+        end do
+        call h5%attr_string('/dump', 'coordinates', trim(labels))
+        call h5%series('/dump/time', [integer ::])
+        call h5%series('/dump/rotation', [3, 3, nb])
+        call h5%series('/dump/position', [3, nb])
+        call h5%series('/dump/velocity', [3, nb])
+        call h5%series('/dump/acceleration', [3, nb])
+        call h5%series('/dump/angular_velocity', [3, nb])
+        call h5%series('/dump/angular_acceleration', [3, nb])
+        call h5%series('/dump/force', [3, nb])
+        call h5%series('/dump/moment', [3, nb])
+        call h5%series('/dump/x', [n])
+        call h5%series('/dump/xd', [n])
+        call h5%series('/dump/xdd', [n])
+        call h5%series('/dump/f', [n])
+        call h5%series('/dump/a', [n, n])
+    end subroutine dump_open
+
+    !> Append one record from the workspace of the dynamics evaluation at t.
+    subroutine dump_record(h5, model, ws, t, stat, errmsg)
+        type(h5_file_t), intent(inout) :: h5
+        type(model_t), intent(in) :: model
+        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: t
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        real(wp) :: acc(3, model%tree%nbody), alpha(3, model%tree%nbody)
+        real(wp) :: force(3, model%tree%nbody), moment(3, model%tree%nbody)
+        errmsg = ''
+        call body_accelerations(model%tree, ws%kin, ws%xdd, acc, alpha)
+        call equivalent_body_loads(model%tree, ws%kin, ws%loads, force, moment, stat)
+        if (stat /= 0) then
+            write (errmsg, '(a,es12.5,a,i0,a)') 'dump at t = ', t, ' s: Bryant axes of body ', stat, &
+                ' are singular; joint couples cannot be written as body moments'
+        end if
+        call h5%append('/dump/time', [t])
+        call h5%append('/dump/rotation', ws%kin%s)
+        call h5%append('/dump/position', ws%kin%r)
+        call h5%append('/dump/velocity', ws%kin%v)
+        call h5%append('/dump/acceleration', acc)
+        call h5%append('/dump/angular_velocity', ws%kin%omega)
+        call h5%append('/dump/angular_acceleration', alpha)
+        call h5%append('/dump/force', force)
+        call h5%append('/dump/moment', moment)
+        call h5%append('/dump/x', ws%x)
+        call h5%append('/dump/xd', ws%xd)
+        call h5%append('/dump/xdd', ws%xdd)
+        call h5%append('/dump/f', ws%f)
+        call h5%append('/dump/a', ws%a)
+    end subroutine dump_record
+
+end module hn_dump
