@@ -8,7 +8,7 @@ module hn_dynamics
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities
     use hn_loads, only: body_loads_t, loads_allocate
     use hn_kane, only: a_ij, f_i
-    use hn_forces, only: compute_loads
+    use hn_forces, only: compute_loads, element_output_t, element_output_allocate
     use hn_linsolve, only: linear_solve
     use hn_motion, only: motion_eval
     use hn_ode, only: ode_system_t
@@ -24,6 +24,7 @@ module hn_dynamics
         integer, allocatable :: ifree(:), ipres(:)  !! free and prescribed coordinate numbers
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
+        type(element_output_t) :: eo                 !! element forces of the last evaluation
         real(wp), allocatable :: x(:), xd(:), xdd(:) !! all active coordinates, rates, accelerations
         real(wp), allocatable :: a(:, :), f(:)       !! a_ij and f_i of all active coordinates
         real(wp), allocatable :: aff(:, :), bf(:)    !! the free partition and its right-hand side
@@ -59,6 +60,7 @@ contains
         end do
         call kinematics_allocate(model%tree, ws%kin)
         call loads_allocate(ws%loads, model%tree%nbody, n)
+        call element_output_allocate(model, ws%eo)
         allocate (ws%x(n), ws%xd(n), ws%xdd(n), ws%a(n, n), ws%f(n))
         allocate (ws%aff(ws%nfree, ws%nfree), ws%bf(ws%nfree))
         ws%x = zero; ws%xd = zero; ws%xdd = zero
@@ -100,7 +102,7 @@ contains
 
         call state_to_coordinates(model, ws, t, xf, xdf)
         call partial_velocities(model%tree, ws%x, ws%xd, ws%kin)
-        call compute_loads(model, t, ws%kin, ws%loads)
+        call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
         call a_ij(model%tree, ws%kin, ws%a)
         call f_i(model%tree, ws%kin, ws%loads, ws%f)
 

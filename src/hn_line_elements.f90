@@ -3,7 +3,7 @@
 !! (tension only, F = l1 d + l2 d^n, eq 10) and muscles (tension only,
 !! F = m1 d + m2 d', eq 11).
 module hn_line_elements
-    use hn_kinds, only: wp, zero
+    use hn_kinds, only: wp, zero, one
     use hn_rotation, only: cross, norm3
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, add_point_force
@@ -11,7 +11,8 @@ module hn_line_elements
     private
 
     public :: line_geometry_t, line_geometry, apply_line_tension, attachment_point
-    public :: spring_t, spring_tension
+    public :: spring_t, spring_tension, ligament_t, ligament_tension, ligament_energy
+    public :: muscle_t, muscle_tension
 
     !> Where a line element is and how fast it lengthens.
     type :: line_geometry_t
@@ -25,12 +26,67 @@ module hn_line_elements
     type :: spring_t
         integer :: body_a = 0, body_b = 0        !! bodies (0 = inertial frame)
         real(wp) :: point_a(3) = zero, point_b(3) = zero !! attachment in body frames, from the mass centre [m]
-        real(wp) :: free_length = zero           !! unstretched length [m]
+        real(wp) :: free_length = -one           !! unstretched length [m]; negative: the neutral length
         real(wp) :: stiffness = zero             !! [N/m]
         real(wp) :: damping = zero               !! [N s/m]
     end type spring_t
 
+    !> Ligament (eq 10): tension-only nonlinear band, F = l1 d + l2 d^n for
+    !! stretch d = L - L0 > 0, zero when slack.
+    type :: ligament_t
+        character(len=12) :: name = ''
+        integer :: body_a = 0, body_b = 0
+        real(wp) :: point_a(3) = zero, point_b(3) = zero  !! attachments, body frames [m]
+        real(wp) :: slack_length = -one   !! L0 [m]; negative: the neutral length
+        real(wp) :: l1 = zero             !! linear coefficient [N/m]
+        real(wp) :: l2 = zero             !! nonlinear coefficient [N/m^n]
+        real(wp) :: n = 2.0_wp            !! exponent
+    end type ligament_t
+
+    !> Muscle (eq 11): tension-only two-parameter viscoelastic element,
+    !! F = max(0, m1 d + m2 d' + a(t) Fmax), d = L - L0; it never pushes.
+    !! The activation a(t) in [0, 1] (a table, beyond the paper) is optional.
+    type :: muscle_t
+        character(len=12) :: name = ''
+        integer :: body_a = 0, body_b = 0
+        real(wp) :: point_a(3) = zero, point_b(3) = zero
+        real(wp) :: rest_length = -one    !! L0 [m]; negative: the neutral length
+        real(wp) :: m1 = zero             !! stiffness [N/m]
+        real(wp) :: m2 = zero             !! damping [N s/m]
+        real(wp) :: fmax = zero           !! force at full activation [N]
+        integer :: activation = 0         !! table number of a(t); 0 = passive
+    end type muscle_t
+
 contains
+
+    !> Ligament tension (eq 10) at length L.
+    pure real(wp) function ligament_tension(g, length) result(t)
+        type(ligament_t), intent(in) :: g
+        real(wp), intent(in) :: length
+        real(wp) :: d
+        d = length - g%slack_length
+        if (d > zero) then
+            t = g%l1*d + g%l2*d**g%n
+        else
+            t = zero
+        end if
+    end function ligament_tension
+
+    !> Elastic energy stored in a ligament at length L.
+    pure real(wp) function ligament_energy(g, length) result(u)
+        type(ligament_t), intent(in) :: g
+        real(wp), intent(in) :: length
+        real(wp) :: d
+        d = max(zero, length - g%slack_length)
+        u = 0.5_wp*g%l1*d**2 + g%l2*d**(g%n + one)/(g%n + one)
+    end function ligament_energy
+
+    !> Muscle tension (eq 11, tension only) at length L, rate L' and activation a.
+    pure real(wp) function muscle_tension(m, length, rate, act) result(t)
+        type(muscle_t), intent(in) :: m
+        real(wp), intent(in) :: length, rate, act
+        t = max(zero, m%m1*(length - m%rest_length) + m%m2*rate + act*m%fmax)
+    end function muscle_tension
 
     !> Position and velocity (R) of a point fixed in body k at body-frame
     !! offset c from the mass centre (k = 0: c is a point of R).

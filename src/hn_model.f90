@@ -1,16 +1,26 @@
 !> The model: body tree, which coordinates are prescribed and how, gravity,
 !! force elements and applied loads. Everything a dynamics evaluation reads.
 module hn_model
-    use hn_kinds, only: wp, zero, g_std
+    use hn_kinds, only: wp, zero, g_std, msglen
     use hn_tree, only: body_tree_t
     use hn_motion, only: motion_t
-    use hn_line_elements, only: spring_t
+    use hn_tables, only: table_t
+    use hn_line_elements, only: spring_t, ligament_t, muscle_t, line_geometry_t, line_geometry
+    use hn_discs, only: disc_t, disc_set_reference
+    use hn_joint_limits, only: joint_limit_t
     use hn_applied, only: applied_load_t
+    use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities
     use hn_linsolve, only: solver_gauss
     implicit none
     private
 
-    public :: model_t, model_init
+    public :: model_t, model_init, model_set_neutral, neutral_coordinates
+
+    !> Element families that can be switched on and off.
+    integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
+                                  fam_limits = 4, fam_springs = 5, nfamilies = 5
+    character(len=9), parameter, public :: family_name(nfamilies) = &
+        [character(len=9) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS']
 
     !> A complete mechanical model.
     type :: model_t
@@ -20,7 +30,14 @@ module hn_model
         logical, allocatable :: prescribed(:)          !! (n) coordinate driven by `motion`
         type(motion_t), allocatable :: motion(:)       !! (n) its time history
         type(spring_t), allocatable :: springs(:)
+        type(disc_t), allocatable :: discs(:)
+        type(ligament_t), allocatable :: ligaments(:)
+        type(muscle_t), allocatable :: muscles(:)
+        type(joint_limit_t), allocatable :: limits(:)
         type(applied_load_t), allocatable :: applied(:)
+        type(table_t), allocatable :: tables(:)        !! activation tables referenced by muscles
+        real(wp), allocatable :: q_hold(:)             !! (n) constant generalized forces (posture holding)
+        logical :: family_on(nfamilies) = .true.       !! element families switched on
         integer :: solver = solver_gauss               !! solver of a_ij xddot = f
     end type model_t
 
@@ -31,9 +48,56 @@ contains
         type(model_t), intent(out) :: model
         type(body_tree_t), intent(in) :: tree
         model%tree = tree
-        allocate (model%prescribed(tree%ndof), model%motion(tree%ndof))
+        allocate (model%prescribed(tree%ndof), model%motion(tree%ndof), model%q_hold(tree%ndof))
         model%prescribed = .false.
-        allocate (model%springs(0), model%applied(0))
+        model%q_hold = zero
+        allocate (model%springs(0), model%discs(0), model%ligaments(0), model%muscles(0))
+        allocate (model%limits(0), model%applied(0), model%tables(0))
     end subroutine model_init
+
+    !> Active coordinates of the neutral configuration (every coordinate at
+    !! its reference value).
+    pure function neutral_coordinates(model) result(x)
+        type(model_t), intent(in) :: model
+        real(wp) :: x(model%tree%ndof)
+        integer :: j
+        do j = 1, model%tree%ndof
+            x(j) = model%tree%q_ref(model%tree%dof_local(j), model%tree%dof_body(j))
+        end do
+    end function neutral_coordinates
+
+    !> Measure the neutral configuration: disc plate frames and offsets,
+    !! and the free lengths of ligaments and muscles not given explicitly.
+    pure subroutine model_set_neutral(model)
+        type(model_t), intent(inout) :: model
+        type(kinematics_t) :: kin
+        type(line_geometry_t) :: g
+        real(wp) :: x0(model%tree%ndof)
+        integer :: e
+        x0 = neutral_coordinates(model)
+        call kinematics_allocate(model%tree, kin)
+        call partial_velocities(model%tree, x0, 0*x0, kin)
+        do e = 1, size(model%discs)
+            call disc_set_reference(model%discs(e), kin)
+        end do
+        do e = 1, size(model%ligaments)
+            associate (l => model%ligaments(e))
+                call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
+                if (l%slack_length < zero) l%slack_length = g%length
+            end associate
+        end do
+        do e = 1, size(model%muscles)
+            associate (m => model%muscles(e))
+                call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
+                if (m%rest_length < zero) m%rest_length = g%length
+            end associate
+        end do
+        do e = 1, size(model%springs)
+            associate (s => model%springs(e))
+                call line_geometry(kin, s%body_a, s%point_a, s%body_b, s%point_b, g)
+                if (s%free_length < zero) s%free_length = g%length
+            end associate
+        end do
+    end subroutine model_set_neutral
 
 end module hn_model

@@ -8,7 +8,7 @@ program test_kane_tree
     use hn_loads, only: body_loads_t, loads_allocate
     use hn_kane, only: a_ij, f_i, generalized_active_forces
     use hn_model, only: model_t, model_init
-    use hn_forces, only: compute_loads
+    use hn_forces, only: compute_loads, element_output_t, element_output_allocate
     use hn_line_elements, only: spring_t
     use hn_linsolve, only: spd_rcond
     use hn_testing, only: test_suite_t
@@ -202,13 +202,15 @@ contains
         type(model_t) :: gm
         type(kinematics_t) :: kin, kp, km
         type(body_loads_t) :: loads
+        type(element_output_t) :: eo
         real(wp) :: fa(n), e(n), dv, err
         integer :: j
         gm = model
         deallocate (gm%springs); allocate (gm%springs(0))
         call kin_at(x, xd, kin)
         call loads_allocate(loads, nb, n)
-        call compute_loads(gm, zero, kin, loads)
+        call element_output_allocate(gm, eo)
+        call compute_loads(gm, zero, kin, x, xd, loads, eo)
         call generalized_active_forces(tree, kin, loads, fa)
         err = zero
         do j = 1, n
@@ -236,11 +238,13 @@ contains
         character(len=*), intent(in) :: tag
         type(kinematics_t) :: kin, kp, km
         type(body_loads_t) :: loads
+        type(element_output_t) :: eo
         real(wp) :: ap(n, n), am(n, n), f(n), fa(n), lag(n), e(n)
         integer :: j
         call kin_at(x, xd, kin)
         call loads_allocate(loads, nb, n)
-        call compute_loads(model, zero, kin, loads)
+        call element_output_allocate(model, eo)
+        call compute_loads(model, zero, kin, x, xd, loads, eo)
         call generalized_active_forces(tree, kin, loads, fa)
         call f_i(tree, kin, loads, f)
         call kin_at(x + h*xd, xd, kp); call a_ij(tree, kp, ap)

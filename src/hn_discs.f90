@@ -1,0 +1,171 @@
+!> Intervertebral discs (paper eqs 1-9): a short Timoshenko beam between a
+!! plate on the lower body and a plate on the upper body.
+!!
+!! Deformations q = (u, theta) of the upper plate relative to the lower one,
+!! in the lower plate frame L, measured from the neutral configuration:
+!! u = L^T (P_u - P_l) - d0 (shear u1, u2; axial u3) and theta the rotation
+!! vector of L^T U (bending theta1, theta2; torsion theta3). The stress
+!! resultants s = K q + C qdot:
+!!   axial    P = (A/h)(d1 u3 + d2 u3')                      (eq 1)
+!!   shear and bending in each plane, Timoshenko beam with
+!!   Phi = 12 E I k / (G A h^2), E = d1                       (eqs 2-6, 8-9)
+!!     [V; M] = E I / (h^3 (1 + Phi)) [12, -6h; -6h, (4 + Phi) h^2] [w; psi]
+!!   torsion  T = G J theta3 / h                              (eq 7)
+!! and C = (d2/d1) K (the same two-parameter viscoelastic law in every mode).
+!! The loads on the bodies are the work-conjugates of q: the element stores
+!! U = q^T K q / 2 exactly and dissipates qdot^T C qdot.
+module hn_discs
+    use hn_kinds, only: wp, zero, one, half
+    use hn_rotation, only: cross, skew, rot_y, rotation_vector, norm3
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t, add_force_pair
+    implicit none
+    private
+
+    public :: disc_t, disc_stiffness, disc_set_reference, disc_deformation, disc_resultants
+    public :: apply_disc, disc_energy, inv_left_jacobian
+
+    !> One disc and its constants.
+    type :: disc_t
+        character(len=12) :: name = ''
+        integer :: body_a = 0, body_b = 0     !! lower and upper body
+        real(wp) :: pa(3) = zero              !! lower plate centre, lower body frame from its mass centre [m]
+        real(wp) :: pb(3) = zero              !! upper plate centre, upper body frame [m]
+        real(wp) :: tilt = zero               !! plate frame rotation about the lower body's y axis [rad]
+        real(wp) :: area = zero               !! A [m^2]
+        real(wp) :: h = zero                  !! thickness [m]
+        real(wp) :: d1 = zero                 !! elastic modulus E [Pa]
+        real(wp) :: d2 = zero                 !! viscous modulus [Pa s]
+        real(wp) :: g = zero                  !! shear modulus [Pa]
+        real(wp) :: ix = zero, iy = zero      !! second moments of area about plate x, y [m^4]
+        real(wp) :: j = zero                  !! torsion constant [m^4]
+        real(wp) :: kshear = 1.2_wp           !! shear shape factor k (1.2 rectangle, 10/9 circle)
+        real(wp) :: ra(3, 3) = reshape([one, zero, zero, zero, one, zero, zero, zero, one], [3, 3]) !! plate frame in lower body
+        real(wp) :: rb(3, 3) = reshape([one, zero, zero, zero, one, zero, zero, zero, one], [3, 3]) !! plate frame in upper body
+        real(wp) :: d0(3) = zero              !! neutral offset of the plates in L [m]
+        real(wp) :: k(6, 6) = zero            !! stiffness
+        real(wp) :: c(6, 6) = zero            !! damping
+    end type disc_t
+
+contains
+
+    !> Stiffness K of the disc (eqs 1-9), ordered (u1, u2, u3, theta1, theta2, theta3).
+    pure function disc_stiffness(d) result(k)
+        type(disc_t), intent(in) :: d
+        real(wp) :: k(6, 6)
+        real(wp) :: phi, kb
+        k = zero
+        ! x-z plane: deflection u1, slope psi = theta2
+        phi = 12*d%d1*d%iy*d%kshear/(d%g*d%area*d%h**2)
+        kb = d%d1*d%iy/(d%h**3*(one + phi))
+        k(1, 1) = 12*kb
+        k(1, 5) = -6*d%h*kb
+        k(5, 1) = k(1, 5)
+        k(5, 5) = (4 + phi)*d%h**2*kb
+        ! y-z plane: deflection u2, slope psi = -theta1
+        phi = 12*d%d1*d%ix*d%kshear/(d%g*d%area*d%h**2)
+        kb = d%d1*d%ix/(d%h**3*(one + phi))
+        k(2, 2) = 12*kb
+        k(2, 4) = 6*d%h*kb
+        k(4, 2) = k(2, 4)
+        k(4, 4) = (4 + phi)*d%h**2*kb
+        ! axial and torsion
+        k(3, 3) = d%d1*d%area/d%h
+        k(6, 6) = d%g*d%j/d%h
+    end function disc_stiffness
+
+    !> Fix the plate frames and neutral offset from the kinematics of the
+    !! neutral configuration, and form K and C.
+    pure subroutine disc_set_reference(d, kin)
+        type(disc_t), intent(inout) :: d
+        type(kinematics_t), intent(in) :: kin
+        real(wp) :: sl(3, 3), su(3, 3), plo(3), pup(3)
+        d%ra = rot_y(d%tilt)
+        call plates(d, kin, sl, su, plo, pup)
+        d%rb = matmul(transpose(su), sl)
+        d%d0 = matmul(transpose(sl), pup - plo)
+        d%k = disc_stiffness(d)
+        d%c = (d%d2/d%d1)*d%k
+    end subroutine disc_set_reference
+
+    !> Body frames and plate centres (R) of the two bodies.
+    pure subroutine plates(d, kin, sa, sb, plo, pup)
+        type(disc_t), intent(in) :: d
+        type(kinematics_t), intent(in) :: kin
+        real(wp), intent(out) :: sa(3, 3), sb(3, 3), plo(3), pup(3)
+        sa = kin%s(:, :, d%body_a)
+        sb = kin%s(:, :, d%body_b)
+        plo = kin%r(:, d%body_a) + matmul(sa, d%pa)
+        pup = kin%r(:, d%body_b) + matmul(sb, d%pb)
+    end subroutine plates
+
+    !> J_l(theta)^-1 of the rotation vector: thetadot = J^-1 omega, omega the
+    !! left (spatial) angular velocity of exp(skew(theta)).
+    pure function inv_left_jacobian(th) result(m)
+        real(wp), intent(in) :: th(3)
+        real(wp) :: m(3, 3), t, a, w(3, 3)
+        integer :: i
+        t = norm3(th)
+        w = skew(th)
+        if (t < 1.0e-4_wp) then
+            a = one/12 + t**2/720
+        else
+            a = (one - half*t*cos(half*t)/sin(half*t))/t**2
+        end if
+        m = -half*w + a*matmul(w, w)
+        do i = 1, 3
+            m(i, i) = m(i, i) + one
+        end do
+    end function inv_left_jacobian
+
+    !> Deformations q and rates qd of the disc, the lower plate frame L (R)
+    !! and the upper plate centre (R) where the loads act.
+    pure subroutine disc_deformation(d, kin, q, qd, l, pup)
+        type(disc_t), intent(in) :: d
+        type(kinematics_t), intent(in) :: kin
+        real(wp), intent(out) :: q(6), qd(6), l(3, 3), pup(3)
+        real(wp) :: sa(3, 3), sb(3, 3), plo(3), rel(3), vrel(3), wa(3), wb(3)
+        call plates(d, kin, sa, sb, plo, pup)
+        l = matmul(sa, d%ra)
+        rel = pup - plo
+        q(1:3) = matmul(transpose(l), rel) - d%d0
+        q(4:6) = rotation_vector(matmul(transpose(l), matmul(sb, d%rb)))
+        wa = kin%omega(:, d%body_a)
+        wb = kin%omega(:, d%body_b)
+        vrel = kin%v(:, d%body_b) + cross(wb, pup - kin%r(:, d%body_b)) &
+               - kin%v(:, d%body_a) - cross(wa, plo - kin%r(:, d%body_a)) - cross(wa, rel)
+        qd(1:3) = matmul(transpose(l), vrel)
+        qd(4:6) = matmul(inv_left_jacobian(q(4:6)), matmul(transpose(l), wb - wa))
+    end subroutine disc_deformation
+
+    !> Stress resultants s = K q + C qd: shear forces, axial force (tension
+    !! positive), bending moments and torque conjugate to q.
+    pure function disc_resultants(d, q, qd) result(s)
+        type(disc_t), intent(in) :: d
+        real(wp), intent(in) :: q(6), qd(6)
+        real(wp) :: s(6)
+        s = matmul(d%k, q) + matmul(d%c, qd)
+    end function disc_resultants
+
+    !> Elastic energy q^T K q / 2.
+    pure real(wp) function disc_energy(d, q) result(u)
+        type(disc_t), intent(in) :: d
+        real(wp), intent(in) :: q(6)
+        u = half*dot_product(q, matmul(d%k, q))
+    end function disc_energy
+
+    !> Add the disc loads to both bodies; returns the resultants s.
+    pure subroutine apply_disc(d, kin, loads, s)
+        type(disc_t), intent(in) :: d
+        type(kinematics_t), intent(in) :: kin
+        type(body_loads_t), intent(inout) :: loads
+        real(wp), intent(out) :: s(6)
+        real(wp) :: q(6), qd(6), l(3, 3), pup(3), f(3), c(3)
+        call disc_deformation(d, kin, q, qd, l, pup)
+        s = disc_resultants(d, q, qd)
+        f = -matmul(l, s(1:3))
+        c = -matmul(l, matmul(transpose(inv_left_jacobian(q(4:6))), s(4:6)))
+        call add_force_pair(loads, d%body_a, kin%r(:, d%body_a), d%body_b, kin%r(:, d%body_b), pup, f, c)
+    end subroutine apply_disc
+
+end module hn_discs
