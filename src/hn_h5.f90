@@ -171,24 +171,28 @@ contains
         call h5sclose_f(space, err)
     end subroutine h5_series
 
-    !> Append one record to the time series `path`.
-    subroutine h5_append(me, path, buf)
+    !> Append `nrec` records (default 1) to the time series `path`.
+    subroutine h5_append(me, path, buf, nrec)
         class(h5_file_t), intent(inout) :: me
         character(len=*), intent(in) :: path
         real(wp), intent(in), target :: buf(*)
+        integer, intent(in), optional :: nrec
         integer(hid_t) :: dset, fspace, mspace
-        integer(hsize_t) :: dims(8), maxd(8), start(8), cnt(8)
+        integer(hsize_t) :: dims(8), maxd(8), start(8), cnt(8), nr
         integer :: err, r
+        nr = 1
+        if (present(nrec)) nr = int(nrec, hsize_t)
+        if (nr < 1) return
         call h5dopen_f(me%id, path, dset, err)
         call h5dget_space_f(dset, fspace, err)
         call h5sget_simple_extent_ndims_f(fspace, r, err)
         call h5sget_simple_extent_dims_f(fspace, dims(1:r), maxd(1:r), err)
         call h5sclose_f(fspace, err)
-        dims(r) = dims(r) + 1
+        dims(r) = dims(r) + nr
         call h5dset_extent_f(dset, dims(1:r), err)
         call h5dget_space_f(dset, fspace, err)
-        start(1:r) = 0; start(r) = dims(r) - 1
-        cnt(1:r) = dims(1:r); cnt(r) = 1
+        start(1:r) = 0; start(r) = dims(r) - nr
+        cnt(1:r) = dims(1:r); cnt(r) = nr
         call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, start(1:r), cnt(1:r), err)
         call h5screate_simple_f(r, cnt(1:r), mspace, err)
         call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, c_loc(buf), err, mspace, fspace)

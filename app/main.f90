@@ -1,0 +1,88 @@
+!> hhneck: run one case deck read from standard input.
+!!
+!!   fpm run < input/case6-2.inp
+!!   fpm run -- --h5 out.h5 < input/nbdl15g.inp
+!!
+!! The listing goes to standard output, diagnostics to standard error.
+!! Exit codes are listed in docs/errors.md.
+program hhneck
+    use, intrinsic :: iso_fortran_env, only: input_unit, output_unit, error_unit
+    use hn_kinds, only: msglen
+    use hn_case, only: case_t, path_len
+    use hn_deck, only: read_case
+    use hn_run, only: run_case, run_result_t, code_version, exit_usage, exit_deck, exit_ok
+    implicit none
+    type(case_t) :: cs
+    type(run_result_t) :: res
+    character(len=path_len) :: h5name, arg
+    character(len=msglen) :: msg
+    logical :: h5_given, no_h5, check_only
+    integer :: i, stat, nargs
+
+    h5_given = .false.; no_h5 = .false.; check_only = .false.
+    h5name = ''
+    nargs = command_argument_count()
+    i = 1
+    do while (i <= nargs)
+        call get_command_argument(i, arg)
+        select case (arg)
+        case ('--h5')
+            if (i == nargs) call usage('--h5 needs a file name')
+            i = i + 1
+            call get_command_argument(i, h5name)
+            h5_given = .true.
+        case ('--no-h5')
+            no_h5 = .true.
+        case ('--check')
+            check_only = .true.
+        case ('--version')
+            write (output_unit, '(a)') 'hhneck '//code_version
+            stop
+        case ('--help', '-h')
+            call usage('')
+        case default
+            call usage('unknown option "'//trim(arg)//'"')
+        end select
+        i = i + 1
+    end do
+
+    call read_case(input_unit, cs, stat, msg)
+    if (stat /= 0) then
+        write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
+        stop exit_deck, quiet=.true.
+    end if
+    if (check_only) then
+        write (error_unit, '(a)') 'hhneck: deck is valid: '//trim(cs%model%title)
+        stop
+    end if
+    if (.not. h5_given) h5name = cs%h5file
+    if (no_h5) h5name = ''
+    call run_case(cs, output_unit, trim(h5name), res)
+    if (res%exit_code /= exit_ok) then
+        write (error_unit, '(a)') 'hhneck: '//trim(res%message)
+        if (len_trim(h5name) > 0) write (error_unit, '(a)') 'hhneck: results up to t = '// &
+            trim(real_text(res%t_reached))//' s kept in '//trim(h5name)//' (marked incomplete)'
+        stop res%exit_code, quiet=.true.
+    end if
+    write (error_unit, '(a,f8.3,a,i0,a)') 'hhneck: done in ', res%wall, ' s wall time, ', res%nevals, &
+        ' dynamics evaluations'
+
+contains
+
+    subroutine usage(problem)
+        character(len=*), intent(in) :: problem
+        if (len(problem) > 0) write (error_unit, '(a)') 'hhneck: '//problem
+        write (error_unit, '(a)') 'usage: hhneck [--h5 FILE | --no-h5] [--check] [--version] < DECK'
+        if (len(problem) > 0) stop exit_usage, quiet=.true.
+        stop
+    end subroutine usage
+
+    function real_text(v) result(s)
+        use hn_kinds, only: wp
+        real(wp), intent(in) :: v
+        character(len=24) :: s
+        write (s, '(f12.5)') v
+        s = adjustl(s)
+    end function real_text
+
+end program hhneck

@@ -1,0 +1,39 @@
+!> A run case: the model plus everything the deck says about running it
+!! (time span, step, integrator, output requests) and the deck text itself.
+module hn_case
+    use hn_kinds, only: wp, zero
+    use hn_model, only: model_t
+    implicit none
+    private
+
+    public :: case_t, deck_line_t
+
+    integer, parameter, public :: path_len = 256
+
+    !> One card image as read, with where it came from.
+    type :: deck_line_t
+        character(len=80) :: text = ''
+        character(len=:), allocatable :: source  !! 'stdin' or the included file
+        integer :: line = 0                      !! line number in that source
+    end type deck_line_t
+
+    !> Everything needed to run and report one case.
+    type :: case_t
+        type(model_t) :: model
+        real(wp) :: t_start = zero      !! [s]
+        real(wp) :: t_end = zero        !! [s]
+        real(wp) :: h = zero            !! fixed step, or first step of adaptive methods [s]
+        real(wp) :: print_dt = zero     !! listing interval [s]
+        real(wp) :: sample_dt = zero    !! HDF5 sampling interval [s]
+        character(len=8) :: integrator = 'RK4'
+        real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-8_wp
+        real(wp), allocatable :: x0(:), xd0(:)      !! initial active coordinates and rates
+        logical :: hold_posture = .false.           !! constant generalized forces hold the start posture
+        integer :: head = 0                         !! body reported as the head
+        integer :: t1 = 0                           !! body reported as T1 (NIC, relative motion)
+        character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
+        real(wp), allocatable :: dump_times(:)      !! times of the cross-checking dump
+        type(deck_line_t), allocatable :: deck(:)   !! the cards as read
+    end type case_t
+
+end module hn_case

@@ -1,0 +1,897 @@
+!> Interpretation of a fixed-format input deck into a run case. The cards
+!! and their columns are documented in docs/deck-format.md; every error
+!! names the source, line, columns, card and field, what was found and
+!! what was expected.
+module hn_deck
+    use hn_kinds, only: wp, zero, one, deg, msglen
+    use hn_case, only: case_t
+    use hn_deck_reader, only: deck_reader_t, read_card_images
+    use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
+    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name
+    use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
+    use hn_tables, only: table_t, table_set
+    use hn_discs, only: disc_t
+    use hn_line_elements, only: ligament_t, muscle_t, spring_t
+    use hn_joint_limits, only: joint_limit_t
+    use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
+    use hn_linsolve, only: solver_gauss, solver_cholesky
+    use hn_rotation, only: norm3
+    implicit none
+    private
+
+    public :: read_case, integrator_names
+
+    character(len=8), parameter :: integrator_names(2) = [character(len=8) :: 'RK4', 'DOPRI5']
+
+    character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
+    real(wp), parameter :: big_length = 10.0_wp     !! largest coordinate of a point [m]
+    real(wp), parameter :: big_modulus = 1.0e13_wp  !! largest modulus or stiffness accepted
+
+    !> One card with its continuation cards: deck lines first .. first+ncont.
+    type :: card_t
+        character(len=8) :: key = ''
+        integer :: first = 0
+        integer :: ncont = 0
+    end type card_t
+
+    !> A named table of the deck.
+    type :: named_table_t
+        character(len=10) :: name = ''
+        type(table_t) :: tab
+        integer :: line = 0
+    end type named_table_t
+
+contains
+
+    !> Read a deck from `unit` (standard input) into `cs`.
+    subroutine read_case(unit, cs, stat, errmsg)
+        integer, intent(in) :: unit
+        type(case_t), intent(out) :: cs
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(deck_reader_t) :: rd
+        type(card_t), allocatable :: cards(:)
+        type(named_table_t), allocatable :: tabs(:)
+        character(len=10), allocatable :: bnames(:)
+
+        call read_card_images(rd, unit, 'stdin', 0)
+        if (.not. rd%failed() .and. rd%nlines == 0) &
+            call rd%fail('stdin line 1: the deck is empty (no cards); expected a TITLE card first')
+        if (.not. rd%failed()) then
+            cs%deck = rd%lines(1:rd%nlines)
+            call group_cards(rd, cards)
+        end if
+        if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames)
+        if (.not. rd%failed()) call control_cards(rd, cards, cs)
+        if (.not. rd%failed()) call table_cards(rd, cards, tabs)
+        if (.not. rd%failed()) call coordinate_cards(rd, cards, cs, bnames, tabs)
+        if (.not. rd%failed()) call element_cards(rd, cards, cs, bnames, tabs)
+        if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, tabs)
+        if (.not. rd%failed()) call report_cards(rd, cards, cs, bnames)
+        if (.not. rd%failed()) call model_set_neutral(cs%model)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_case
+
+    !> Number of continuation cards a card type takes (-1: computed, TABLE).
+    pure integer function continuations(key) result(n)
+        character(len=*), intent(in) :: key
+        select case (key)
+        case ('DISC'); n = 2
+        case ('LIGAMENT', 'MUSCLE', 'SPRING', 'FORCE'); n = 1
+        case ('TABLE'); n = -1
+        case default; n = 0
+        end select
+    end function continuations
+
+    !> Split the lines into cards, checking names, continuation counts and
+    !! that TITLE comes first.
+    subroutine group_cards(rd, cards)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), allocatable, intent(out) :: cards(:)
+        character(len=8), parameter :: known(25) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+            'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
+            'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
+            'FORCE', 'COUPLE', 'FAMILY']
+        integer :: i, nc, need, npts, ios
+        character(len=8) :: key
+        character(len=10) :: s
+        allocate (cards(rd%nlines))
+        nc = 0
+        i = 1
+        do while (i <= rd%nlines)
+            key = rd%key(i)
+            if (len_trim(rd%lines(i)%text(1:10)) == 0) then
+                call rd%fail(rd%where(i)//', columns 1-8: found a continuation card (blank card name) '// &
+                             'where a new card was expected; too many continuation cards for the card above?')
+                return
+            end if
+            if (rd%lines(i)%text(9:10) /= '  ') then
+                call rd%fail(rd%where(i)//', columns 9-10: found "'//rd%lines(i)%text(9:10)// &
+                             '"; expected blanks after the card name (fields start in column 11)')
+                return
+            end if
+            if (key == 'END') exit
+            if (.not. any(known == key)) then
+                call rd%fail(rd%where(i)//', columns 1-8: found unknown card "'//trim(key)// &
+                             '"; expected one of TITLE CONTROL BODY JOINT ... (docs/deck-format.md)')
+                return
+            end if
+            if (nc == 0 .and. key /= 'TITLE') then
+                call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(key)//'"; expected a TITLE card first')
+                return
+            end if
+            need = continuations(key)
+            if (need < 0) then
+                s = rd%raw(i, 2)
+                read (s, *, iostat=ios) npts
+                if (ios /= 0 .or. npts < 1) then
+                    call rd%int(i, 2, 'number of points', npts, 1, 100000)
+                    if (.not. rd%failed()) call rd%fail(rd%where(i)//': bad TABLE point count')
+                    return
+                end if
+                need = (npts + 2)/3
+            end if
+            nc = nc + 1
+            cards(nc)%key = key
+            cards(nc)%first = i
+            cards(nc)%ncont = need
+            if (i + need > rd%nlines) then
+                call rd%fail(rd%where(i)//' ('//trim(key)//' card): the deck ends before its '// &
+                             trim(int_str(need))//' continuation card(s)')
+                return
+            end if
+            do i = i + 1, i + need
+                if (len_trim(rd%lines(i)%text(1:10)) /= 0) then
+                    call rd%fail(rd%where(i)//', columns 1-10: found "'//trim(rd%lines(i)%text(1:10))// &
+                                 '"; expected a continuation card of the '//trim(key)// &
+                                 ' card above (columns 1-10 blank)')
+                    return
+                end if
+            end do
+        end do
+        cards = cards(1:nc)
+    end subroutine group_cards
+
+    !> Index of the only card of a type; 0 when absent; error when repeated.
+    integer function single(rd, cards, key, required) result(ic)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        character(len=*), intent(in) :: key
+        logical, intent(in) :: required
+        integer :: k
+        ic = 0
+        do k = 1, size(cards)
+            if (cards(k)%key /= key) cycle
+            if (ic /= 0) then
+                call rd%fail(rd%where(cards(k)%first)//', columns 1-8: found a second '//key// &
+                             ' card; expected only one (the first is at '//rd%where(cards(ic)%first)//')')
+                return
+            end if
+            ic = k
+        end do
+        if (ic == 0 .and. required) call rd%fail('stdin: the deck has no '//key//' card; expected one')
+    end function single
+
+    !> TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT, H5FILE, DUMP, HOLD.
+    subroutine control_cards(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        integer :: ic, i, k, f, nd
+        character(len=10) :: s
+        real(wp) :: v, span
+        real(wp), allocatable :: tmp(:)
+
+        ic = single(rd, cards, 'TITLE', .true.)
+        if (rd%failed()) return
+        cs%model%title = rd%text(cards(ic)%first, 11)
+
+        ic = single(rd, cards, 'CONTROL', .true.)
+        if (rd%failed()) return
+        i = cards(ic)%first
+        call rd%real(i, 7, 'start time', 's', cs%t_start, -1.0e4_wp, 1.0e4_wp, default=zero)
+        call rd%real(i, 1, 'end time', 's', cs%t_end, -1.0e4_wp, 1.0e4_wp)
+        if (.not. rd%failed() .and. .not. (cs%t_end > cs%t_start)) then
+            call rd%fail(rd%where(i)//', columns 11-20 (CONTROL card, field F1 ''end time''): found '// &
+                         trim(rd%raw(i, 1))//' s; expected an end time after the start time '// &
+                         trim(real_str(cs%t_start))//' s')
+            return
+        end if
+        span = cs%t_end - cs%t_start
+        call rd%real(i, 2, 'step', 's', cs%h, tiny(one), huge(one))
+        if (.not. rd%failed() .and. span/cs%h > 1.0e8_wp) then
+            call rd%fail(rd%where(i)//', columns 21-30 (CONTROL card, field F2 ''step''): found '// &
+                         trim(rd%raw(i, 2))//' s; a step this small needs more than 1E8 steps for the run; '// &
+                         'expected a step of at least '//trim(real_str(span*1.0e-8_wp))//' s')
+            return
+        end if
+        if (.not. rd%failed() .and. cs%h > span) then
+            call rd%fail(rd%where(i)//', columns 21-30 (CONTROL card, field F2 ''step''): found '// &
+                         trim(rd%raw(i, 2))//' s; expected a step no longer than the run ('// &
+                         trim(real_str(span))//' s)')
+            return
+        end if
+        call rd%real(i, 3, 'print interval', 's', cs%print_dt, tiny(one), huge(one))
+        if (.not. rd%failed() .and. span/cs%print_dt > 1.0e6_wp) then
+            call rd%fail(rd%where(i)//', columns 31-40 (CONTROL card, field F3 ''print interval''): found '// &
+                         trim(rd%raw(i, 3))//' s; expected at most 1E6 print times in the run')
+            return
+        end if
+        call rd%name(i, 4, 'integrator', s)
+        if (.not. rd%failed()) then
+            if (.not. any(integrator_names == s(1:8))) then
+                call rd%fail(rd%where(i)//', columns 41-50 (CONTROL card, field F4 ''integrator''): found "'// &
+                             trim(s)//'"; expected one of '//join(integrator_names))
+                return
+            end if
+            cs%integrator = s(1:8)
+        end if
+        call rd%real(i, 5, 'relative tolerance', '-', cs%rtol, 1.0e-14_wp, 0.1_wp, default=1.0e-6_wp)
+        call rd%real(i, 6, 'absolute tolerance', '-', cs%atol, 1.0e-16_wp, 1.0_wp, default=1.0e-8_wp)
+        if (rd%failed()) return
+
+        ic = single(rd, cards, 'SOLVER', .false.)
+        if (ic > 0) then
+            call rd%name(cards(ic)%first, 1, 'method', s)
+            select case (s)
+            case ('GAUSS'); cs%model%solver = solver_gauss
+            case ('CHOLESKY'); cs%model%solver = solver_cholesky
+            case default
+                if (.not. rd%failed()) call rd%fail(rd%where(cards(ic)%first)// &
+                                                    ', columns 11-20 (SOLVER card, field F1 ''method''): found "'// &
+                                                    trim(s)//'"; expected GAUSS or CHOLESKY')
+            end select
+        end if
+        ic = single(rd, cards, 'GRAVITY', .false.)
+        if (ic > 0) then
+            do f = 1, 3
+                call rd%real(cards(ic)%first, f, 'gravity component', 'm/s^2', v, -1.0e3_wp, 1.0e3_wp)
+                cs%model%gravity(f) = v
+            end do
+        end if
+        cs%sample_dt = min(cs%print_dt, 1.0e-4_wp)
+        ic = single(rd, cards, 'OUTPUT', .false.)
+        if (ic > 0) then
+            call rd%real(cards(ic)%first, 1, 'HDF5 sample interval', 's', cs%sample_dt, tiny(one), huge(one))
+            if (.not. rd%failed() .and. span/cs%sample_dt > 1.0e7_wp) &
+                call rd%fail(rd%where(cards(ic)%first)//', columns 11-20 (OUTPUT card, field F1 '// &
+                             '''HDF5 sample interval''): expected at most 1E7 samples in the run')
+        end if
+        ic = single(rd, cards, 'H5FILE', .false.)
+        if (ic > 0) cs%h5file = rd%text(cards(ic)%first, 11)
+        ic = single(rd, cards, 'HOLD', .false.)
+        if (ic > 0) then
+            call rd%name(cards(ic)%first, 1, 'option', s)
+            if (s /= 'POSTURE' .and. .not. rd%failed()) &
+                call rd%fail(rd%where(cards(ic)%first)//', columns 11-20 (HOLD card, field F1 ''option''): '// &
+                             'found "'//trim(s)//'"; expected POSTURE')
+            cs%hold_posture = .true.
+        end if
+        allocate (cs%dump_times(0))
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'DUMP') cycle
+            i = cards(k)%first
+            nd = 0
+            do f = 1, 7
+                if (rd%is_blank(i, f)) cycle
+                call rd%real(i, f, 'dump time', 's', v, cs%t_start, cs%t_end)
+                tmp = [cs%dump_times, v]
+                call move_alloc(tmp, cs%dump_times)
+                nd = nd + 1
+            end do
+            if (nd == 0 .and. .not. rd%failed()) &
+                call rd%fail(rd%where(i)//', columns 11-80 (DUMP card): found no times; expected 1 to 7 times [s]')
+        end do
+    end subroutine control_cards
+
+    !> BODY, BODYPI, JOINT, LOCK, NEUTRAL: the tree tables.
+    subroutine body_cards(rd, cards, cs, bnames)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        character(len=10), allocatable, intent(out) :: bnames(:)
+        character(len=10), allocatable :: pnames(:)
+        integer, allocatable :: bline(:)
+        integer :: nb, k, kb, i, f, p, m, stat
+        character(len=10) :: s
+        character(len=msglen) :: msg
+        real(wp) :: v
+        logical, allocatable :: joint_given(:)
+        type(body_tree_t) :: tree
+
+        nb = count(cards%key == 'BODY')
+        if (nb == 0) then
+            call rd%fail('stdin: the deck has no BODY card; expected at least one body')
+            return
+        end if
+        allocate (bnames(nb), pnames(nb), bline(nb), joint_given(nb))
+        joint_given = .false.
+        call tree_allocate(cs%model%tree, nb)
+        kb = 0
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'BODY') cycle
+            kb = kb + 1
+            i = cards(k)%first
+            bline(kb) = i
+            call rd%name(i, 1, 'body name', bnames(kb))
+            if (rd%failed()) return
+            if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL') then
+                call rd%fail(rd%where(i)//', columns 11-20 (BODY card, field F1 ''body name''): found "'// &
+                             trim(bnames(kb))//'", which names the inertial frame; expected another name')
+                return
+            end if
+            if (len_trim(bnames(kb)) > name_len) then
+                call rd%fail(rd%where(i)//', columns 11-20 (BODY card, field F1 ''body name''): found "'// &
+                             trim(bnames(kb))//'"; expected at most 12 characters')
+                return
+            end if
+            if (any(bnames(1:kb - 1) == bnames(kb))) then
+                call rd%fail(rd%where(i)//', columns 11-20 (BODY card, field F1 ''body name''): body "'// &
+                             trim(bnames(kb))//'" is defined twice; expected a new name')
+                return
+            end if
+            call rd%name(i, 2, 'parent body', pnames(kb))
+            call rd%real(i, 3, 'mass', 'kg', cs%model%tree%mass(kb), 1.0e-6_wp, 1.0e4_wp)
+            cs%model%tree%inertia(:, :, kb) = zero
+            do f = 1, 3
+                call rd%real(i, 3 + f, 'principal inertia', 'kg m^2', v, 1.0e-12_wp, 1.0e4_wp)
+                cs%model%tree%inertia(f, f, kb) = v
+            end do
+            cs%model%tree%name(kb) = bnames(kb)
+        end do
+        if (rd%failed()) return
+        do kb = 1, nb
+            if (pnames(kb) == 'R' .or. pnames(kb) == 'INERTIAL') then
+                cs%model%tree%parent(kb) = 0
+            else
+                p = findloc(bnames, pnames(kb), dim=1)
+                if (p == 0) then
+                    call rd%fail(rd%where(bline(kb))//', columns 21-30 (BODY card, field F2 ''parent body''): '// &
+                                 'found "'//trim(pnames(kb))//'"; expected R (inertial frame) or a body defined '// &
+                                 'on a BODY card')
+                    return
+                end if
+                cs%model%tree%parent(kb) = p
+            end if
+        end do
+        if (count(cs%model%tree%parent == 0) /= 1) then
+            call rd%fail('stdin: '//trim(int_str(count(cs%model%tree%parent == 0)))//' bodies have parent R; '// &
+                         'expected exactly one root body (the tree hangs from one body)')
+            return
+        end if
+
+        do k = 1, size(cards)
+            i = cards(k)%first
+            select case (cards(k)%key)
+            case ('BODYPI')
+                kb = body_ref(rd, i, 1, 'body', bnames, .false.)
+                if (rd%failed()) return
+                call rd%real(i, 2, 'product of inertia Ixy', 'kg m^2', v, -1.0e4_wp, 1.0e4_wp)
+                cs%model%tree%inertia(1, 2, kb) = v; cs%model%tree%inertia(2, 1, kb) = v
+                call rd%real(i, 3, 'product of inertia Ixz', 'kg m^2', v, -1.0e4_wp, 1.0e4_wp)
+                cs%model%tree%inertia(1, 3, kb) = v; cs%model%tree%inertia(3, 1, kb) = v
+                call rd%real(i, 4, 'product of inertia Iyz', 'kg m^2', v, -1.0e4_wp, 1.0e4_wp)
+                cs%model%tree%inertia(2, 3, kb) = v; cs%model%tree%inertia(3, 2, kb) = v
+            case ('JOINT')
+                kb = body_ref(rd, i, 1, 'body', bnames, .false.)
+                if (rd%failed()) return
+                if (joint_given(kb)) then
+                    call rd%fail(rd%where(i)//', columns 11-20 (JOINT card): body "'//trim(bnames(kb))// &
+                                 '" has a second JOINT card; expected one')
+                    return
+                end if
+                joint_given(kb) = .true.
+                do f = 1, 3
+                    call rd%real(i, 1 + f, 'joint point in parent', 'm', v, -big_length, big_length)
+                    cs%model%tree%joint_parent(f, kb) = v
+                    call rd%real(i, 4 + f, 'joint point in body', 'm', v, -big_length, big_length)
+                    cs%model%tree%joint_child(f, kb) = v
+                end do
+            case ('LOCK')
+                call lock_card(rd, i, bnames, cs)
+            case ('NEUTRAL')
+                kb = body_ref(rd, i, 1, 'body', bnames, .false.)
+                m = coord_ref(rd, i, 2)
+                if (rd%failed()) return
+                call rd%real(i, 3, 'neutral value', unit_of(m), v, -unit_limit(m), unit_limit(m))
+                cs%model%tree%q_ref(m, kb) = v*unit_factor(m)
+            end select
+            if (rd%failed()) return
+        end do
+
+        call tree_build(cs%model%tree, stat, msg)
+        if (stat /= 0) then
+            call rd%fail('stdin (BODY cards): '//trim(msg))
+            return
+        end if
+        tree = cs%model%tree       ! model_init takes the tree by value (its model argument is intent(out))
+        call model_init(cs%model, tree)
+    end subroutine body_cards
+
+    !> LOCK body|ALL coordinate ...: lock coordinates at their neutral value.
+    subroutine lock_card(rd, i, bnames, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        character(len=10), intent(in) :: bnames(:)
+        type(case_t), intent(inout) :: cs
+        character(len=10) :: s
+        integer :: kb, f, m, nset
+        call rd%name(i, 1, 'body', s)
+        if (rd%failed()) return
+        kb = 0
+        if (s /= 'ALL') kb = body_ref(rd, i, 1, 'body', bnames, .false.)
+        nset = 0
+        do f = 2, 7
+            if (rd%is_blank(i, f)) cycle
+            m = coord_ref(rd, i, f)
+            if (rd%failed()) return
+            if (kb == 0) then
+                cs%model%tree%active(m, :) = .false.
+            else
+                cs%model%tree%active(m, kb) = .false.
+            end if
+            nset = nset + 1
+        end do
+        if (nset == 0) call rd%fail(rd%where(i)//', columns 21-80 (LOCK card): found no coordinate; '// &
+                                    'expected one to six of TX TY TZ RX RY RZ')
+    end subroutine lock_card
+
+    !> TABLE cards with their data continuation cards.
+    subroutine table_cards(rd, cards, tabs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(named_table_t), allocatable, intent(out) :: tabs(:)
+        integer :: k, nt, i, npts, j, c, f, stat
+        real(wp) :: tscale, yscale
+        real(wp), allocatable :: t(:), y(:)
+        nt = count(cards%key == 'TABLE')
+        allocate (tabs(nt))
+        nt = 0
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'TABLE') cycle
+            nt = nt + 1
+            i = cards(k)%first
+            tabs(nt)%line = i
+            call rd%name(i, 1, 'table name', tabs(nt)%name)
+            if (rd%failed()) return
+            if (any(tabs(1:nt - 1)%name == tabs(nt)%name)) then
+                call rd%fail(rd%where(i)//', columns 11-20 (TABLE card, field F1 ''table name''): table "'// &
+                             trim(tabs(nt)%name)//'" is defined twice; expected a new name')
+                return
+            end if
+            call rd%int(i, 2, 'number of points', npts, 1, 100000)
+            call rd%real(i, 3, 'time scale', 's per unit', tscale, 1.0e-9_wp, 1.0e3_wp, default=one)
+            call rd%real(i, 4, 'value scale', 'per unit', yscale, -1.0e9_wp, 1.0e9_wp, default=one)
+            if (rd%failed()) return
+            allocate (t(npts), y(npts))
+            do j = 1, npts
+                c = i + 1 + (j - 1)/3
+                f = 2*mod(j - 1, 3) + 1
+                call rd%real(c, f, 'time', 'table time unit', t(j), -1.0e7_wp, 1.0e7_wp)
+                call rd%real(c, f + 1, 'value', 'table unit', y(j), -1.0e12_wp, 1.0e12_wp)
+            end do
+            if (rd%failed()) return
+            c = i + cards(k)%ncont
+            do f = 2*mod(npts - 1, 3) + 3, 7
+                if (.not. rd%is_blank(c, f)) then
+                    call rd%fail(rd%where(c)//' (TABLE '//trim(tabs(nt)%name)//' data): found "'// &
+                                 trim(rd%raw(c, f))//'" in field F'//achar(48 + f)//' after the last of '// &
+                                 trim(int_str(npts))//' points; expected blank (or a larger point count)')
+                    return
+                end if
+            end do
+            call table_set(tabs(nt)%tab, t*tscale, y*yscale, stat)
+            if (stat > 0) then
+                c = i + 1 + (stat - 1)/3
+                call rd%fail(rd%where(c)//' (TABLE '//trim(tabs(nt)%name)//' data, point '// &
+                             trim(int_str(stat))//'): times must increase strictly; found '// &
+                             trim(real_str(t(stat)))//' after '//trim(real_str(t(stat - 1))))
+                return
+            end if
+            deallocate (t, y)
+        end do
+    end subroutine table_cards
+
+    !> INITIAL and PRESCRIB cards.
+    subroutine coordinate_cards(rd, cards, cs, bnames, tabs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(named_table_t), intent(in) :: tabs(:)
+        integer :: k, i, kb, m, j, it, stat
+        real(wp) :: v, vd, fac, amp, freq, phase
+        character(len=10) :: s
+        logical, allocatable :: seen(:)
+
+        allocate (cs%x0(cs%model%tree%ndof), cs%xd0(cs%model%tree%ndof), seen(cs%model%tree%ndof))
+        cs%x0 = neutral_coordinates(cs%model)
+        cs%xd0 = zero
+        seen = .false.
+        do k = 1, size(cards)
+            i = cards(k)%first
+            select case (cards(k)%key)
+            case ('INITIAL')
+                call active_ref(rd, i, cs, bnames, kb, m, j)
+                if (rd%failed()) return
+                fac = unit_factor(m)
+                call rd%real(i, 3, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
+                             default=cs%model%tree%q_ref(m, kb)/fac)
+                call rd%real(i, 4, 'initial rate', unit_of(m)//'/s', vd, -1.0e5_wp, 1.0e5_wp, default=zero)
+                cs%x0(j) = v*fac
+                cs%xd0(j) = vd*fac
+            case ('PRESCRIB')
+                call active_ref(rd, i, cs, bnames, kb, m, j)
+                if (rd%failed()) return
+                if (seen(j)) then
+                    call rd%fail(rd%where(i)//' (PRESCRIB card): coordinate '//trim(bnames(kb))//'.'// &
+                                 coord_names(m)//' is prescribed twice; expected one PRESCRIB card')
+                    return
+                end if
+                seen(j) = .true.
+                fac = unit_factor(m)
+                call rd%name(i, 3, 'kind', s)
+                if (rd%failed()) return
+                select case (s)
+                case ('CONSTANT')
+                    call rd%real(i, 4, 'value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
+                                 default=cs%model%tree%q_ref(m, kb)/fac)
+                    cs%model%motion(j) = motion_constant(v*fac)
+                case ('ACCEL', 'POSITION')
+                    it = table_ref(rd, i, 4, tabs)
+                    if (rd%failed()) return
+                    if (s == 'ACCEL') then
+                        call rd%real(i, 5, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
+                                     default=cs%model%tree%q_ref(m, kb)/fac)
+                        call rd%real(i, 6, 'initial rate', unit_of(m)//'/s', vd, -1.0e5_wp, 1.0e5_wp, default=zero)
+                        call motion_accel_table(cs%model%motion(j), tabs(it)%tab%t, tabs(it)%tab%y*fac, &
+                                                v*fac, vd*fac, stat)
+                    else
+                        call motion_position_table(cs%model%motion(j), tabs(it)%tab%t, tabs(it)%tab%y*fac, stat)
+                    end if
+                case ('HARMONIC')
+                    call rd%real(i, 4, 'amplitude', unit_of(m), amp, -unit_limit(m), unit_limit(m))
+                    call rd%real(i, 5, 'frequency', 'Hz', freq, zero, 1.0e5_wp)
+                    call rd%real(i, 6, 'phase', 'deg', phase, -3600.0_wp, 3600.0_wp, default=zero)
+                    cs%model%motion(j) = motion_harmonic(cs%model%tree%q_ref(m, kb), amp*fac, &
+                                                         2*acos(-one)*freq, phase*deg)
+                case default
+                    call rd%fail(rd%where(i)//', columns 31-40 (PRESCRIB card, field F3 ''kind''): found "'// &
+                                 trim(s)//'"; expected CONSTANT, ACCEL, POSITION or HARMONIC')
+                    return
+                end select
+                if (rd%failed()) return
+                cs%model%prescribed(j) = .true.
+            end select
+        end do
+    end subroutine coordinate_cards
+
+    !> Body and coordinate of an INITIAL/PRESCRIB/LIMIT card (fields F1, F2),
+    !! which must be an active coordinate.
+    subroutine active_ref(rd, i, cs, bnames, kb, m, j)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(in) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        integer, intent(out) :: kb, m, j
+        j = 0
+        kb = body_ref(rd, i, 1, 'body', bnames, .false.)
+        m = coord_ref(rd, i, 2)
+        if (rd%failed()) return
+        j = cs%model%tree%dof_index(m, kb)
+        if (j == 0) call rd%fail(rd%where(i)//', columns 21-30 ('//trim(rd%key(i))//' card, field F2 '// &
+                                 '''coordinate''): '//trim(bnames(kb))//'.'//coord_names(m)// &
+                                 ' is locked; expected an active coordinate')
+    end subroutine active_ref
+
+    !> DISC, LIGAMENT, MUSCLE, LIMIT, SPRING, FAMILY cards.
+    subroutine element_cards(rd, cards, cs, bnames, tabs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(named_table_t), intent(in) :: tabs(:)
+        integer :: k, i, f, kb, m, j, fam
+        character(len=10) :: s
+        type(disc_t) :: d
+        type(ligament_t) :: g
+        type(muscle_t) :: mu
+        type(spring_t) :: sp
+        type(joint_limit_t) :: lim
+        real(wp) :: v
+
+        do k = 1, size(cards)
+            i = cards(k)%first
+            select case (cards(k)%key)
+            case ('DISC')
+                d = disc_t()
+                call rd%name(i, 1, 'disc name', d%name)
+                d%body_a = body_ref(rd, i, 2, 'lower body', bnames, .false.)
+                d%body_b = body_ref(rd, i, 3, 'upper body', bnames, .false.)
+                call distinct_bodies(rd, i, d%body_a, d%body_b)
+                call rd%real(i, 4, 'area A', 'm^2', d%area, 1.0e-8_wp, 1.0_wp)
+                call rd%real(i, 5, 'thickness h', 'm', d%h, 1.0e-5_wp, 1.0_wp)
+                call rd%real(i, 6, 'modulus d1', 'Pa', d%d1, 1.0e-3_wp, big_modulus)
+                call rd%real(i, 7, 'viscous modulus d2', 'Pa s', d%d2, zero, big_modulus)
+                do f = 1, 3
+                    call rd%real(i + 1, f, 'lower plate centre', 'm', d%pa(f), -big_length, big_length)
+                    call rd%real(i + 1, 3 + f, 'upper plate centre', 'm', d%pb(f), -big_length, big_length)
+                end do
+                call rd%real(i + 1, 7, 'plate tilt', 'deg', v, -90.0_wp, 90.0_wp, default=zero)
+                d%tilt = v*deg
+                call rd%real(i + 2, 1, 'shear modulus G', 'Pa', d%g, 1.0e-3_wp, big_modulus)
+                call rd%real(i + 2, 2, 'second moment Ix', 'm^4', d%ix, 1.0e-20_wp, one)
+                call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
+                call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
+                call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
+                if (.not. rd%failed()) cs%model%discs = [cs%model%discs, d]
+            case ('LIGAMENT')
+                g = ligament_t()
+                call rd%name(i, 1, 'ligament name', g%name)
+                g%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
+                g%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
+                call distinct_bodies(rd, i, g%body_a, g%body_b)
+                call rd%real(i, 4, 'l1', 'N/m', g%l1, zero, big_modulus)
+                call rd%real(i, 5, 'l2', 'N/m^n', g%l2, zero, 1.0e30_wp)
+                call rd%real(i, 6, 'exponent n', '-', g%n, one, 10.0_wp, default=2.0_wp)
+                call rd%real(i, 7, 'slack length', 'm', g%slack_length, 1.0e-6_wp, big_length, default=-one)
+                call line_points(rd, i + 1, g%point_a, g%point_b)
+                if (.not. rd%failed()) cs%model%ligaments = [cs%model%ligaments, g]
+            case ('MUSCLE')
+                mu = muscle_t()
+                call rd%name(i, 1, 'muscle name', mu%name)
+                mu%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
+                mu%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
+                call distinct_bodies(rd, i, mu%body_a, mu%body_b)
+                call rd%real(i, 4, 'stiffness m1', 'N/m', mu%m1, zero, big_modulus)
+                call rd%real(i, 5, 'damping m2', 'N s/m', mu%m2, zero, big_modulus)
+                call rd%real(i, 6, 'active force Fmax', 'N', mu%fmax, zero, 1.0e6_wp, default=zero)
+                if (.not. rd%is_blank(i, 7)) then
+                    mu%activation = table_ref(rd, i, 7, tabs)
+                end if
+                call line_points(rd, i + 1, mu%point_a, mu%point_b)
+                call rd%real(i + 1, 7, 'rest length', 'm', mu%rest_length, 1.0e-6_wp, big_length, default=-one)
+                if (.not. rd%failed()) cs%model%muscles = [cs%model%muscles, mu]
+            case ('SPRING')
+                sp = spring_t()
+                call rd%name(i, 1, 'spring name', s)
+                sp%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
+                sp%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
+                call distinct_bodies(rd, i, sp%body_a, sp%body_b)
+                call rd%real(i, 4, 'stiffness', 'N/m', sp%stiffness, zero, big_modulus)
+                call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
+                call rd%real(i, 6, 'free length', 'm', sp%free_length, zero, big_length, default=-one)
+                call line_points(rd, i + 1, sp%point_a, sp%point_b)
+                if (.not. rd%failed()) cs%model%springs = [cs%model%springs, sp]
+            case ('LIMIT')
+                lim = joint_limit_t()
+                call active_ref(rd, i, cs, bnames, kb, m, j)
+                if (rd%failed()) return
+                lim%body = kb; lim%local = m; lim%dof = j
+                call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
+                call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
+                if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
+                    call rd%fail(rd%where(i)//', columns 41-50 (LIMIT card, field F4 ''upper limit''): found '// &
+                                 trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
+                    return
+                end if
+                call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
+                call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
+                call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
+                             default=max(lim%xmin, min(lim%xmax, cs%model%tree%q_ref(m, kb)/unit_factor(m))))
+                lim%xmin = lim%xmin*unit_factor(m)
+                lim%xmax = lim%xmax*unit_factor(m)
+                lim%xneutral = lim%xneutral*unit_factor(m)
+                if (.not. rd%failed()) cs%model%limits = [cs%model%limits, lim]
+            case ('FAMILY')
+                call rd%name(i, 1, 'element family', s)
+                if (rd%failed()) return
+                fam = findloc(family_name, s(1:9), dim=1)
+                if (fam == 0) then
+                    call rd%fail(rd%where(i)//', columns 11-20 (FAMILY card, field F1 ''element family''): found "'// &
+                                 trim(s)//'"; expected one of '//join(family_name))
+                    return
+                end if
+                call rd%name(i, 2, 'ON or OFF', s)
+                if (s /= 'ON' .and. s /= 'OFF' .and. .not. rd%failed()) then
+                    call rd%fail(rd%where(i)//', columns 21-30 (FAMILY card, field F2): found "'//trim(s)// &
+                                 '"; expected ON or OFF')
+                    return
+                end if
+                cs%model%family_on(fam) = s == 'ON'
+            end select
+            if (rd%failed()) return
+        end do
+    end subroutine element_cards
+
+    !> FORCE and COUPLE cards.
+    subroutine load_cards(rd, cards, cs, bnames, tabs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(named_table_t), intent(in) :: tabs(:)
+        type(applied_load_t) :: al
+        integer :: k, i, f, it
+        character(len=10) :: s
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'FORCE' .and. cards(k)%key /= 'COUPLE') cycle
+            i = cards(k)%first
+            al = applied_load_t()
+            al%kind = merge(applied_force, applied_couple, cards(k)%key == 'FORCE')
+            al%body = body_ref(rd, i, 1, 'body', bnames, .false.)
+            call rd%name(i, 2, 'frame', s)
+            if (rd%failed()) return
+            select case (s)
+            case ('R', 'INERTIAL'); al%frame = frame_inertial
+            case ('BODY'); al%frame = frame_body
+            case default
+                call rd%fail(rd%where(i)//', columns 21-30 ('//trim(cards(k)%key)//' card, field F2 ''frame''): '// &
+                             'found "'//trim(s)//'"; expected R (inertial) or BODY')
+                return
+            end select
+            it = table_ref(rd, i, 3, tabs)
+            do f = 1, 3
+                call rd%real(i, 3 + f, 'direction', '-', al%direction(f), -1.0e6_wp, 1.0e6_wp)
+            end do
+            if (rd%failed()) return
+            if (norm3(al%direction) == zero) then
+                call rd%fail(rd%where(i)//', columns 41-70 ('//trim(cards(k)%key)//' card, fields F4-F6 '// &
+                             '''direction''): found a zero vector; expected a direction')
+                return
+            end if
+            al%direction = al%direction/norm3(al%direction)
+            al%magnitude = tabs(it)%tab
+            if (al%kind == applied_force) then
+                do f = 1, 3
+                    call rd%real(i + 1, f, 'point of application', 'm', al%point(f), -big_length, big_length)
+                end do
+            end if
+            if (rd%failed()) return
+            cs%model%applied = [cs%model%applied, al]
+        end do
+    end subroutine load_cards
+
+    !> HEADNECK: the bodies reported as head and T1.
+    subroutine report_cards(rd, cards, cs, bnames)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        integer :: ic
+        cs%head = findloc(bnames, 'HEAD', dim=1)
+        if (cs%head == 0) cs%head = size(bnames)
+        cs%t1 = findloc(cs%model%tree%parent, 0, dim=1)
+        ic = single(rd, cards, 'HEADNECK', .false.)
+        if (ic > 0) then
+            cs%head = body_ref(rd, cards(ic)%first, 1, 'head body', bnames, .false.)
+            if (.not. rd%is_blank(cards(ic)%first, 2)) &
+                cs%t1 = body_ref(rd, cards(ic)%first, 2, 'T1 body', bnames, .false.)
+        end if
+    end subroutine report_cards
+
+    !> Attachment points on a continuation card: F1-F3 on body a, F4-F6 on body b.
+    subroutine line_points(rd, i, pa, pb)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        real(wp), intent(out) :: pa(3), pb(3)
+        integer :: f
+        do f = 1, 3
+            call rd%real(i, f, 'point on body a', 'm', pa(f), -big_length, big_length)
+            call rd%real(i, 3 + f, 'point on body b', 'm', pb(f), -big_length, big_length)
+        end do
+    end subroutine line_points
+
+    subroutine distinct_bodies(rd, i, ka, kb)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, ka, kb
+        if (rd%failed()) return
+        if (ka == kb) call rd%fail(rd%where(i)//', columns 21-40 ('//trim(rd%key(i))//' card, fields F2-F3): '// &
+                                   'both ends on the same body; expected two different bodies')
+    end subroutine distinct_bodies
+
+    !> Body named in field f (R allowed when allow_inertial: returns 0).
+    integer function body_ref(rd, i, f, what, bnames, allow_inertial) result(kb)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, f
+        character(len=*), intent(in) :: what
+        character(len=10), intent(in) :: bnames(:)
+        logical, intent(in) :: allow_inertial
+        character(len=10) :: s
+        character(len=16) :: cols
+        kb = 1
+        call rd%name(i, f, what, s)
+        if (rd%failed()) return
+        if (allow_inertial .and. (s == 'R' .or. s == 'INERTIAL')) then
+            kb = 0
+            return
+        end if
+        kb = findloc(bnames, s, dim=1)
+        if (kb == 0) then
+            write (cols, '(i0,a,i0)') 1 + 10*f, '-', 10 + 10*f
+            call rd%fail(rd%where(i)//', columns '//trim(cols)//' ('//trim(rd%key(i))//' card, field F'// &
+                         achar(48 + f)//' '''//what//'''): found "'//trim(s)//'"; expected a body defined '// &
+                         'on a BODY card'//merge(' or R', '     ', allow_inertial))
+            kb = 1
+        end if
+    end function body_ref
+
+    !> Coordinate named in field f: TX TY TZ RX RY RZ -> 1..6.
+    integer function coord_ref(rd, i, f) result(m)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, f
+        character(len=10) :: s
+        character(len=16) :: cols
+        m = 1
+        call rd%name(i, f, 'coordinate', s)
+        if (rd%failed()) return
+        m = findloc(coord_names, s(1:2), dim=1)
+        if (m == 0 .or. len_trim(s) /= 2) then
+            write (cols, '(i0,a,i0)') 1 + 10*f, '-', 10 + 10*f
+            call rd%fail(rd%where(i)//', columns '//trim(cols)//' ('//trim(rd%key(i))//' card, field F'// &
+                         achar(48 + f)//' ''coordinate''): found "'//trim(s)//'"; expected TX TY TZ RX RY or RZ')
+            m = 1
+        end if
+    end function coord_ref
+
+    !> Table named in field f.
+    integer function table_ref(rd, i, f, tabs) result(it)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, f
+        type(named_table_t), intent(in) :: tabs(:)
+        character(len=10) :: s
+        character(len=16) :: cols
+        it = 1
+        call rd%name(i, f, 'table', s)
+        if (rd%failed()) return
+        it = findloc(tabs%name, s, dim=1)
+        if (it == 0) then
+            write (cols, '(i0,a,i0)') 1 + 10*f, '-', 10 + 10*f
+            call rd%fail(rd%where(i)//', columns '//trim(cols)//' ('//trim(rd%key(i))//' card, field F'// &
+                         achar(48 + f)//' ''table''): found "'//trim(s)//'"; expected the name of a TABLE card')
+            it = 1
+        end if
+    end function table_ref
+
+    !> Deck unit of coordinate m and its factor to SI.
+    pure function unit_of(m) result(u)
+        integer, intent(in) :: m
+        character(len=3) :: u
+        u = merge('m  ', 'deg', m <= 3)
+    end function unit_of
+
+    pure real(wp) function unit_factor(m) result(f)
+        integer, intent(in) :: m
+        f = merge(one, deg, m <= 3)
+    end function unit_factor
+
+    !> Largest magnitude accepted for a coordinate value in deck units.
+    pure real(wp) function unit_limit(m) result(f)
+        integer, intent(in) :: m
+        f = merge(big_length, 3600.0_wp, m <= 3)
+    end function unit_limit
+
+    pure function join(list) result(s)
+        character(len=*), intent(in) :: list(:)
+        character(len=:), allocatable :: s
+        integer :: k
+        s = trim(list(1))
+        do k = 2, size(list)
+            s = s//' '//trim(list(k))
+        end do
+    end function join
+
+    pure function int_str(i) result(s)
+        integer, intent(in) :: i
+        character(len=16) :: s
+        write (s, '(i0)') i
+    end function int_str
+
+    pure function real_str(v) result(s)
+        real(wp), intent(in) :: v
+        character(len=24) :: s
+        write (s, '(g0.6)') v
+    end function real_str
+
+end module hn_deck

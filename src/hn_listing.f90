@@ -1,0 +1,281 @@
+!> The tabulated print listing in the legacy style of crash-victim codes:
+!! paged output with a header (code, version, case title, date, page), an
+!! echo of the deck under a column ruler, a model summary, time-history
+!! tables at the print interval and a summary of peaks.
+module hn_listing
+    use hn_kinds, only: wp, zero, deg
+    use hn_case, only: case_t
+    use hn_channels, only: channel_set_t
+    use hn_tree, only: dof_label
+    use hn_model, only: family_name, nfamilies, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
+    use hn_linsolve, only: solver_name
+    implicit none
+    private
+
+    public :: listing_t
+
+    integer, parameter :: page_lines = 60
+    integer, parameter :: cols_per_table = 9
+
+    !> A paged listing on one output unit.
+    type :: listing_t
+        integer :: unit = 6
+        integer :: page = 0
+        integer :: line = page_lines
+        character(len=80) :: title = ''
+        character(len=20) :: stamp = ''
+        character(len=16) :: version = ''
+    contains
+        procedure :: start => listing_start
+        procedure :: put => listing_put
+        procedure :: new_page => listing_new_page
+        procedure :: need => listing_need
+        procedure :: echo_deck => listing_echo_deck
+        procedure :: model_summary => listing_model_summary
+        procedure :: histories => listing_histories
+        procedure :: peaks => listing_peaks
+        procedure :: message => listing_message
+    end type listing_t
+
+contains
+
+    !> Set the header fields; the date and time are taken now.
+    subroutine listing_start(me, unit, title, version)
+        class(listing_t), intent(inout) :: me
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: title, version
+        character(len=8) :: d
+        character(len=10) :: t
+        me%unit = unit
+        me%title = title
+        me%version = version
+        call date_and_time(date=d, time=t)
+        me%stamp = d(1:4)//'-'//d(5:6)//'-'//d(7:8)//' '//t(1:2)//':'//t(3:4)//':'//t(5:6)
+        me%line = page_lines
+    end subroutine listing_start
+
+    subroutine listing_new_page(me)
+        class(listing_t), intent(inout) :: me
+        me%page = me%page + 1
+        if (me%page > 1) write (me%unit, '(a)') ''
+        write (me%unit, '(a)') repeat('=', 118)
+        write (me%unit, '(a,a,t24,a,t88,a,t109,a,i5)') ' HHNECK ', trim(me%version), &
+            '3-D HEAD/NECK MODEL AFTER HUSTON, HUSTON & HARLOW (1978)', trim(me%stamp), 'PAGE', me%page
+        write (me%unit, '(1x,a)') trim(me%title)
+        write (me%unit, '(a)') repeat('=', 118)
+        me%line = 4
+    end subroutine listing_new_page
+
+    !> Start a new page unless n more lines fit on this one.
+    subroutine listing_need(me, n)
+        class(listing_t), intent(inout) :: me
+        integer, intent(in) :: n
+        if (me%line + n > page_lines) call me%new_page()
+    end subroutine listing_need
+
+    !> One line of the listing.
+    subroutine listing_put(me, s)
+        class(listing_t), intent(inout) :: me
+        character(len=*), intent(in) :: s
+        call me%need(1)
+        write (me%unit, '(a)') trim(s)
+        me%line = me%line + 1
+    end subroutine listing_put
+
+    !> A boxed message (run status, errors).
+    subroutine listing_message(me, s)
+        class(listing_t), intent(inout) :: me
+        character(len=*), intent(in) :: s
+        call me%need(3)
+        call me%put('')
+        call me%put(' *** '//trim(s))
+        call me%put('')
+    end subroutine listing_message
+
+    subroutine listing_echo_deck(me, cs)
+        class(listing_t), intent(inout) :: me
+        type(case_t), intent(in) :: cs
+        integer :: k
+        character(len=140) :: s
+        call me%new_page()
+        call me%put(' ECHO OF THE INPUT DECK (comment cards omitted, INCLUDE files expanded)')
+        call me%put('')
+        call me%put('  CARD  SOURCE:LINE          '//'         1         2         3         4         5'// &
+                    '         6         7         8')
+        call me%put('                             '//repeat('1234567890', 8))
+        do k = 1, size(cs%deck)
+            write (s, '(i6,2x,a20,1x,a)') k, source_tag(cs%deck(k)%source, cs%deck(k)%line), cs%deck(k)%text
+            call me%put(s)
+        end do
+    end subroutine listing_echo_deck
+
+    pure function source_tag(source, line) result(s)
+        character(len=*), intent(in) :: source
+        integer, intent(in) :: line
+        character(len=20) :: s
+        character(len=12) :: num
+        integer :: k
+        write (num, '(i0)') line
+        k = index(source, '/', back=.true.)
+        s = source(k + 1:)
+        s = trim(s(1:min(len_trim(s), 19 - len_trim(num))))//':'//trim(num)
+    end function source_tag
+
+    subroutine listing_model_summary(me, cs)
+        class(listing_t), intent(inout) :: me
+        type(case_t), intent(in) :: cs
+        character(len=160) :: s
+        character(len=12) :: pname, status
+        integer :: k, j, f, n, nfree, npres
+        associate (tr => cs%model%tree, md => cs%model)
+            n = tr%ndof
+            npres = count(md%prescribed)
+            nfree = n - npres
+            call me%new_page()
+            call me%put(' MODEL SUMMARY')
+            call me%put('')
+            write (s, '(a,i3,a,i3,a,i3,a,i3,a,i3,a)') '   BODIES', tr%nbody, '   COORDINATES', 6*tr%nbody, &
+                '   ACTIVE', n, ' (FREE', nfree, ', PRESCRIBED', npres, ')'
+            call me%put(s)
+            write (s, '(a,i3)') '   LOCKED COORDINATES', 6*tr%nbody - n
+            call me%put(s)
+            write (s, '(5a)') '   HEAD BODY ', trim(tr%name(cs%head)), '   T1 BODY ', trim(tr%name(cs%t1)), &
+                '   OCCIPITAL CONDYLE (OC) = JOINT POINT OF THE HEAD BODY'
+            call me%put(s)
+            call me%put('')
+            call me%put('   NO. BODY         PARENT         MASS       IXX        IYY        IZZ      '// &
+                        'JOINT IN PARENT (M)        JOINT IN BODY (M)')
+            call me%put('                                   (KG)    (KG M2)    (KG M2)    (KG M2)')
+            do k = 1, tr%nbody
+                if (tr%parent(k) == 0) then
+                    pname = 'R'
+                else
+                    pname = tr%name(tr%parent(k))
+                end if
+                write (s, '(i6,1x,a12,1x,a12,f8.3,3es11.3,2(1x,3f8.4))') k, tr%name(k), pname, tr%mass(k), &
+                    (tr%inertia(j, j, k), j=1, 3), tr%joint_parent(:, k), tr%joint_child(:, k)
+                call me%put(s)
+            end do
+            call me%put('')
+            call me%put('   ACTIVE COORDINATES (TRANSLATIONS M, M/S; BRYANT ANGLES DEG, DEG/S)')
+            call me%put('   NO. COORDINATE        STATUS        INITIAL        RATE')
+            do j = 1, n
+                status = merge('PRESCRIBED', 'FREE      ', md%prescribed(j))
+                f = tr%dof_local(j)
+                write (s, '(i6,1x,a15,3x,a10,2f13.5)') j, dof_label(tr, j), status, &
+                    cs%x0(j)/merge(1.0_wp, deg, f <= 3), cs%xd0(j)/merge(1.0_wp, deg, f <= 3)
+                call me%put(s)
+            end do
+            call me%put('')
+            call me%put('   ELEMENTS')
+            write (s, '(a,5(3x,a,1x,i3,1x,a))') '  ', &
+                (trim(family_name(f)), family_count(cs, f), merge('(ON) ', '(OFF)', md%family_on(f)), f=1, nfamilies)
+            call me%put(s)
+            write (s, '(a,i3)') '   APPLIED FORCE/COUPLE TABLES', size(md%applied)
+            call me%put(s)
+            if (cs%hold_posture) call me%put('   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE)')
+            call me%put('')
+            write (s, '(a,a,a,es10.3,a,es10.3,a,es10.3,a,es9.2,a,es9.2)') '   INTEGRATOR ', trim(cs%integrator), &
+                '   STEP', cs%h, ' S   PRINT', cs%print_dt, ' S   SAMPLE', cs%sample_dt, ' S   RTOL', cs%rtol, &
+                '   ATOL', cs%atol
+            call me%put(s)
+            write (s, '(a,f9.4,a,f9.4,a,a,a,3f9.4,a)') '   TIME', cs%t_start, ' TO', cs%t_end, ' S   SOLVER ', &
+                solver_name(md%solver), '   GRAVITY', md%gravity, ' M/S2'
+            call me%put(s)
+        end associate
+    end subroutine listing_model_summary
+
+    pure integer function family_count(cs, f) result(n)
+        type(case_t), intent(in) :: cs
+        integer, intent(in) :: f
+        select case (f)
+        case (fam_discs); n = size(cs%model%discs)
+        case (fam_ligaments); n = size(cs%model%ligaments)
+        case (fam_muscles); n = size(cs%model%muscles)
+        case (fam_limits); n = size(cs%model%limits)
+        case (fam_springs); n = size(cs%model%springs)
+        case default; n = 0
+        end select
+    end function family_count
+
+    !> A number in 11 columns: fixed point when readable, else exponent.
+    pure function num(v) result(s)
+        real(wp), intent(in) :: v
+        character(len=11) :: s
+        real(wp) :: a
+        a = abs(v)
+        if (v /= v) then
+            s = '        NaN'
+        else if (a == zero .or. (a >= 1.0e-2_wp .and. a < 1.0e5_wp)) then
+            write (s, '(f11.3)') v
+        else
+            write (s, '(es11.3)') v
+        end if
+    end function num
+
+    !> Time-history tables: one per channel group, at most 9 channels wide.
+    subroutine listing_histories(me, ch, times, rows, nrows)
+        class(listing_t), intent(inout) :: me
+        type(channel_set_t), intent(in) :: ch
+        real(wp), intent(in) :: times(:), rows(:, :)
+        integer, intent(in) :: nrows
+        integer :: c0, c1, k, r, line_len
+        character(len=16) :: grp
+        character(len=200) :: s, h1, h2
+        c0 = 1
+        do while (c0 <= ch%n)
+            grp = ch%group(c0)
+            c1 = c0
+            do while (c1 < ch%n)
+                if (ch%group(c1 + 1) /= grp .or. c1 - c0 + 1 >= cols_per_table) exit
+                c1 = c1 + 1
+            end do
+            h1 = '    TIME '
+            h2 = '    (MS) '
+            do k = c0, c1
+                h1 = h1(1:9 + 12*(k - c0))//' '//adjustr(ch%name(k)(1:11))
+                h2 = h2(1:9 + 12*(k - c0))//' '//adjustr(ch%units(k)(1:11))
+            end do
+            line_len = 9 + 12*(c1 - c0 + 1)
+            call me%new_page()
+            call me%put(' TIME HISTORY: '//trim(grp))
+            call me%put('')
+            call me%put(h1(1:line_len))
+            call me%put(h2(1:line_len))
+            do r = 1, nrows
+                if (me%line + 1 > page_lines) then
+                    call me%new_page()
+                    call me%put(' TIME HISTORY: '//trim(grp)//' (CONTINUED)')
+                    call me%put('')
+                    call me%put(h1(1:line_len))
+                    call me%put(h2(1:line_len))
+                end if
+                write (s, '(f9.2)') 1000*times(r)
+                do k = c0, c1
+                    s = s(1:9 + 12*(k - c0))//' '//num(rows(k, r))
+                end do
+                call me%put(s(1:line_len))
+            end do
+            c0 = c1 + 1
+        end do
+    end subroutine listing_histories
+
+    !> Summary of peaks of every channel (from the full sampled histories).
+    subroutine listing_peaks(me, ch, vmax, tmax, vmin, tmin)
+        class(listing_t), intent(inout) :: me
+        type(channel_set_t), intent(in) :: ch
+        real(wp), intent(in) :: vmax(:), tmax(:), vmin(:), tmin(:)
+        integer :: k
+        character(len=120) :: s
+        call me%new_page()
+        call me%put(' SUMMARY OF PEAKS (ALL SAMPLES)')
+        call me%put('')
+        call me%put('   CHANNEL                  UNITS          MAXIMUM   AT (MS)      MINIMUM   AT (MS)')
+        do k = 1, ch%n
+            write (s, '(3x,a24,1x,a12,a11,f10.2,2x,a11,f10.2)') ch%name(k), ch%units(k), num(vmax(k)), &
+                1000*tmax(k), num(vmin(k)), 1000*tmin(k)
+            call me%put(s)
+        end do
+    end subroutine listing_peaks
+
+end module hn_listing
