@@ -27,7 +27,7 @@ module hn_channels
         character(len=12), allocatable :: units(:)
         character(len=16), allocatable :: group(:)
         real(wp), allocatable :: value(:)
-        real(wp) :: head_r0(3) = zero      !! head mass-centre position at the start [m]
+        real(wp) :: head_r0(3) = zero      !! head mass centre relative to T1's origin at the start [m]
         real(wp) :: t1_r0(3) = zero
     end type channel_set_t
 
@@ -60,7 +60,7 @@ contains
         call add(ch, 'HEAD_ALPHY', 'rad/s^2', 'HEAD')
         call add(ch, 'HEAD_OMEGY', 'rad/s', 'HEAD')
         call add(ch, 'HEAD_THETY', 'deg', 'HEAD')
-        call add(ch, 'HEAD_DX', 'mm', 'HEAD')
+        call add(ch, 'HEAD_DX', 'mm', 'HEAD')       ! relative to T1's (translating) origin
         call add(ch, 'HEAD_DZ', 'mm', 'HEAD')
         call add(ch, 'HEAD_AY', 'g', 'HEAD 3D')
         call add(ch, 'HEAD_AXL', 'g', 'HEAD 3D')
@@ -126,7 +126,7 @@ contains
         real(wp), intent(in) :: t
         type(channel_set_t), intent(inout) :: ch
         real(wp) :: acc(3, cs%model%tree%nbody), alpha(3, cs%model%tree%nbody)
-        real(wp) :: s(3, 3), ah(3), fext(3), mext(3), f(3), mo(3), rgo(3), iw(3), v(3)
+        real(wp) :: s(3, 3), ah(3), fext(3), mext(3), f(3), mo(3), rgo(3), iw(3), v(3), rel(3)
         integer :: h, k, e, i, m, j
         h = cs%head
         call body_accelerations(cs%model%tree, ws%kin, ws%xdd, acc, alpha)
@@ -136,13 +136,14 @@ contains
         call put(ah(1)/g_std); call put(ah(3)/g_std); call put(norm2(ah)/g_std)
         call put(alpha(2, h)); call put(ws%kin%omega(2, h))
         call put(atan2(s(1, 3), s(3, 3))/deg)
-        call put(1000*(ws%kin%r(1, h) - ch%head_r0(1))); call put(1000*(ws%kin%r(3, h) - ch%head_r0(3)))
+        rel = ws%kin%r(:, h) - ws%kin%r(:, cs%t1) - ch%head_r0       ! head relative to T1's translation
+        call put(1000*rel(1)); call put(1000*rel(3))
         call put(ah(2)/g_std)
         v = matmul(transpose(s), ah)/g_std
         call put(v(1)); call put(v(2)); call put(v(3))
         call put(alpha(1, h)); call put(alpha(3, h))
         call put(ws%kin%omega(1, h)); call put(ws%kin%omega(3, h))
-        call put(1000*(ws%kin%r(2, h) - ch%head_r0(2)))
+        call put(1000*rel(2))
         k = cs%t1
         call put(acc(1, k)/g_std); call put(acc(3, k)/g_std)
         call put(atan2(ws%kin%s(1, 3, k), ws%kin%s(3, 3, k))/deg)

@@ -294,7 +294,6 @@ contains
         character(len=10), allocatable :: pnames(:)
         integer, allocatable :: bline(:)
         integer :: nb, k, kb, i, f, p, m, stat
-        character(len=10) :: s
         character(len=msglen) :: msg
         real(wp) :: v
         logical, allocatable :: joint_given(:)
@@ -842,10 +841,14 @@ contains
         type(named_table_t), intent(in) :: tabs(:)
         character(len=10) :: s
         character(len=16) :: cols
+        integer :: k
         it = 1
         call rd%name(i, f, 'table', s)
         if (rd%failed()) return
-        it = findloc(tabs%name, s, dim=1)
+        it = 0
+        do k = 1, size(tabs)
+            if (tabs(k)%name == s) it = k
+        end do
         if (it == 0) then
             write (cols, '(i0,a,i0)') 1 + 10*f, '-', 10 + 10*f
             call rd%fail(rd%where(i)//', columns '//trim(cols)//' ('//trim(rd%key(i))//' card, field F'// &

@@ -33,32 +33,34 @@ contains
         real(wp), intent(inout) :: a(:, :)
         real(wp), intent(inout) :: b(:)
         integer, intent(out) :: stat
-        integer :: n, i, k, piv
-        real(wp) :: amax, fac, tmp(size(a, 2)), tb, tol
+        integer :: n, j, k, piv
+        real(wp) :: tb, tol, tmp
         n = size(b)
         stat = 0
         tol = real(n, wp)*epsilon(one)*maxval(abs(a(1:n, 1:n)))
         do k = 1, n
             piv = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
-            amax = abs(a(piv, k))
-            if (.not. (amax > tol)) then
+            if (.not. (abs(a(piv, k)) > tol)) then
                 stat = k
                 return
             end if
             if (piv /= k) then
-                tmp(k:n) = a(k, k:n); a(k, k:n) = a(piv, k:n); a(piv, k:n) = tmp(k:n)
+                do j = k, n
+                    tmp = a(k, j); a(k, j) = a(piv, j); a(piv, j) = tmp
+                end do
                 tb = b(k); b(k) = b(piv); b(piv) = tb
             end if
-            do i = k + 1, n
-                fac = a(i, k)/a(k, k)
-                if (fac /= zero) then
-                    a(i, k + 1:n) = a(i, k + 1:n) - fac*a(k, k + 1:n)
-                    b(i) = b(i) - fac*b(k)
-                end if
+            ! multipliers in column k, then column-by-column updates (unit stride)
+            a(k + 1:n, k) = a(k + 1:n, k)/a(k, k)
+            do j = k + 1, n
+                if (a(k, j) /= zero) a(k + 1:n, j) = a(k + 1:n, j) - a(k + 1:n, k)*a(k, j)
             end do
+            b(k + 1:n) = b(k + 1:n) - a(k + 1:n, k)*b(k)
         end do
+        ! back substitution, column oriented
         do k = n, 1, -1
-            b(k) = (b(k) - dot_product(a(k, k + 1:n), b(k + 1:n)))/a(k, k)
+            b(k) = b(k)/a(k, k)
+            b(1:k - 1) = b(1:k - 1) - a(1:k - 1, k)*b(k)
         end do
     end subroutine gauss_solve
 

@@ -91,7 +91,7 @@ contains
         if (stat /= 0) then
             call fail(exit_diverged, trim(msg)); return
         end if
-        ch%head_r0 = sys%ws%kin%r(:, cs%head)
+        ch%head_r0 = sys%ws%kin%r(:, cs%head) - sys%ws%kin%r(:, cs%t1)
         ch%t1_r0 = sys%ws%kin%r(:, cs%t1)
         if (len_trim(h5name) > 0) then
             call out%open(cs, ch, trim(h5name), code_version, stat, msg)
@@ -128,7 +128,7 @@ contains
                 call out%flush(ch)
             end if
             if (do_dump) then
-                call dump_record(out%h5, cs%model, sys%ws, t, stat, msg)
+                if (out%active) call dump_record(out%h5, cs%model, sys%ws, t, stat, msg)
                 kd = kd + 1
             end if
             res%t_reached = t

@@ -1,0 +1,34 @@
+#!/bin/sh
+# Installs what hhneck needs when it is missing, and nothing when it is all
+# there: gfortran, LAPACK/BLAS, the Fortran HDF5 library, pkg-config (Debian
+# packages), fpm (from PyPI) and numpy, h5py, matplotlib for the report
+# tools. Run as root on Debian or Ubuntu. Safe to run again.
+set -eu
+
+missing=""
+for p in gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+command -v python3 >/dev/null 2>&1 || missing="$missing python3"
+if command -v python3 >/dev/null 2>&1 && ! python3 -m pip --version >/dev/null 2>&1; then
+    missing="$missing python3-pip"
+elif ! command -v python3 >/dev/null 2>&1; then
+    missing="$missing python3-pip"
+fi
+if [ -n "$missing" ]; then
+    echo "setup: installing Debian packages:$missing" >&2
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq >&2
+    apt-get install -y -qq --no-install-recommends $missing >&2
+fi
+
+pip_install() {
+    # Debian's own Python refuses system-wide pip installs unless told (PEP 668)
+    python3 -m pip install -q "$@" >&2 2>/dev/null || python3 -m pip install -q --break-system-packages "$@" >&2
+}
+command -v fpm >/dev/null 2>&1 || { echo "setup: installing fpm from PyPI" >&2; pip_install fpm; }
+python3 -c "import numpy, h5py, matplotlib" >/dev/null 2>&1 || {
+    echo "setup: installing numpy h5py matplotlib from PyPI" >&2
+    pip_install numpy h5py matplotlib
+}
+command -v fpm >/dev/null 2>&1 || { echo "setup: fpm is not on PATH after installing it" >&2; exit 1; }
