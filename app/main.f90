@@ -6,7 +6,7 @@
 !! The listing goes to standard output, diagnostics to standard error.
 !! Exit codes are listed in docs/errors.md.
 program hhneck
-    use, intrinsic :: iso_fortran_env, only: input_unit, output_unit, error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use hn_kinds, only: msglen
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
@@ -46,7 +46,7 @@ program hhneck
         i = i + 1
     end do
 
-    call read_case(input_unit, cs, stat, msg)
+    call read_case('/dev/stdin', 'stdin', cs, stat, msg)
     if (stat /= 0) then
         write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
         stop exit_deck, quiet=.true.

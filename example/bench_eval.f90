@@ -15,14 +15,12 @@ program bench_eval
     implicit none
     integer, parameter :: sizes(4) = [9, 18, 36, 72]
     type(case_t) :: cs
-    integer :: u, stat, k
+    integer :: stat, k
     character(len=msglen) :: msg
     real(wp) :: tg, tc, t9g
 
     write (*, '(a)') 'one dynamics evaluation (kinematics + loads + a_ij + f_i + solve), median'
-    open (newunit=u, file='input/nbdl15g.inp', status='old', action='read')
-    call read_case(u, cs, stat, msg)
-    close (u)
+    call read_case('input/nbdl15g.inp', 'input/nbdl15g.inp', cs, stat, msg)
     if (stat /= 0) error stop trim(msg)
     tg = time_eval(cs%model, solver_gauss, cs%x0)
     tc = time_eval(cs%model, solver_cholesky, cs%x0)

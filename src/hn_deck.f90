@@ -43,9 +43,11 @@ module hn_deck
 
 contains
 
-    !> Read a deck from `unit` (standard input) into `cs`.
-    subroutine read_case(unit, cs, stat, errmsg)
-        integer, intent(in) :: unit
+    !> Read the deck in file `path` ('/dev/stdin' for standard input, named
+    !! `source` in messages) into `cs`.
+    subroutine read_case(path, source, cs, stat, errmsg)
+        character(len=*), intent(in) :: path    !! file to read
+        character(len=*), intent(in) :: source  !! its name in messages
         type(case_t), intent(out) :: cs
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
@@ -54,9 +56,10 @@ contains
         type(named_table_t), allocatable :: tabs(:)
         character(len=10), allocatable :: bnames(:)
 
-        call read_card_images(rd, unit, 'stdin', 0)
+        rd%top = source
+        call read_card_images(rd, path, source, 0)
         if (.not. rd%failed() .and. rd%nlines == 0) &
-            call rd%fail('stdin line 1: the deck is empty (no cards); expected a TITLE card first')
+            call rd%fail(source//' line 1: the deck is empty (no cards); expected a TITLE card first')
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
             call group_cards(rd, cards)
@@ -170,7 +173,7 @@ contains
             end if
             ic = k
         end do
-        if (ic == 0 .and. required) call rd%fail('stdin: the deck has no '//key//' card; expected one')
+        if (ic == 0 .and. required) call rd%fail(rd%top//': the deck has no '//key//' card; expected one')
     end function single
 
     !> TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT, H5FILE, DUMP, HOLD.
@@ -301,7 +304,7 @@ contains
 
         nb = count(cards%key == 'BODY')
         if (nb == 0) then
-            call rd%fail('stdin: the deck has no BODY card; expected at least one body')
+            call rd%fail(rd%top//': the deck has no BODY card; expected at least one body')
             return
         end if
         allocate (bnames(nb), pnames(nb), bline(nb), joint_given(nb))
@@ -355,7 +358,7 @@ contains
             end if
         end do
         if (count(cs%model%tree%parent == 0) /= 1) then
-            call rd%fail('stdin: '//trim(int_str(count(cs%model%tree%parent == 0)))//' bodies have parent R; '// &
+            call rd%fail(rd%top//': '//trim(int_str(count(cs%model%tree%parent == 0)))//' bodies have parent R; '// &
                          'expected exactly one root body (the tree hangs from one body)')
             return
         end if
@@ -401,7 +404,7 @@ contains
 
         call tree_build(cs%model%tree, stat, msg)
         if (stat /= 0) then
-            call rd%fail('stdin (BODY cards): '//trim(msg))
+            call rd%fail(rd%top//' (BODY cards): '//trim(msg))
             return
         end if
         tree = cs%model%tree       ! model_init takes the tree by value (its model argument is intent(out))

@@ -6,7 +6,8 @@
 !! Card layout (80 columns): columns 1-8 the card name, 9-10 blank, then
 !! seven fields of ten columns: F1 = 11-20, F2 = 21-30, ... F7 = 71-80.
 !! A card whose columns 1-10 are blank continues the card above it.
-!! '*' in column 1 marks a comment; blank lines are ignored.
+!! '*' in column 1 marks a comment; blank lines are ignored. CR LF line ends
+!! read as LF line ends; a carriage return anywhere else is an error.
 module hn_deck_reader
     use hn_kinds, only: wp, msglen
     use hn_case, only: deck_line_t, path_len
@@ -22,6 +23,7 @@ module hn_deck_reader
     type :: deck_reader_t
         type(deck_line_t), allocatable :: lines(:)
         integer :: nlines = 0
+        character(len=:), allocatable :: top   !! name of the deck itself in messages
         integer :: stat = 0
         character(len=msglen) :: errmsg = ''
     contains
@@ -276,65 +278,113 @@ contains
         end do
     end function upper
 
-    !> Read all card images from `unit` (named `source`), expanding INCLUDE
-    !! cards, checking every line: at most 80 columns, printable ASCII, no tab
-    !! or carriage return.
-    recursive subroutine read_card_images(me, unit, source, depth)
+    !> Whole contents of a file (or /dev/stdin) as bytes; stat /= 0 with a
+    !! message when it cannot be opened or read.
+    subroutine read_bytes(path, bytes, stat, errmsg)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable, intent(out) :: bytes
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: u, n, cap
+        integer(8) :: sz
+        character(len=1) :: c
+        character(len=:), allocatable :: tmp
+        errmsg = ''
+        open (newunit=u, file=path, access='stream', form='unformatted', action='read', status='old', &
+              iostat=stat, iomsg=errmsg)
+        if (stat /= 0) return
+        inquire (unit=u, size=sz)
+        if (sz > 0) then
+            allocate (character(len=int(sz)) :: bytes)
+            read (u, iostat=stat, iomsg=errmsg) bytes
+        else
+            ! a pipe: size unknown, read byte by byte
+            cap = 65536
+            allocate (character(len=cap) :: bytes)
+            n = 0
+            do
+                read (u, iostat=stat) c
+                if (stat /= 0) exit
+                n = n + 1
+                if (n > cap) then
+                    tmp = bytes
+                    cap = 2*cap
+                    deallocate (bytes)
+                    allocate (character(len=cap) :: bytes)
+                    bytes(1:n - 1) = tmp(1:n - 1)
+                end if
+                bytes(n:n) = c
+            end do
+            bytes = bytes(1:n)
+            if (is_iostat_end(stat)) stat = 0
+        end if
+        close (u)
+    end subroutine read_bytes
+
+    !> Read all card images of file `path` (named `source` in messages),
+    !! expanding INCLUDE cards and checking every line: at most 80 columns,
+    !! printable ASCII, no tab; CR LF line ends read as LF, a carriage
+    !! return anywhere else is an error.
+    recursive subroutine read_card_images(me, path, source, depth)
         class(deck_reader_t), intent(inout) :: me
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: source
+        character(len=*), intent(in) :: path, source
         integer, intent(in) :: depth
-        character(len=4096) :: buf
-        character(len=path_len) :: path
+        character(len=:), allocatable :: bytes, line
+        character(len=path_len) :: incpath
         character(len=msglen) :: iomsg
-        character(len=16) :: num
-        integer :: ios, lineno, k, c, n, inc
+        integer :: ios, lineno, k, c, p0, p1, n
         logical :: exists
+
+        call read_bytes(path, bytes, ios, iomsg)
+        if (ios /= 0) then
+            call me%fail(source//': cannot be read ('//trim(iomsg)//')')
+            return
+        end if
         lineno = 0
-        do
+        p0 = 1
+        do while (p0 <= len(bytes))
             if (me%failed()) return
-            read (unit, '(a)', iostat=ios, iomsg=iomsg, size=n, advance='no') buf
-            if (is_iostat_end(ios)) exit
-            lineno = lineno + 1
-            write (num, '(i0)') lineno
-            if (ios == 0) then
-                call me%fail(source//' line '//trim(num)//': longer than 4096 characters; card images have 80 columns')
-                return
-            else if (.not. is_iostat_eor(ios)) then
-                call me%fail(source//' line '//trim(num)//': cannot be read ('//trim(iomsg)//')')
-                return
+            p1 = index(bytes(p0:), achar(10))
+            if (p1 == 0) then
+                p1 = len(bytes) + 1
+            else
+                p1 = p0 + p1 - 1
             end if
-            if (n > len(buf)) n = len(buf)
+            line = bytes(p0:p1 - 1)
+            p0 = p1 + 1
+            lineno = lineno + 1
+            n = len(line)
+            if (n > 0) then
+                if (line(n:n) == achar(13)) n = n - 1      ! CR LF
+            end if
             do k = 1, n
-                c = iachar(buf(k:k))
+                c = iachar(line(k:k))
                 if (c == 9) then
-                    write (num, '(i0)') k
-                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(num)// &
+                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(int_str(k))// &
                                  ': found a tab character; card images use spaces so that columns are exact')
                     return
                 else if (c == 13) then
-                    write (num, '(i0)') k
-                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(num)// &
-                                 ': found a carriage return (CR LF line end); convert the deck to LF line ends')
+                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(int_str(k))// &
+                                 ': found a carriage return inside the card; expected plain text')
                     return
                 else if (c < 32 .or. c > 126) then
-                    write (num, '(i0)') k
-                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(num)// &
+                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(int_str(k))// &
                                  ': found a non-printable or non-ASCII character; expected plain ASCII text')
                     return
                 end if
             end do
-            if (len_trim(buf(1:n)) > 80) then
+            if (len_trim(line(1:n)) > 80) then
                 call me%fail(source//' line '//trim(int_str(lineno))//', columns 81-'// &
-                             trim(int_str(len_trim(buf(1:n))))// &
+                             trim(int_str(len_trim(line(1:n))))// &
                              ': found text beyond column 80; card images have 80 columns')
                 return
             end if
-            if (len_trim(buf(1:n)) == 0) cycle
-            if (buf(1:1) == '*') cycle
-            if (upper(buf(1:8)) == 'INCLUDE ') then
-                path = adjustl(buf(11:max(11, min(n, 80))))
-                if (len_trim(path) == 0 .or. n < 11) then
+            if (len_trim(line(1:n)) == 0) cycle
+            if (line(1:1) == '*') cycle
+            if (upper(line(1:min(n, 8))) == 'INCLUDE') then
+                incpath = ''
+                if (n >= 11) incpath = adjustl(line(11:n))
+                if (len_trim(incpath) == 0) then
                     call me%fail(source//' line '//trim(int_str(lineno))// &
                                  ', columns 11-80 (INCLUDE card): found no file name; expected the path of a deck file')
                     return
@@ -344,23 +394,16 @@ contains
                                  ' (INCLUDE card): includes nested too deeply (more than 4 levels; a loop?)')
                     return
                 end if
-                inquire (file=trim(path), exist=exists)
+                inquire (file=trim(incpath), exist=exists)
                 if (.not. exists) then
                     call me%fail(source//' line '//trim(int_str(lineno))//', columns 11-80 (INCLUDE card): file "'// &
-                                 trim(path)//'" not found (paths are relative to the working directory)')
+                                 trim(incpath)//'" not found (paths are relative to the working directory)')
                     return
                 end if
-                open (newunit=inc, file=trim(path), status='old', action='read', iostat=ios, iomsg=iomsg)
-                if (ios /= 0) then
-                    call me%fail(source//' line '//trim(int_str(lineno))//' (INCLUDE card): cannot open "'// &
-                                 trim(path)//'": '//trim(iomsg))
-                    return
-                end if
-                call read_card_images(me, inc, trim(path), depth + 1)
-                close (inc)
+                call read_card_images(me, trim(incpath), trim(incpath), depth + 1)
                 cycle
             end if
-            call append_line(me, buf(1:min(n, 80)), source, lineno)
+            call append_line(me, line(1:n), source, lineno)
         end do
     end subroutine read_card_images
 

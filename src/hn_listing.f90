@@ -100,11 +100,11 @@ contains
         call me%new_page()
         call me%put(' ECHO OF THE INPUT DECK (comment cards omitted, INCLUDE files expanded)')
         call me%put('')
-        call me%put('  CARD  SOURCE:LINE          '//'         1         2         3         4         5'// &
+        call me%put('  CARD  SOURCE:LINE                   '//'         1         2         3         4         5'// &
                     '         6         7         8')
-        call me%put('                             '//repeat('1234567890', 8))
+        call me%put('                                      '//repeat('1234567890', 8))
         do k = 1, size(cs%deck)
-            write (s, '(i6,2x,a20,1x,a)') k, source_tag(cs%deck(k)%source, cs%deck(k)%line), cs%deck(k)%text
+            write (s, '(i6,2x,a29,1x,a)') k, source_tag(cs%deck(k)%source, cs%deck(k)%line), cs%deck(k)%text
             call me%put(s)
         end do
     end subroutine listing_echo_deck
@@ -112,13 +112,13 @@ contains
     pure function source_tag(source, line) result(s)
         character(len=*), intent(in) :: source
         integer, intent(in) :: line
-        character(len=20) :: s
+        character(len=29) :: s
         character(len=12) :: num
         integer :: k
         write (num, '(i0)') line
         k = index(source, '/', back=.true.)
         s = source(k + 1:)
-        s = trim(s(1:min(len_trim(s), 19 - len_trim(num))))//':'//trim(num)
+        s = trim(s(1:min(len_trim(s), 28 - len_trim(num))))//':'//trim(num)
     end function source_tag
 
     subroutine listing_model_summary(me, cs)

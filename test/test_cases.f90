@@ -29,13 +29,11 @@ contains
         character(len=:), allocatable, intent(out) :: h5name
         type(case_t) :: cs
         type(run_result_t) :: res
-        integer :: u, lu, stat
+        integer :: lu, stat
         character(len=msglen) :: msg
         character(len=16) :: status
         h5name = 'test_'//name//'.h5'
-        open (newunit=u, file='input/'//name//'.inp', status='old', action='read')
-        call read_case(u, cs, stat, msg)
-        close (u)
+        call read_case('input/'//name//'.inp', 'input/'//name//'.inp', cs, stat, msg)
         ok = stat == 0
         if (.not. ok) then
             print '(a)', 'deck error: '//trim(msg)

@@ -38,6 +38,7 @@ program test_elements
     call test_ligament_energy_derivative()
     call test_muscle_hand_value()
     call test_muscle_never_pushes()
+    call test_muscle_activation()
     call test_line_element_no_work_in_rigid_motion()
     call test_limit_acts_toward_limit_only()
     call test_limit_damping_continuous()
@@ -267,6 +268,14 @@ contains
                          muscle_tension(m, 0.095_wp, -1.0_wp, zero) == zero, &
                          'muscle never pushes: zero when m1 d + m2 d'' < 0')
     end subroutine test_muscle_never_pushes
+
+    subroutine test_muscle_activation()
+        type(muscle_t) :: m
+        m%m1 = 800.0_wp; m%m2 = 60.0_wp; m%rest_length = 0.1_wp; m%fmax = 300.0_wp
+        ! slack and shortening, yet half activation pulls: 800 (-0.01) + 60 (-0.5) + 0.5 * 300 = 112 N
+        call suite%near(muscle_tension(m, 0.09_wp, -0.5_wp, 0.5_wp), 112.0_wp, 1.0e-12_wp, &
+                        'muscle activation adds a(t) Fmax to the passive law')
+    end subroutine test_muscle_activation
 
     subroutine test_line_element_no_work_in_rigid_motion()
         real(wp) :: x(12), xd(12), power
