@@ -202,21 +202,23 @@ contains
             return
         end if
         span = cs%t_end - cs%t_start
-        call rd%real(i, 2, 'step', 's', cs%h, tiny(one), huge(one))
-        if (.not. rd%failed() .and. span/cs%h > 1.0e8_wp) then
+        call rd%real(i, 2, 'step', 's', cs%h, 1.0e-12_wp, 1.0e4_wp)
+        if (rd%failed()) return
+        if (span/cs%h > 1.0e8_wp) then
             call rd%fail(rd%where(i)//', columns 21-30 (CONTROL card, field F2 ''step''): found '// &
                          trim(rd%raw(i, 2))//' s; a step this small needs more than 1E8 steps for the run; '// &
                          'expected a step of at least '//trim(real_str(span*1.0e-8_wp))//' s')
             return
         end if
-        if (.not. rd%failed() .and. cs%h > span) then
+        if (cs%h > span) then
             call rd%fail(rd%where(i)//', columns 21-30 (CONTROL card, field F2 ''step''): found '// &
                          trim(rd%raw(i, 2))//' s; expected a step no longer than the run ('// &
                          trim(real_str(span))//' s)')
             return
         end if
-        call rd%real(i, 3, 'print interval', 's', cs%print_dt, tiny(one), huge(one))
-        if (.not. rd%failed() .and. span/cs%print_dt > 1.0e6_wp) then
+        call rd%real(i, 3, 'print interval', 's', cs%print_dt, 1.0e-9_wp, 1.0e4_wp)
+        if (rd%failed()) return
+        if (span/cs%print_dt > 1.0e6_wp) then
             call rd%fail(rd%where(i)//', columns 31-40 (CONTROL card, field F3 ''print interval''): found '// &
                          trim(rd%raw(i, 3))//' s; expected at most 1E6 print times in the run')
             return
@@ -256,8 +258,9 @@ contains
         cs%sample_dt = min(cs%print_dt, 1.0e-4_wp)
         ic = single(rd, cards, 'OUTPUT', .false.)
         if (ic > 0) then
-            call rd%real(cards(ic)%first, 1, 'HDF5 sample interval', 's', cs%sample_dt, tiny(one), huge(one))
-            if (.not. rd%failed() .and. span/cs%sample_dt > 1.0e7_wp) &
+            call rd%real(cards(ic)%first, 1, 'HDF5 sample interval', 's', cs%sample_dt, 1.0e-9_wp, 1.0e4_wp)
+            if (rd%failed()) return
+            if (span/cs%sample_dt > 1.0e7_wp) &
                 call rd%fail(rd%where(cards(ic)%first)//', columns 11-20 (OUTPUT card, field F1 '// &
                              '''HDF5 sample interval''): expected at most 1E7 samples in the run')
         end if
