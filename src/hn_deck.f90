@@ -5,7 +5,7 @@
 module hn_deck
     use hn_kinds, only: wp, zero, one, deg, msglen
     use hn_case, only: case_t
-    use hn_deck_reader, only: deck_reader_t, read_card_images
+    use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
     use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
@@ -196,7 +196,7 @@ contains
         call rd%real(i, 7, 'start time', 's', cs%t_start, -1.0e4_wp, 1.0e4_wp, default=zero)
         call rd%real(i, 1, 'end time', 's', cs%t_end, -1.0e4_wp, 1.0e4_wp)
         if (.not. rd%failed() .and. .not. (cs%t_end > cs%t_start)) then
-            call rd%fail(rd%where(i)//', columns 11-20 (CONTROL card, field F1 ''end time''): found '// &
+            call rd%fail(rd%context(i, 1, 'end time')//': found '// &
                          trim(rd%raw(i, 1))//' s; expected an end time after the start time '// &
                          trim(real_str(cs%t_start))//' s')
             return
@@ -205,13 +205,13 @@ contains
         call rd%real(i, 2, 'step', 's', cs%h, 1.0e-12_wp, 1.0e4_wp)
         if (rd%failed()) return
         if (span/cs%h > 1.0e8_wp) then
-            call rd%fail(rd%where(i)//', columns 21-30 (CONTROL card, field F2 ''step''): found '// &
+            call rd%fail(rd%context(i, 2, 'step')//': found '// &
                          trim(rd%raw(i, 2))//' s; a step this small needs more than 1E8 steps for the run; '// &
                          'expected a step of at least '//trim(real_str(span*1.0e-8_wp))//' s')
             return
         end if
         if (cs%h > span) then
-            call rd%fail(rd%where(i)//', columns 21-30 (CONTROL card, field F2 ''step''): found '// &
+            call rd%fail(rd%context(i, 2, 'step')//': found '// &
                          trim(rd%raw(i, 2))//' s; expected a step no longer than the run ('// &
                          trim(real_str(span))//' s)')
             return
@@ -219,14 +219,14 @@ contains
         call rd%real(i, 3, 'print interval', 's', cs%print_dt, 1.0e-9_wp, 1.0e4_wp)
         if (rd%failed()) return
         if (span/cs%print_dt > 1.0e6_wp) then
-            call rd%fail(rd%where(i)//', columns 31-40 (CONTROL card, field F3 ''print interval''): found '// &
+            call rd%fail(rd%context(i, 3, 'print interval')//': found '// &
                          trim(rd%raw(i, 3))//' s; expected at most 1E6 print times in the run')
             return
         end if
         call rd%name(i, 4, 'integrator', s)
         if (.not. rd%failed()) then
             if (.not. any(integrator_names == s(1:8))) then
-                call rd%fail(rd%where(i)//', columns 41-50 (CONTROL card, field F4 ''integrator''): found "'// &
+                call rd%fail(rd%context(i, 4, 'integrator')//': found "'// &
                              trim(s)//'"; expected one of '//join(integrator_names))
                 return
             end if
@@ -243,8 +243,7 @@ contains
             case ('GAUSS'); cs%model%solver = solver_gauss
             case ('CHOLESKY'); cs%model%solver = solver_cholesky
             case default
-                if (.not. rd%failed()) call rd%fail(rd%where(cards(ic)%first)// &
-                                                    ', columns 11-20 (SOLVER card, field F1 ''method''): found "'// &
+                if (.not. rd%failed()) call rd%fail(rd%context(cards(ic)%first, 1, 'method')//': found "'// &
                                                     trim(s)//'"; expected GAUSS or CHOLESKY')
             end select
         end if
@@ -261,8 +260,8 @@ contains
             call rd%real(cards(ic)%first, 1, 'HDF5 sample interval', 's', cs%sample_dt, 1.0e-9_wp, 1.0e4_wp)
             if (rd%failed()) return
             if (span/cs%sample_dt > 1.0e7_wp) &
-                call rd%fail(rd%where(cards(ic)%first)//', columns 11-20 (OUTPUT card, field F1 '// &
-                             '''HDF5 sample interval''): expected at most 1E7 samples in the run')
+                call rd%fail(rd%context(cards(ic)%first, 1, 'HDF5 sample interval')// &
+                             ': expected at most 1E7 samples in the run')
         end if
         ic = single(rd, cards, 'H5FILE', .false.)
         if (ic > 0) cs%h5file = rd%text(cards(ic)%first, 11)
@@ -270,8 +269,7 @@ contains
         if (ic > 0) then
             call rd%name(cards(ic)%first, 1, 'option', s)
             if (s /= 'POSTURE' .and. .not. rd%failed()) &
-                call rd%fail(rd%where(cards(ic)%first)//', columns 11-20 (HOLD card, field F1 ''option''): '// &
-                             'found "'//trim(s)//'"; expected POSTURE')
+                call rd%fail(rd%context(cards(ic)%first, 1, 'option')//': found "'//trim(s)//'"; expected POSTURE')
             cs%hold_posture = .true.
         end if
         allocate (cs%dump_times(0))
@@ -322,17 +320,17 @@ contains
             call rd%name(i, 1, 'body name', bnames(kb))
             if (rd%failed()) return
             if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL') then
-                call rd%fail(rd%where(i)//', columns 11-20 (BODY card, field F1 ''body name''): found "'// &
+                call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
                              trim(bnames(kb))//'", which names the inertial frame; expected another name')
                 return
             end if
             if (len_trim(bnames(kb)) > name_len) then
-                call rd%fail(rd%where(i)//', columns 11-20 (BODY card, field F1 ''body name''): found "'// &
+                call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
                              trim(bnames(kb))//'"; expected at most 12 characters')
                 return
             end if
             if (any(bnames(1:kb - 1) == bnames(kb))) then
-                call rd%fail(rd%where(i)//', columns 11-20 (BODY card, field F1 ''body name''): body "'// &
+                call rd%fail(rd%context(i, 1, 'body name')//': body "'// &
                              trim(bnames(kb))//'" is defined twice; expected a new name')
                 return
             end if
@@ -352,9 +350,8 @@ contains
             else
                 p = findloc(bnames, pnames(kb), dim=1)
                 if (p == 0) then
-                    call rd%fail(rd%where(bline(kb))//', columns 21-30 (BODY card, field F2 ''parent body''): '// &
-                                 'found "'//trim(pnames(kb))//'"; expected R (inertial frame) or a body defined '// &
-                                 'on a BODY card')
+                    call rd%fail(rd%context(bline(kb), 2, 'parent body')//': found "'//trim(pnames(kb))// &
+                                 '"; expected R (inertial frame) or a body defined on a BODY card')
                     return
                 end if
                 cs%model%tree%parent(kb) = p
@@ -461,7 +458,7 @@ contains
             call rd%name(i, 1, 'table name', tabs(nt)%name)
             if (rd%failed()) return
             if (any(tabs(1:nt - 1)%name == tabs(nt)%name)) then
-                call rd%fail(rd%where(i)//', columns 11-20 (TABLE card, field F1 ''table name''): table "'// &
+                call rd%fail(rd%context(i, 1, 'table name')//': table "'// &
                              trim(tabs(nt)%name)//'" is defined twice; expected a new name')
                 return
             end if
@@ -562,7 +559,7 @@ contains
                     cs%model%motion(j) = motion_harmonic(cs%model%tree%q_ref(m, kb), amp*fac, &
                                                          2*acos(-one)*freq, phase*deg)
                 case default
-                    call rd%fail(rd%where(i)//', columns 31-40 (PRESCRIB card, field F3 ''kind''): found "'// &
+                    call rd%fail(rd%context(i, 3, 'kind')//': found "'// &
                                  trim(s)//'"; expected CONSTANT, ACCEL, POSITION or HARMONIC')
                     return
                 end select
@@ -585,8 +582,7 @@ contains
         m = coord_ref(rd, i, 2)
         if (rd%failed()) return
         j = cs%model%tree%dof_index(m, kb)
-        if (j == 0) call rd%fail(rd%where(i)//', columns 21-30 ('//trim(rd%key(i))//' card, field F2 '// &
-                                 '''coordinate''): '//trim(bnames(kb))//'.'//coord_names(m)// &
+        if (j == 0) call rd%fail(rd%context(i, 2, 'coordinate')//': '//trim(bnames(kb))//'.'//coord_names(m)// &
                                  ' is locked; expected an active coordinate')
     end subroutine active_ref
 
@@ -677,7 +673,7 @@ contains
                 call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
                 call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
                 if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
-                    call rd%fail(rd%where(i)//', columns 41-50 (LIMIT card, field F4 ''upper limit''): found '// &
+                    call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
                                  trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
                     return
                 end if
@@ -694,13 +690,13 @@ contains
                 if (rd%failed()) return
                 fam = findloc(family_name, s(1:9), dim=1)
                 if (fam == 0) then
-                    call rd%fail(rd%where(i)//', columns 11-20 (FAMILY card, field F1 ''element family''): found "'// &
+                    call rd%fail(rd%context(i, 1, 'element family')//': found "'// &
                                  trim(s)//'"; expected one of '//join(family_name))
                     return
                 end if
                 call rd%name(i, 2, 'ON or OFF', s)
                 if (s /= 'ON' .and. s /= 'OFF' .and. .not. rd%failed()) then
-                    call rd%fail(rd%where(i)//', columns 21-30 (FAMILY card, field F2): found "'//trim(s)// &
+                    call rd%fail(rd%context(i, 2, 'ON or OFF')//': found "'//trim(s)// &
                                  '"; expected ON or OFF')
                     return
                 end if
@@ -732,8 +728,7 @@ contains
             case ('R', 'INERTIAL'); al%frame = frame_inertial
             case ('BODY'); al%frame = frame_body
             case default
-                call rd%fail(rd%where(i)//', columns 21-30 ('//trim(cards(k)%key)//' card, field F2 ''frame''): '// &
-                             'found "'//trim(s)//'"; expected R (inertial) or BODY')
+                call rd%fail(rd%context(i, 2, 'frame')//': found "'//trim(s)//'"; expected R (inertial) or BODY')
                 return
             end select
             it = table_ref(rd, i, 3, tabs)
@@ -804,7 +799,6 @@ contains
         character(len=10), intent(in) :: bnames(:)
         logical, intent(in) :: allow_inertial
         character(len=10) :: s
-        character(len=16) :: cols
         kb = 1
         call rd%name(i, f, what, s)
         if (rd%failed()) return
@@ -814,9 +808,7 @@ contains
         end if
         kb = findloc(bnames, s, dim=1)
         if (kb == 0) then
-            write (cols, '(i0,a,i0)') 1 + 10*f, '-', 10 + 10*f
-            call rd%fail(rd%where(i)//', columns '//trim(cols)//' ('//trim(rd%key(i))//' card, field F'// &
-                         achar(48 + f)//' '''//what//'''): found "'//trim(s)//'"; expected a body defined '// &
+            call rd%fail(rd%context(i, f, what)//': found "'//trim(s)//'"; expected a body defined '// &
                          'on a BODY card'//merge(' or R', '     ', allow_inertial))
             kb = 1
         end if
@@ -827,15 +819,12 @@ contains
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i, f
         character(len=10) :: s
-        character(len=16) :: cols
         m = 1
         call rd%name(i, f, 'coordinate', s)
         if (rd%failed()) return
         m = findloc(coord_names, s(1:2), dim=1)
         if (m == 0 .or. len_trim(s) /= 2) then
-            write (cols, '(i0,a,i0)') 1 + 10*f, '-', 10 + 10*f
-            call rd%fail(rd%where(i)//', columns '//trim(cols)//' ('//trim(rd%key(i))//' card, field F'// &
-                         achar(48 + f)//' ''coordinate''): found "'//trim(s)//'"; expected TX TY TZ RX RY or RZ')
+            call rd%fail(rd%context(i, f, 'coordinate')//': found "'//trim(s)//'"; expected TX TY TZ RX RY or RZ')
             m = 1
         end if
     end function coord_ref
@@ -846,7 +835,6 @@ contains
         integer, intent(in) :: i, f
         type(named_table_t), intent(in) :: tabs(:)
         character(len=10) :: s
-        character(len=16) :: cols
         integer :: k
         it = 1
         call rd%name(i, f, 'table', s)
@@ -856,9 +844,7 @@ contains
             if (tabs(k)%name == s) it = k
         end do
         if (it == 0) then
-            write (cols, '(i0,a,i0)') 1 + 10*f, '-', 10 + 10*f
-            call rd%fail(rd%where(i)//', columns '//trim(cols)//' ('//trim(rd%key(i))//' card, field F'// &
-                         achar(48 + f)//' ''table''): found "'//trim(s)//'"; expected the name of a TABLE card')
+            call rd%fail(rd%context(i, f, 'table')//': found "'//trim(s)//'"; expected the name of a TABLE card')
             it = 1
         end if
     end function table_ref
@@ -890,12 +876,6 @@ contains
             s = s//' '//trim(list(k))
         end do
     end function join
-
-    pure function int_str(i) result(s)
-        integer, intent(in) :: i
-        character(len=16) :: s
-        write (s, '(i0)') i
-    end function int_str
 
     pure function real_str(v) result(s)
         real(wp), intent(in) :: v

@@ -14,7 +14,7 @@ module hn_deck_reader
     implicit none
     private
 
-    public :: deck_reader_t, read_card_images, field_columns
+    public :: deck_reader_t, read_card_images, field_columns, int_str
 
     integer, parameter, public :: nfields = 7
     integer, parameter :: max_include_depth = 4
@@ -37,6 +37,7 @@ module hn_deck_reader
         procedure :: name => reader_name
         procedure :: text => reader_text
         procedure :: where => reader_where
+        procedure :: context
     end type deck_reader_t
 
 contains
@@ -97,7 +98,8 @@ contains
         reader_is_blank = len_trim(me%raw(i, f)) == 0
     end function reader_is_blank
 
-    !> Context of an error in field f of line i.
+    !> Context of an error in field f of line i: "stdin line 4, columns
+    !! 31-40 (BODY card, field F3 'mass')".
     function context(me, i, f, what) result(s)
         class(deck_reader_t), intent(in) :: me
         integer, intent(in) :: i, f
