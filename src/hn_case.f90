@@ -29,6 +29,7 @@ module hn_case
         real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-8_wp
         real(wp), allocatable :: x0(:), xd0(:)      !! initial active coordinates and rates
         logical :: hold_posture = .false.           !! constant generalized forces hold the start posture
+        character(len=8) :: events = 'TIME'         !! NONE, TIME (table breakpoints) or STATE (also one-way switches)
         integer :: head = 0                         !! body reported as the head
         integer :: t1 = 0                           !! body reported as T1 (NIC, relative motion)
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)

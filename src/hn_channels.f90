@@ -8,7 +8,7 @@
 module hn_channels
     use hn_kinds, only: wp, zero, g_std, deg
     use hn_case, only: case_t
-    use hn_dynamics, only: dyn_workspace_t
+    use hn_dynamics, only: dyn_workspace_t, energy_t
     use hn_kinematics, only: body_accelerations
     use hn_applied, only: applied_vector, applied_couple
     use hn_rotation, only: cross
@@ -29,6 +29,7 @@ module hn_channels
         real(wp), allocatable :: value(:)
         real(wp) :: head_r0(3) = zero      !! head mass centre relative to T1's origin at the start [m]
         real(wp) :: t1_r0(3) = zero
+        real(wp) :: e0 = zero              !! total energy at the start [J]
     end type channel_set_t
 
     character(len=2), parameter :: rot_names(3) = ['RX', 'RY', 'RZ']
@@ -108,6 +109,15 @@ contains
             call add(ch, 'L_'//trim(cs%model%tree%name(k))//'_'//trim(coord_label(m)), &
                      merge('N    ', 'N m  ', m <= 3), 'JOINT LIMITS')
         end do
+        call add(ch, 'E_KINETIC', 'J', 'ENERGY')
+        call add(ch, 'E_GRAVITY', 'J', 'ENERGY')
+        call add(ch, 'E_ELASTIC', 'J', 'ENERGY')
+        call add(ch, 'E_HOLD', 'J', 'ENERGY')
+        call add(ch, 'E_DISSIP', 'J', 'ENERGY')
+        call add(ch, 'E_MUSCLE', 'J', 'ENERGY')
+        call add(ch, 'W_APPLIED', 'J', 'ENERGY')
+        call add(ch, 'W_PRESCR', 'J', 'ENERGY')
+        call add(ch, 'E_BALANCE', 'J', 'ENERGY')
         allocate (ch%value(ch%n))
         ch%value = zero
     end subroutine channels_define
@@ -119,11 +129,13 @@ contains
         s = names(m)
     end function coord_label
 
-    !> Channel values at time t from the workspace of the evaluation at t.
-    subroutine channels_compute(cs, ws, t, ch)
+    !> Channel values at time t from the workspace of the evaluation at t
+    !! and the energy terms there.
+    subroutine channels_compute(cs, ws, t, en, ch)
         type(case_t), intent(in) :: cs
         type(dyn_workspace_t), intent(in) :: ws
         real(wp), intent(in) :: t
+        type(energy_t), intent(in) :: en
         type(channel_set_t), intent(inout) :: ch
         real(wp) :: acc(3, cs%model%tree%nbody), alpha(3, cs%model%tree%nbody)
         real(wp) :: s(3, 3), ah(3), fext(3), mext(3), f(3), mo(3), rgo(3), iw(3), v(3), rel(3)
@@ -201,6 +213,9 @@ contains
         do e = 1, size(cs%model%limits)
             call put(merge(ws%eo%limit(e), zero, cs%model%family_on(fam_limits)))
         end do
+        call put(en%kinetic); call put(en%gravity); call put(en%elastic); call put(en%hold)
+        call put(en%dissipated); call put(en%muscle); call put(en%applied); call put(en%prescribed)
+        call put(en%total - ch%e0)
     contains
         subroutine put(x)
             real(wp), intent(in) :: x

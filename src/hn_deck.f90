@@ -21,7 +21,8 @@ module hn_deck
 
     public :: read_case, integrator_names
 
-    character(len=8), parameter :: integrator_names(2) = [character(len=8) :: 'RK4', 'DOPRI5']
+    character(len=8), parameter :: integrator_names(5) = [character(len=8) :: 'RK4', 'ABM4', 'ADAMS', &
+                                                           'DOPRI5', 'ROS2']
 
     character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
     real(wp), parameter :: big_length = 10.0_wp     !! largest coordinate of a point [m]
@@ -71,6 +72,7 @@ contains
         if (.not. rd%failed()) call element_cards(rd, cards, cs, bnames, tabs)
         if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, tabs)
         if (.not. rd%failed()) call report_cards(rd, cards, cs, bnames)
+        if (.not. rd%failed()) call stiffen_cards(rd, cards, cs)
         if (.not. rd%failed()) call model_set_neutral(cs%model)
         stat = rd%stat
         errmsg = rd%errmsg
@@ -92,10 +94,10 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(25) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(27) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
-            'FORCE', 'COUPLE', 'FAMILY']
+            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -265,6 +267,14 @@ contains
         end if
         ic = single(rd, cards, 'H5FILE', .false.)
         if (ic > 0) cs%h5file = rd%text(cards(ic)%first, 11)
+        ic = single(rd, cards, 'EVENTS', .false.)
+        if (ic > 0) then
+            call rd%name(cards(ic)%first, 1, 'event handling', s)
+            if (s /= 'NONE' .and. s /= 'TIME' .and. s /= 'STATE' .and. .not. rd%failed()) &
+                call rd%fail(rd%context(cards(ic)%first, 1, 'event handling')//': found "'//trim(s)// &
+                             '"; expected NONE, TIME or STATE')
+            cs%events = s(1:8)
+        end if
         ic = single(rd, cards, 'HOLD', .false.)
         if (ic > 0) then
             call rd%name(cards(ic)%first, 1, 'option', s)
@@ -752,6 +762,48 @@ contains
             cs%model%applied = [cs%model%applied, al]
         end do
     end subroutine load_cards
+
+    !> STIFFEN factor [family]: multiply element stiffnesses (disc d1, d2 and
+    !! G, ligament l1 and l2, muscle m1, spring stiffness) by a factor, for
+    !! every family or the one named; damping-to-stiffness ratios of the discs
+    !! are kept.
+    subroutine stiffen_cards(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        integer :: k, i, fam
+        real(wp) :: fac
+        character(len=10) :: s
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'STIFFEN') cycle
+            i = cards(k)%first
+            call rd%real(i, 1, 'stiffness factor', '-', fac, 1.0e-6_wp, 1.0e6_wp)
+            call rd%name(i, 2, 'element family', s, optional_blank=.true.)
+            if (rd%failed()) return
+            fam = 0
+            if (len_trim(s) > 0) then
+                fam = findloc(family_name, s(1:9), dim=1)
+                if (fam == 0) then
+                    call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
+                                 join(family_name))
+                    return
+                end if
+            end if
+            associate (m => cs%model)
+                if (fam == 0 .or. family_name(max(fam, 1)) == 'DISCS') then
+                    m%discs%d1 = fac*m%discs%d1
+                    m%discs%d2 = fac*m%discs%d2
+                    m%discs%g = fac*m%discs%g
+                end if
+                if (fam == 0 .or. family_name(max(fam, 1)) == 'LIGAMENTS') then
+                    m%ligaments%l1 = fac*m%ligaments%l1
+                    m%ligaments%l2 = fac*m%ligaments%l2
+                end if
+                if (fam == 0 .or. family_name(max(fam, 1)) == 'MUSCLES') m%muscles%m1 = fac*m%muscles%m1
+                if (fam == 0 .or. family_name(max(fam, 1)) == 'SPRINGS') m%springs%stiffness = fac*m%springs%stiffness
+            end associate
+        end do
+    end subroutine stiffen_cards
 
     !> HEADNECK: the bodies reported as head and T1.
     subroutine report_cards(rd, cards, cs, bnames)

@@ -154,15 +154,20 @@ contains
         u = half*dot_product(q, matmul(d%k, q))
     end function disc_energy
 
-    !> Add the disc loads to both bodies; returns the resultants s.
-    pure subroutine apply_disc(d, kin, loads, s)
+    !> Add the disc loads to both bodies; returns the resultants s, the
+    !! stored energy u = q^T K q / 2 and the dissipated power qd^T C qd.
+    pure subroutine apply_disc(d, kin, loads, s, u, pdiss)
         type(disc_t), intent(in) :: d
         type(kinematics_t), intent(in) :: kin
         type(body_loads_t), intent(inout) :: loads
         real(wp), intent(out) :: s(6)
+        real(wp), intent(out) :: u       !! elastic energy [J]
+        real(wp), intent(out) :: pdiss   !! dissipated power [W]
         real(wp) :: q(6), qd(6), l(3, 3), pup(3), f(3), c(3)
         call disc_deformation(d, kin, q, qd, l, pup)
         s = disc_resultants(d, q, qd)
+        u = disc_energy(d, q)
+        pdiss = dot_product(qd, matmul(d%c, qd))
         f = -matmul(l, s(1:3))
         c = -matmul(l, matmul(transpose(inv_left_jacobian(q(4:6))), s(4:6)))
         call add_force_pair(loads, d%body_a, kin%r(:, d%body_a), d%body_b, kin%r(:, d%body_b), pup, f, c)

@@ -1,11 +1,14 @@
 !> One dynamics evaluation: prescribed motions, kinematics, loads, a_ij and
 !! f_i, the partition into free and prescribed coordinates, and the solve
 !! a_FF xddot_F = f_F - a_FP xddot_P. Also the model as an ODE system
-!! y = (x_F, xdot_F) for the integrators.
+!! y = (x_F, xdot_F, E) for the integrators, where the four quadratures E
+!! are the energy-audit integrals: energy dissipated (discs, springs, joint
+!! dampers), energy absorbed by the muscles, work of the applied tables and
+!! work done by the prescribed motions.
 module hn_dynamics
-    use hn_kinds, only: wp, zero, msglen
+    use hn_kinds, only: wp, zero, msglen, deg
     use hn_model, only: model_t
-    use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities
+    use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities, kinetic_energy
     use hn_loads, only: body_loads_t, loads_allocate
     use hn_kane, only: a_ij, f_i
     use hn_forces, only: compute_loads, element_output_t, element_output_allocate
@@ -16,7 +19,10 @@ module hn_dynamics
     private
 
     public :: dyn_workspace_t, dynamics_setup, dynamics_evaluate, model_ode_t, model_ode_init
-    public :: state_to_coordinates, coordinates_to_state
+    public :: state_to_coordinates, coordinates_to_state, nenergy, state_size, energy_terms, energy_t
+
+    integer, parameter :: nenergy = 4   !! energy-audit quadratures appended to the state
+    real(wp), parameter :: cos_singular = 0.01_wp   !! |cos(beta)| below which the Bryant axes are called singular
 
     !> Work arrays of a dynamics evaluation and the results of the last one.
     type :: dyn_workspace_t
@@ -28,7 +34,18 @@ module hn_dynamics
         real(wp), allocatable :: x(:), xd(:), xdd(:) !! all active coordinates, rates, accelerations
         real(wp), allocatable :: a(:, :), f(:)       !! a_ij and f_i of all active coordinates
         real(wp), allocatable :: aff(:, :), bf(:)    !! the free partition and its right-hand side
+        real(wp) :: p_prescribed = zero              !! power of the prescribed motions [W]
+        integer, allocatable :: gimbal_bodies(:)     !! bodies whose first and third Bryant angles are both free
     end type dyn_workspace_t
+
+    !> The terms of the energy balance at one instant [J]:
+    !! kinetic + gravity + elastic + holding + dissipated + muscle
+    !! - applied - prescribed = constant.
+    type :: energy_t
+        real(wp) :: kinetic = zero, gravity = zero, elastic = zero, hold = zero
+        real(wp) :: dissipated = zero, muscle = zero, applied = zero, prescribed = zero
+        real(wp) :: total = zero
+    end type energy_t
 
     !> The model as a first-order system for the integrators.
     type, extends(ode_system_t) :: model_ode_t
@@ -64,6 +81,16 @@ contains
         allocate (ws%x(n), ws%xd(n), ws%xdd(n), ws%a(n, n), ws%f(n))
         allocate (ws%aff(ws%nfree, ws%nfree), ws%bf(ws%nfree))
         ws%x = zero; ws%xd = zero; ws%xdd = zero
+        ws%gimbal_bodies = pack([(j, j=1, model%tree%nbody)], [(free_rotation(j, 4) .and. free_rotation(j, 6), &
+                                                                 j=1, model%tree%nbody)])
+    contains
+        pure logical function free_rotation(k, m)
+            integer, intent(in) :: k, m
+            integer :: jj
+            jj = model%tree%dof_index(m, k)
+            free_rotation = .false.
+            if (jj > 0) free_rotation = .not. model%prescribed(jj)
+        end function free_rotation
     end subroutine dynamics_setup
 
     !> Fill all active coordinates from the free ones and the prescribed motions at t.
@@ -80,11 +107,13 @@ contains
         end do
     end subroutine state_to_coordinates
 
-    !> Pack the free coordinates and rates of full arrays into a state vector.
+    !> Pack the free coordinates and rates of full arrays into a state
+    !! vector, energy-audit integrals zero.
     pure subroutine coordinates_to_state(ws, x, xd, y)
         type(dyn_workspace_t), intent(in) :: ws
         real(wp), intent(in) :: x(:), xd(:)
         real(wp), intent(out) :: y(:)
+        y = zero
         y(1:ws%nfree) = x(ws%ifree)
         y(ws%nfree + 1:2*ws%nfree) = xd(ws%ifree)
     end subroutine coordinates_to_state
@@ -98,9 +127,32 @@ contains
         real(wp), intent(out) :: xddf(:)
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
-        integer :: i
+        integer :: i, k, j
+        real(wp) :: cb, beta
 
         call state_to_coordinates(model, ws, t, xf, xdf)
+        ! the Bryant sequence is singular at cos(beta) = 0 when the first and
+        ! third angles are both unknowns: stop there rather than integrate a
+        ! nearly singular a_ij
+        do i = 1, size(ws%gimbal_bodies)
+            k = ws%gimbal_bodies(i)
+            j = model%tree%dof_index(5, k)
+            if (j > 0) then
+                beta = ws%x(j)
+            else
+                beta = model%tree%q_ref(5, k)
+            end if
+            cb = cos(beta)
+            if (abs(cb) < cos_singular) then
+                stat = 2
+                write (errmsg, '(a,es12.5,3a,f8.3,a)') 't = ', t, ' s: Bryant-angle singularity: body ', &
+                    trim(model%tree%name(k)), ' has RY = ', beta/deg, &
+                    ' deg (90 deg is singular: its RX and RZ axes coincide); lock or prescribe RX or RZ, or '// &
+                    'choose body axes that keep RY away from 90 deg'
+                xddf = zero
+                return
+            end if
+        end do
         call partial_velocities(model%tree, ws%x, ws%xd, ws%kin)
         call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
         call a_ij(model%tree, ws%kin, ws%a)
@@ -121,17 +173,52 @@ contains
         end if
         xddf = ws%bf
         ws%xdd(ws%ifree) = xddf
+        ! power of the prescribed motions: lambda_P . xdot_P, with the
+        ! generalized constraint forces lambda_P = a_P. xddot - f_P
+        ws%p_prescribed = zero
+        do i = 1, ws%npres
+            j = ws%ipres(i)
+            ws%p_prescribed = ws%p_prescribed + (dot_product(ws%a(j, :), ws%xdd) - ws%f(j))*ws%xd(j)
+        end do
     end subroutine dynamics_evaluate
+
+    !> Energy terms from the workspace of the evaluation at a state and the
+    !! state's four energy-audit integrals equad.
+    pure function energy_terms(model, ws, equad) result(e)
+        type(model_t), intent(in) :: model
+        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: equad(nenergy)
+        type(energy_t) :: e
+        integer :: k
+        e%kinetic = kinetic_energy(model%tree, ws%kin)
+        do k = 1, model%tree%nbody
+            e%gravity = e%gravity - model%tree%mass(k)*dot_product(model%gravity, ws%kin%r(:, k))
+        end do
+        e%elastic = ws%eo%u_elastic
+        e%hold = -dot_product(model%q_hold, ws%x)
+        e%dissipated = equad(1)
+        e%muscle = equad(2)
+        e%applied = equad(3)
+        e%prescribed = equad(4)
+        e%total = e%kinetic + e%gravity + e%elastic + e%hold + e%dissipated + e%muscle - e%applied - e%prescribed
+    end function energy_terms
+
+    !> Length of the state vector y = (x_F, xdot_F, E) of a model system.
+    pure integer function state_size(sys) result(n)
+        type(model_ode_t), intent(in) :: sys
+        n = 2*sys%ws%nfree + nenergy
+    end function state_size
 
     !> Wrap a model as an ODE system.
     subroutine model_ode_init(sys, model)
         type(model_ode_t), intent(out) :: sys
         type(model_t), intent(in) :: model
         sys%model = model
+        sys%nquad = nenergy
         call dynamics_setup(sys%model, sys%ws)
     end subroutine model_ode_init
 
-    !> y = (x_F, xdot_F) -> y' = (xdot_F, xddot_F).
+    !> y = (x_F, xdot_F, E) -> y' = (xdot_F, xddot_F, energy-audit powers).
     subroutine model_rhs(me, t, y, dydt, stat, errmsg)
         class(model_ode_t), intent(inout) :: me
         real(wp), intent(in) :: t
@@ -144,6 +231,8 @@ contains
         me%nevals = me%nevals + 1
         dydt(1:nf) = y(nf + 1:2*nf)
         call dynamics_evaluate(me%model, me%ws, t, y(1:nf), y(nf + 1:2*nf), dydt(nf + 1:2*nf), stat, errmsg)
+        dydt(2*nf + 1:2*nf + nenergy) = [me%ws%eo%p_diss, me%ws%eo%p_muscle, me%ws%eo%p_applied, &
+                                         me%ws%p_prescribed]
     end subroutine model_rhs
 
 end module hn_dynamics

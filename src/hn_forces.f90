@@ -8,15 +8,16 @@ module hn_forces
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, loads_clear
     use hn_line_elements, only: line_geometry_t, line_geometry, apply_line_tension, spring_tension, &
-                                ligament_tension, muscle_tension
+                                ligament_tension, muscle_tension, ligament_energy
     use hn_discs, only: apply_disc
     use hn_joint_limits, only: limit_force
-    use hn_applied, only: apply_applied_load
+    use hn_applied, only: apply_applied_load, applied_vector, applied_couple
     use hn_tables, only: table_value
+    use hn_rotation, only: cross
     implicit none
     private
 
-    public :: element_output_t, element_output_allocate, compute_loads
+    public :: element_output_t, element_output_allocate, compute_loads, switch_count, switching_functions
 
     !> What each element does at the current instant.
     type :: element_output_t
@@ -25,6 +26,10 @@ module hn_forces
         real(wp), allocatable :: muscle(:, :)       !! (2, nm) tension [N], length [m]
         real(wp), allocatable :: limit(:)           !! (nlim) generalized force [N or N m]
         real(wp), allocatable :: spring(:)          !! (ns) tension [N]
+        real(wp) :: u_elastic = zero                !! energy stored in discs, ligaments, springs [J]
+        real(wp) :: p_diss = zero                   !! power dissipated by discs, springs, joint dampers [W]
+        real(wp) :: p_muscle = zero                 !! power absorbed by the muscles [W]
+        real(wp) :: p_applied = zero                !! power of the applied force and couple tables [W]
     end type element_output_t
 
 contains
@@ -49,10 +54,11 @@ contains
         type(body_loads_t), intent(inout) :: loads
         type(element_output_t), intent(inout) :: eo
         integer :: k, e
-        real(wp) :: act, ten
+        real(wp) :: act, ten, u, pd, v(3), p(3), pv(3)
         type(line_geometry_t) :: g
 
         call loads_clear(loads)
+        eo%u_elastic = zero; eo%p_diss = zero; eo%p_muscle = zero; eo%p_applied = zero
         do k = 1, model%tree%nbody
             loads%force(:, k) = model%tree%mass(k)*model%gravity
         end do
@@ -60,7 +66,9 @@ contains
 
         if (model%family_on(fam_discs)) then
             do e = 1, size(model%discs)
-                call apply_disc(model%discs(e), kin, loads, eo%disc(:, e))
+                call apply_disc(model%discs(e), kin, loads, eo%disc(:, e), u, pd)
+                eo%u_elastic = eo%u_elastic + u
+                eo%p_diss = eo%p_diss + pd
             end do
         end if
         if (model%family_on(fam_ligaments)) then
@@ -69,6 +77,7 @@ contains
                     call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
                     ten = ligament_tension(l, g%length)
                     call apply_line_tension(loads, kin, l%body_a, l%body_b, g, ten)
+                    eo%u_elastic = eo%u_elastic + ligament_energy(l, g%length)
                     eo%ligament(:, e) = [ten, g%length]
                 end associate
             end do
@@ -81,6 +90,7 @@ contains
                     if (m%activation > 0) act = table_value(model%tables(m%activation), t)
                     ten = muscle_tension(m, g%length, g%rate, act)
                     call apply_line_tension(loads, kin, m%body_a, m%body_b, g, ten)
+                    eo%p_muscle = eo%p_muscle + ten*g%rate
                     eo%muscle(:, e) = [ten, g%length]
                 end associate
             end do
@@ -90,6 +100,7 @@ contains
                 associate (lim => model%limits(e))
                     eo%limit(e) = limit_force(lim, x(lim%dof), xd(lim%dof))
                     loads%q(lim%dof) = loads%q(lim%dof) + eo%limit(e)
+                    eo%p_diss = eo%p_diss - eo%limit(e)*xd(lim%dof)
                 end associate
             end do
         end if
@@ -99,12 +110,75 @@ contains
                     call line_geometry(kin, s%body_a, s%point_a, s%body_b, s%point_b, g)
                     eo%spring(e) = spring_tension(s, g%length, g%rate)
                     call apply_line_tension(loads, kin, s%body_a, s%body_b, g, eo%spring(e))
+                    eo%u_elastic = eo%u_elastic + 0.5_wp*s%stiffness*(g%length - s%free_length)**2
+                    eo%p_diss = eo%p_diss + s%damping*g%rate**2
                 end associate
             end do
         end if
         do e = 1, size(model%applied)
-            call apply_applied_load(model%applied(e), kin, t, loads)
+            associate (al => model%applied(e))
+                call apply_applied_load(al, kin, t, loads)
+                v = applied_vector(al, kin, t)
+                if (al%kind == applied_couple) then
+                    eo%p_applied = eo%p_applied + dot_product(v, kin%omega(:, al%body))
+                else
+                    p = matmul(kin%s(:, :, al%body), al%point)
+                    pv = kin%v(:, al%body) + cross(kin%omega(:, al%body), p)
+                    eo%p_applied = eo%p_applied + dot_product(v, pv)
+                end if
+            end associate
         end do
     end subroutine compute_loads
+
+    !> Number of switching functions of the one-way elements.
+    pure integer function switch_count(model) result(n)
+        type(model_t), intent(in) :: model
+        integer :: e
+        n = size(model%limits) + size(model%muscles)
+        do e = 1, size(model%ligaments)
+            if (model%ligaments(e)%l1 > zero) n = n + 1
+        end do
+    end function switch_count
+
+    !> Switching functions whose sign changes mark where the one-way
+    !! elements switch: a joint damper's coordinate crossing its neutral value
+    !! (the damping switches on or off), a muscle's law m1 d + m2 d' + a Fmax
+    !! crossing zero (tension starts or stops), a ligament with l1 > 0
+    !! becoming taut. Families switched off give +1.
+    pure subroutine switching_functions(model, t, kin, x, sw)
+        type(model_t), intent(in) :: model
+        real(wp), intent(in) :: t
+        type(kinematics_t), intent(in) :: kin
+        real(wp), intent(in) :: x(:)
+        real(wp), intent(out) :: sw(:)
+        type(line_geometry_t) :: g
+        real(wp) :: act
+        integer :: e, i
+        sw = 1.0_wp
+        i = 0
+        do e = 1, size(model%limits)
+            i = i + 1
+            if (model%family_on(fam_limits)) sw(i) = x(model%limits(e)%dof) - model%limits(e)%xneutral
+        end do
+        do e = 1, size(model%muscles)
+            i = i + 1
+            if (.not. model%family_on(fam_muscles)) cycle
+            associate (m => model%muscles(e))
+                call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
+                act = zero
+                if (m%activation > 0) act = table_value(model%tables(m%activation), t)
+                sw(i) = m%m1*(g%length - m%rest_length) + m%m2*g%rate + act*m%fmax
+            end associate
+        end do
+        do e = 1, size(model%ligaments)
+            if (model%ligaments(e)%l1 <= zero) cycle
+            i = i + 1
+            if (.not. model%family_on(fam_ligaments)) cycle
+            associate (l => model%ligaments(e))
+                call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
+                sw(i) = g%length - l%slack_length
+            end associate
+        end do
+    end subroutine switching_functions
 
 end module hn_forces

@@ -1,5 +1,5 @@
 !> The abstract first-order system y' = g(t, y) that every integrator
-!! advances, and the status codes integrators return.
+!! advances.
 module hn_ode
     use hn_kinds, only: wp, msglen
     implicit none
@@ -8,8 +8,11 @@ module hn_ode
     public :: ode_system_t
 
     !> A first-order system; extended by the model and by test problems.
+    !! The last `nquad` components of y are quadratures: g never depends on
+    !! them (integrators need not differentiate with respect to them).
     type, abstract :: ode_system_t
         integer :: nevals = 0   !! number of right-hand-side evaluations so far
+        integer :: nquad = 0    !! trailing quadrature components of y
     contains
         procedure(rhs_interface), deferred :: rhs
     end type ode_system_t

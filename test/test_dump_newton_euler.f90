@@ -56,7 +56,8 @@ program test_dump_newton_euler
     call table_set(model%applied(2)%magnitude, [zero, 0.1_wp], [5.0_wp, -5.0_wp], stat)
     call model_ode_init(sys, model)
     n = tree%ndof
-    allocate (y(2*n), dydt(2*n))
+    allocate (y(2*n + 4), dydt(2*n + 4))
+    y = zero
     do i = 1, 2*n
         y(i) = merge(rng%uniform(-0.3_wp, 0.3_wp), rng%uniform(-2.0_wp, 2.0_wp), i <= n)
     end do
@@ -65,8 +66,12 @@ program test_dump_newton_euler
     call dump_open(h5, sys%model)
     integ%rtol = 1.0e-8_wp; integ%atol = 1.0e-10_wp; integ%h = 1.0e-4_wp
     t = zero
+    call integ%init(sys, t, y, stat, msg)
     do i = 1, ntimes
-        if (i > 1) call integ%advance(sys, t, y, t + 0.01_wp, stat, msg)
+        if (i > 1) then
+            t = t + 0.01_wp
+            call integ%advance(sys, t, y, huge(one), stat, msg)
+        end if
         call sys%rhs(t, y, dydt, stat, msg)
         call dump_record(h5, sys%model, sys%ws, t, stat, msg)
     end do

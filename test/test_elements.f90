@@ -33,6 +33,7 @@ program test_elements
     call test_disc_loads_conjugate_to_deformation()
     call test_disc_no_work_in_rigid_motion()
     call test_disc_equal_and_opposite()
+    call test_disc_energy_balance()
     call test_ligament_hand_value()
     call test_ligament_slack_zero()
     call test_ligament_energy_derivative()
@@ -172,14 +173,14 @@ contains
 
     !> Power of the disc loads on the two bodies = -s . qdot (so U = q^T K q/2 is exact).
     subroutine test_disc_loads_conjugate_to_deformation()
-        real(wp) :: x(12), xd(12), q(6), qd(6), l(3, 3), p(3), s(6), power
+        real(wp) :: x(12), xd(12), q(6), qd(6), l(3, 3), p(3), s(6), power, u, pd
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
         integer :: k
         call random_state(x, xd)
         call kin_at(x, xd, kin)
         call loads_allocate(loads, 2, 12)
-        call apply_disc(disc, kin, loads, s)
+        call apply_disc(disc, kin, loads, s, u, pd)
         call disc_deformation(disc, kin, q, qd, l, p)
         power = zero
         do k = 1, 2
@@ -191,7 +192,7 @@ contains
 
     !> Both bodies moving as one rigid body: the deformed disc does no work.
     subroutine test_disc_no_work_in_rigid_motion()
-        real(wp) :: x(12), xd(12), s(6), power, scale
+        real(wp) :: x(12), xd(12), s(6), power, scale, u, pd
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
         integer :: k
@@ -199,7 +200,7 @@ contains
         xd(7:12) = zero          ! no relative motion of body 2
         call kin_at(x, xd, kin)
         call loads_allocate(loads, 2, 12)
-        call apply_disc(disc, kin, loads, s)
+        call apply_disc(disc, kin, loads, s, u, pd)
         power = zero; scale = zero
         do k = 1, 2
             power = power + dot_product(loads%force(:, k), kin%v(:, k)) + dot_product(loads%moment(:, k), kin%omega(:, k))
@@ -209,14 +210,14 @@ contains
     end subroutine test_disc_no_work_in_rigid_motion
 
     subroutine test_disc_equal_and_opposite()
-        real(wp) :: x(12), xd(12), s(6), ftot(3), mtot(3)
+        real(wp) :: x(12), xd(12), s(6), ftot(3), mtot(3), u, pd
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
         integer :: k
         call random_state(x, xd)
         call kin_at(x, xd, kin)
         call loads_allocate(loads, 2, 12)
-        call apply_disc(disc, kin, loads, s)
+        call apply_disc(disc, kin, loads, s, u, pd)
         ftot = loads%force(:, 1) + loads%force(:, 2)
         mtot = zero
         do k = 1, 2
@@ -226,6 +227,28 @@ contains
                          maxval(abs(mtot)) < 1.0e-10_wp*maxval(abs(loads%moment)), &
                          'disc loads on the two bodies are equal and opposite (force and moment about R)')
     end subroutine test_disc_equal_and_opposite
+
+    !> Power of the disc loads = -(dU/dt + dissipation), dU/dt by central
+    !! differences of the stored energy along the motion.
+    subroutine test_disc_energy_balance()
+        real(wp) :: x(12), xd(12), s(6), u, pd, up, um, power, h
+        type(kinematics_t) :: kin
+        type(body_loads_t) :: loads
+        integer :: k
+        h = 1.0e-6_wp
+        call random_state(x, xd)
+        call loads_allocate(loads, 2, 12)
+        call kin_at(x + h*xd, xd, kin); call apply_disc(disc, kin, loads, s, up, pd)
+        call kin_at(x - h*xd, xd, kin); call apply_disc(disc, kin, loads, s, um, pd)
+        call loads_clear(loads)
+        call kin_at(x, xd, kin); call apply_disc(disc, kin, loads, s, u, pd)
+        power = zero
+        do k = 1, 2
+            power = power + dot_product(loads%force(:, k), kin%v(:, k)) + dot_product(loads%moment(:, k), kin%omega(:, k))
+        end do
+        call suite%near(power, -((up - um)/(2*h) + pd), 1.0e-6_wp*abs(power), &
+                        'disc: load power = -(dU/dt + dissipated power), U = q^T K q / 2')
+    end subroutine test_disc_energy_balance
 
     function sample_ligament() result(g)
         type(ligament_t) :: g

@@ -36,7 +36,7 @@ contains
         type(model_t) :: model
         type(model_ode_t) :: sys
         type(dopri5_t) :: integ
-        real(wp) :: y(12), t, t0e, h0(3), zax(3)
+        real(wp) :: y(16), t, t0e, h0(3), zax(3)
         integer :: stat, i
         character(len=msglen) :: msg
         call tree_allocate(tree, 1)
@@ -55,9 +55,11 @@ contains
         integ%rtol = 1.0e-12_wp; integ%atol = 1.0e-14_wp; integ%h = 1.0e-3_wp
         t = zero
         call body_invariants(sys, y, t0e, h0, zax)
+        call integ%init(sys, t, y, stat, msg)
         drift_t = zero; drift_h = zero; tilt = zero
         do while (t < t_end - 1.0e-9_wp)
-            call integ%advance(sys, t, y, t + 0.01_wp, stat, msg)
+            t = t + 0.01_wp
+            call integ%advance(sys, t, y, huge(one), stat, msg)
             if (stat /= 0) error stop trim(msg)
             block
                 real(wp) :: te, hh(3), z(3)
@@ -140,21 +142,24 @@ contains
         end do
         call model_ode_init(sys, model)
         n = tree%ndof
-        allocate (y(2*n))
+        allocate (y(2*n + 4))
+        y = zero
         do e = 1, 2*n
             y(e) = merge(rng%uniform(-0.3_wp, 0.3_wp), rng%uniform(-1.0_wp, 1.0_wp), e <= n)
         end do
-        call partial_velocities(sys%model%tree, y(1:n), y(n + 1:), sys%ws%kin)
+        call partial_velocities(sys%model%tree, y(1:n), y(n + 1:2*n), sys%ws%kin)
         p0 = linear_momentum(sys%model%tree, sys%ws%kin)
         h0 = angular_momentum(sys%model%tree, sys%ws%kin)
-        pscale = sum(tree%mass)*maxval(abs(y(n + 1:)))
+        pscale = sum(tree%mass)*maxval(abs(y(n + 1:2*n)))
         hscale = norm3(h0) + 0.1_wp*pscale
         integ%rtol = 1.0e-12_wp; integ%atol = 1.0e-14_wp; integ%h = 1.0e-4_wp
         t = zero; dp = zero; dh = zero
+        call integ%init(sys, t, y, stat, msg)
         do while (t < 2.0_wp - 1.0e-9_wp)
-            call integ%advance(sys, t, y, t + 0.05_wp, stat, msg)
+            t = t + 0.05_wp
+            call integ%advance(sys, t, y, huge(one), stat, msg)
             if (stat /= 0) error stop trim(msg)
-            call partial_velocities(sys%model%tree, y(1:n), y(n + 1:), sys%ws%kin)
+            call partial_velocities(sys%model%tree, y(1:n), y(n + 1:2*n), sys%ws%kin)
             dp = max(dp, norm3(linear_momentum(sys%model%tree, sys%ws%kin) - p0)/pscale)
             dh = max(dh, norm3(angular_momentum(sys%model%tree, sys%ws%kin) - h0)/hscale)
         end do

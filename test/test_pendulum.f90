@@ -34,19 +34,21 @@ contains
         type(model_t) :: model
         type(body_tree_t) :: tree
         type(dopri5_t) :: integ
-        real(wp) :: t, y(2), tprev, yprev(2), tc(3), dt
+        real(wp) :: t, y(6), tprev, yprev(6), tc(3), dt
         integer :: stat, ncross
         character(len=msglen) :: msg
         call pendulum_tree(tree, [m], [ic], [c], [one])
         call model_init(model, tree)
         call model_ode_init(sys, model)
         integ%rtol = 1.0e-12_wp; integ%atol = 1.0e-14_wp; integ%h = 1.0e-3_wp
-        t = zero; y = [theta0, zero]
+        t = zero; y = zero; y(1) = theta0
+        call integ%init(sys, t, y, stat, msg)
         dt = 1.0e-2_wp
         ncross = 0
         do while (ncross < 3)
             tprev = t; yprev = y
-            call integ%advance(sys, t, y, t + dt, stat, msg)
+            call integ%advance(sys, t + dt, y, huge(one), stat, msg)
+            t = t + dt
             if (stat /= 0) error stop trim(msg)
             if (sign(one, y(1)) /= sign(one, yprev(1))) then
                 ncross = ncross + 1
@@ -60,16 +62,16 @@ contains
     !! with theta' from the state and re-integration from t0.
     real(wp) function refine_crossing(sys, t0, y0, t1, y1) result(tz)
         type(model_ode_t), intent(inout) :: sys
-        real(wp), intent(in) :: t0, y0(2), t1, y1(2)
+        real(wp), intent(in) :: t0, y0(6), t1, y1(6)
         type(dopri5_t) :: integ
-        real(wp) :: t, y(2)
+        real(wp) :: y(6)
         integer :: it, stat
         character(len=msglen) :: msg
         tz = t0 - y0(1)*(t1 - t0)/(y1(1) - y0(1))
         do it = 1, 6
             integ%rtol = 1.0e-13_wp; integ%atol = 1.0e-15_wp; integ%h = 1.0e-4_wp
-            t = t0; y = y0
-            call integ%advance(sys, t, y, tz, stat, msg)
+            call integ%init(sys, t0, y0, stat, msg)
+            call integ%advance(sys, tz, y, tz, stat, msg)
             tz = tz - y(1)/y(2)
             if (abs(y(1)) < 1.0e-14_wp) exit
         end do

@@ -34,9 +34,9 @@ def triangle(t0, rise, fall, peak):
     return [(0.0, 0.0), (t0, 0.0), (t0 + rise, peak), (t0 + rise + fall, 0.0), (200.0, 0.0)]
 
 CASES = {
-    "6-1": ("half-sine, peak 1.8 kN, 16 ms (soft padded impactor face)", halfsine(5.0, 16.0, 1800.0)),
-    "6-2": ("half-sine, peak 3.2 kN, 10 ms (medium padding)", halfsine(5.0, 10.0, 3200.0)),
-    "6-5": ("triangle, peak 5.0 kN, rise 2 ms, fall 6 ms (stiff face)", triangle(5.0, 2.0, 6.0, 5000.0)),
+    "6-1": ("half-sine, peak 1.0 kN, 16 ms (soft padded impactor face)", halfsine(5.0, 16.0, 1000.0)),
+    "6-2": ("half-sine, peak 1.6 kN, 10 ms (medium padding)", halfsine(5.0, 10.0, 1600.0)),
+    "6-5": ("triangle, peak 2.5 kN, rise 2 ms, fall 4 ms (stiff face)", triangle(5.0, 2.0, 4.0, 2500.0)),
 }
 
 for case, (pulse, pts) in CASES.items():
