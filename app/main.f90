@@ -64,6 +64,7 @@ program hhneck
             trim(real_text(res%t_reached))//' s kept in '//trim(h5name)//' (marked incomplete)'
         stop res%exit_code, quiet=.true.
     end if
+    if (len_trim(res%warning) > 0) write (error_unit, '(a)') 'hhneck: '//trim(res%warning)
     write (error_unit, '(a,f8.3,a,i0,a)') 'hhneck: done in ', res%wall, ' s wall time, ', res%nevals, &
         ' dynamics evaluations'
 

@@ -43,6 +43,7 @@ module hn_dynamics
     !! - applied - prescribed = constant.
     type :: energy_t
         real(wp) :: kinetic = zero, gravity = zero, elastic = zero, hold = zero
+        real(wp) :: kinetic_rel = zero   !! kinetic energy relative to the root's translation (a scale, not a term)
         real(wp) :: dissipated = zero, muscle = zero, applied = zero, prescribed = zero
         real(wp) :: total = zero
     end type energy_t
@@ -189,10 +190,16 @@ contains
         type(dyn_workspace_t), intent(in) :: ws
         real(wp), intent(in) :: equad(nenergy)
         type(energy_t) :: e
-        integer :: k
+        integer :: k, root
+        real(wp) :: dv(3)
         e%kinetic = kinetic_energy(model%tree, ws%kin)
+        root = findloc(model%tree%parent, 0, dim=1)
         do k = 1, model%tree%nbody
             e%gravity = e%gravity - model%tree%mass(k)*dot_product(model%gravity, ws%kin%r(:, k))
+            if (k == root) cycle
+            dv = ws%kin%v(:, k) - ws%kin%v(:, root)
+            e%kinetic_rel = e%kinetic_rel + 0.5_wp*model%tree%mass(k)*dot_product(dv, dv) + &
+                            0.5_wp*dot_product(ws%kin%omega(:, k), matmul(ws%kin%inertia_r(:, :, k), ws%kin%omega(:, k)))
         end do
         e%elastic = ws%eo%u_elastic
         e%hold = -dot_product(model%q_hold, ws%x)

@@ -102,9 +102,13 @@ module hn_integrators
     end type adams_t
 
     !> Rosenbrock order 2 (3rd-order error estimate), L-stable, FD Jacobian.
+    !! The Jacobian is kept for up to `jac_age_max` accepted steps and
+    !! recomputed at once after a rejected step.
     type, extends(integrator_t) :: ros2_t
         real(wp) :: hnext = zero
-        real(wp), allocatable :: jac(:, :), wmat(:, :)
+        integer :: jac_age = -1          !! accepted steps since the Jacobian was formed (-1: none)
+        integer :: jac_age_max = 5
+        real(wp), allocatable :: jac(:, :), wmat(:, :), tdot(:)
         integer, allocatable :: ipiv(:)
     contains
         procedure :: step => ros2_step
@@ -675,9 +679,30 @@ contains
         class(ros2_t), intent(inout) :: me
         integer :: n
         n = size(me%y)
-        if (.not. allocated(me%jac)) allocate (me%jac(n, n), me%wmat(n, n), me%ipiv(n))
+        if (.not. allocated(me%jac)) then
+            allocate (me%jac(n, n), me%wmat(n, n), me%ipiv(n), me%tdot(n))
+            me%jac_age = -1
+        end if
+        ! a restart at a kink of the inputs keeps the Jacobian: it changes little there
         if (me%hnext <= zero) me%hnext = me%h
     end subroutine ros2_reset_history
+
+    !> Jacobian and time derivative of g at the current point.
+    subroutine ros2_jacobian(me, sys, stat, errmsg)
+        class(ros2_t), intent(inout) :: me
+        class(ode_system_t), intent(inout) :: sys
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        real(wp) :: dt, ft(size(me%y))
+        call fd_jacobian(sys, me%t, me%y, me%f, me%jac, stat, errmsg)
+        if (stat /= 0) return
+        dt = sqrt(epsilon(one))*max(abs(me%t), 1.0e-3_wp)
+        call sys%rhs(me%t + dt, me%y, ft, stat, errmsg)
+        if (stat /= 0) return
+        me%tdot = (ft - me%f)/dt
+        me%njac = me%njac + 1
+        me%jac_age = 0
+    end subroutine ros2_jacobian
 
     !> Jacobian dg/dy by forward differences (quadrature columns are zero).
     subroutine fd_jacobian(sys, t, y, f, jac, stat, errmsg)
@@ -715,18 +740,15 @@ contains
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
         real(wp), parameter :: d = one/(two + sqrt(two)), e32 = 6.0_wp + sqrt(two)
-        real(wp), dimension(size(me%y)) :: k1, k2, k3, f1, f2, ynew, tdot, ft
-        real(wp) :: h, err, dt
+        real(wp), dimension(size(me%y)) :: k1, k2, k3, f1, f2, ynew
+        real(wp) :: h, err
         integer :: n, i, info
         stat = 0; errmsg = ''
         n = size(me%y)
-        call fd_jacobian(sys, me%t, me%y, me%f, me%jac, stat, errmsg)
-        if (stat /= 0) return
-        me%njac = me%njac + 1
-        dt = sqrt(epsilon(one))*max(abs(me%t), 1.0e-3_wp)
-        call sys%rhs(me%t + dt, me%y, ft, stat, errmsg)
-        if (stat /= 0) return
-        tdot = (ft - me%f)/dt
+        if (me%jac_age < 0 .or. me%jac_age >= me%jac_age_max) then
+            call ros2_jacobian(me, sys, stat, errmsg)
+            if (stat /= 0) return
+        end if
         do
             h = clip_step(me%t, min(me%hnext, me%hmax), tstop)
             me%wmat = -h*d*me%jac
@@ -739,7 +761,7 @@ contains
                 write (errmsg, '(a,es12.5,a)') 'ROS2: the iteration matrix I - h d J is singular at t = ', me%t, ' s'
                 return
             end if
-            k1 = me%f + h*d*tdot
+            k1 = me%f + h*d*me%tdot
             call lu_solve(k1)
             call sys%rhs(me%t + half*h, me%y + half*h*k1, f1, stat, errmsg)
             if (stat /= 0) return
@@ -749,7 +771,7 @@ contains
             ynew = me%y + h*k2
             call sys%rhs(me%t + h, ynew, f2, stat, errmsg)
             if (stat /= 0) return
-            k3 = f2 - e32*(k2 - f1) - two*(k1 - me%f) + h*d*tdot
+            k3 = f2 - e32*(k2 - f1) - two*(k1 - me%f) + h*d*me%tdot
             call lu_solve(k3)
             err = max(err_norm(me, h/6.0_wp*(k1 - two*k2 + k3), me%y, ynew), 1.0e-10_wp)
             if (err <= one) exit
@@ -759,7 +781,13 @@ contains
                 call step_too_small(me%t, me%hmin, stat, errmsg)
                 return
             end if
+            if (me%jac_age > 0) then
+                ! an aged Jacobian may be the cause: form a fresh one
+                call ros2_jacobian(me, sys, stat, errmsg)
+                if (stat /= 0) return
+            end if
         end do
+        me%jac_age = me%jac_age + 1
         if (h >= me%hnext*0.999_wp .or. err > 0.5_wp) me%hnext = h*min(5.0_wp, max(0.2_wp, 0.8_wp*err**(-one/3.0_wp)))
         call accept(me, me%t + h, ynew, f2)
     contains

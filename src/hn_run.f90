@@ -24,6 +24,8 @@ module hn_run
 
     character(len=*), parameter :: code_version = '0.2.0'
 
+    real(wp), parameter :: switch_deadband = 1.0e-8_wp   !! |switching function| treated as zero
+
     integer, parameter, public :: exit_ok = 0, exit_usage = 1, exit_deck = 2, exit_diverged = 3, &
                                   exit_output = 4
 
@@ -32,6 +34,7 @@ module hn_run
         integer :: exit_code = exit_ok
         character(len=12) :: status = 'complete'
         character(len=msglen) :: message = ''
+        character(len=msglen) :: warning = ''   !! a complete run whose results are doubtful
         real(wp) :: t_reached = zero
         integer :: nevals = 0            !! dynamics evaluations of the integrator
         integer :: nevals_output = 0     !! evaluations at output times
@@ -279,6 +282,12 @@ contains
             write (line, '(a,es11.4,a,es10.3,a,es10.3,a)') 'ENERGY BALANCE: TOTAL AT START ', ch%e0, &
                 ' J; LARGEST RESIDUAL ', res%energy_residual, ' J AGAINST ENERGY FLOWS OF ', res%energy_scale, ' J'
             call lst%message(line)
+            if (res%energy_residual > 0.01_wp*res%energy_scale .and. res%exit_code == exit_ok) then
+                write (res%warning, '(a,f6.1,a)') 'WARNING: the energy balance is off by ', &
+                    100*res%energy_residual/max(res%energy_scale, tiny(one)), &
+                    ' % of the energy flows: the results are inaccurate; use a smaller step or tolerance'
+                call lst%message(res%warning)
+            end if
             write (line, '(a,f9.4,a,i0,a,i0,a,i0,a,i0,a,i0,a,f8.3,a)') 'END OF RUN AT T = ', res%t_reached, &
                 ' S: ', res%nsteps, ' STEPS (', res%nreject, ' REJECTED, ', res%nevents, ' EVENTS), ', &
                 res%nevals, ' DYNAMICS EVALUATIONS + ', res%nevals_output, ' AT OUTPUTS, ', res%wall, ' S WALL TIME'
@@ -301,8 +310,11 @@ contains
                 return
             end if
             e = energy_terms(sys%model, sys%ws, integ%y(2*nf + 1:))
-            scale = abs(e%kinetic) + abs(e%gravity - en0%gravity) + abs(e%elastic) + abs(e%hold - en0%hold) + &
-                    abs(e%dissipated) + abs(e%muscle) + abs(e%applied) + abs(e%prescribed)
+            ! the scale is the energy of the deformation-level motion: the kinetic
+            ! energy relative to the root's translation and the element, gravity
+            ! and applied energies (not the work of driving the whole model along)
+            scale = e%kinetic_rel + abs(e%gravity - en0%gravity) + abs(e%elastic) + abs(e%hold - en0%hold) + &
+                    abs(e%dissipated) + abs(e%muscle) + abs(e%applied)
             res%energy_scale = max(res%energy_scale, scale)
             resid = abs(e%total - ch%e0)
             res%energy_residual = max(res%energy_residual, resid)
@@ -345,8 +357,12 @@ contains
             st = 0; m = ''
             call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, sw_new)
             kev = 0
+            ! a sign change counts only between values clear of a dead band, so
+            ! that a coordinate resting on its neutral value (roundoff noise)
+            ! does not switch at every step
             do k = 1, nsw
-                if (sign(one, sw_old(k)) /= sign(one, sw_new(k)) .and. sw_old(k) /= zero) then
+                if (sign(one, sw_old(k)) /= sign(one, sw_new(k)) .and. abs(sw_old(k)) > switch_deadband .and. &
+                    abs(sw_new(k)) > switch_deadband) then
                     kev = k
                     exit
                 end if
@@ -374,6 +390,10 @@ contains
                     ta = tb_; ga = gb; tb_ = tc; gb = gc
                 end if
             end do
+            if (tc - t0 < 1.0e-10_wp .or. tb_ - tc < 0.0_wp) then
+                sw_old = sw_new          ! no room to land before it: take the step as it is
+                return
+            end if
             ! redo the step from its start to the switching time; restart there
             ! before the next step
             call integ%init(sys, t0, y0, st, m)
