@@ -15,30 +15,46 @@ contains
 
     !> Generalized mass matrix (eq 17):
     !! a_ij = sum_p m_p v_pik v_pjk + omega_pik I_pkn omega_pjn.
-    !! Only pairs within one body's chain contribute.
+    !! Only pairs within one body's chain contribute. With I_p = (S L)(S L)^T
+    !! (L the Cholesky factor of the body-frame inertia) each body adds
+    !! B^T B, B = [sqrt(m_p) v_pj ; (S L)^T omega_pj] (6 x chain length),
+    !! which is how it is computed: six rank-one updates on the chain block.
     pure subroutine a_ij(tree, kin, a)
         type(body_tree_t), intent(in) :: tree
         type(kinematics_t), intent(in) :: kin
         real(wp), intent(out) :: a(:, :)        !! (n,n) symmetric positive definite
-        integer :: p, ii, jj, i, j, nc
-        real(wp) :: m, iw(3)
+        integer :: p, ii, jj, j, nc, k, c0
+        real(wp) :: sm, sl(3, 3), b(size(a, 1), 6), col(size(a, 1))
         a = zero
         do p = 1, tree%nbody
-            m = tree%mass(p)
             nc = tree%chain_len(p)
+            if (nc == 0) cycle
+            sm = sqrt(tree%mass(p))
+            sl = matmul(kin%s(:, :, p), tree%inertia_factor(:, :, p))
             do jj = 1, nc
                 j = tree%chain(jj, p)
-                iw = matmul(kin%inertia_r(:, :, p), kin%w(:, j, p))
-                do ii = 1, jj
-                    i = tree%chain(ii, p)
-                    a(i, j) = a(i, j) + m*dot_product(kin%vp(:, i, p), kin%vp(:, j, p)) &
-                              + dot_product(kin%w(:, i, p), iw)
+                b(jj, 1:3) = sm*kin%vp(:, j, p)
+                b(jj, 4:6) = matmul(kin%w(:, j, p), sl)
+            end do
+            c0 = tree%chain(1, p)
+            do jj = 1, nc
+                col(1:jj) = b(1:jj, 1)*b(jj, 1)
+                do k = 2, 6
+                    col(1:jj) = col(1:jj) + b(1:jj, k)*b(jj, k)
                 end do
+                j = tree%chain(jj, p)
+                if (tree%chain_contiguous(p)) then
+                    a(c0:c0 + jj - 1, j) = a(c0:c0 + jj - 1, j) + col(1:jj)
+                else
+                    do ii = 1, jj
+                        a(tree%chain(ii, p), j) = a(tree%chain(ii, p), j) + col(ii)
+                    end do
+                end if
             end do
         end do
         do j = 1, size(a, 2)
-            do i = j + 1, size(a, 1)
-                a(i, j) = a(j, i)
+            do ii = j + 1, size(a, 1)
+                a(ii, j) = a(j, ii)
             end do
         end do
     end subroutine a_ij

@@ -39,6 +39,8 @@ module hn_tree
         integer, allocatable :: depth(:)           !! number of bodies from the root (root = 1)
         integer, allocatable :: chain_len(:)       !! number of active coordinates of k and its ancestors
         integer, allocatable :: chain(:, :)        !! (ndof, nbody) those coordinates, ascending
+        logical, allocatable :: chain_contiguous(:) !! the chain is one run of consecutive numbers
+        real(wp), allocatable :: inertia_factor(:, :, :) !! (3,3,nbody) L with inertia = L L^T (Cholesky)
     end type body_tree_t
 
 contains
@@ -187,6 +189,26 @@ contains
             end do
             tree%chain_len(k) = pos
         end do
+        if (allocated(tree%chain_contiguous)) deallocate (tree%chain_contiguous, tree%inertia_factor)
+        allocate (tree%chain_contiguous(n), tree%inertia_factor(3, 3, n))
+        do k = 1, n
+            pos = tree%chain_len(k)
+            tree%chain_contiguous(k) = .true.
+            if (pos > 0) tree%chain_contiguous(k) = tree%chain(pos, k) - tree%chain(1, k) + 1 == pos
+            tree%inertia_factor(:, :, k) = cholesky3(tree%inertia(:, :, k))
+        end do
+    contains
+        pure function cholesky3(m) result(l)
+            real(wp), intent(in) :: m(3, 3)
+            real(wp) :: l(3, 3)
+            l = zero
+            l(1, 1) = sqrt(m(1, 1))
+            l(2, 1) = m(2, 1)/l(1, 1)
+            l(3, 1) = m(3, 1)/l(1, 1)
+            l(2, 2) = sqrt(m(2, 2) - l(2, 1)**2)
+            l(3, 2) = (m(3, 2) - l(3, 1)*l(2, 1))/l(2, 2)
+            l(3, 3) = sqrt(m(3, 3) - l(3, 1)**2 - l(3, 2)**2)
+        end function cholesky3
     end subroutine tree_build
 
     !> Readable label of active coordinate j, e.g. "HEAD.rx".

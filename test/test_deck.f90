@@ -75,6 +75,14 @@ program test_deck
                                             'expected an end time after the start time'])
     call expect_error('zero step', replace(good, 2, 'CONTROL   0.2       0.0       0.01      RK4'), &
                       [character(len=60) :: 'line 2', 'columns 21-30', 'step'])
+    call expect_error('tiny step', replace(good, 2, 'CONTROL   0.2       1.0E-13   0.01      RK4'), &
+                      [character(len=60) :: 'line 2', 'columns 21-30', 'found 1.0E-13', 'expected a value in'])
+    call expect_error('a step needing more than 1E8 steps', replace(good, 2, 'CONTROL   2000.0    1.0E-9    0.01      RK4'), &
+                      [character(len=60) :: 'line 2', 'columns 21-30', 'more than 1E8 steps'])
+    call expect_error('huge step', replace(good, 2, 'CONTROL   0.2       5.0       0.01      RK4'), &
+                      [character(len=60) :: 'line 2', 'columns 21-30', 'no longer than the run'])
+    call expect_error('zero print interval', replace(good, 2, 'CONTROL   0.2       1.0E-4    0.0       RK4'), &
+                      [character(len=60) :: 'line 2', 'columns 31-40', 'print interval', 'found 0.0'])
     call expect_error('unknown integrator', replace(good, 2, &
                           'CONTROL   0.2       1.0E-4    0.01      EULER'), &
                       [character(len=60) :: 'line 2', 'columns 41-50', 'found "EULER"', 'expected one of'])
