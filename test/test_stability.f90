@@ -57,6 +57,7 @@ program test_stability
     call test_stiffened('ROS2', 100.0_wp)
     call test_stiffened('ROS2', 1000.0_wp)
     call test_stiffened('ADAMS', 1000.0_wp, 0.008_wp)
+    call test_stiffened('DOPRI5', 1000.0_wp, 0.008_wp)
     call test_fixed_step_beyond_limit()
     call test_conservative_balance()
     call test_head_turned_half_round()
