@@ -7,7 +7,7 @@
 !! Exit codes are listed in docs/errors.md.
 program hhneck
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-    use hn_kinds, only: msglen
+    use hn_kinds, only: msglen, wp
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
     use hn_run, only: run_case, run_result_t, code_version, exit_usage, exit_deck, exit_ok
@@ -18,8 +18,11 @@ program hhneck
     character(len=msglen) :: msg
     logical :: h5_given, no_h5, check_only
     integer :: i, stat, nargs
+    real(wp) :: sample, rtol
 
     h5_given = .false.; no_h5 = .false.; check_only = .false.
+    sample = -1.0_wp
+    rtol = -1.0_wp
     h5name = ''
     nargs = command_argument_count()
     i = 1
@@ -33,6 +36,20 @@ program hhneck
             h5_given = .true.
         case ('--no-h5')
             no_h5 = .true.
+        case ('--rtol')
+            if (i == nargs) call usage('--rtol needs a tolerance')
+            i = i + 1
+            call get_command_argument(i, arg)
+            read (arg, *, iostat=stat) rtol
+            if (stat /= 0 .or. .not. (rtol >= 1.0e-14_wp .and. rtol <= 0.1_wp)) &
+                call usage('--rtol needs a tolerance in [1E-14, 0.1], found "'//trim(arg)//'"')
+        case ('--sample')
+            if (i == nargs) call usage('--sample needs an interval in seconds')
+            i = i + 1
+            call get_command_argument(i, arg)
+            read (arg, *, iostat=stat) sample
+            if (stat /= 0 .or. .not. (sample > 0.0_wp .and. sample < 1.0e4_wp)) &
+                call usage('--sample needs a positive interval in seconds, found "'//trim(arg)//'"')
         case ('--check')
             check_only = .true.
         case ('--version')
@@ -55,6 +72,14 @@ program hhneck
         write (error_unit, '(a)') 'hhneck: deck is valid: '//trim(cs%model%title)
         stop
     end if
+    if (sample > 0.0_wp) then
+        if ((cs%t_end - cs%t_start)/sample > 1.0e7_wp) call usage('--sample gives more than 1E7 samples for this run')
+        cs%sample_dt = sample
+    end if
+    if (rtol > 0.0_wp) then
+        cs%rtol = rtol
+        cs%atol = rtol*1.0e-3_wp
+    end if
     if (.not. h5_given) h5name = cs%h5file
     if (no_h5) h5name = ''
     call run_case(cs, output_unit, trim(h5name), res)
@@ -73,13 +98,12 @@ contains
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
         if (len(problem) > 0) write (error_unit, '(a)') 'hhneck: '//problem
-        write (error_unit, '(a)') 'usage: hhneck [--h5 FILE | --no-h5] [--check] [--version] < DECK'
+        write (error_unit, '(a)') 'usage: hhneck [--h5 FILE | --no-h5] [--sample SECONDS] [--rtol TOL] [--check] [--version] < DECK'
         if (len(problem) > 0) stop exit_usage, quiet=.true.
         stop
     end subroutine usage
 
     function real_text(v) result(s)
-        use hn_kinds, only: wp
         real(wp), intent(in) :: v
         character(len=24) :: s
         write (s, '(f12.5)') v

@@ -253,18 +253,25 @@ contains
 
     !> Read a string attribute of object `path`.
     subroutine h5_read_string_attr(fname, path, name, value, stat)
-        use h5lt, only: h5ltget_attribute_string_f
+        use h5lt, only: h5ltget_attribute_string_f, h5ltget_attribute_info_f
         character(len=*), intent(in) :: fname, path, name
         character(len=*), intent(out) :: value
         integer, intent(out) :: stat
         integer(hid_t) :: f
-        integer :: err
+        integer(hsize_t) :: dims(1)
+        integer(size_t) :: tsize
+        integer :: err, tclass
         value = ''
         call h5open_f(err)
         call h5fopen_f(fname, H5F_ACC_RDONLY_F, f, stat)
         if (stat /= 0) return
-        call h5ltget_attribute_string_f(f, path, name, value, stat)
+        call h5ltget_attribute_info_f(f, path, name, dims, tclass, tsize, stat)
+        if (stat == 0) call h5ltget_attribute_string_f(f, path, name, value, stat)
         call h5fclose_f(f, err)
+        ! only the attribute's own length is defined; it may end in a NUL
+        if (tsize < len(value)) value(tsize + 1:) = ''
+        err = index(value, achar(0))
+        if (err > 0) value(err:) = ''
     end subroutine h5_read_string_attr
 
 end module hn_h5

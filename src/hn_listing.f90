@@ -9,6 +9,7 @@ module hn_listing
     use hn_tree, only: dof_label
     use hn_model, only: family_name, nfamilies, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
     use hn_linsolve, only: solver_name
+    use hn_assessment, only: assessment_t
     implicit none
     private
 
@@ -35,6 +36,7 @@ module hn_listing
         procedure :: histories => listing_histories
         procedure :: peaks => listing_peaks
         procedure :: message => listing_message
+        procedure :: criteria => listing_criteria
     end type listing_t
 
 contains
@@ -277,5 +279,48 @@ contains
             call me%put(s)
         end do
     end subroutine listing_peaks
+
+    !> Injury criteria with their limits (reference-data.md, section 4).
+    subroutine listing_criteria(me, a)
+        class(listing_t), intent(inout) :: me
+        type(assessment_t), intent(in) :: a
+        character(len=120) :: s
+        character(len=3), parameter :: modes(4) = ['NTE', 'NTF', 'NCE', 'NCF']
+        integer :: k
+        call me%need(22)
+        call me%put('')
+        call me%put(' INJURY CRITERIA (HEAD ACCELERATION CFC 1000, UPPER-NECK LOADS CFC 600, NIC CFC 60)')
+        call me%put('')
+        if (.not. a%computed) then
+            call me%put('   '//trim(a%note))
+            return
+        end if
+        write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC15                  ', a%hic15, '   FROM', 1000*a%hic15_t1, &
+            ' TO', 1000*a%hic15_t2, ' MS          LIMIT   700'
+        call me%put(s)
+        write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC36                  ', a%hic36, '   FROM', 1000*a%hic36_t1, &
+            ' TO', 1000*a%hic36_t2, ' MS          LIMIT  1000'
+        call me%put(s)
+        do k = 1, 4
+            write (s, '(a,a,a,f10.3,a,f8.2,a)') '   NIJ ', modes(k), '                ', a%nij_max(k), '   AT ', &
+                1000*a%nij_time(k), ' MS                          LIMIT   1.0'
+            call me%put(s)
+        end do
+        write (s, '(a,f10.2,a,f8.2,a)') '   NIC (M2/S2)            ', a%nic_max, '   AT ', 1000*a%nic_time, &
+            ' MS                          OFTEN CITED 15'
+        call me%put(s)
+        write (s, '(a,f10.1,a,f8.2,a)') '   UPPER NECK TENSION (N) ', a%tension, '   AT ', 1000*a%tension_t, &
+            ' MS                          LIMIT  4170'
+        call me%put(s)
+        write (s, '(a,f10.1,a,f8.2,a)') '   COMPRESSION (N)        ', a%compression, '   AT ', 1000*a%compression_t, &
+            ' MS                          LIMIT -4000'
+        call me%put(s)
+        write (s, '(a,f10.1,a,f8.2,a)') '   SHEAR |FX| (N)         ', a%shear, '   AT ', 1000*a%shear_t, ' MS'
+        call me%put(s)
+        write (s, '(a,f10.1,a,f8.2,a)') '   FLEXION MOMENT (N M)   ', a%flexion, '   AT ', 1000*a%flexion_t, ' MS'
+        call me%put(s)
+        write (s, '(a,f10.1,a,f8.2,a)') '   EXTENSION MOMENT (N M) ', a%extension, '   AT ', 1000*a%extension_t, ' MS'
+        call me%put(s)
+    end subroutine listing_criteria
 
 end module hn_listing

@@ -11,6 +11,7 @@ module hn_results
     use hn_tree, only: dof_label
     use hn_h5, only: h5_file_t
     use hn_dump, only: dump_open
+    use hn_assessment, only: assessment_t
     implicit none
     private
 
@@ -29,6 +30,7 @@ module hn_results
         procedure :: sample => results_sample
         procedure :: flush => results_flush
         procedure :: close => results_close
+        procedure :: criteria => results_criteria
     end type results_t
 
 contains
@@ -148,5 +150,37 @@ contains
         call me%h5%close(.true., stat, errmsg)
         me%active = .false.
     end subroutine results_close
+
+    !> Group /injury: criteria values as attributes, their time histories
+    !! (same time base as /time) as datasets.
+    subroutine results_criteria(me, a)
+        class(results_t), intent(inout) :: me
+        type(assessment_t), intent(in) :: a
+        integer :: n
+        if (.not. me%active) return
+        call me%h5%group('/injury')
+        if (.not. a%computed) then
+            call me%h5%attr_string('/injury', 'note', trim(a%note))
+            return
+        end if
+        n = size(a%head_ar)
+        call me%h5%attr_real('/injury', 'hic15', [a%hic15, a%hic15_t1, a%hic15_t2])
+        call me%h5%attr_real('/injury', 'hic36', [a%hic36, a%hic36_t1, a%hic36_t2])
+        call me%h5%attr_real('/injury', 'nij_max', a%nij_max)
+        call me%h5%attr_real('/injury', 'nij_time', a%nij_time)
+        call me%h5%attr_real('/injury', 'nic', [a%nic_max, a%nic_time])
+        call me%h5%attr_real('/injury', 'tension', [a%tension, a%tension_t])
+        call me%h5%attr_real('/injury', 'compression', [a%compression, a%compression_t])
+        call me%h5%attr_real('/injury', 'shear', [a%shear, a%shear_t])
+        call me%h5%attr_real('/injury', 'flexion_moment', [a%flexion, a%flexion_t])
+        call me%h5%attr_real('/injury', 'extension_moment', [a%extension, a%extension_t])
+        call me%h5%write_real('/injury/head_ar_cfc1000', a%head_ar, [n])
+        call me%h5%write_real('/injury/nij', transpose(a%nij_t), [4, n])
+        call me%h5%attr_string('/injury/nij', 'columns', 'NTE NTF NCE NCF')
+        call me%h5%write_real('/injury/nic', a%nic_t, [n])
+        call me%h5%write_real('/injury/oc_fx_cfc600', a%fx, [n])
+        call me%h5%write_real('/injury/oc_fz_cfc600', a%fz, [n])
+        call me%h5%write_real('/injury/oc_my_cfc600', a%my, [n])
+    end subroutine results_criteria
 
 end module hn_results

@@ -17,6 +17,7 @@ module hn_run
     use hn_dump, only: dump_record
     use hn_motion, only: motion_breakpoints
     use hn_tree, only: dof_label
+    use hn_assessment, only: assessment_t, assess, criteria_channels
     implicit none
     private
 
@@ -45,6 +46,7 @@ module hn_run
         real(wp), allocatable :: times(:), rows(:, :)   !! the listing rows
         integer :: nrows = 0
         real(wp), allocatable :: samples_t(:), samples(:, :)  !! (optional) every channel at every sample
+        type(assessment_t) :: criteria                   !! injury criteria of the run
     end type run_result_t
 
 contains
@@ -104,7 +106,8 @@ contains
         type(listing_t) :: lst
         type(energy_t) :: en, en0
         real(wp), allocatable :: y(:), dydt(:), ygood(:), vmax(:), vmin(:), tmax(:), tmin(:), tb(:)
-        real(wp), allocatable :: sw_old(:), sw_new(:)
+        real(wp), allocatable :: sw_old(:), sw_new(:), crit_hist(:, :)
+        integer :: icrit(size(criteria_channels)), k
         real(wp) :: t, tout, tol, tstop, tgood
         integer :: stat, nf, ks, kp, kd, ib, nprint_max, nsw, nsample_max, nev_out0
         integer(i8) :: c0, c1, rate
@@ -156,6 +159,10 @@ contains
             nsample_max = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
             allocate (res%samples_t(nsample_max), res%samples(ch%n, nsample_max))
         end if
+        allocate (crit_hist(nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2, size(criteria_channels)))
+        do k = 1, size(criteria_channels)
+            icrit(k) = findloc(ch%name, criteria_channels(k), dim=1)
+        end do
         allocate (vmax(ch%n), vmin(ch%n), tmax(ch%n), tmin(ch%n))
         vmax = -huge(1.0_wp); vmin = huge(1.0_wp); tmax = t; tmin = t
 
@@ -229,6 +236,7 @@ contains
             if (kd <= size(cs%dump_times)) do_dump = abs(t - cs%dump_times(kd)) <= tol
             if (do_sample) then
                 call out%sample(t, ch, sys%ws)
+                crit_hist(ks + 1, :) = ch%value(icrit)
                 if (keep) then
                     res%samples_t(ks + 1) = t
                     res%samples(:, ks + 1) = ch%value
@@ -260,6 +268,7 @@ contains
             res%samples_t = res%samples_t(1:ks)
             res%samples = res%samples(:, 1:ks)
         end if
+        call assess(cs%t_start, cs%sample_dt, crit_hist(1:ks, :), res%criteria)
         call finish()
     contains
 
@@ -278,6 +287,8 @@ contains
             if (allocated(res%times)) then
                 call lst%histories(ch, res%times, res%rows, res%nrows)
                 call lst%peaks(ch, vmax, tmax, vmin, tmin)
+                call lst%criteria(res%criteria)
+                call out%criteria(res%criteria)
             end if
             write (line, '(a,es11.4,a,es10.3,a,es10.3,a)') 'ENERGY BALANCE: TOTAL AT START ', ch%e0, &
                 ' J; LARGEST RESIDUAL ', res%energy_residual, ' J AGAINST ENERGY FLOWS OF ', res%energy_scale, ' J'

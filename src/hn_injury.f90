@@ -1,0 +1,92 @@
+!> Injury criteria from sampled time histories:
+!!  HIC (49 CFR 571.208 S6.2): max over t1 < t2, t2 - t1 <= window (15 or
+!!      36 ms) of (t2 - t1) [ int_t1^t2 a dt / (t2 - t1) ]^2.5, a the
+!!      resultant head acceleration in g, t in s;
+!!  Nij (S6.6): Fz/Fzc + My/Myc at the occipital condyle in each of the four
+!!      modes tension-extension, tension-flexion, compression-extension,
+!!      compression-flexion (Hybrid III 50th intercepts by default);
+!!  NIC: 0.2 a_rel + v_rel^2, a_rel = a_x,T1 - a_x,head [m/s^2],
+!!      v_rel = int a_rel dt.
+!! Filtering (CFC 1000 for HIC, 600 for Nij, 60 for NIC) is the caller's.
+module hn_injury
+    use hn_kinds, only: wp, zero
+    implicit none
+    private
+
+    public :: hic, nij, nic, nij_intercepts_t
+
+    !> Critical intercepts of Nij [N, N m]; defaults: Hybrid III 50th male.
+    type :: nij_intercepts_t
+        real(wp) :: fz_tension = 6806.0_wp
+        real(wp) :: fz_compression = 6160.0_wp
+        real(wp) :: my_flexion = 310.0_wp
+        real(wp) :: my_extension = 135.0_wp
+    end type nij_intercepts_t
+
+contains
+
+    !> HIC over windows up to `window` seconds of the resultant acceleration
+    !! a [g] sampled every dt [s]; t1, t2 are the sample times (from 0) of
+    !! the maximizing interval.
+    pure subroutine hic(a, dt, window, value, t1, t2)
+        real(wp), intent(in) :: a(:), dt, window
+        real(wp), intent(out) :: value, t1, t2
+        real(wp) :: c(size(a)), avg, h, span
+        integer :: i, j, n, w
+        n = size(a)
+        value = zero; t1 = zero; t2 = zero
+        if (n < 2) return
+        c(1) = zero
+        do i = 2, n
+            c(i) = c(i - 1) + 0.5_wp*(a(i) + a(i - 1))*dt
+        end do
+        w = int(window/dt + 1.0e-9_wp)
+        do i = 1, n - 1
+            do j = i + 1, min(n, i + w)
+                span = (j - i)*dt
+                avg = (c(j) - c(i))/span
+                if (avg <= zero) cycle
+                h = span*avg**2.5_wp
+                if (h > value) then
+                    value = h; t1 = (i - 1)*dt; t2 = (j - 1)*dt
+                end if
+            end do
+        end do
+    end subroutine hic
+
+    !> The four Nij modes at every sample, zero where a mode does not apply:
+    !! fz > 0 tension, my > 0 flexion (loads of the head on the neck at the OC).
+    pure subroutine nij(fz, my, crit, nte, ntf, nce, ncf)
+        real(wp), intent(in) :: fz(:), my(:)          !! [N], [N m]
+        type(nij_intercepts_t), intent(in) :: crit
+        real(wp), intent(out), dimension(size(fz)) :: nte, ntf, nce, ncf
+        real(wp) :: ft, fc, mf, me
+        integer :: i
+        do i = 1, size(fz)
+            ft = max(fz(i), zero)/crit%fz_tension
+            fc = max(-fz(i), zero)/crit%fz_compression
+            mf = max(my(i), zero)/crit%my_flexion
+            me = max(-my(i), zero)/crit%my_extension
+            nte(i) = merge(ft + me, zero, fz(i) >= zero .and. my(i) <= zero)
+            ntf(i) = merge(ft + mf, zero, fz(i) >= zero .and. my(i) >= zero)
+            nce(i) = merge(fc + me, zero, fz(i) < zero .and. my(i) <= zero)
+            ncf(i) = merge(fc + mf, zero, fz(i) < zero .and. my(i) >= zero)
+        end do
+    end subroutine nij
+
+    !> NIC(t) = 0.2 a_rel + v_rel^2 from the x-accelerations of T1 and the
+    !! head [m/s^2], v_rel the trapezoidal integral of a_rel from the first sample.
+    pure subroutine nic(ax_t1, ax_head, dt, value)
+        real(wp), intent(in) :: ax_t1(:), ax_head(:), dt
+        real(wp), intent(out) :: value(size(ax_t1))
+        real(wp) :: arel(size(ax_t1)), v
+        integer :: i
+        arel = ax_t1 - ax_head
+        v = zero
+        do i = 1, size(arel)
+            if (i > 1) v = v + 0.5_wp*(arel(i) + arel(i - 1))*dt
+            value(i) = 0.2_wp*arel(i) + v**2
+        end do
+    end subroutine nic
+
+end module hn_injury

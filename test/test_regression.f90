@@ -1,0 +1,91 @@
+!> Regression: every case deck re-run and compared with its reference
+!! outputs in reference/outputs (written on purpose by
+!! tools/regenerate_references.sh, never by this test), both at rtol 1e-8
+!! and atol 1e-11 with the deck's integrator. Every channel at every 1 ms
+!! sample must agree within 1e-4 of the channel's largest reference
+!! magnitude: far above the 1e-8 tolerance (builds with other optimization
+!! have other roundoff and so other step sequences) and far below any change
+!! of the model or the method.
+program test_regression
+    use hn_kinds, only: wp, msglen
+    use hn_case, only: case_t
+    use hn_deck, only: read_case
+    use hn_run, only: run_case, run_result_t
+    use hn_channels, only: channel_set_t, channels_define
+    use hn_h5, only: h5_dims, h5_read_real, h5_read_string_attr
+    use hn_testing, only: test_suite_t
+    implicit none
+
+    type(test_suite_t) :: suite
+    character(len=16), parameter :: cases(5) = [character(len=16) :: 'case6-1', 'case6-2', 'case6-5', 'nbdl15g', &
+                                                'hybrid3_flexion']
+    real(wp), parameter :: rel_tol = 1.0e-4_wp
+    integer :: k
+
+    do k = 1, size(cases)
+        call test_case(trim(cases(k)))
+    end do
+    call suite%finish()
+
+contains
+
+    subroutine test_case(name)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: ref
+        type(case_t) :: cs
+        type(run_result_t) :: res
+        type(channel_set_t) :: ch
+        integer, allocatable :: d(:)
+        real(wp), allocatable :: t(:), chans(:, :)
+        character(len=20000) :: names
+        character(len=32) :: nm, worst
+        integer :: stat, lu, nch, nt, i, j, p0, p1
+        real(wp) :: dev, worst_dev, scale
+        character(len=msglen) :: msg
+        character(len=200) :: det
+        logical :: ok
+        ref = 'reference/outputs/'//name//'.h5'
+        call h5_dims(ref, '/channels', d, stat)
+        if (stat /= 0) then
+            call suite%check(.false., name//': reference file present', ref); return
+        end if
+        nch = d(1); nt = d(2)
+        allocate (t(nt), chans(nch, nt))
+        call h5_read_real(ref, '/time', t, stat)
+        call h5_read_real(ref, '/channels', chans, stat)
+        call h5_read_string_attr(ref, '/channels', 'names', names, stat)
+        call read_case('input/'//name//'.inp', 'input/'//name//'.inp', cs, stat, msg)
+        cs%sample_dt = 1.0e-3_wp
+        cs%rtol = 1.0e-8_wp
+        cs%atol = 1.0e-11_wp
+        call channels_define(cs, ch)
+        open (newunit=lu, file='/dev/null', action='write')
+        call run_case(cs, lu, '', res, keep_samples=.true.)
+        close (lu)
+        ok = res%exit_code == 0 .and. size(res%samples_t) == nt
+        if (ok) ok = maxval(abs(res%samples_t - t)) < 1.0e-9_wp
+        worst_dev = 0; worst = ''
+        p0 = 1
+        do i = 1, nch
+            p1 = index(names(p0:), ' ')
+            nm = names(p0:p0 + p1 - 2)
+            p0 = p0 + p1
+            if (.not. ok) exit
+            if (nm == 'E_BALANCE') cycle          ! zero to the tolerance; checked by test_stability
+            j = findloc(ch%name, nm, dim=1)
+            if (j == 0) then
+                ok = .false.; worst = nm; exit
+            end if
+            scale = maxval(abs(chans(i, :)))
+            dev = maxval(abs(res%samples(j, :) - chans(i, :)))/max(scale, 1.0e-12_wp)
+            if (scale < 1.0e-9_wp) dev = maxval(abs(res%samples(j, :) - chans(i, :)))
+            if (dev > worst_dev) then
+                worst_dev = dev; worst = nm
+            end if
+        end do
+        write (det, '(a,i0,a,i0,a,a,a,es9.2,a)') 'exit ', res%exit_code, ', ', nch, ' channels; largest deviation in ', &
+            trim(worst), ': ', worst_dev, ' of its range'
+        call suite%check(ok .and. worst_dev <= rel_tol, name//' matches its reference outputs', det)
+    end subroutine test_case
+
+end program test_regression

@@ -1,0 +1,18 @@
+#!/bin/sh
+# Regenerates the reference outputs of every case deck ON PURPOSE, after a
+# change that is meant to change results (say why in the commit). The
+# regression test (test/test_regression.f90) never writes them.
+#   reference/outputs/CASE.txt   the listing (release build, the deck's sampling)
+#   reference/outputs/CASE.h5    /time and /channels every 1 ms, computed at
+#                                rtol 1e-8 (atol 1e-11) so that builds with
+#                                other roundoff agree far inside the tolerance
+set -eu
+cd "$(dirname "$0")/.."
+tmp=$(mktemp -d)
+for c in case6-1 case6-2 case6-5 nbdl15g hybrid3_flexion; do
+    echo "regenerating reference/outputs/$c" >&2
+    fpm run --profile release -- --no-h5 < "input/$c.inp" > "reference/outputs/$c.txt"
+    fpm run --profile release -- --sample 1.0E-3 --rtol 1.0E-8 --h5 "$tmp/$c.h5" < "input/$c.inp" > /dev/null
+    python3 tools/extract_reference.py "$tmp/$c.h5" "reference/outputs/$c.h5"
+done
+rm -rf "$tmp"
