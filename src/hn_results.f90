@@ -157,6 +157,7 @@ contains
         class(results_t), intent(inout) :: me
         type(assessment_t), intent(in) :: a
         integer :: n
+        real(wp), allocatable :: modes(:, :)
         if (.not. me%active) return
         call me%h5%group('/injury')
         if (.not. a%computed) then
@@ -175,7 +176,8 @@ contains
         call me%h5%attr_real('/injury', 'flexion_moment', [a%flexion, a%flexion_t])
         call me%h5%attr_real('/injury', 'extension_moment', [a%extension, a%extension_t])
         call me%h5%write_real('/injury/head_ar_cfc1000', a%head_ar, [n])
-        call me%h5%write_real('/injury/nij', transpose(a%nij_t), [4, n])
+        modes = transpose(a%nij_t)          ! (4, n): h5py reads (n, 4), time first
+        call me%h5%write_real('/injury/nij', modes, [4, n])
         call me%h5%attr_string('/injury/nij', 'columns', 'NTE NTF NCE NCF')
         call me%h5%write_real('/injury/nic', a%nic_t, [n])
         call me%h5%write_real('/injury/oc_fx_cfc600', a%fx, [n])
