@@ -35,6 +35,7 @@ module hn_case
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
         real(wp), allocatable :: dump_times(:)      !! times of the cross-checking dump
         type(deck_line_t), allocatable :: deck(:)   !! the cards as read
+        character(len=100), allocatable :: scene(:)  !! what the scene cards did (listing summary)
     end type case_t
 
 end module hn_case

@@ -16,6 +16,7 @@ module hn_deck
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
     use hn_linsolve, only: solver_gauss, solver_cholesky
     use hn_rotation, only: norm3
+    use hn_scene, only: merge_bodies, lock_sagittal
     implicit none
     private
 
@@ -34,6 +35,15 @@ module hn_deck
         integer :: first = 0
         integer :: ncont = 0
     end type card_t
+
+    !> Where each body named in the deck went: its number in the reduced
+    !! tree and the shift of points given in its frame (MERGE); the card line
+    !! of the MERGE that absorbed it (0: not absorbed).
+    type :: body_map_t
+        integer, allocatable :: new(:)
+        real(wp), allocatable :: shift(:, :)
+        integer, allocatable :: merged_by(:)
+    end type body_map_t
 
     !> A named table of the deck.
     type :: named_table_t
@@ -56,6 +66,7 @@ contains
         type(card_t), allocatable :: cards(:)
         type(named_table_t), allocatable :: tabs(:)
         character(len=10), allocatable :: bnames(:)
+        type(body_map_t) :: bmap
 
         rd%top = source
         call read_card_images(rd, path, source, 0)
@@ -65,13 +76,14 @@ contains
             cs%deck = rd%lines(1:rd%nlines)
             call group_cards(rd, cards)
         end if
-        if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames)
+        allocate (cs%scene(0))
+        if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call control_cards(rd, cards, cs)
         if (.not. rd%failed()) call table_cards(rd, cards, tabs)
-        if (.not. rd%failed()) call coordinate_cards(rd, cards, cs, bnames, tabs)
-        if (.not. rd%failed()) call element_cards(rd, cards, cs, bnames, tabs)
-        if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, tabs)
-        if (.not. rd%failed()) call report_cards(rd, cards, cs, bnames)
+        if (.not. rd%failed()) call coordinate_cards(rd, cards, cs, bnames, bmap, tabs)
+        if (.not. rd%failed()) call element_cards(rd, cards, cs, bnames, bmap, tabs)
+        if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, bmap, tabs)
+        if (.not. rd%failed()) call report_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call stiffen_cards(rd, cards, cs)
         if (.not. rd%failed()) call model_set_neutral(cs%model)
         stat = rd%stat
@@ -94,10 +106,10 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(27) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(29) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
-            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN']
+            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -299,12 +311,13 @@ contains
         end do
     end subroutine control_cards
 
-    !> BODY, BODYPI, JOINT, LOCK, NEUTRAL: the tree tables.
-    subroutine body_cards(rd, cards, cs, bnames)
+    !> BODY, BODYPI, JOINT, LOCK, NEUTRAL, SCENE, MERGE: the tree tables.
+    subroutine body_cards(rd, cards, cs, bnames, bmap)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
         character(len=10), allocatable, intent(out) :: bnames(:)
+        type(body_map_t), intent(out) :: bmap
         character(len=10), allocatable :: pnames(:)
         integer, allocatable :: bline(:)
         integer :: nb, k, kb, i, f, p, m, stat
@@ -329,7 +342,7 @@ contains
             bline(kb) = i
             call rd%name(i, 1, 'body name', bnames(kb))
             if (rd%failed()) return
-            if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL') then
+            if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL' .or. bnames(kb) == 'ALL') then
                 call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
                              trim(bnames(kb))//'", which names the inertial frame; expected another name')
                 return
@@ -417,9 +430,98 @@ contains
             call rd%fail(rd%top//' (BODY cards): '//trim(msg))
             return
         end if
+        allocate (bmap%new(nb), bmap%shift(3, nb), bmap%merged_by(nb))
+        bmap%new = [(k, k=1, nb)]
+        bmap%shift = zero
+        bmap%merged_by = 0
+        call scene_cards(rd, cards, cs, bnames, bmap)
+        if (rd%failed()) return
+        call tree_build(cs%model%tree, stat, msg)
+        if (stat /= 0) then
+            call rd%fail(rd%top//' (MERGE cards): '//trim(msg))
+            return
+        end if
         tree = cs%model%tree       ! model_init takes the tree by value (its model argument is intent(out))
         call model_init(cs%model, tree)
     end subroutine body_cards
+
+    !> SCENE SAGITTAL and MERGE survivor absorbed...: reduce the model to what
+    !! the scene needs; notes for the listing.
+    subroutine scene_cards(rd, cards, cs, bnames, bmap)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(inout) :: bmap
+        integer :: ic, k, i, f, nabs, surv, kk, stat
+        integer, allocatable :: absorbed(:), new_index(:)
+        real(wp), allocatable :: shift(:, :)
+        character(len=10) :: s
+        character(len=msglen) :: msg
+        character(len=100) :: note
+        ic = single(rd, cards, 'SCENE', .false.)
+        if (ic > 0) then
+            call rd%name(cards(ic)%first, 1, 'scene', s)
+            if (rd%failed()) return
+            if (s /= 'SAGITTAL' .and. s /= 'FULL') then
+                call rd%fail(rd%context(cards(ic)%first, 1, 'scene')//': found "'//trim(s)// &
+                             '"; expected SAGITTAL or FULL')
+                return
+            end if
+            if (s == 'SAGITTAL') then
+                call lock_sagittal(cs%model%tree)
+                call add_note('SCENE SAGITTAL: TY, RX, RZ OF EVERY BODY LOCKED AT NEUTRAL')
+            end if
+        end if
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'MERGE') cycle
+            i = cards(k)%first
+            surv = body_ref(rd, i, 1, 'surviving body', bnames, .false.)
+            allocate (absorbed(0))
+            do f = 2, 7
+                if (rd%is_blank(i, f)) cycle
+                kk = body_ref(rd, i, f, 'absorbed body', bnames, .false.)
+                if (rd%failed()) return
+                absorbed = [absorbed, kk]
+            end do
+            if (rd%failed()) return
+            if (size(absorbed) == 0) then
+                call rd%fail(rd%where(i)//', columns 21-80 (MERGE card): found no body to absorb; expected 1 to 6')
+                return
+            end if
+            ! bodies already merged are addressed through their survivor
+            surv = bmap%new(surv)
+            absorbed = bmap%new(absorbed)
+            if (any(absorbed == surv)) then
+                call rd%fail(rd%where(i)//' (MERGE card): a body cannot absorb itself (or one already merged into it)')
+                return
+            end if
+            allocate (new_index(cs%model%tree%nbody), shift(3, cs%model%tree%nbody))
+            call merge_bodies(cs%model%tree, surv, absorbed, new_index, shift, stat, msg)
+            if (stat /= 0) then
+                call rd%fail(rd%where(i)//' (MERGE card): '//trim(msg))
+                return
+            end if
+            ! compose with the map so far
+            do kk = 1, size(bmap%new)
+                bmap%shift(:, kk) = bmap%shift(:, kk) + shift(:, bmap%new(kk))
+                if (any(absorbed == bmap%new(kk))) bmap%merged_by(kk) = i
+                bmap%new(kk) = new_index(bmap%new(kk))
+            end do
+            nabs = size(absorbed)
+            write (note, '(a,i0,3a)') 'MERGE: ', nabs, ' BODIES ABSORBED INTO ', &
+                trim(cs%model%tree%name(new_index(surv))), ' (MASS, INERTIA BY THE PARALLEL-AXIS THEOREM)'
+            call add_note(note)
+            deallocate (absorbed, new_index, shift)
+        end do
+    contains
+        subroutine add_note(text)
+            character(len=*), intent(in) :: text
+            character(len=100) :: t
+            t = text
+            cs%scene = [character(len=100) :: cs%scene, t]
+        end subroutine add_note
+    end subroutine scene_cards
 
     !> LOCK body|ALL coordinate ...: lock coordinates at their neutral value.
     subroutine lock_card(rd, i, bnames, cs)
@@ -505,28 +607,44 @@ contains
         end do
     end subroutine table_cards
 
-    !> INITIAL and PRESCRIB cards.
-    subroutine coordinate_cards(rd, cards, cs, bnames, tabs)
+    !> INITIAL and PRESCRIB cards. A card for a coordinate the scene locked
+    !! is dropped when it only restates the neutral value; otherwise it is an
+    !! error.
+    subroutine coordinate_cards(rd, cards, cs, bnames, bmap, tabs)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
         character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
-        integer :: k, i, kb, m, j, it, stat
+        integer :: k, i, kb, m, j, it, stat, ndrop
         real(wp) :: v, vd, fac, amp, freq, phase
         character(len=10) :: s
+        character(len=100) :: note
         logical, allocatable :: seen(:)
 
         allocate (cs%x0(cs%model%tree%ndof), cs%xd0(cs%model%tree%ndof), seen(cs%model%tree%ndof))
         cs%x0 = neutral_coordinates(cs%model)
         cs%xd0 = zero
         seen = .false.
+        ndrop = 0
         do k = 1, size(cards)
             i = cards(k)%first
             select case (cards(k)%key)
             case ('INITIAL')
-                call active_ref(rd, i, cs, bnames, kb, m, j)
+                call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
                 if (rd%failed()) return
+                if (j == 0) then
+                    call rd%real(i, 3, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
+                                 default=cs%model%tree%q_ref(m, kb)/unit_factor(m))
+                    call rd%real(i, 4, 'initial rate', unit_of(m)//'/s', vd, -1.0e5_wp, 1.0e5_wp, default=zero)
+                    if (abs(v*unit_factor(m) - cs%model%tree%q_ref(m, kb)) > 1.0e-12_wp .or. vd /= zero) then
+                        call locked_error(rd, i, bnames, k_old(rd, i, bnames), m)
+                        return
+                    end if
+                    ndrop = ndrop + 1
+                    cycle
+                end if
                 fac = unit_factor(m)
                 call rd%real(i, 3, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
                              default=cs%model%tree%q_ref(m, kb)/fac)
@@ -534,8 +652,21 @@ contains
                 cs%x0(j) = v*fac
                 cs%xd0(j) = vd*fac
             case ('PRESCRIB')
-                call active_ref(rd, i, cs, bnames, kb, m, j)
+                call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
                 if (rd%failed()) return
+                if (j == 0) then
+                    call rd%name(i, 3, 'kind', s)
+                    v = cs%model%tree%q_ref(m, kb)/unit_factor(m)
+                    if (s == 'CONSTANT') call rd%real(i, 4, 'value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
+                                                      default=v)
+                    if (rd%failed()) return
+                    if (s /= 'CONSTANT' .or. abs(v*unit_factor(m) - cs%model%tree%q_ref(m, kb)) > 1.0e-12_wp) then
+                        call locked_error(rd, i, bnames, k_old(rd, i, bnames), m)
+                        return
+                    end if
+                    ndrop = ndrop + 1
+                    cycle
+                end if
                 if (seen(j)) then
                     call rd%fail(rd%where(i)//' (PRESCRIB card): coordinate '//trim(bnames(kb))//'.'// &
                                  coord_names(m)//' is prescribed twice; expected one PRESCRIB card')
@@ -577,34 +708,68 @@ contains
                 cs%model%prescribed(j) = .true.
             end select
         end do
+        if (ndrop > 0) then
+            write (note, '(i0,a)') ndrop, ' INITIAL/PRESCRIB CARDS DROPPED: THEY HOLD LOCKED COORDINATES AT NEUTRAL'
+            cs%scene = [character(len=100) :: cs%scene, note]
+        end if
     end subroutine coordinate_cards
 
-    !> Body and coordinate of an INITIAL/PRESCRIB/LIMIT card (fields F1, F2),
-    !! which must be an active coordinate.
-    subroutine active_ref(rd, i, cs, bnames, kb, m, j)
+    !> Old (deck) body number of field F1 of line i.
+    integer function k_old(rd, i, bnames) result(k)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        character(len=10), intent(in) :: bnames(:)
+        k = body_ref(rd, i, 1, 'body', bnames, .false.)
+    end function k_old
+
+    subroutine locked_error(rd, i, bnames, kold, m)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, kold, m
+        character(len=10), intent(in) :: bnames(:)
+        call rd%fail(rd%context(i, 2, 'coordinate')//': '//trim(bnames(kold))//'.'//coord_names(m)// &
+                     ' is locked (LOCK or SCENE card); expected an active coordinate, or the neutral value')
+    end subroutine locked_error
+
+    !> Body (in the reduced tree) and coordinate of an INITIAL/PRESCRIB/LIMIT
+    !! card (fields F1, F2). A body absorbed by MERGE has no coordinates (an
+    !! error). A locked coordinate gives j = 0 when allow_locked, else an error.
+    subroutine active_ref(rd, i, cs, bnames, bmap, kb, m, j, allow_locked)
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i
         type(case_t), intent(in) :: cs
         character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
         integer, intent(out) :: kb, m, j
+        logical, intent(in) :: allow_locked
+        integer :: kold
         j = 0
-        kb = body_ref(rd, i, 1, 'body', bnames, .false.)
+        kold = body_ref(rd, i, 1, 'body', bnames, .false.)
         m = coord_ref(rd, i, 2)
+        kb = 1
         if (rd%failed()) return
+        if (bmap%merged_by(kold) > 0) then
+            call rd%fail(rd%context(i, 1, 'body')//': body '//trim(bnames(kold))//' was merged by the MERGE card at '// &
+                         rd%where(bmap%merged_by(kold))//'; its coordinates no longer exist')
+            return
+        end if
+        kb = bmap%new(kold)
         j = cs%model%tree%dof_index(m, kb)
-        if (j == 0) call rd%fail(rd%context(i, 2, 'coordinate')//': '//trim(bnames(kb))//'.'//coord_names(m)// &
-                                 ' is locked; expected an active coordinate')
+        if (j == 0 .and. .not. allow_locked) call locked_error(rd, i, bnames, kold, m)
     end subroutine active_ref
 
-    !> DISC, LIGAMENT, MUSCLE, LIMIT, SPRING, FAMILY cards.
-    subroutine element_cards(rd, cards, cs, bnames, tabs)
+    !> DISC, LIGAMENT, MUSCLE, LIMIT, SPRING, FAMILY cards. Elements are
+    !! moved onto merged bodies; an element inside one merged body, or a
+    !! joint damper on a locked or merged coordinate, is dropped.
+    subroutine element_cards(rd, cards, cs, bnames, bmap, tabs)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
         character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
-        integer :: k, i, f, kb, m, j, fam
+        integer :: k, i, f, kb, m, j, fam, ninternal, nlimdrop
         character(len=10) :: s
+        character(len=100) :: note
         type(disc_t) :: d
         type(ligament_t) :: g
         type(muscle_t) :: mu
@@ -612,6 +777,8 @@ contains
         type(joint_limit_t) :: lim
         real(wp) :: v
 
+        ninternal = 0
+        nlimdrop = 0
         do k = 1, size(cards)
             i = cards(k)%first
             select case (cards(k)%key)
@@ -636,7 +803,10 @@ contains
                 call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
                 call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
                 call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
-                if (.not. rd%failed()) cs%model%discs = [cs%model%discs, d]
+                if (rd%failed()) return
+                call map_ends(d%body_a, d%pa, d%body_b, d%pb)
+                if (d%body_a == d%body_b) cycle
+                cs%model%discs = [cs%model%discs, d]
             case ('LIGAMENT')
                 g = ligament_t()
                 call rd%name(i, 1, 'ligament name', g%name)
@@ -648,7 +818,10 @@ contains
                 call rd%real(i, 6, 'exponent n', '-', g%n, one, 10.0_wp, default=2.0_wp)
                 call rd%real(i, 7, 'slack length', 'm', g%slack_length, 1.0e-6_wp, big_length, default=-one)
                 call line_points(rd, i + 1, g%point_a, g%point_b)
-                if (.not. rd%failed()) cs%model%ligaments = [cs%model%ligaments, g]
+                if (rd%failed()) return
+                call map_ends(g%body_a, g%point_a, g%body_b, g%point_b)
+                if (g%body_a == g%body_b) cycle
+                cs%model%ligaments = [cs%model%ligaments, g]
             case ('MUSCLE')
                 mu = muscle_t()
                 call rd%name(i, 1, 'muscle name', mu%name)
@@ -663,7 +836,10 @@ contains
                 end if
                 call line_points(rd, i + 1, mu%point_a, mu%point_b)
                 call rd%real(i + 1, 7, 'rest length', 'm', mu%rest_length, 1.0e-6_wp, big_length, default=-one)
-                if (.not. rd%failed()) cs%model%muscles = [cs%model%muscles, mu]
+                if (rd%failed()) return
+                call map_ends(mu%body_a, mu%point_a, mu%body_b, mu%point_b)
+                if (mu%body_a == mu%body_b) cycle
+                cs%model%muscles = [cs%model%muscles, mu]
             case ('SPRING')
                 sp = spring_t()
                 call rd%name(i, 1, 'spring name', s)
@@ -674,11 +850,22 @@ contains
                 call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
                 call rd%real(i, 6, 'free length', 'm', sp%free_length, zero, big_length, default=-one)
                 call line_points(rd, i + 1, sp%point_a, sp%point_b)
-                if (.not. rd%failed()) cs%model%springs = [cs%model%springs, sp]
+                if (rd%failed()) return
+                call map_ends(sp%body_a, sp%point_a, sp%body_b, sp%point_b)
+                if (sp%body_a == sp%body_b) cycle
+                cs%model%springs = [cs%model%springs, sp]
             case ('LIMIT')
                 lim = joint_limit_t()
-                call active_ref(rd, i, cs, bnames, kb, m, j)
+                if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
+                    nlimdrop = nlimdrop + 1          ! a damper inside a merged body
+                    cycle
+                end if
+                call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
                 if (rd%failed()) return
+                if (j == 0) then
+                    nlimdrop = nlimdrop + 1          ! a damper on a locked coordinate does nothing
+                    cycle
+                end if
                 lim%body = kb; lim%local = m; lim%dof = j
                 call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
                 call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
@@ -711,17 +898,45 @@ contains
                     return
                 end if
                 cs%model%family_on(fam) = s == 'ON'
+                if (s == 'OFF') then
+                    note = 'FAMILY '//trim(family_name(fam))//' OFF'
+                    cs%scene = [character(len=100) :: cs%scene, note]
+                end if
             end select
             if (rd%failed()) return
         end do
+        if (ninternal > 0) then
+            write (note, '(i0,a)') ninternal, ' ELEMENTS DROPPED: BOTH ENDS ON ONE MERGED BODY'
+            cs%scene = [character(len=100) :: cs%scene, note]
+        end if
+        if (nlimdrop > 0) then
+            write (note, '(i0,a)') nlimdrop, ' JOINT-LIMIT DAMPERS DROPPED: ON LOCKED OR MERGED COORDINATES'
+            cs%scene = [character(len=100) :: cs%scene, note]
+        end if
+    contains
+        !> Old body numbers and points -> reduced tree (MERGE); counts internal elements.
+        subroutine map_ends(ka, pa, kb2, pb)
+            integer, intent(inout) :: ka, kb2
+            real(wp), intent(inout) :: pa(3), pb(3)
+            if (ka > 0) then
+                pa = pa + bmap%shift(:, ka)
+                ka = bmap%new(ka)
+            end if
+            if (kb2 > 0) then
+                pb = pb + bmap%shift(:, kb2)
+                kb2 = bmap%new(kb2)
+            end if
+            if (ka == kb2) ninternal = ninternal + 1
+        end subroutine map_ends
     end subroutine element_cards
 
-    !> FORCE and COUPLE cards.
-    subroutine load_cards(rd, cards, cs, bnames, tabs)
+    !> FORCE and COUPLE cards (moved onto merged bodies).
+    subroutine load_cards(rd, cards, cs, bnames, bmap, tabs)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
         character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
         type(applied_load_t) :: al
         integer :: k, i, f, it
@@ -759,6 +974,8 @@ contains
                 end do
             end if
             if (rd%failed()) return
+            al%point = al%point + bmap%shift(:, al%body)
+            al%body = bmap%new(al%body)
             cs%model%applied = [cs%model%applied, al]
         end do
     end subroutine load_cards
@@ -805,21 +1022,24 @@ contains
         end do
     end subroutine stiffen_cards
 
-    !> HEADNECK: the bodies reported as head and T1.
-    subroutine report_cards(rd, cards, cs, bnames)
+    !> HEADNECK: the bodies reported as head and T1 (their merged bodies
+    !! when MERGE absorbed them).
+    subroutine report_cards(rd, cards, cs, bnames, bmap)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
         character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
         integer :: ic
         cs%head = findloc(bnames, 'HEAD', dim=1)
         if (cs%head == 0) cs%head = size(bnames)
+        cs%head = bmap%new(cs%head)
         cs%t1 = findloc(cs%model%tree%parent, 0, dim=1)
         ic = single(rd, cards, 'HEADNECK', .false.)
         if (ic > 0) then
-            cs%head = body_ref(rd, cards(ic)%first, 1, 'head body', bnames, .false.)
+            cs%head = bmap%new(body_ref(rd, cards(ic)%first, 1, 'head body', bnames, .false.))
             if (.not. rd%is_blank(cards(ic)%first, 2)) &
-                cs%t1 = body_ref(rd, cards(ic)%first, 2, 'T1 body', bnames, .false.)
+                cs%t1 = bmap%new(body_ref(rd, cards(ic)%first, 2, 'T1 body', bnames, .false.))
         end if
     end subroutine report_cards
 

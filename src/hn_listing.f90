@@ -175,6 +175,15 @@ contains
             call me%put(s)
             write (s, '(a,i3)') '   APPLIED FORCE/COUPLE TABLES', size(md%applied)
             call me%put(s)
+            call me%put('')
+            if (size(cs%scene) == 0) then
+                call me%put('   SCENE: THE WHOLE MODEL OF THE DECK (NO SCENE, MERGE, FAMILY OFF OR DROPPED CARDS)')
+            else
+                call me%put('   SCENE:')
+                do k = 1, size(cs%scene)
+                    call me%put('     '//trim(cs%scene(k)))
+                end do
+            end if
             if (cs%hold_posture) call me%put('   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE)')
             call me%put('')
             write (s, '(a,a,a,es10.3,a,es10.3,a,es10.3,a,es9.2,a,es9.2)') '   INTEGRATOR ', trim(cs%integrator), &
