@@ -517,9 +517,7 @@ contains
     contains
         subroutine add_note(text)
             character(len=*), intent(in) :: text
-            character(len=100) :: t
-            t = text
-            cs%scene = [character(len=100) :: cs%scene, t]
+            call add_scene_note(cs, text)
         end subroutine add_note
     end subroutine scene_cards
 
@@ -710,9 +708,22 @@ contains
         end do
         if (ndrop > 0) then
             write (note, '(i0,a)') ndrop, ' INITIAL/PRESCRIB CARDS DROPPED: THEY HOLD LOCKED COORDINATES AT NEUTRAL'
-            cs%scene = [character(len=100) :: cs%scene, note]
+            call add_scene_note(cs, note)
         end if
     end subroutine coordinate_cards
+
+    !> Append a line to the scene notes of the listing.
+    subroutine add_scene_note(cs, text)
+        type(case_t), intent(inout) :: cs
+        character(len=*), intent(in) :: text
+        character(len=100), allocatable :: tmp(:)
+        integer :: n
+        n = size(cs%scene)
+        allocate (tmp(n + 1))
+        tmp(1:n) = cs%scene
+        tmp(n + 1) = text
+        call move_alloc(tmp, cs%scene)
+    end subroutine add_scene_note
 
     !> Old (deck) body number of field F1 of line i.
     integer function k_old(rd, i, bnames) result(k)
@@ -900,18 +911,18 @@ contains
                 cs%model%family_on(fam) = s == 'ON'
                 if (s == 'OFF') then
                     note = 'FAMILY '//trim(family_name(fam))//' OFF'
-                    cs%scene = [character(len=100) :: cs%scene, note]
+                    call add_scene_note(cs, note)
                 end if
             end select
             if (rd%failed()) return
         end do
         if (ninternal > 0) then
             write (note, '(i0,a)') ninternal, ' ELEMENTS DROPPED: BOTH ENDS ON ONE MERGED BODY'
-            cs%scene = [character(len=100) :: cs%scene, note]
+            call add_scene_note(cs, note)
         end if
         if (nlimdrop > 0) then
             write (note, '(i0,a)') nlimdrop, ' JOINT-LIMIT DAMPERS DROPPED: ON LOCKED OR MERGED COORDINATES'
-            cs%scene = [character(len=100) :: cs%scene, note]
+            call add_scene_note(cs, note)
         end if
     contains
         !> Old body numbers and points -> reduced tree (MERGE); counts internal elements.
