@@ -11,6 +11,7 @@ program hhneck
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
     use hn_run, only: run_case, run_result_t, code_version, exit_usage, exit_deck, exit_ok
+    use hn_signals, only: catch_signals
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
@@ -68,6 +69,9 @@ program hhneck
         write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
         stop exit_deck, quiet=.true.
     end if
+    do i = 1, size(cs%warnings)
+        write (error_unit, '(a)') 'hhneck: warning: '//trim(cs%warnings(i))
+    end do
     if (check_only) then
         write (error_unit, '(a)') 'hhneck: deck is valid: '//trim(cs%model%title)
         stop
@@ -82,6 +86,7 @@ program hhneck
     end if
     if (.not. h5_given) h5name = cs%h5file
     if (no_h5) h5name = ''
+    call catch_signals()
     call run_case(cs, output_unit, trim(h5name), res)
     if (res%exit_code /= exit_ok) then
         write (error_unit, '(a)') 'hhneck: '//trim(res%message)

@@ -36,6 +36,7 @@ module hn_case
         real(wp), allocatable :: dump_times(:)      !! times of the cross-checking dump
         type(deck_line_t), allocatable :: deck(:)   !! the cards as read
         character(len=100), allocatable :: scene(:)  !! what the scene cards did (listing summary)
+        character(len=160), allocatable :: warnings(:)  !! physical plausibility warnings
     end type case_t
 
 end module hn_case

@@ -17,6 +17,7 @@ module hn_deck
     use hn_linsolve, only: solver_gauss, solver_cholesky
     use hn_rotation, only: norm3
     use hn_scene, only: merge_bodies, lock_sagittal
+    use hn_plausibility, only: plausibility_warnings
     implicit none
     private
 
@@ -85,7 +86,10 @@ contains
         if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, bmap, tabs)
         if (.not. rd%failed()) call report_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call stiffen_cards(rd, cards, cs)
-        if (.not. rd%failed()) call model_set_neutral(cs%model)
+        if (.not. rd%failed()) then
+            call model_set_neutral(cs%model)
+            call plausibility_warnings(cs%model, cs%warnings)
+        end if
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_case

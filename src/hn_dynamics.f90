@@ -14,6 +14,7 @@ module hn_dynamics
     use hn_forces, only: compute_loads, element_output_t, element_output_allocate
     use hn_linsolve, only: linear_solve
     use hn_motion, only: motion_eval
+    use hn_tree, only: dof_label
     use hn_ode, only: ode_system_t
     implicit none
     private
@@ -166,9 +167,10 @@ contains
         end do
         stat = 0
         errmsg = ''
-        if (ws%nfree > 0) call linear_solve(model%solver, ws%aff, ws%bf, stat, errmsg)
+        if (ws%nfree > 0) call linear_solve(model%solver, ws%aff, ws%bf, stat, errmsg, k)
         if (stat /= 0) then
-            write (errmsg, '(a,es12.5,2a)') 't = ', t, ' s: ', trim(errmsg)
+            write (errmsg, '(a,es12.5,4a)') 't = ', t, ' s: ', trim(errmsg), ' at coordinate ', &
+                trim(dof_label(model%tree, ws%ifree(max(1, min(k, ws%nfree)))))
             xddf = zero
             return
         end if

@@ -29,21 +29,31 @@ contains
     !> Solve a x = b by Gaussian elimination with partial pivoting.
     !! `a` and `b` are overwritten (b holds x on return). stat /= 0 when a
     !! pivot is zero or below n*eps times the largest entry (singular).
-    pure subroutine gauss_solve(a, b, stat)
+    !! pivot_ratio: smallest over largest |pivot| (a conditioning indicator).
+    pure subroutine gauss_solve(a, b, stat, pivot_ratio, pivot_row)
         real(wp), intent(inout) :: a(:, :)
         real(wp), intent(inout) :: b(:)
         integer, intent(out) :: stat
-        integer :: n, j, k, piv
-        real(wp) :: tb, tol, tmp
+        real(wp), intent(out), optional :: pivot_ratio
+        integer, intent(out), optional :: pivot_row      !! row of the smallest pivot
+        integer :: n, j, k, piv, kmin
+        real(wp) :: tb, tol, tmp, pmin, pmax
         n = size(b)
         stat = 0
         tol = real(n, wp)*epsilon(one)*maxval(abs(a(1:n, 1:n)))
+        pmin = huge(one); pmax = zero; kmin = 1
         do k = 1, n
             piv = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
             if (.not. (abs(a(piv, k)) > tol)) then
                 stat = k
+                if (present(pivot_ratio)) pivot_ratio = zero
+                if (present(pivot_row)) pivot_row = k
                 return
             end if
+            if (abs(a(piv, k)) < pmin) then
+                pmin = abs(a(piv, k)); kmin = k
+            end if
+            pmax = max(pmax, abs(a(piv, k)))
             if (piv /= k) then
                 do j = k, n
                     tmp = a(k, j); a(k, j) = a(piv, j); a(piv, j) = tmp
@@ -62,6 +72,8 @@ contains
             b(k) = b(k)/a(k, k)
             b(1:k - 1) = b(1:k - 1) - a(1:k - 1, k)*b(k)
         end do
+        if (present(pivot_ratio)) pivot_ratio = pmin/max(pmax, tiny(one))
+        if (present(pivot_row)) pivot_row = kmin
     end subroutine gauss_solve
 
     !> Solve a x = b for symmetric positive definite a with LAPACK dposv.
@@ -75,24 +87,42 @@ contains
         call dposv('U', n, 1, a, size(a, 1), b, n, stat)
     end subroutine cholesky_solve
 
-    !> Solve with the selected method; on failure errmsg says why.
-    pure subroutine linear_solve(method, a, b, stat, errmsg)
+    !> Solve with the selected method; on failure errmsg says why and `row`
+    !! is the unknown concerned. A pivot ratio (Gauss) or squared diagonal
+    !! ratio of the factor (Cholesky) below 1e-14 counts as ill-conditioned.
+    pure subroutine linear_solve(method, a, b, stat, errmsg, row)
         integer, intent(in) :: method
         real(wp), intent(inout) :: a(:, :), b(:)
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
+        integer, intent(out) :: row
+        real(wp), parameter :: ill = 1.0e-14_wp
+        real(wp) :: ratio, d(size(b))
+        integer :: k
         errmsg = ''
+        row = 0
         select case (method)
         case (solver_cholesky)
             call cholesky_solve(a, b, stat)
-            if (stat /= 0) write (errmsg, '(a,i0)') &
-                'a_ij is not positive definite (Cholesky failed at row ', stat
+            if (stat /= 0) then
+                row = stat
+                write (errmsg, '(a)') 'a_ij is not positive definite (Cholesky failed)'
+                return
+            end if
+            d = [(abs(a(k, k)), k=1, size(b))]
+            ratio = (minval(d)/max(maxval(d), tiny(one)))**2
+            row = minloc(d, dim=1)
         case default
-            call gauss_solve(a, b, stat)
-            if (stat /= 0) write (errmsg, '(a,i0)') &
-                'a_ij is singular to working precision (zero pivot at row ', stat
+            call gauss_solve(a, b, stat, ratio, row)
+            if (stat /= 0) then
+                write (errmsg, '(a)') 'a_ij is singular to working precision (zero pivot)'
+                return
+            end if
         end select
-        if (stat /= 0) errmsg = trim(errmsg)//')'
+        if (ratio < ill) then
+            stat = -1
+            write (errmsg, '(a,es9.2,a)') 'a_ij is ill-conditioned (pivot ratio ', ratio, ')'
+        end if
     end subroutine linear_solve
 
     !> Reciprocal 1-norm condition number estimate of a symmetric positive

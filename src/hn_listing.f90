@@ -176,6 +176,11 @@ contains
             write (s, '(a,i3)') '   APPLIED FORCE/COUPLE TABLES', size(md%applied)
             call me%put(s)
             call me%put('')
+            if (allocated(cs%warnings)) then
+                do k = 1, size(cs%warnings)
+                    call me%put('   WARNING: '//trim(cs%warnings(k)))
+                end do
+            end if
             if (size(cs%scene) == 0) then
                 call me%put('   SCENE: THE WHOLE MODEL OF THE DECK (NO SCENE, MERGE, FAMILY OFF OR DROPPED CARDS)')
             else

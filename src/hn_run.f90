@@ -18,6 +18,7 @@ module hn_run
     use hn_motion, only: motion_breakpoints
     use hn_tree, only: dof_label
     use hn_assessment, only: assessment_t, assess, criteria_channels
+    use hn_signals, only: signal_received
     implicit none
     private
 
@@ -28,7 +29,7 @@ module hn_run
     real(wp), parameter :: switch_deadband = 1.0e-8_wp   !! |switching function| treated as zero
 
     integer, parameter, public :: exit_ok = 0, exit_usage = 1, exit_deck = 2, exit_diverged = 3, &
-                                  exit_output = 4
+                                  exit_output = 4, exit_interrupted = 5
 
     !> What happened in a run.
     type :: run_result_t
@@ -198,6 +199,12 @@ contains
                     pending_restart = .false.
                 end if
                 call integ%step(sys, tstop, stat, msg)
+                if (signal_received() /= 0) then
+                    write (msg, '(a,i0,a,es12.5,a)') 'interrupted by signal ', signal_received(), ' at t = ', &
+                        tgood, ' s'
+                    call fail(exit_interrupted, trim(msg))
+                    exit outputs
+                end if
                 if (stat == 0) call check_state(stat, msg)
                 if (stat /= 0) then
                     call fail(exit_diverged, 'run stopped: '//trim(msg)//trim(diagnosis()))

@@ -32,6 +32,7 @@ program test_deck
             '          0.0       0.0       0.1       0.0       0.0       0.05']
 
     call test_valid_deck()
+    call test_plausibility_warnings()
     call expect_error('empty deck', [character(len=80) :: ''], [character(len=60) :: 'empty'])
     call expect_error('first card must be TITLE', [character(len=80) :: good(2)], &
                           [character(len=60) :: 'line 1', 'expected a TITLE card first'])
@@ -184,6 +185,34 @@ contains
                          a%model%tree%mass(2) == b%model%tree%mass(2) .and. a%t_end == b%t_end, &
                          'a deck with CR LF line ends reads as the same deck', trim(m2))
     end subroutine test_crlf_accepted
+
+    !> A valid deck with implausible numbers runs, with one warning each:
+    !! triangle inequality, an attachment 2 m away, a muscle 1e4 times stiff.
+    subroutine test_plausibility_warnings()
+        type(case_t) :: cs
+        integer :: stat
+        character(len=msglen) :: msg
+        character(len=80), allocatable :: deck(:)
+        logical :: tri, far, stiff
+        integer :: k
+        deck = replace(good, 4, 'BODY      BASE      R         2.0       0.1       0.1       0.5')
+        deck = [character(len=80) :: deck, &
+                'SPRING    S2        BASE      ARM       100.0', &
+                '          8.0       0.0       0.0       0.0       0.0       0.0', &
+                'MUSCLE    M1        BASE      ARM       3.0E7     400.0', &
+                '          0.0       0.0       0.0       0.0       0.0       0.0']
+        call parse(deck, cs, stat, msg)
+        tri = .false.; far = .false.; stiff = .false.
+        if (stat == 0) then
+            do k = 1, size(cs%warnings)
+                tri = tri .or. index(cs%warnings(k), 'triangle inequality') > 0
+                far = far .or. index(cs%warnings(k), 'far outside') > 0
+                stiff = stiff .or. index(cs%warnings(k), 'orders of magnitude') > 0
+            end do
+        end if
+        call suite%check(stat == 0 .and. tri .and. far .and. stiff, &
+                         'implausible but valid numbers give warnings, not errors', trim(msg))
+    end subroutine test_plausibility_warnings
 
     subroutine test_valid_deck()
         type(case_t) :: cs

@@ -6,7 +6,7 @@ program test_solvers
     use hn_tree, only: body_tree_t
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities
     use hn_kane, only: a_ij
-    use hn_linsolve, only: gauss_solve, cholesky_solve, spd_rcond
+    use hn_linsolve, only: gauss_solve, cholesky_solve, spd_rcond, linear_solve, solver_gauss, solver_cholesky
     use hn_testing, only: test_suite_t
     use hn_test_models, only: rng_t, random_tree
     implicit none
@@ -37,6 +37,7 @@ program test_solvers
     call test_cholesky_recovers_solution()
     call test_solvers_agree()
     call test_singular_refused()
+    call test_ill_conditioned_flagged()
     call suite%finish()
 
 contains
@@ -93,5 +94,19 @@ contains
         call cholesky_solve(ac, bc, s2)
         call suite%check(s1 /= 0 .and. s2 /= 0, 'a singular symmetric matrix (rank 2 of 4) is refused by both solvers')
     end subroutine test_singular_refused
+
+    !> diag(1, 1e-15): solvable, but flagged ill-conditioned by both solvers.
+    subroutine test_ill_conditioned_flagged()
+        real(wp) :: m(2, 2), r(2)
+        integer :: s1, s2, row1, row2
+        character(len=msglen) :: e1, e2
+        m = reshape([one, zero, zero, 1.0e-15_wp], [2, 2]); r = one
+        call linear_solve(solver_gauss, m, r, s1, e1, row1)
+        m = reshape([one, zero, zero, 1.0e-15_wp], [2, 2]); r = one
+        call linear_solve(solver_cholesky, m, r, s2, e2, row2)
+        call suite%check(s1 /= 0 .and. s2 /= 0 .and. row1 == 2 .and. row2 == 2 .and. &
+                         index(e1, 'ill-conditioned') > 0 .and. index(e2, 'ill-conditioned') > 0, &
+                         'an ill-conditioned a_ij is flagged, with the row concerned', trim(e1))
+    end subroutine test_ill_conditioned_flagged
 
 end program test_solvers

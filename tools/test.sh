@@ -25,5 +25,40 @@ set -e
 grep -q "stdin line 10, columns 11-20 (CONTROL card, field F1 'end time')" "$tmp/bad.err"
 [ "$rc" -eq 2 ] && [ ! -e "$tmp/bad.h5" ] && [ ! -e "$tmp/bad.h5.part" ] && ! grep -q "deck error" "$tmp/bad.out"
 echo "PASS  exit code 2, message names line 10 columns 11-20, nothing written"
+echo "== a diverging run: exit code 3, listing and HDF5 kept up to the last good step, marked incomplete"
+exe=$(fpm run --runner echo 2>/dev/null | tail -n 1)
+sed 's/^CONTROL   0.1       5.0E-5    0.001     ADAMS     1.0E-4    1.0E-7/CONTROL   0.1       2.0E-4    0.001     RK4/' \
+    input/case6-2.inp > "$tmp/diverge.inp"
+set +e
+"$exe" --h5 "$tmp/diverge.h5" < "$tmp/diverge.inp" > "$tmp/diverge.out" 2> "$tmp/diverge.err"
+rc=$?
+set -e
+[ "$rc" -eq 3 ] && grep -q "RUN INCOMPLETE" "$tmp/diverge.out" && grep -q "stability limit" "$tmp/diverge.err"
+python3 tools/check_incomplete.py "$tmp/diverge.h5" 0.1
+
+echo "== a run stopped by SIGTERM: exit code 5, a valid result file marked incomplete"
+sed 's/^CONTROL   0.25      1.0E-4    0.005     ADAMS     1.0E-4    1.0E-7/CONTROL   0.25      1.0E-5    0.005     RK4/' \
+    input/nbdl15g.inp > "$tmp/long.inp"
+set +e
+"$exe" --h5 "$tmp/term.h5" < "$tmp/long.inp" > "$tmp/term.out" 2> "$tmp/term.err" &
+pid=$!
+sleep 2
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+set -e
+[ "$rc" -eq 5 ] && grep -q "interrupted by signal 15" "$tmp/term.err" && [ ! -e "$tmp/term.h5.part" ]
+python3 tools/check_incomplete.py "$tmp/term.h5" 0.25
+
+echo "== a run killed outright (SIGKILL): no file under the result name"
+set +e
+"$exe" --h5 "$tmp/kill.h5" < "$tmp/long.inp" > /dev/null 2>&1 &
+pid=$!
+sleep 2
+kill -KILL "$pid"
+wait "$pid"
+set -e
+[ ! -e "$tmp/kill.h5" ]
+echo "PASS  no kill.h5 after SIGKILL (the partial file stays under kill.h5.part)"
 rm -rf "$tmp"
 echo "== all tests passed"
