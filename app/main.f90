@@ -3,25 +3,30 @@
 !!   fpm run < input/case6-2.inp
 !!   fpm run -- --h5 out.h5 < input/nbdl15g.inp
 !!
+!!   fpm run -- --sweep --h5 sweep.h5 < input/sweep_nbdl_oat.inp
+!!
 !! The listing goes to standard output, diagnostics to standard error.
 !! Exit codes are listed in docs/errors.md.
 program hhneck
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use hn_kinds, only: msglen, wp
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t, code_version, exit_usage, exit_deck, exit_ok
+    use hn_run, only: run_case, run_result_t, code_version, exit_usage, exit_deck, exit_ok, exit_output, &
+                      exit_members_failed
+    use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member
+    use hn_sweep_report, only: sweep_finish
     use hn_signals, only: catch_signals
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
     character(len=path_len) :: h5name, arg
     character(len=msglen) :: msg
-    logical :: h5_given, no_h5, check_only
+    logical :: h5_given, no_h5, check_only, sweep
     integer :: i, stat, nargs
     real(wp) :: sample, rtol
 
-    h5_given = .false.; no_h5 = .false.; check_only = .false.
+    h5_given = .false.; no_h5 = .false.; check_only = .false.; sweep = .false.
     sample = -1.0_wp
     rtol = -1.0_wp
     h5name = ''
@@ -53,6 +58,8 @@ program hhneck
                 call usage('--sample needs a positive interval in seconds, found "'//trim(arg)//'"')
         case ('--check')
             check_only = .true.
+        case ('--sweep')
+            sweep = .true.
         case ('--version')
             write (output_unit, '(a)') 'hhneck '//code_version
             stop
@@ -64,6 +71,7 @@ program hhneck
         i = i + 1
     end do
 
+    if (sweep) call run_sweep()
     call read_case('/dev/stdin', 'stdin', cs, stat, msg)
     if (stat /= 0) then
         write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
@@ -100,10 +108,54 @@ program hhneck
 
 contains
 
+    !> A parameter sweep read from standard input, its members run one
+    !! after the other (the MPI driver is `fpm run --example sweep_mpi`).
+    subroutine run_sweep()
+        type(sweep_t) :: sw
+        type(member_record_t), allocatable :: recs(:)
+        real(wp), allocatable :: v(:, :)
+        integer(int64) :: c0, c1, rate
+        integer :: r
+        call read_sweep('/dev/stdin', 'stdin', sw, stat, msg)
+        if (stat /= 0) then
+            write (error_unit, '(a)') 'hhneck: sweep deck error: '//trim(msg)
+            stop exit_deck, quiet=.true.
+        end if
+        if (check_only) then
+            write (error_unit, '(a)') 'hhneck: sweep deck is valid: '//trim(sw%title)
+            stop
+        end if
+        if (.not. h5_given) h5name = sw%h5file
+        if (no_h5) h5name = ''
+        v = sweep_design(sw)
+        allocate (recs(size(v, 2)))
+        call system_clock(c0, rate)
+        do r = 1, size(v, 2)
+            call run_member(sw, v(:, r), recs(r))
+            write (error_unit, '(a,i0,a,i0,a,i0,a,f7.2,a)') 'hhneck: sweep run ', r, ' of ', size(v, 2), &
+                ': exit ', recs(r)%status, ', ', recs(r)%wall, ' s'
+        end do
+        call system_clock(c1)
+        call sweep_finish(sw, v, recs, 1, real(c1 - c0, wp)/real(rate, wp), output_unit, trim(h5name), &
+                          code_version, stat, msg)
+        if (stat /= 0) then
+            write (error_unit, '(a)') 'hhneck: '//trim(msg)
+            stop exit_output, quiet=.true.
+        end if
+        if (any(recs%status /= 0)) then
+            write (error_unit, '(a,i0,a,i0,a)') 'hhneck: sweep finished; ', count(recs%status /= 0), ' of ', &
+                size(recs), ' member runs failed (listed in the listing and the result file)'
+            stop exit_members_failed, quiet=.true.
+        end if
+        write (error_unit, '(a,i0,a)') 'hhneck: sweep finished; all ', size(recs), ' member runs complete'
+        stop
+    end subroutine run_sweep
+
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
         if (len(problem) > 0) write (error_unit, '(a)') 'hhneck: '//problem
-        write (error_unit, '(a)') 'usage: hhneck [--h5 FILE | --no-h5] [--sample SECONDS] [--rtol TOL] [--check] [--version] < DECK'
+        write (error_unit, '(a)') 'usage: hhneck [--sweep] [--h5 FILE | --no-h5] [--sample SECONDS] [--rtol TOL] '// &
+            '[--check] [--version] < DECK'
         if (len(problem) > 0) stop exit_usage, quiet=.true.
         stop
     end subroutine usage

@@ -4,7 +4,7 @@
 !! what was expected.
 module hn_deck
     use hn_kinds, only: wp, zero, one, deg, msglen
-    use hn_case, only: case_t
+    use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
     use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name
@@ -21,7 +21,7 @@ module hn_deck
     implicit none
     private
 
-    public :: read_case, integrator_names
+    public :: read_case, read_case_lines, integrator_names
 
     character(len=8), parameter :: integrator_names(5) = [character(len=8) :: 'RK4', 'ABM4', 'ADAMS', &
                                                            'DOPRI5', 'ROS2']
@@ -64,15 +64,41 @@ contains
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
         type(deck_reader_t) :: rd
-        type(card_t), allocatable :: cards(:)
-        type(named_table_t), allocatable :: tabs(:)
-        character(len=10), allocatable :: bnames(:)
-        type(body_map_t) :: bmap
-
         rd%top = source
         call read_card_images(rd, path, source, 0)
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the deck is empty (no cards); expected a TITLE card first')
+        call interpret(rd, cs)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_case
+
+    !> Interpret card images already read (INCLUDE expanded), as kept in
+    !! `case_t%deck`: a deck edited in memory, e.g. one member of a sweep.
+    subroutine read_case_lines(lines, source, cs, stat, errmsg)
+        type(deck_line_t), intent(in) :: lines(:)
+        character(len=*), intent(in) :: source  !! name of the deck in messages
+        type(case_t), intent(out) :: cs
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(deck_reader_t) :: rd
+        rd%top = source
+        rd%lines = lines
+        rd%nlines = size(lines)
+        if (rd%nlines == 0) call rd%fail(source//': the deck is empty (no cards); expected a TITLE card first')
+        call interpret(rd, cs)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_case_lines
+
+    !> The cards of `rd` into the case, card group by card group.
+    subroutine interpret(rd, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(case_t), intent(out) :: cs
+        type(card_t), allocatable :: cards(:)
+        type(named_table_t), allocatable :: tabs(:)
+        character(len=10), allocatable :: bnames(:)
+        type(body_map_t) :: bmap
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
             call group_cards(rd, cards)
@@ -90,9 +116,7 @@ contains
             call model_set_neutral(cs%model)
             call plausibility_warnings(cs%model, cs%warnings)
         end if
-        stat = rd%stat
-        errmsg = rd%errmsg
-    end subroutine read_case
+    end subroutine interpret
 
     !> Number of continuation cards a card type takes (-1: computed, TABLE).
     pure integer function continuations(key) result(n)

@@ -14,7 +14,7 @@ module hn_deck_reader
     implicit none
     private
 
-    public :: deck_reader_t, read_card_images, field_columns, int_str
+    public :: deck_reader_t, read_card_images, field_columns, int_str, upper
 
     integer, parameter, public :: nfields = 7
     integer, parameter :: max_include_depth = 4

@@ -30,6 +30,7 @@ module hn_h5
         procedure :: group => h5_group
         procedure :: write_real => h5_write_real
         procedure :: write_int => h5_write_int
+        procedure :: write_strings => h5_write_strings
         procedure :: attr_string => h5_attr_string
         procedure :: attr_real => h5_attr_real
         procedure :: series => h5_series
@@ -110,6 +111,20 @@ contains
         integer, intent(in) :: dims(:)
         call write_any(me%id, path, H5T_NATIVE_INTEGER, c_loc(buf), dims)
     end subroutine h5_write_int
+
+    !> Write a one-dimensional dataset of fixed-length strings (h5py reads
+    !! them as bytes; trailing blanks are kept).
+    subroutine h5_write_strings(me, path, strings)
+        class(h5_file_t), intent(inout) :: me
+        character(len=*), intent(in) :: path
+        character(len=*), intent(in), target, contiguous :: strings(:)
+        integer(hid_t) :: stype
+        integer :: err
+        call h5tcopy_f(H5T_FORTRAN_S1, stype, err)
+        call h5tset_size_f(stype, int(max(len(strings), 1), size_t), err)
+        call write_any(me%id, path, stype, c_loc(strings), [size(strings)])
+        call h5tclose_f(stype, err)
+    end subroutine h5_write_strings
 
     subroutine write_any(loc, path, dtype, ptr, dims)
         integer(hid_t), intent(in) :: loc, dtype

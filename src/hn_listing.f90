@@ -4,7 +4,7 @@
 !! tables at the print interval and a summary of peaks.
 module hn_listing
     use hn_kinds, only: wp, zero, deg
-    use hn_case, only: case_t
+    use hn_case, only: case_t, deck_line_t
     use hn_channels, only: channel_set_t
     use hn_tree, only: dof_label
     use hn_model, only: family_name, nfamilies, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
@@ -94,9 +94,10 @@ contains
         call me%put('')
     end subroutine listing_message
 
-    subroutine listing_echo_deck(me, cs)
+    !> Echo of the card images under a column ruler.
+    subroutine listing_echo_deck(me, deck)
         class(listing_t), intent(inout) :: me
-        type(case_t), intent(in) :: cs
+        type(deck_line_t), intent(in) :: deck(:)
         integer :: k
         character(len=140) :: s
         call me%new_page()
@@ -105,8 +106,8 @@ contains
         call me%put('  CARD  SOURCE:LINE                   '//'         1         2         3         4         5'// &
                     '         6         7         8')
         call me%put('                                      '//repeat('1234567890', 8))
-        do k = 1, size(cs%deck)
-            write (s, '(i6,2x,a29,1x,a)') k, source_tag(cs%deck(k)%source, cs%deck(k)%line), cs%deck(k)%text
+        do k = 1, size(deck)
+            write (s, '(i6,2x,a29,1x,a)') k, source_tag(deck(k)%source, deck(k)%line), deck(k)%text
             call me%put(s)
         end do
     end subroutine listing_echo_deck

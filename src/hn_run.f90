@@ -29,7 +29,8 @@ module hn_run
     real(wp), parameter :: switch_deadband = 1.0e-8_wp   !! |switching function| treated as zero
 
     integer, parameter, public :: exit_ok = 0, exit_usage = 1, exit_deck = 2, exit_diverged = 3, &
-                                  exit_output = 4, exit_interrupted = 5
+                                  exit_output = 4, exit_interrupted = 5, &
+                                  exit_members_failed = 6
 
     !> What happened in a run.
     type :: run_result_t
@@ -118,7 +119,7 @@ contains
         keep = .false.
         if (present(keep_samples)) keep = keep_samples
         call lst%start(lu, cs%model%title, code_version)
-        call lst%echo_deck(cs)
+        call lst%echo_deck(cs%deck)
         call channels_define(cs, ch)
         call model_ode_init(sys, cs%model)
         nf = sys%ws%nfree

@@ -1,0 +1,673 @@
+!> Parameter sweeps: the sweep deck (a base case deck, the parameters to
+!! vary and a design of experiments), the design itself (full factorial,
+!! Latin hypercube, one-at-a-time), the case of each member and its run
+!! with the summary outputs a sensitivity study needs. Nothing here knows
+!! about MPI: a driver hands out member numbers (serially, or over ranks)
+!! and collects `member_record_t`s. The deck format is in docs/sweeps.md.
+module hn_sweep
+    use hn_kinds, only: wp, zero, one, msglen
+    use hn_case, only: case_t, deck_line_t, path_len
+    use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper
+    use hn_deck, only: read_case_lines
+    use hn_tree, only: tree_build
+    use hn_model, only: model_set_neutral, family_name, nfamilies, fam_discs, fam_ligaments, fam_muscles, &
+                        fam_limits, fam_springs
+    use hn_run, only: run_case, run_result_t, exit_deck, exit_ok
+    use hn_channels, only: channel_set_t, channels_define
+    use hn_filters, only: cfc_filter
+    use hn_random, only: rng_t, rng_seed, rng_uniform, rng_permutation
+    implicit none
+    private
+
+    public :: sweep_t, sweep_param_t, member_record_t, read_sweep, sweep_design, sweep_member_case, &
+              run_member, field_text
+    public :: output_names, output_units, nout
+
+    integer, parameter, public :: par_family = 1, par_body = 2, par_field = 3
+    integer, parameter, public :: design_factorial = 1, design_lhs = 2, design_oat = 3
+    character(len=9), parameter, public :: design_name(3) = [character(len=9) :: 'FACTORIAL', 'LHS', 'OAT']
+    integer, parameter :: max_params = 50, max_runs = 100000
+
+    !> The summary outputs of a member run.
+    integer, parameter :: nout = 13
+    character(len=10), parameter :: output_names(nout) = [character(len=10) :: 'THETA_PEAK', 'THETA_TIME', &
+        'OMEGA_PEAK', 'ALPHA_PEAK', 'HEAD_AR', 'OC_TENSION', 'OC_COMPR', 'OC_SHEAR', 'OC_FLEX', 'OC_EXT', &
+        'HIC15', 'NIJ', 'NIC']
+    character(len=8), parameter :: output_units(nout) = [character(len=8) :: 'deg', 'ms', 'rad/s', 'rad/s^2', &
+        'g', 'N', 'N', 'N', 'N m', 'N m', '-', '-', 'm^2/s^2']
+
+    !> One parameter of the sweep.
+    type :: sweep_param_t
+        character(len=10) :: name = ''
+        integer :: kind = par_family
+        character(len=10) :: target = ''   !! family, body or card name
+        character(len=10) :: item = ''     !! property, or the name in field F1 of the card
+        integer :: field = 0               !! field number across the card (FIELD kinds)
+        real(wp) :: low = zero, high = zero
+        logical :: log_spacing = .false.
+        real(wp) :: nominal = one          !! scale 1, or the base deck's field value
+        integer :: family = 0              !! family number (FAMILY kind)
+        integer :: body = 0                !! body number (BODY kind)
+        integer :: line = 0                !! base deck line holding the field (FIELD kind)
+        integer :: card_line = 0           !! sweep deck line of the PARAM card
+    end type sweep_param_t
+
+    !> A sweep: base deck, parameters, design.
+    type :: sweep_t
+        character(len=80) :: title = ''
+        character(len=path_len) :: base = ''      !! base deck path
+        character(len=path_len) :: h5file = ''    !! result file named in the sweep deck
+        type(deck_line_t), allocatable :: base_lines(:)
+        integer :: design = design_oat
+        integer :: levels = 0                     !! FACTORIAL
+        integer :: nlhs = 0, seed = 0             !! LHS
+        real(wp) :: percent = zero                !! OAT
+        type(sweep_param_t), allocatable :: params(:)
+        type(deck_line_t), allocatable :: deck(:) !! the sweep deck as read
+    end type sweep_t
+
+    !> What one member run gave.
+    type :: member_record_t
+        integer :: status = -1                  !! exit code of the member (0 complete), -1 not run
+        character(len=msglen) :: message = ''   !! why it failed, or its warning
+        real(wp) :: outputs(nout) = zero        !! summary outputs (zero when it failed)
+        real(wp) :: t_reached = zero
+        real(wp) :: wall = zero
+        integer :: nevals = 0
+        integer :: rank = 0                     !! MPI rank that ran it
+    end type member_record_t
+
+contains
+
+    !> Read the sweep deck `path` (named `source` in messages), the base
+    !! deck it names, and check every parameter against the base deck.
+    subroutine read_sweep(path, source, sw, stat, errmsg)
+        character(len=*), intent(in) :: path, source
+        type(sweep_t), intent(out) :: sw
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(deck_reader_t) :: rd, bd
+        type(case_t) :: base
+        character(len=10) :: s
+        integer :: i, np, ntitle, nbase, ndesign, p
+        rd%top = source
+        call read_card_images(rd, path, source, 0)
+        if (.not. rd%failed() .and. rd%nlines == 0) &
+            call rd%fail(source//' line 1: the sweep deck is empty; expected a TITLE card first')
+        allocate (sw%params(0))
+        ntitle = 0; nbase = 0; ndesign = 0
+        do i = 1, rd%nlines
+            if (rd%failed()) exit
+            if (rd%lines(i)%text(9:10) /= '  ') then
+                call rd%fail(rd%where(i)//', columns 9-10: found "'//rd%lines(i)%text(9:10)// &
+                             '"; expected blanks after the card name (fields start in column 11)')
+                exit
+            end if
+            if (i == 1 .and. rd%key(i) /= 'TITLE') then
+                call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(rd%key(i))//'"; expected a TITLE card first')
+                exit
+            end if
+            select case (rd%key(i))
+            case ('TITLE')
+                ntitle = ntitle + 1
+                sw%title = adjustl(rd%lines(i)%text(11:80))
+            case ('BASE')
+                nbase = nbase + 1
+                sw%base = adjustl(rd%lines(i)%text(11:80))
+                if (len_trim(sw%base) == 0) call rd%fail(rd%where(i)//', columns 11-80 (BASE card): found no '// &
+                                                        'file name; expected the path of the base case deck')
+                if (.not. rd%failed()) then
+                    bd%top = trim(sw%base)
+                    call read_card_images(bd, trim(sw%base), trim(sw%base), 0)
+                    if (bd%failed()) call rd%fail('base deck named at '//rd%where(i)//': '//trim(bd%errmsg))
+                    if (.not. rd%failed()) sw%base_lines = bd%lines(1:bd%nlines)
+                end if
+            case ('H5FILE')
+                sw%h5file = adjustl(rd%lines(i)%text(11:80))
+            case ('DESIGN')
+                ndesign = ndesign + 1
+                call rd%name(i, 1, 'design', s)
+                select case (s)
+                case ('FACTORIAL')
+                    sw%design = design_factorial
+                    call rd%int(i, 2, 'levels per parameter', sw%levels, 2, 20)
+                case ('LHS')
+                    sw%design = design_lhs
+                    call rd%int(i, 2, 'number of runs', sw%nlhs, 2, max_runs)
+                    call rd%int(i, 3, 'seed', sw%seed, 1, 2147483646)
+                case ('OAT')
+                    sw%design = design_oat
+                    call rd%real(i, 2, 'step', '%', sw%percent, 1.0e-3_wp, 99.0_wp)
+                case default
+                    if (.not. rd%failed()) call rd%fail(rd%context(i, 1, 'design')//': found "'//trim(s)// &
+                                                        '"; expected FACTORIAL, LHS or OAT')
+                end select
+            case ('PARAM')
+                call param_card(rd, i, sw)
+            case ('END')
+                exit
+            case default
+                if (len_trim(rd%key(i)) == 0) then
+                    call rd%fail(rd%where(i)//', columns 1-8: found a blank card name; sweep cards have no '// &
+                                 'continuation cards')
+                else
+                    call rd%fail(rd%where(i)//', columns 1-8: found unknown card "'//trim(rd%key(i))// &
+                                 '"; expected TITLE, BASE, DESIGN, PARAM, H5FILE or END')
+                end if
+            end select
+        end do
+        if (.not. rd%failed()) then
+            if (nbase /= 1) call rd%fail(source//': found '//trim(int_str(nbase))//' BASE cards; expected one')
+            if (ndesign /= 1 .and. .not. rd%failed()) &
+                call rd%fail(source//': found '//trim(int_str(ndesign))//' DESIGN cards; expected one')
+            np = size(sw%params)
+            if (np == 0 .and. .not. rd%failed()) call rd%fail(source//': found no PARAM card; expected 1 to '// &
+                                                               trim(int_str(max_params)))
+        end if
+        if (.not. rd%failed()) sw%deck = rd%lines(1:rd%nlines)
+        ! the base deck as it is, then every parameter against it
+        if (.not. rd%failed()) then
+            call read_case_lines(sw%base_lines, trim(sw%base), base, stat, errmsg)
+            if (stat /= 0) call rd%fail('base deck '//trim(sw%base)//': '//trim(errmsg))
+        end if
+        if (.not. rd%failed()) then
+            do p = 1, size(sw%params)
+                call bind_param(rd, sw, base, sw%params(p))
+                if (rd%failed()) exit
+            end do
+        end if
+        if (.not. rd%failed()) then
+            if (design_runs(sw) > max_runs) call rd%fail(source//': the design has '// &
+                trim(int_str(design_runs(sw)))//' runs; at most '//trim(int_str(max_runs))//' are allowed')
+        end if
+        if (.not. rd%failed()) call check_extremes(rd, sw)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_sweep
+
+    !> One PARAM card: name, kind, target, item, low, high, spacing.
+    subroutine param_card(rd, i, sw)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(sweep_t), intent(inout) :: sw
+        type(sweep_param_t) :: p
+        character(len=10) :: s
+        integer :: ios, k
+        if (size(sw%params) >= max_params) then
+            call rd%fail(rd%where(i)//' (PARAM card): more than '//trim(int_str(max_params))//' parameters')
+            return
+        end if
+        p%card_line = i
+        call rd%name(i, 1, 'parameter name', p%name)
+        do k = 1, size(sw%params)
+            if (sw%params(k)%name == p%name .and. .not. rd%failed()) &
+                call rd%fail(rd%context(i, 1, 'parameter name')//': found "'//trim(p%name)// &
+                             '" a second time; expected a new name')
+        end do
+        call rd%name(i, 2, 'kind', s)
+        if (rd%failed()) return
+        if (s == 'FAMILY') then
+            p%kind = par_family
+        else if (s == 'BODY') then
+            p%kind = par_body
+        else if (s(1:5) == 'FIELD') then
+            p%kind = par_field
+            read (s(6:), *, iostat=ios) p%field
+            if (ios /= 0 .or. p%field < 1 .or. p%field > 3*nfields) then
+                call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FIELDn with n the '// &
+                             'field number 1 to 21 (8 to 14 on the first continuation card)')
+                return
+            end if
+        else
+            call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FAMILY, BODY or FIELDn')
+            return
+        end if
+        call rd%name(i, 3, 'target', p%target)
+        call rd%name(i, 4, 'item', p%item, optional_blank=p%kind == par_field)
+        if (sw%design == design_oat .and. rd%is_blank(i, 5) .and. rd%is_blank(i, 6)) then
+            p%low = zero; p%high = zero
+        else
+            call rd%real(i, 5, 'low', '-', p%low, -1.0e30_wp, 1.0e30_wp)
+            call rd%real(i, 6, 'high', '-', p%high, -1.0e30_wp, 1.0e30_wp)
+            if (.not. rd%failed() .and. .not. p%high > p%low) &
+                call rd%fail(rd%context(i, 6, 'high')//': found a high value not above the low value '// &
+                             trim(rd%raw(i, 5))//'; expected high > low')
+        end if
+        call rd%name(i, 7, 'spacing', s, optional_blank=.true.)
+        if (.not. rd%failed()) then
+            if (s == 'LOG') then
+                p%log_spacing = .true.
+            else if (s /= 'LIN' .and. s /= '') then
+                call rd%fail(rd%context(i, 7, 'spacing')//': found "'//trim(s)//'"; expected LIN, LOG or blank')
+            end if
+        end if
+        if (.not. rd%failed() .and. p%log_spacing .and. p%low <= zero .and. p%high > zero) &
+            call rd%fail(rd%context(i, 5, 'low')//': found '//trim(rd%raw(i, 5))// &
+                         '; expected a positive value for LOG spacing')
+        if (.not. rd%failed() .and. p%kind /= par_field .and. p%high > zero .and. p%low <= zero) &
+            call rd%fail(rd%context(i, 5, 'low')//': found '//trim(rd%raw(i, 5))// &
+                         '; expected a positive scale factor (FAMILY and BODY parameters scale the base values)')
+        if (.not. rd%failed()) sw%params = [sw%params, p]
+    end subroutine param_card
+
+    !> Resolve a parameter against the base case: family and property, body,
+    !! or the deck line and field, and its nominal value.
+    subroutine bind_param(rd, sw, base, p)
+        type(deck_reader_t), intent(inout) :: rd
+        type(sweep_t), intent(in) :: sw
+        type(case_t), intent(in) :: base
+        type(sweep_param_t), intent(inout) :: p
+        character(len=:), allocatable :: at
+        integer :: i, k, nfound, c1, c2, ios
+        at = rd%where(p%card_line)//' (PARAM '//trim(p%name)//')'
+        select case (p%kind)
+        case (par_family)
+            p%family = findloc(family_name, p%target, dim=1)
+            if (p%family == 0) then
+                call rd%fail(rd%context(p%card_line, 3, 'target')//': found "'//trim(p%target)// &
+                             '"; expected DISCS, LIGAMENTS, MUSCLES, LIMITS or SPRINGS')
+                return
+            end if
+            if (.not. any(family_items(p%family) == p%item)) then
+                call rd%fail(rd%context(p%card_line, 4, 'item')//': found "'//trim(p%item)//'"; expected '// &
+                             trim(items_text(p%family))//' for '//trim(p%target))
+                return
+            end if
+            if (family_count(base, p%family) == 0) &
+                call rd%fail(at//': the base deck has no '//trim(p%target)//'; nothing to vary')
+        case (par_body)
+            p%body = findloc(base%model%tree%name, p%target, dim=1)
+            if (p%body == 0) then
+                call rd%fail(rd%context(p%card_line, 3, 'target')//': found "'//trim(p%target)// &
+                             '"; expected a body of the base deck (after its MERGE cards)')
+                return
+            end if
+            if (p%item /= 'MASS' .and. p%item /= 'INERTIA') &
+                call rd%fail(rd%context(p%card_line, 4, 'item')//': found "'//trim(p%item)// &
+                             '"; expected MASS or INERTIA')
+        case (par_field)
+            nfound = 0
+            do i = 1, size(sw%base_lines)
+                if (upper(sw%base_lines(i)%text(1:8)) /= p%target(1:8)) cycle
+                if (len_trim(p%item) > 0) then
+                    if (upper(adjustl(sw%base_lines(i)%text(11:20))) /= p%item) cycle
+                end if
+                nfound = nfound + 1
+                k = i
+            end do
+            if (nfound /= 1) then
+                call rd%fail(at//': found '//trim(int_str(nfound))//' '//trim(p%target)//' cards'// &
+                             trim(merge(' named '//p%item, repeat(' ', 17), len_trim(p%item) > 0))// &
+                             ' in the base deck; expected exactly one')
+                return
+            end if
+            p%line = k + (p%field - 1)/nfields
+            if (p%line > size(sw%base_lines)) then
+                call rd%fail(at//': the '//trim(p%target)//' card has no continuation card for field '// &
+                             trim(int_str(p%field)))
+                return
+            end if
+            if (p%line /= k .and. len_trim(sw%base_lines(p%line)%text(1:10)) /= 0) then
+                call rd%fail(at//': the '//trim(p%target)//' card has no continuation card for field '// &
+                             trim(int_str(p%field)))
+                return
+            end if
+            call field_columns(1 + mod(p%field - 1, nfields), c1, c2)
+            read (sw%base_lines(p%line)%text(c1:c2), *, iostat=ios) p%nominal
+            if (ios /= 0 .or. len_trim(sw%base_lines(p%line)%text(c1:c2)) == 0) then
+                call rd%fail(at//': '//sw%base_lines(p%line)%source//' line '// &
+                             trim(int_str(sw%base_lines(p%line)%line))//', columns '//trim(int_str(c1))//'-'// &
+                             trim(int_str(c2))//' holds "'//trim(sw%base_lines(p%line)%text(c1:c2))// &
+                             '"; expected a number to vary')
+                return
+            end if
+        end select
+        if (rd%failed()) return
+        if (sw%design == design_oat) then
+            if (p%nominal == zero) call rd%fail(at//': the nominal value is 0; a one-at-a-time step of '// &
+                                                 'a percentage needs a nonzero nominal value')
+            if (p%log_spacing .and. p%nominal < zero) call rd%fail(at//': LOG spacing needs a positive nominal')
+        end if
+    end subroutine bind_param
+
+    !> Every parameter at its low and high value (OAT: its two steps), the
+    !! others nominal: the base deck must accept them.
+    subroutine check_extremes(rd, sw)
+        type(deck_reader_t), intent(inout) :: rd
+        type(sweep_t), intent(in) :: sw
+        type(case_t) :: cs
+        real(wp) :: v(size(sw%params)), ends(2)
+        integer :: p, e, stat
+        character(len=msglen) :: msg
+        do p = 1, size(sw%params)
+            if (sw%params(p)%kind /= par_field) cycle
+            ends = [sw%params(p)%low, sw%params(p)%high]
+            if (sw%design == design_oat) ends = oat_values(sw, p)
+            do e = 1, 2
+                v = sw%params%nominal
+                v(p) = ends(e)
+                call sweep_member_case(sw, v, cs, stat, msg)
+                if (stat /= 0) then
+                    call rd%fail(rd%where(sw%params(p)%card_line)//' (PARAM '//trim(sw%params(p)%name)// &
+                                 '): the value '//trim(field_text(ends(e)))//' is refused by the base deck: '// &
+                                 trim(msg))
+                    return
+                end if
+            end do
+        end do
+    end subroutine check_extremes
+
+    !> Number of member runs of the design.
+    pure integer function design_runs(sw) result(n)
+        type(sweep_t), intent(in) :: sw
+        real(wp) :: big
+        select case (sw%design)
+        case (design_factorial)
+            big = real(sw%levels, wp)**size(sw%params)
+            n = int(min(big, real(huge(1)/2, wp)))
+        case (design_lhs)
+            n = sw%nlhs
+        case default
+            n = 1 + 2*size(sw%params)
+        end select
+    end function design_runs
+
+    !> The design: v(p, r) is parameter p in member run r (a scale factor for
+    !! FAMILY and BODY parameters, the field value for FIELD parameters).
+    !! FACTORIAL: every combination of `levels` equally spaced values (log-
+    !! spaced for LOG), the first parameter varying fastest. LHS: one value in
+    !! each of n equal-probability strata per parameter, strata paired at
+    !! random (seeded, same on every machine). OAT: run 1 nominal, then each
+    !! parameter in turn at nominal*(1 - step) and nominal*(1 + step).
+    pure function sweep_design(sw) result(v)
+        type(sweep_t), intent(in) :: sw
+        real(wp), allocatable :: v(:, :)
+        integer :: np, n, r, p, idx, lev
+        integer, allocatable :: perm(:)
+        real(wp) :: u
+        type(rng_t) :: rng
+        np = size(sw%params)
+        n = design_runs(sw)
+        allocate (v(np, n))
+        do r = 1, n
+            v(:, r) = sw%params%nominal
+        end do
+        select case (sw%design)
+        case (design_factorial)
+            do r = 1, n
+                idx = r - 1
+                do p = 1, np
+                    lev = mod(idx, sw%levels)
+                    idx = idx/sw%levels
+                    v(p, r) = spread_value(sw%params(p), real(lev, wp)/real(sw%levels - 1, wp))
+                end do
+            end do
+        case (design_lhs)
+            call rng_seed(rng, sw%seed)
+            allocate (perm(n))
+            do p = 1, np
+                call rng_permutation(rng, perm)
+                do r = 1, n
+                    call rng_uniform(rng, u)
+                    v(p, r) = spread_value(sw%params(p), (real(perm(r) - 1, wp) + u)/real(n, wp))
+                end do
+            end do
+        case (design_oat)
+            do p = 1, np
+                v(p, 2*p:2*p + 1) = oat_values(sw, p)
+            end do
+        end select
+        ! a FIELD value is what the deck field can hold
+        do p = 1, np
+            if (sw%params(p)%kind == par_field) then
+                do r = 1, n
+                    v(p, r) = field_value(v(p, r))
+                end do
+            end if
+        end do
+    end function sweep_design
+
+    !> Value at fraction u in [0, 1] of the parameter's range.
+    pure real(wp) function spread_value(p, u) result(x)
+        type(sweep_param_t), intent(in) :: p
+        real(wp), intent(in) :: u
+        if (p%log_spacing) then
+            x = exp(log(p%low) + u*(log(p%high) - log(p%low)))
+        else
+            x = p%low + u*(p%high - p%low)
+        end if
+        x = min(max(x, p%low), p%high)
+    end function spread_value
+
+    !> The two one-at-a-time values of parameter p.
+    pure function oat_values(sw, p) result(v)
+        type(sweep_t), intent(in) :: sw
+        integer, intent(in) :: p
+        real(wp) :: v(2)
+        v = sw%params(p)%nominal*[one - sw%percent/100.0_wp, one + sw%percent/100.0_wp]
+    end function oat_values
+
+    !> The case of one member: the base deck with the FIELD values written
+    !! into their fields, read as any deck, then the FAMILY and BODY scale
+    !! factors applied to the model. Sampling is made 0.1 ms or finer so
+    !! that the injury criteria are computed.
+    subroutine sweep_member_case(sw, v, cs, stat, errmsg)
+        type(sweep_t), intent(in) :: sw
+        real(wp), intent(in) :: v(:)          !! one value per parameter
+        type(case_t), intent(out) :: cs
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(deck_line_t), allocatable :: lines(:)
+        integer :: p, c1, c2
+        logical :: rebuild_tree
+        lines = sw%base_lines
+        do p = 1, size(sw%params)
+            if (sw%params(p)%kind /= par_field) cycle
+            call field_columns(1 + mod(sw%params(p)%field - 1, nfields), c1, c2)
+            lines(sw%params(p)%line)%text(c1:c2) = field_text(v(p))
+        end do
+        call read_case_lines(lines, trim(sw%base), cs, stat, errmsg)
+        if (stat /= 0) return
+        rebuild_tree = .false.
+        do p = 1, size(sw%params)
+            associate (q => sw%params(p))
+                select case (q%kind)
+                case (par_family)
+                    call scale_family(cs, q%family, q%item, v(p))
+                case (par_body)
+                    if (q%item == 'MASS') then
+                        cs%model%tree%mass(q%body) = v(p)*cs%model%tree%mass(q%body)
+                    else
+                        cs%model%tree%inertia(:, :, q%body) = v(p)*cs%model%tree%inertia(:, :, q%body)
+                        rebuild_tree = .true.
+                    end if
+                end select
+            end associate
+        end do
+        if (rebuild_tree) then
+            call tree_build(cs%model%tree, stat, errmsg)
+            if (stat /= 0) return
+        end if
+        call model_set_neutral(cs%model)     ! disc stiffness and damping matrices
+        if (cs%sample_dt > 1.0e-4_wp) cs%sample_dt = 1.0e-4_wp
+        cs%h5file = ''
+    end subroutine sweep_member_case
+
+    !> Properties of a family that a FAMILY parameter may scale.
+    pure function family_items(f) result(items)
+        integer, intent(in) :: f
+        character(len=10) :: items(3)
+        items = ''
+        select case (f)
+        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G']
+        case (fam_ligaments); items(1:2) = [character(len=10) :: 'L1', 'L2']
+        case (fam_muscles); items(1:2) = [character(len=10) :: 'M1', 'M2']
+        case (fam_limits); items(1:2) = [character(len=10) :: 'C0', 'C1']
+        case (fam_springs); items(1:2) = [character(len=10) :: 'K', 'C']
+        end select
+    end function family_items
+
+    pure function items_text(f) result(s)
+        integer, intent(in) :: f
+        character(len=40) :: s
+        character(len=10) :: items(3)
+        items = family_items(f)
+        s = trim(items(1))//', '//trim(items(2))
+        if (len_trim(items(3)) > 0) s = trim(items(1))//', '//trim(items(2))//' or '//trim(items(3))
+    end function items_text
+
+    pure integer function family_count(cs, f) result(n)
+        type(case_t), intent(in) :: cs
+        integer, intent(in) :: f
+        select case (f)
+        case (fam_discs); n = size(cs%model%discs)
+        case (fam_ligaments); n = size(cs%model%ligaments)
+        case (fam_muscles); n = size(cs%model%muscles)
+        case (fam_limits); n = size(cs%model%limits)
+        case default; n = size(cs%model%springs)
+        end select
+    end function family_count
+
+    !> Multiply one property of every element of a family by `factor`.
+    pure subroutine scale_family(cs, f, item, factor)
+        type(case_t), intent(inout) :: cs
+        integer, intent(in) :: f
+        character(len=*), intent(in) :: item
+        real(wp), intent(in) :: factor
+        select case (f)
+        case (fam_discs)
+            select case (item)
+            case ('E'); cs%model%discs%d1 = factor*cs%model%discs%d1
+            case ('VISCOUS'); cs%model%discs%d2 = factor*cs%model%discs%d2
+            case ('G'); cs%model%discs%g = factor*cs%model%discs%g
+            end select
+        case (fam_ligaments)
+            select case (item)
+            case ('L1'); cs%model%ligaments%l1 = factor*cs%model%ligaments%l1
+            case ('L2'); cs%model%ligaments%l2 = factor*cs%model%ligaments%l2
+            end select
+        case (fam_muscles)
+            select case (item)
+            case ('M1'); cs%model%muscles%m1 = factor*cs%model%muscles%m1
+            case ('M2'); cs%model%muscles%m2 = factor*cs%model%muscles%m2
+            end select
+        case (fam_limits)
+            select case (item)
+            case ('C0'); cs%model%limits%c0 = factor*cs%model%limits%c0
+            case ('C1'); cs%model%limits%c1 = factor*cs%model%limits%c1
+            end select
+        case (fam_springs)
+            select case (item)
+            case ('K'); cs%model%springs%stiffness = factor*cs%model%springs%stiffness
+            case ('C'); cs%model%springs%damping = factor*cs%model%springs%damping
+            end select
+        end select
+    end subroutine scale_family
+
+    !> Run member `v` of the sweep (listing discarded, no HDF5) and
+    !! summarise it. A member that fails keeps its exit code and message.
+    subroutine run_member(sw, v, rec)
+        type(sweep_t), intent(in) :: sw
+        real(wp), intent(in) :: v(:)
+        type(member_record_t), intent(out) :: rec
+        type(case_t) :: cs
+        type(run_result_t) :: res
+        integer :: stat, lu, ios
+        character(len=msglen) :: msg
+        call sweep_member_case(sw, v, cs, stat, msg)
+        if (stat /= 0) then
+            rec%status = exit_deck
+            rec%message = msg
+            return
+        end if
+        open (newunit=lu, file='/dev/null', action='write', iostat=ios)
+        if (ios /= 0) then
+            rec%status = exit_deck
+            rec%message = 'cannot open /dev/null for the discarded listing'
+            return
+        end if
+        call run_case(cs, lu, '', res, keep_samples=.true.)
+        close (lu)
+        rec%status = res%exit_code
+        rec%t_reached = res%t_reached
+        rec%wall = res%wall
+        rec%nevals = res%nevals
+        if (res%exit_code /= exit_ok) then
+            rec%message = res%message
+            return
+        end if
+        rec%message = res%warning
+        rec%outputs = member_summary(cs, res)
+    end subroutine run_member
+
+    !> The summary outputs (output_names) of a complete run: peak head
+    !! rotation (signed value of largest magnitude) and its time, peak
+    !! angular velocity, peak angular acceleration (CFC 60), peak head
+    !! resultant acceleration (CFC 1000), upper-neck loads (CFC 600), HIC15,
+    !! the largest Nij mode and NIC.
+    function member_summary(cs, res) result(y)
+        type(case_t), intent(in) :: cs
+        type(run_result_t), intent(in) :: res
+        real(wp) :: y(nout)
+        type(channel_set_t) :: ch
+        real(wp), allocatable :: alpha(:)
+        integer :: k
+        call channels_define(cs, ch)
+        k = channel(ch, 'HEAD_THETY')
+        y(1) = extreme(res%samples(k, :))
+        y(2) = 1000.0_wp*res%samples_t(maxloc(abs(res%samples(k, :)), dim=1))
+        y(3) = extreme(res%samples(channel(ch, 'HEAD_OMEGY'), :))
+        allocate (alpha(size(res%samples_t)))
+        call cfc_filter(res%samples(channel(ch, 'HEAD_ALPHY'), :), cs%sample_dt, 60.0_wp, alpha)
+        y(4) = extreme(alpha)
+        y(5:) = zero
+        if (res%criteria%computed) then
+            y(5) = maxval(res%criteria%head_ar)
+            y(6) = res%criteria%tension
+            y(7) = res%criteria%compression
+            y(8) = res%criteria%shear
+            y(9) = res%criteria%flexion
+            y(10) = res%criteria%extension
+            y(11) = res%criteria%hic15
+            y(12) = maxval(res%criteria%nij_max)
+            y(13) = res%criteria%nic_max
+        end if
+    end function member_summary
+
+    pure real(wp) function extreme(x) result(e)
+        real(wp), intent(in) :: x(:)
+        e = x(maxloc(abs(x), dim=1))
+    end function extreme
+
+    pure integer function channel(ch, name) result(k)
+        type(channel_set_t), intent(in) :: ch
+        character(len=*), intent(in) :: name
+        k = findloc(ch%name, name, dim=1)
+    end function channel
+
+    !> The most precise text of v that fits a 10-column field.
+    pure function field_text(v) result(s)
+        real(wp), intent(in) :: v
+        character(len=10) :: s
+        character(len=24) :: buf
+        integer :: d, ios
+        do d = 9, 1, -1
+            write (buf, '(es24.'//achar(48 + d)//'e0)', iostat=ios) v
+            if (ios /= 0) cycle
+            buf = adjustl(buf)
+            if (len_trim(buf) <= 10) exit
+        end do
+        s = buf(1:10)
+    end function field_text
+
+    !> v as it reads back from its field text.
+    pure real(wp) function field_value(v) result(x)
+        real(wp), intent(in) :: v
+        character(len=10) :: s
+        integer :: ios
+        s = field_text(v)
+        read (s, *, iostat=ios) x
+        if (ios /= 0) x = v
+    end function field_value
+
+end module hn_sweep

@@ -1,0 +1,315 @@
+!> What a finished sweep reports: the sensitivities of every summary output
+!! to every parameter, a paged listing (parameters, one row per member run,
+!! failed runs with their messages, the sensitivity table) and one HDF5
+!! file with the inputs and outputs of every run. Layout in docs/sweeps.md.
+module hn_sweep_report
+    use hn_kinds, only: wp, zero, msglen
+    use hn_sweep, only: sweep_t, member_record_t, output_names, output_units, nout, design_name, &
+                        design_oat, design_factorial, design_lhs, par_family, par_body
+    use hn_sensitivity, only: oat_sensitivity, regression_sensitivity
+    use hn_listing, only: listing_t
+    use hn_h5, only: h5_file_t
+    use hn_deck_reader, only: int_str
+    implicit none
+    private
+
+    public :: sweep_finish, sweep_sensitivities, sweep_listing, sweep_write_h5, param_label
+
+    !> Outputs shown in the listing's run and sensitivity tables.
+    integer, parameter :: shown(8) = [1, 2, 4, 6, 8, 9, 10, 12]
+
+contains
+
+    !> Everything after the member runs: sensitivities, the listing on unit
+    !! lu, and the result file `h5name` ('' for none).
+    subroutine sweep_finish(sw, v, recs, nranks, wall, lu, h5name, version, stat, errmsg)
+        type(sweep_t), intent(in) :: sw
+        real(wp), intent(in) :: v(:, :)
+        type(member_record_t), intent(in) :: recs(:)
+        integer, intent(in) :: nranks, lu
+        real(wp), intent(in) :: wall
+        character(len=*), intent(in) :: h5name, version
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        real(wp) :: s(size(v, 1), nout), r2(nout)
+        logical :: valid(size(v, 1), nout)
+        call sweep_sensitivities(sw, v, recs, s, valid, r2)
+        call sweep_listing(sw, v, recs, s, valid, r2, nranks, wall, lu, version)
+        stat = 0
+        errmsg = ''
+        if (len(h5name) > 0) call sweep_write_h5(sw, v, recs, s, valid, r2, nranks, wall, h5name, version, &
+                                                 stat, errmsg)
+    end subroutine sweep_finish
+
+    !> Sensitivity s(p, k) of output k to parameter p (elasticities for OAT,
+    !! standardised regression coefficients otherwise), their validity, and
+    !! R^2 of each regression (1 for OAT).
+    subroutine sweep_sensitivities(sw, v, recs, s, valid, r2)
+        type(sweep_t), intent(in) :: sw
+        real(wp), intent(in) :: v(:, :)                  !! (np, nrun) design
+        type(member_record_t), intent(in) :: recs(:)
+        real(wp), intent(out) :: s(size(v, 1), nout)
+        logical, intent(out) :: valid(size(v, 1), nout)
+        real(wp), intent(out) :: r2(nout)
+        real(wp) :: x(size(v, 1), size(v, 2))
+        logical :: ok(size(recs))
+        real(wp) :: y(size(recs))
+        integer :: k, p
+        ok = recs%status == 0
+        if (sw%design == design_oat) then
+            r2 = 1.0_wp
+            do k = 1, nout
+                y = recs%outputs(k)
+                call oat_sensitivity(y, ok, sw%percent, s(:, k), valid(:, k))
+            end do
+        else
+            x = v
+            do p = 1, size(v, 1)
+                if (sw%params(p)%log_spacing) x(p, :) = log(v(p, :))
+            end do
+            do k = 1, nout
+                y = recs%outputs(k)
+                call regression_sensitivity(x, y, ok, s(:, k), r2(k), valid(1, k))
+                valid(:, k) = valid(1, k)
+            end do
+        end if
+    end subroutine sweep_sensitivities
+
+    !> "FAMILY MUSCLES M1", "BODY HEAD MASS", "DISC C2C1 F5".
+    pure function param_label(sw, p) result(s)
+        type(sweep_t), intent(in) :: sw
+        integer, intent(in) :: p
+        character(len=32) :: s
+        associate (q => sw%params(p))
+            select case (q%kind)
+            case (par_family); s = 'FAMILY '//trim(q%target)//' '//trim(q%item)
+            case (par_body); s = 'BODY '//trim(q%target)//' '//trim(q%item)
+            case default; s = trim(q%target)//' '//trim(q%item)//' F'//trim(int_str(q%field))
+            end select
+        end associate
+    end function param_label
+
+    !> The sweep listing on unit lu.
+    subroutine sweep_listing(sw, v, recs, s, valid, r2, nranks, wall, lu, version)
+        type(sweep_t), intent(in) :: sw
+        real(wp), intent(in) :: v(:, :)
+        type(member_record_t), intent(in) :: recs(:)
+        real(wp), intent(in) :: s(:, :), r2(:)
+        logical, intent(in) :: valid(:, :)
+        integer, intent(in) :: nranks, lu
+        real(wp), intent(in) :: wall
+        character(len=*), intent(in) :: version
+        type(listing_t) :: lst
+        character(len=400) :: line
+        integer :: p, r, k, np, nrun, nfail, kk
+        np = size(v, 1)
+        nrun = size(v, 2)
+        nfail = count(recs%status /= 0)
+        call lst%start(lu, 'SWEEP: '//sw%title, version)
+        call lst%echo_deck(sw%deck)
+        call lst%new_page()
+        call lst%put(' PARAMETER SWEEP')
+        call lst%put('')
+        call lst%put('   base deck       '//trim(sw%base))
+        select case (sw%design)
+        case (design_oat)
+            write (line, '(a,f8.3,a)') '   design          OAT: run 1 nominal, then each parameter at -/+', &
+                sw%percent, ' % (normalised sensitivities)'
+        case default
+            line = '   design          '//trim(design_name(sw%design))
+            if (sw%levels > 0 .and. sw%design == design_factorial) line = trim(line)//', '//trim(int_str(sw%levels))// &
+                                                           ' levels per parameter'
+            if (sw%design == design_lhs) line = trim(line)//', seed '//trim(int_str(sw%seed))
+            line = trim(line)//' (standardised regression coefficients)'
+        end select
+        call lst%put(line)
+        write (line, '(a,i0,a,i0,a,i0,a,f10.2,a,f8.3,a)') '   runs            ', nrun, ' (', nrun - nfail, &
+            ' complete, ', nfail, ' failed) on ', real(nranks, wp), ' ranks, ', wall, ' s wall time'
+        call lst%put(line)
+        call lst%put('')
+        call lst%put('   NO  NAME        WHAT                              LOW           HIGH          NOMINAL   SPACING')
+        do p = 1, np
+            associate (q => sw%params(p))
+                write (line, '(i5,2x,a10,2x,a32,3es14.5,2x,a)') p, q%name, param_label(sw, p), q%low, q%high, &
+                    q%nominal, merge('LOG', 'LIN', q%log_spacing)
+                if (sw%design == design_oat) write (line, '(i5,2x,a10,2x,a32,28x,es14.5,2x,a)') p, q%name, &
+                    param_label(sw, p), q%nominal, 'OAT'
+            end associate
+            call lst%put(line)
+        end do
+        ! one row per run
+        call lst%new_page()
+        call lst%put(' MEMBER RUNS (FAMILY and BODY parameters as scale factors, FIELD parameters as values)')
+        if (np > 6) call lst%put(' (the first 6 parameters are shown; every input and output is in the HDF5 file)')
+        call lst%put('')
+        line = '   RUN ST'
+        do p = 1, min(np, 6)
+            line = trim(line)//'  '//adjustr(sw%params(p)%name)
+        end do
+        do k = 1, size(shown)
+            line = trim(line)//' '//adjustr(output_names(shown(k)))
+        end do
+        call lst%put(line)
+        line = '         '
+        do p = 1, min(np, 6)
+            line = trim(line)//'  '//repeat(' ', 10)
+        end do
+        do k = 1, size(shown)
+            line = line(1:9 + 12*min(np, 6) + 11*(k - 1))//' '//adjustr(output_units(shown(k))(1:8))
+        end do
+        call lst%put(line)
+        do r = 1, nrun
+            write (line, '(i6,i3)') r, recs(r)%status
+            do p = 1, min(np, 6)
+                write (line(len_trim(line) + 1:), '(2x,es10.3)') v(p, r)
+            end do
+            if (recs(r)%status == 0) then
+                do k = 1, size(shown)
+                    write (line(len_trim(line) + 1:), '(1x,g10.4)') recs(r)%outputs(shown(k))
+                end do
+            else
+                line = trim(line)//'  FAILED (below)'
+            end if
+            call lst%put(line)
+        end do
+        if (nfail > 0) then
+            call lst%put('')
+            call lst%put(' FAILED RUNS (exit code and message; they are excluded from the sensitivities)')
+            do r = 1, nrun
+                if (recs(r)%status == 0) cycle
+                write (line, '(a,i0,a,i0,a)') '   run ', r, ' (exit ', recs(r)%status, '): '
+                call lst%put(trim(line)//' '//trim(recs(r)%message))
+            end do
+        end if
+        ! the sensitivity table
+        call lst%need(8 + np)
+        call lst%put('')
+        if (sw%design == design_oat) then
+            call lst%put(' SENSITIVITIES: percent change of the output per percent change of the parameter')
+        else
+            call lst%put(' SENSITIVITIES: standardised regression coefficients (R^2 of the linear fit below)')
+        end if
+        call lst%put('')
+        line = '   PARAMETER '
+        do k = 1, size(shown)
+            line = trim(line)//' '//adjustr(output_names(shown(k)))
+        end do
+        call lst%put(line)
+        do p = 1, np
+            line = '   '//sw%params(p)%name
+            do k = 1, size(shown)
+                kk = shown(k)
+                if (valid(p, kk)) then
+                    write (line(len_trim(line) + 1:), '(1x,f10.3)') s(p, kk)
+                else
+                    line = trim(line)//'        n/a'
+                end if
+            end do
+            call lst%put(line)
+        end do
+        if (sw%design /= design_oat) then
+            line = '   R^2       '
+            do k = 1, size(shown)
+                write (line(len_trim(line) + 1:), '(1x,f10.3)') r2(shown(k))
+            end do
+            call lst%put(line)
+        end if
+        call lst%put('')
+        call lst%put(' MOST INFLUENTIAL PARAMETER PER OUTPUT')
+        do k = 1, nout
+            if (.not. any(valid(:, k))) cycle
+            p = maxloc(abs(s(:, k)), mask=valid(:, k), dim=1)
+            write (line, '(3x,a10,1x,a8,2x,a10,f10.3)') output_names(k), output_units(k), sw%params(p)%name, s(p, k)
+            call lst%put(line)
+        end do
+        if (nfail > 0) call lst%message(trim(int_str(nfail))//' OF '//trim(int_str(nrun))// &
+                                        ' MEMBER RUNS FAILED; SEE THE LIST ABOVE')
+    end subroutine sweep_listing
+
+    !> Write the sweep result file (layout in docs/sweeps.md).
+    subroutine sweep_write_h5(sw, v, recs, s, valid, r2, nranks, wall, fname, version, stat, errmsg)
+        type(sweep_t), intent(in) :: sw
+        real(wp), intent(in) :: v(:, :)
+        type(member_record_t), intent(in) :: recs(:)
+        real(wp), intent(in) :: s(:, :), r2(:)
+        logical, intent(in) :: valid(:, :)
+        integer, intent(in) :: nranks
+        real(wp), intent(in) :: wall
+        character(len=*), intent(in) :: fname, version
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(h5_file_t) :: h5
+        character(len=:), allocatable :: deck
+        character(len=32) :: labels(size(v, 1))
+        character(len=10) :: names(size(v, 1))
+        real(wp) :: outs(nout, size(recs)), col(size(recs)), pcol(size(v, 1))
+        integer :: icol(size(recs)), ipcol(size(v, 1))
+        character(len=msglen) :: msgs(size(recs))
+        integer :: k, np, nrun
+        np = size(v, 1)
+        nrun = size(v, 2)
+        call h5%create(fname, stat, errmsg)
+        if (stat /= 0) return
+        call h5%attr_string('/', 'code', 'HHNECK '//version)
+        call h5%attr_string('/', 'title', trim(sw%title))
+        call h5%attr_string('/', 'base', trim(sw%base))
+        call h5%attr_string('/', 'design', trim(design_name(sw%design)))
+        deck = ''
+        do k = 1, size(sw%deck)
+            deck = deck//sw%deck(k)%text//new_line('a')
+        end do
+        call h5%attr_string('/', 'sweep_deck', deck)
+        deck = ''
+        do k = 1, size(sw%base_lines)
+            deck = deck//sw%base_lines(k)%text//new_line('a')
+        end do
+        call h5%attr_string('/', 'base_deck', deck)
+        call h5%attr_real('/', 'ranks', [real(nranks, wp)])
+        call h5%attr_real('/', 'wall_time', [wall])
+        call h5%attr_real('/', 'failed_runs', [real(count(recs%status /= 0), wp)])
+        call h5%group('/params')
+        do k = 1, np
+            names(k) = sw%params(k)%name
+            labels(k) = param_label(sw, k)
+        end do
+        call h5%write_strings('/params/name', names)
+        call h5%write_strings('/params/what', labels)
+        pcol = sw%params%low
+        call h5%write_real('/params/low', pcol, [np])
+        pcol = sw%params%high
+        call h5%write_real('/params/high', pcol, [np])
+        pcol = sw%params%nominal
+        call h5%write_real('/params/nominal', pcol, [np])
+        ipcol = merge(1, 0, sw%params%log_spacing)
+        call h5%write_int('/params/log_spacing', ipcol, [np])
+        call h5%group('/runs')
+        call h5%write_real('/runs/inputs', v, [np, nrun])
+        do k = 1, nrun
+            outs(:, k) = recs(k)%outputs
+        end do
+        call h5%write_real('/runs/outputs', outs, [nout, nrun])
+        call h5%write_strings('/runs/output_names', output_names)
+        call h5%write_strings('/runs/output_units', output_units)
+        icol = recs%status
+        call h5%write_int('/runs/status', icol, [nrun])
+        msgs = recs%message
+        call h5%write_strings('/runs/message', msgs)
+        icol = recs%rank
+        call h5%write_int('/runs/rank', icol, [nrun])
+        col = recs%wall
+        call h5%write_real('/runs/wall', col, [nrun])
+        icol = recs%nevals
+        call h5%write_int('/runs/evaluations', icol, [nrun])
+        col = recs%t_reached
+        call h5%write_real('/runs/t_reached', col, [nrun])
+        call h5%group('/sensitivity')
+        call h5%attr_string('/sensitivity', 'method', merge('OAT elasticity                   ', &
+                                                            'standardised regression (SRC)    ', sw%design == design_oat))
+        call h5%write_real('/sensitivity/coefficient', s, [np, nout])
+        call h5%write_int('/sensitivity/valid', merge(1, 0, valid), [np, nout])
+        call h5%write_real('/sensitivity/r2', r2, [nout])
+        call h5%attr_string('/', 'status', 'complete')
+        call h5%close(.true., stat, errmsg)
+    end subroutine sweep_write_h5
+
+end module hn_sweep_report
