@@ -1,50 +1,56 @@
-!> A small, portable random-number stream for designs of experiments: the
-!! Park–Miller "minimal standard" generator with multiplier 48271
-!! (x <- 48271 x mod (2^31 - 1)), in 64-bit integers so that no product
-!! overflows. The same seed gives the same design with every compiler and
-!! on every MPI rank, which the intrinsic random_number does not promise.
+!> A small, portable random-number stream: SplitMix64 (Steele, Lea &
+!! Flood, OOPSLA 2014), which gives the same numbers with every compiler, on
+!! every machine and on every MPI rank (the intrinsic random_number
+!! promises none of that). Used by the designs of experiments of sweeps and
+!! by the random states of the tests. The state update relies on 64-bit
+!! two's-complement wrap-around, as every Fortran compiler in use does
+!! (do not build with integer-overflow trapping).
 module hn_random
     use hn_kinds, only: wp, i8
     implicit none
     private
 
-    public :: rng_t, rng_seed, rng_uniform, rng_permutation
+    public :: rng_t
 
-    integer(i8), parameter :: modulus = 2147483647_i8   !! 2^31 - 1
-    integer(i8), parameter :: multiplier = 48271_i8
-
-    !> State of one stream.
+    !> State of one stream; a default-initialised stream is reproducible.
     type :: rng_t
-        integer(i8) :: x = 1_i8
+        integer(i8) :: s = 88172645463325252_i8
+    contains
+        procedure :: seed => rng_seed
+        procedure :: uniform => rng_uniform
+        procedure :: permutation => rng_permutation
     end type rng_t
 
 contains
 
-    !> Start a stream from a seed in [1, 2^31 - 2] (other seeds are folded in).
-    pure subroutine rng_seed(rng, seed)
-        type(rng_t), intent(out) :: rng
+    !> Restart the stream from an integer seed.
+    pure subroutine rng_seed(me, seed)
+        class(rng_t), intent(inout) :: me
         integer, intent(in) :: seed
-        rng%x = modulo(int(seed, i8), modulus - 1_i8) + 1_i8
+        me%s = 88172645463325252_i8 + int(seed, i8)
     end subroutine rng_seed
 
-    !> Next number, uniform in the open interval (0, 1).
-    pure subroutine rng_uniform(rng, u)
-        type(rng_t), intent(inout) :: rng
-        real(wp), intent(out) :: u
-        rng%x = modulo(multiplier*rng%x, modulus)
-        u = real(rng%x, wp)/real(modulus, wp)
-    end subroutine rng_uniform
+    !> Uniform deviate in [a, b).
+    real(wp) function rng_uniform(me, a, b) result(u)
+        class(rng_t), intent(inout) :: me
+        real(wp), intent(in) :: a, b
+        integer(i8) :: z
+        me%s = me%s + (-7046029254386353131_i8)
+        z = me%s
+        z = ieor(z, shiftr(z, 30))*(-4658895280553007687_i8)
+        z = ieor(z, shiftr(z, 27))*(-7723592293110705685_i8)
+        z = ieor(z, shiftr(z, 31))
+        u = a + (b - a)*real(shiftr(z, 11), wp)*2.0_wp**(-53)
+    end function rng_uniform
 
-    !> A random permutation of 1..n (Fisher–Yates).
-    pure subroutine rng_permutation(rng, p)
-        type(rng_t), intent(inout) :: rng
+    !> A random permutation of 1..size(p) (Fisher–Yates).
+    subroutine rng_permutation(me, p)
+        class(rng_t), intent(inout) :: me
         integer, intent(out) :: p(:)
         integer :: i, j, tmp
-        real(wp) :: u
         p = [(i, i=1, size(p))]
         do i = size(p), 2, -1
-            call rng_uniform(rng, u)
-            j = 1 + min(i - 1, int(u*i))
+            j = 1 + min(i - 1, int(me%uniform(0.0_wp, 1.0_wp)*i))
             tmp = p(i); p(i) = p(j); p(j) = tmp
         end do
     end subroutine rng_permutation

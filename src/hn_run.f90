@@ -359,9 +359,9 @@ contains
             call spectral_radius(sys, tgood, ygood, rho, lead, st, m)
             if (st /= 0 .or. rho <= zero) return
             write (buf, '(3a,es9.2,a,es10.3,a,a,a,f7.2,a,f5.2,a,es9.2,a)') '. Likely cause: ', &
-                trim(cs%integrator), ' with step ', cs%h, ' s is beyond its stability limit: the fastest mode '// &
-                'has |lambda| = ', rho, ' 1/s, mostly in ', trim(dof_label(cs%model%tree, &
-                sys%ws%ifree(1 + mod(lead - 1, nf)))), ' (h |lambda| = ', cs%h*rho, ' > ', limit, &
+                trim(cs%integrator), ' with step ', cs%h, ' s is at or beyond its stability limit: the fastest '// &
+                'mode has |lambda| = ', rho, ' 1/s, mostly in ', trim(dof_label(cs%model%tree, &
+                sys%ws%ifree(1 + mod(lead - 1, nf)))), ' (h |lambda| = ', cs%h*rho, ' at the last good state; limit ', limit, &
                 '); use a step below ', 0.8_wp*limit/rho, ' s, an error-controlled method (DOPRI5, ADAMS) or ROS2'
             s = trim(buf)
         end function diagnosis

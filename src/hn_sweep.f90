@@ -15,7 +15,7 @@ module hn_sweep
     use hn_run, only: run_case, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
-    use hn_random, only: rng_t, rng_seed, rng_uniform, rng_permutation
+    use hn_random, only: rng_t
     implicit none
     private
 
@@ -379,7 +379,7 @@ contains
     !! each of n equal-probability strata per parameter, strata paired at
     !! random (seeded, same on every machine). OAT: run 1 nominal, then each
     !! parameter in turn at nominal*(1 - step) and nominal*(1 + step).
-    pure function sweep_design(sw) result(v)
+    function sweep_design(sw) result(v)
         type(sweep_t), intent(in) :: sw
         real(wp), allocatable :: v(:, :)
         integer :: np, n, r, p, idx, lev
@@ -403,12 +403,12 @@ contains
                 end do
             end do
         case (design_lhs)
-            call rng_seed(rng, sw%seed)
+            call rng%seed(sw%seed)
             allocate (perm(n))
             do p = 1, np
-                call rng_permutation(rng, perm)
+                call rng%permutation(perm)
                 do r = 1, n
-                    call rng_uniform(rng, u)
+                    u = rng%uniform(zero, one)
                     v(p, r) = spread_value(sw%params(p), (real(perm(r) - 1, wp) + u)/real(n, wp))
                 end do
             end do

@@ -1,35 +1,16 @@
-!> Shared fixtures of the tests: a reproducible random generator, random
+!> Shared fixtures of the tests: the reproducible random generator, random
 !! trees and small textbook mechanisms.
 module hn_test_models
-    use hn_kinds, only: wp, zero, one, msglen, i8
+    use hn_kinds, only: wp, zero, one, msglen
     use hn_rotation, only: axis_angle_matrix
     use hn_tree, only: body_tree_t, tree_allocate, tree_build
+    use hn_random, only: rng_t
     implicit none
     private
 
     public :: rng_t, random_tree, random_inertia, pendulum_tree, elliptic_k
 
-    !> SplitMix64 generator: the same numbers on every compiler and machine.
-    type :: rng_t
-        integer(i8) :: s = 88172645463325252_i8
-    contains
-        procedure :: uniform => rng_uniform
-    end type rng_t
-
 contains
-
-    !> Uniform deviate in [a, b).
-    real(wp) function rng_uniform(me, a, b) result(u)
-        class(rng_t), intent(inout) :: me
-        real(wp), intent(in) :: a, b
-        integer(i8) :: z
-        me%s = me%s + (-7046029254386353131_i8)
-        z = me%s
-        z = ieor(z, shiftr(z, 30))*(-4658895280553007687_i8)
-        z = ieor(z, shiftr(z, 27))*(-7723592293110705685_i8)
-        z = ieor(z, shiftr(z, 31))
-        u = a + (b - a)*real(shiftr(z, 11), wp)*2.0_wp**(-53)
-    end function rng_uniform
 
     !> A random centroidal inertia: principal values obeying the triangle
     !! inequality, rotated to random principal axes.

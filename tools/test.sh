@@ -60,5 +60,34 @@ wait "$pid"
 set -e
 [ ! -e "$tmp/kill.h5" ]
 echo "PASS  no kill.h5 after SIGKILL (the partial file stays under kill.h5.part)"
+echo "== a parameter sweep over MPI: 2 ranks give exactly the serial results; diverging members are reported"
+# the same compiler wrapper and flags for the serial main program and the MPI
+# driver, so that the member runs are the same machine code
+MPI_BUILD="--profile release --flag -DHHNECK_MPI"
+FPM_FC=mpifort fpm build $MPI_BUILD > "$tmp/mpi_build.log" 2>&1 || { cat "$tmp/mpi_build.log"; exit 1; }
+hh=$(FPM_FC=mpifort fpm run $MPI_BUILD --runner echo 2>/dev/null | tail -n 1)
+sm=$(FPM_FC=mpifort fpm run $MPI_BUILD --example sweep_mpi --runner echo 2>/dev/null | tail -n 1)
+sed 's/^CONTROL .*/CONTROL   0.05      5.0E-5    0.005     RK4/' input/nbdl15g.inp > "$tmp/base.inp"
+cat > "$tmp/sweep.inp" <<EOF
+TITLE     TEST SWEEP: LATIN HYPERCUBE WITH DIVERGING MEMBERS
+BASE      $tmp/base.inp
+DESIGN    LHS       12        7
+PARAM     DISC_E    FAMILY    DISCS     E         0.5       1500.0    LOG
+PARAM     MUSC_K    FAMILY    MUSCLES   M1        0.5       2.0
+PARAM     HEAD_M    FIELD3    BODY      HEAD      3.0       4.5
+EOF
+set +e
+"$hh" --sweep --h5 "$tmp/serial.h5" < "$tmp/sweep.inp" > "$tmp/serial.txt" 2> "$tmp/serial.err"
+rc_serial=$?
+mpirun --allow-run-as-root --oversubscribe -np 2 "$sm" "$tmp/sweep.inp" --h5 "$tmp/mpi.h5" \
+    > "$tmp/mpi.txt" 2> "$tmp/mpi.err"
+rc_mpi=$?
+set -e
+nfail=$(grep -c "FAILED (below)" "$tmp/serial.txt" || true)
+[ "$rc_serial" -eq 6 ] && [ "$rc_mpi" -eq 6 ] && [ "$nfail" -ge 1 ] && [ "$nfail" -lt 12 ] || {
+    echo "FAIL  sweep exit codes serial $rc_serial, MPI $rc_mpi (expected 6), $nfail failed members"
+    tail -n 5 "$tmp/serial.err" "$tmp/mpi.err"; exit 1; }
+echo "PASS  serial and 2-rank sweeps finish with exit code 6 and list $nfail failed member(s)"
+python3 tools/compare_sweeps.py "$tmp/serial.h5" "$tmp/mpi.h5" --expect-failed "$nfail"
 rm -rf "$tmp"
 echo "== all tests passed"

@@ -1,0 +1,56 @@
+#!/usr/bin/env python3
+"""Compare two sweep result files member by member.
+
+    python3 tools/compare_sweeps.py A.h5 B.h5 [--expect-failed N]
+
+Passes when the designs, the status and message of every member, its
+evaluation count and every summary output are exactly equal (bit for bit:
+the same build must give the same numbers however the members were spread
+over ranks), and, with --expect-failed, when exactly N members failed and
+every failed member has a message. Prints one PASS or FAIL line per check
+and exits non-zero on any failure.
+"""
+import sys
+
+import h5py
+import numpy as np
+
+
+def main(argv):
+    if len(argv) < 3:
+        print(__doc__, file=sys.stderr)
+        return 1
+    expect_failed = None
+    if "--expect-failed" in argv:
+        expect_failed = int(argv[argv.index("--expect-failed") + 1])
+    a, b = h5py.File(argv[1], "r"), h5py.File(argv[2], "r")
+    passes = failures = 0
+
+    def check(ok, what, detail=""):
+        nonlocal passes, failures
+        print(("PASS  " if ok else "FAIL  ") + what + (f"  [{detail}]" if detail else ""))
+        passes += 1 if ok else 0
+        failures += 0 if ok else 1
+
+    for path in ["runs/inputs", "runs/outputs", "runs/status", "runs/evaluations", "runs/t_reached",
+                 "runs/message", "sensitivity/coefficient", "sensitivity/valid"]:
+        x, y = a[path][()], b[path][()]
+        check(x.shape == y.shape and np.array_equal(x, y), f"{path} identical", f"shape {x.shape}")
+    ranks = sorted(set(b["runs/rank"][()].tolist()))
+    nranks = int(b.attrs["ranks"][0])
+    check(ranks == list(range(nranks)), f"every one of the {nranks} ranks of the second file ran members",
+          "ranks used: " + " ".join(map(str, ranks)))
+    if expect_failed is not None:
+        status = b["runs/status"][()]
+        msgs = b["runs/message"][()]
+        failed = np.flatnonzero(status != 0)
+        check(len(failed) == expect_failed and all(len(msgs[i].strip()) > 0 for i in failed)
+              and np.all(b["runs/outputs"][()][failed] == 0.0) and np.all(np.isfinite(b["runs/outputs"][()])),
+              f"{expect_failed} failed member(s) recorded with exit code and message, outputs zero, no NaN",
+              "; ".join(f"run {i + 1}: exit {status[i]}" for i in failed))
+    print(f"{passes} passed, {failures} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
