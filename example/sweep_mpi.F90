@@ -9,9 +9,10 @@
 !! (as root add --allow-run-as-root; more ranks than cores: --oversubscribe).
 !! The deck is named on the command line because mpirun gives standard
 !! input to rank 0 only. Every rank takes the next member number from a
-!! counter on rank 0 (MPI_Fetch_and_op, passive target) whenever it is
-!! free, so long and short members balance themselves; rank 0 runs members
-!! too. Built without -DHHNECK_MPI (plain `fpm build`), the same program
+!! counter in an MPI window on rank 0 (MPI_Win_allocate, MPI_Fetch_and_op
+!! under a passive-target lock) whenever it is free, so long and short
+!! members balance themselves; rank 0 runs members too. One rank needs no
+!! counter. Built without -DHHNECK_MPI (plain `fpm build`), the same program
 !! runs the members one after the other.
 !!
 !! Exit codes as the main program: 0 all members complete, 2 sweep deck
@@ -38,8 +39,7 @@ program sweep_mpi
     real(wp) :: wall
 #ifdef HHNECK_MPI
     integer :: ierr, win
-    integer, target :: counter(1)
-    integer(kind=MPI_ADDRESS_KIND) :: winsize, disp
+    integer(kind=MPI_ADDRESS_KIND) :: winsize, disp, baseptr
 #endif
 
     rank = 0
@@ -89,25 +89,39 @@ program sweep_mpi
     call system_clock(c0, rate)
 
 #ifdef HHNECK_MPI
-    ! the shared member counter lives on rank 0
-    counter = 0
-    winsize = 0
-    if (rank == 0) winsize = storage_size(counter)/8
-    call mpi_win_create(counter, winsize, storage_size(counter)/8, MPI_INFO_NULL, MPI_COMM_WORLD, win, ierr)
-    call mpi_win_lock_all(0, win, ierr)
-    disp = 0
+    r = 0
+    if (nranks > 1) then
+        ! the shared member counter lives in a window on rank 0
+        winsize = 0
+        if (rank == 0) winsize = storage_size(r)/8
+        call mpi_win_allocate(winsize, storage_size(r)/8, MPI_INFO_NULL, MPI_COMM_WORLD, baseptr, win, ierr)
+        call mpi_win_lock_all(0, win, ierr)
+        disp = 0
+        if (rank == 0) then
+            r = 0
+            call mpi_put(r, 1, MPI_INTEGER, 0, disp, 1, MPI_INTEGER, win, ierr)
+            call mpi_win_flush(0, win, ierr)
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+    end if
     do
-        call mpi_fetch_and_op(1, r, MPI_INTEGER, 0, disp, MPI_SUM, win, ierr)
-        call mpi_win_flush(0, win, ierr)
-        r = r + 1
+        if (nranks > 1) then
+            call mpi_fetch_and_op(1, r, MPI_INTEGER, 0, disp, MPI_SUM, win, ierr)
+            call mpi_win_flush(0, win, ierr)
+            r = r + 1
+        else
+            r = r + 1
+        end if
         if (r > nrun) exit
         call run_member(sw, v(:, r), recs(r))
         recs(r)%rank = rank
         write (error_unit, '(a,i0,a,i0,a,i0,a,i0,a,f7.2,a)') 'sweep_mpi: rank ', rank, ': run ', r, ' of ', nrun, &
             ': exit ', recs(r)%status, ', ', recs(r)%wall, ' s'
     end do
-    call mpi_win_unlock_all(win, ierr)
-    call mpi_win_free(win, ierr)
+    if (nranks > 1) then
+        call mpi_win_unlock_all(win, ierr)
+        call mpi_win_free(win, ierr)
+    end if
     call gather_records()
 #else
     do r = 1, nrun

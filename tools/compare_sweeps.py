@@ -38,7 +38,9 @@ def main(argv):
         check(x.shape == y.shape and np.array_equal(x, y), f"{path} identical", f"shape {x.shape}")
     ranks = sorted(set(b["runs/rank"][()].tolist()))
     nranks = int(b.attrs["ranks"][0])
-    check(ranks == list(range(nranks)), f"every one of the {nranks} ranks of the second file ran members",
+    nrun = b["runs/status"].shape[0]
+    check(ranks == list(range(min(nranks, nrun))) if nrun >= nranks else set(ranks) <= set(range(nranks)),
+          f"the work was spread over the {nranks} rank(s) of the second file",
           "ranks used: " + " ".join(map(str, ranks)))
     if expect_failed is not None:
         status = b["runs/status"][()]
