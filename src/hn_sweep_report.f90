@@ -200,17 +200,17 @@ contains
             do k = 1, size(shown)
                 kk = shown(k)
                 if (valid(p, kk)) then
-                    write (line(len_trim(line) + 1:), '(1x,f10.3)') s(p, kk)
+                    write (line(14 + 11*(k - 1):), '(f10.3)') s(p, kk)
                 else
-                    line = trim(line)//'        n/a'
+                    line(14 + 11*(k - 1):) = '       n/a'
                 end if
             end do
             call lst%put(line)
         end do
         if (sw%design /= design_oat) then
-            line = '   R^2       '
+            line = '   R^2'
             do k = 1, size(shown)
-                write (line(len_trim(line) + 1:), '(1x,f10.3)') r2(shown(k))
+                write (line(14 + 11*(k - 1):), '(f10.3)') r2(shown(k))
             end do
             call lst%put(line)
         end if
