@@ -7,7 +7,7 @@ module hn_listing
     use hn_case, only: case_t, deck_line_t
     use hn_channels, only: channel_set_t
     use hn_tree, only: dof_label
-    use hn_model, only: family_name, nfamilies, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
+    use hn_model, only: family_name, nfamilies, family_count
     use hn_linsolve, only: solver_name
     use hn_assessment, only: assessment_t
     implicit none
@@ -172,7 +172,7 @@ contains
             call me%put('')
             call me%put('   ELEMENTS')
             write (s, '(a,5(3x,a,1x,i3,1x,a))') '  ', &
-                (trim(family_name(f)), family_count(cs, f), merge('(ON) ', '(OFF)', md%family_on(f)), f=1, nfamilies)
+                (trim(family_name(f)), family_count(md, f), merge('(ON) ', '(OFF)', md%family_on(f)), f=1, nfamilies)
             call me%put(s)
             write (s, '(a,i3)') '   APPLIED FORCE/COUPLE TABLES', size(md%applied)
             call me%put(s)
@@ -201,19 +201,6 @@ contains
             call me%put(s)
         end associate
     end subroutine listing_model_summary
-
-    pure integer function family_count(cs, f) result(n)
-        type(case_t), intent(in) :: cs
-        integer, intent(in) :: f
-        select case (f)
-        case (fam_discs); n = size(cs%model%discs)
-        case (fam_ligaments); n = size(cs%model%ligaments)
-        case (fam_muscles); n = size(cs%model%muscles)
-        case (fam_limits); n = size(cs%model%limits)
-        case (fam_springs); n = size(cs%model%springs)
-        case default; n = 0
-        end select
-    end function family_count
 
     !> A number in 11 columns: fixed point when readable, else exponent.
     pure function num(v) result(s)

@@ -14,7 +14,7 @@ module hn_model
     implicit none
     private
 
-    public :: model_t, model_init, model_set_neutral, neutral_coordinates
+    public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count
 
     !> Element families that can be switched on and off.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
@@ -42,6 +42,20 @@ module hn_model
     end type model_t
 
 contains
+
+    !> Number of elements of family f in the model.
+    pure integer function family_count(model, f) result(n)
+        type(model_t), intent(in) :: model
+        integer, intent(in) :: f
+        select case (f)
+        case (fam_discs); n = size(model%discs)
+        case (fam_ligaments); n = size(model%ligaments)
+        case (fam_muscles); n = size(model%muscles)
+        case (fam_limits); n = size(model%limits)
+        case (fam_springs); n = size(model%springs)
+        case default; n = 0
+        end select
+    end function family_count
 
     !> Start a model on a built tree: nothing prescribed, no elements.
     pure subroutine model_init(model, tree)

@@ -10,7 +10,7 @@ module hn_sweep
     use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper
     use hn_deck, only: read_case_lines
     use hn_tree, only: tree_build
-    use hn_model, only: model_set_neutral, family_name, nfamilies, fam_discs, fam_ligaments, fam_muscles, &
+    use hn_model, only: model_set_neutral, family_name, family_count, fam_discs, fam_ligaments, fam_muscles, &
                         fam_limits, fam_springs
     use hn_run, only: run_case, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
@@ -273,7 +273,7 @@ contains
                              trim(items_text(p%family))//' for '//trim(p%target))
                 return
             end if
-            if (family_count(base, p%family) == 0) &
+            if (family_count(base%model, p%family) == 0) &
                 call rd%fail(at//': the base deck has no '//trim(p%target)//'; nothing to vary')
         case (par_body)
             p%body = findloc(base%model%tree%name, p%target, dim=1)
@@ -515,18 +515,6 @@ contains
         s = trim(items(1))//', '//trim(items(2))
         if (len_trim(items(3)) > 0) s = trim(items(1))//', '//trim(items(2))//' or '//trim(items(3))
     end function items_text
-
-    pure integer function family_count(cs, f) result(n)
-        type(case_t), intent(in) :: cs
-        integer, intent(in) :: f
-        select case (f)
-        case (fam_discs); n = size(cs%model%discs)
-        case (fam_ligaments); n = size(cs%model%ligaments)
-        case (fam_muscles); n = size(cs%model%muscles)
-        case (fam_limits); n = size(cs%model%limits)
-        case default; n = size(cs%model%springs)
-        end select
-    end function family_count
 
     !> Multiply one property of every element of a family by `factor`.
     pure subroutine scale_family(cs, f, item, factor)
