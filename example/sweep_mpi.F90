@@ -89,7 +89,6 @@ program sweep_mpi
     call system_clock(c0, rate)
 
 #ifdef HHNECK_MPI
-    r = 0
     if (nranks > 1) then
         ! the shared member counter lives in a window on rank 0
         winsize = 0
@@ -104,31 +103,22 @@ program sweep_mpi
         end if
         call mpi_barrier(MPI_COMM_WORLD, ierr)
     end if
+#endif
+    r = 0
     do
-        if (nranks > 1) then
-            call mpi_fetch_and_op(1, r, MPI_INTEGER, 0, disp, MPI_SUM, win, ierr)
-            call mpi_win_flush(0, win, ierr)
-            r = r + 1
-        else
-            r = r + 1
-        end if
+        r = next_member(r)
         if (r > nrun) exit
         call run_member(sw, v(:, r), recs(r))
         recs(r)%rank = rank
         write (error_unit, '(a,i0,a,i0,a,i0,a,i0,a,f7.2,a)') 'sweep_mpi: rank ', rank, ': run ', r, ' of ', nrun, &
             ': exit ', recs(r)%status, ', ', recs(r)%wall, ' s'
     end do
+#ifdef HHNECK_MPI
     if (nranks > 1) then
         call mpi_win_unlock_all(win, ierr)
         call mpi_win_free(win, ierr)
     end if
     call gather_records()
-#else
-    do r = 1, nrun
-        call run_member(sw, v(:, r), recs(r))
-        write (error_unit, '(a,i0,a,i0,a,i0,a,f7.2,a)') 'sweep_mpi: run ', r, ' of ', nrun, ': exit ', &
-            recs(r)%status, ', ', recs(r)%wall, ' s'
-    end do
 #endif
     call system_clock(c1)
     wall = real(c1 - c0, wp)/real(rate, wp)
@@ -151,6 +141,21 @@ program sweep_mpi
     call finish(code)
 
 contains
+
+    !> The member after `r` this rank should run: the next number of the
+    !! shared counter over MPI, simply r + 1 on one rank.
+    integer function next_member(r) result(next)
+        integer, intent(in) :: r
+#ifdef HHNECK_MPI
+        if (nranks > 1) then
+            call mpi_fetch_and_op(1, next, MPI_INTEGER, 0, disp, MPI_SUM, win, ierr)
+            call mpi_win_flush(0, win, ierr)
+            next = next + 1
+            return
+        end if
+#endif
+        next = r + 1
+    end function next_member
 
     !> End every rank with the exit code of rank 0.
     subroutine finish(c)
