@@ -5,12 +5,46 @@ module hn_test_models
     use hn_rotation, only: axis_angle_matrix
     use hn_tree, only: body_tree_t, tree_allocate, tree_build
     use hn_random, only: rng_t
+    use hn_case, only: case_t
+    use hn_deck, only: read_case
     implicit none
     private
 
     public :: rng_t, random_tree, random_inertia, pendulum_tree, elliptic_k
+    public :: write_lines, delete_file, read_deck_lines
 
 contains
+
+    !> Write the lines to file fname, each ended by LF.
+    subroutine write_lines(fname, lines)
+        character(len=*), intent(in) :: fname, lines(:)
+        integer :: u, k
+        open (newunit=u, file=fname, status='replace', form='unformatted', access='stream')
+        do k = 1, size(lines)
+            write (u) trim(lines(k))//achar(10)
+        end do
+        close (u)
+    end subroutine write_lines
+
+    !> Delete file fname if it exists.
+    subroutine delete_file(fname)
+        character(len=*), intent(in) :: fname
+        integer :: u, ios
+        open (newunit=u, file=fname, status='old', iostat=ios)
+        if (ios == 0) close (u, status='delete')
+    end subroutine delete_file
+
+    !> Read a deck given as lines through the whole deck reader (as if from
+    !! standard input), by way of the scratch file `scratch`.
+    subroutine read_deck_lines(scratch, lines, cs, stat, msg)
+        character(len=*), intent(in) :: lines(:), scratch
+        type(case_t), intent(out) :: cs
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: msg
+        call write_lines(scratch, lines)
+        call read_case(scratch, 'stdin', cs, stat, msg)
+        call delete_file(scratch)
+    end subroutine read_deck_lines
 
     !> A random centroidal inertia: principal values obeying the triangle
     !! inequality, rotated to random principal axes.

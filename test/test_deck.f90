@@ -4,10 +4,11 @@
 program test_deck
     use hn_kinds, only: wp, deg, msglen, g_std
     use hn_case, only: case_t
-    use hn_deck, only: read_case
     use hn_motion, only: motion_eval
     use hn_testing, only: test_suite_t
+    use hn_test_models, only: read_deck_lines
     implicit none
+    character(len=*), parameter :: scratch = 'test_deck_scratch.inp'
 
     type(test_suite_t) :: suite
     character(len=80), allocatable :: good(:)
@@ -113,24 +114,6 @@ program test_deck
 
 contains
 
-    !> Read a deck given as lines; returns stat and message.
-    subroutine parse(lines, cs, stat, msg)
-        character(len=*), intent(in) :: lines(:)
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: msg
-        character(len=*), parameter :: fname = 'test_deck_scratch.inp'
-        integer :: u, k
-        open (newunit=u, file=fname, status='replace', form='unformatted', access='stream')
-        do k = 1, size(lines)
-            write (u) trim(lines(k))//achar(10)
-        end do
-        close (u)
-        call read_case(fname, 'stdin', cs, stat, msg)
-        open (newunit=u, file=fname, status='old')
-        close (u, status='delete')
-    end subroutine parse
-
     function replace(lines, k, text) result(out)
         character(len=80), intent(in) :: lines(:)
         integer, intent(in) :: k
@@ -161,7 +144,7 @@ contains
         integer :: stat, k
         character(len=msglen) :: msg
         logical :: ok
-        call parse(lines, cs, stat, msg)
+        call read_deck_lines(scratch, lines, cs, stat, msg)
         ok = stat /= 0
         do k = 1, size(needles)
             ok = ok .and. index(msg, trim(needles(k))) > 0
@@ -179,8 +162,8 @@ contains
         do k = 1, size(good)
             crlf(k) = trim(good(k))//achar(13)
         end do
-        call parse(good, a, s1, m1)
-        call parse(crlf, b, s2, m2)
+        call read_deck_lines(scratch, good, a, s1, m1)
+        call read_deck_lines(scratch, crlf, b, s2, m2)
         call suite%check(s1 == 0 .and. s2 == 0 .and. size(a%deck) == size(b%deck) .and. &
                          a%model%tree%mass(2) == b%model%tree%mass(2) .and. a%t_end == b%t_end, &
                          'a deck with CR LF line ends reads as the same deck', trim(m2))
@@ -201,7 +184,7 @@ contains
                 '          8.0       0.0       0.0       0.0       0.0       0.0', &
                 'MUSCLE    M1        BASE      ARM       3.0E7     400.0', &
                 '          0.0       0.0       0.0       0.0       0.0       0.0']
-        call parse(deck, cs, stat, msg)
+        call read_deck_lines(scratch, deck, cs, stat, msg)
         tri = .false.; far = .false.; stiff = .false.
         if (stat == 0) then
             do k = 1, size(cs%warnings)
@@ -220,7 +203,7 @@ contains
         character(len=msglen) :: msg
         real(wp) :: x, xd, xdd
         logical :: ok
-        call parse(good, cs, stat, msg)
+        call read_deck_lines(scratch, good, cs, stat, msg)
         if (stat /= 0) then
             call suite%check(.false., 'valid deck is read', trim(msg)); return
         end if

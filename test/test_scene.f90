@@ -11,10 +11,11 @@ program test_scene
     use hn_run, only: run_case, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     use hn_testing, only: test_suite_t
-    use hn_test_models, only: rng_t
+    use hn_test_models, only: rng_t, read_deck_lines
     implicit none
 
     type(test_suite_t) :: suite
+    character(len=*), parameter :: scratch = 'test_scene_scratch.inp'
     character(len=80), allocatable :: base(:)
     integer :: k
     character(len=2), parameter :: coords(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
@@ -32,23 +33,6 @@ program test_scene
     call suite%finish()
 
 contains
-
-    subroutine read_lines(lines, cs, stat, msg)
-        character(len=*), intent(in) :: lines(:)
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: msg
-        character(len=*), parameter :: fname = 'test_scene_scratch.inp'
-        integer :: u, i
-        open (newunit=u, file=fname, status='replace', form='unformatted', access='stream')
-        do i = 1, size(lines)
-            write (u) trim(lines(i))//achar(10)
-        end do
-        close (u)
-        call read_case(fname, 'stdin', cs, stat, msg)
-        open (newunit=u, file=fname, status='old')
-        close (u, status='delete')
-    end subroutine read_lines
 
     !> Two bodies 0.1 m apart along z merged: mass sum, mass centre at the
     !! mass-weighted mean, inertia I1 + I2 + parallel-axis terms (by hand).
@@ -85,9 +69,9 @@ contains
         integer :: sa, sb, j, jb
         character(len=msglen) :: ma, mb
         real(wp) :: err, scale
-        call read_lines([character(len=80) :: base, 'LOCK      C1        TX        TY        TZ        RX        RY        RZ'], &
-                        a, sa, ma)
-        call read_lines([character(len=80) :: base, 'MERGE     C2        C1'], b, sb, mb)
+        call read_deck_lines(scratch, [character(len=80) :: base, &
+                             'LOCK      C1        TX        TY        TZ        RX        RY        RZ'], a, sa, ma)
+        call read_deck_lines(scratch, [character(len=80) :: base, 'MERGE     C2        C1'], b, sb, mb)
         if (sa /= 0 .or. sb /= 0) then
             call suite%check(.false., 'merge versus lock decks read', trim(ma)//' '//trim(mb)); return
         end if
@@ -131,7 +115,7 @@ contains
         type(dyn_workspace_t) :: ws
         integer :: stat
         character(len=msglen) :: msg
-        call read_lines([character(len=80) :: base, 'SCENE     SAGITTAL'], cs, stat, msg)
+        call read_deck_lines(scratch, [character(len=80) :: base, 'SCENE     SAGITTAL'], cs, stat, msg)
         if (stat /= 0) then
             call suite%check(.false., 'sagittal deck read', trim(msg)); return
         end if
@@ -156,7 +140,7 @@ contains
                                                        'OC_FY', 'OC_MX', 'OC_MZ']
         real(wp) :: dev, outmax, scale
         call read_case('input/nbdl15g.inp', 'input/nbdl15g.inp', full, stat, msg)
-        call read_lines([character(len=80) :: 'INCLUDE   input/nbdl15g.inp', 'SCENE     SAGITTAL'], sag, stat, msg)
+        call read_deck_lines(scratch, [character(len=80) :: 'INCLUDE   input/nbdl15g.inp', 'SCENE     SAGITTAL'], sag, stat, msg)
         if (stat /= 0) then
             call suite%check(.false., 'sagittal NBDL deck read', trim(msg)); return
         end if

@@ -5,10 +5,10 @@
 program test_stability
     use hn_kinds, only: wp, msglen, deg
     use hn_case, only: case_t
-    use hn_deck, only: read_case
     use hn_run, only: run_case, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     use hn_testing, only: test_suite_t
+    use hn_test_models, only: read_deck_lines
     implicit none
 
     type(test_suite_t) :: suite
@@ -75,18 +75,10 @@ contains
         type(run_result_t), intent(out) :: res
         type(channel_set_t), intent(out) :: ch
         type(case_t) :: cs
-        character(len=*), parameter :: fname = 'test_stability_scratch.inp'
         character(len=msglen) :: msg
-        integer :: u, k, stat
-        open (newunit=u, file=fname, status='replace', form='unformatted', access='stream')
-        do k = 1, size(lines)
-            write (u) trim(lines(k))//achar(10)
-        end do
-        write (u) trim(control)//achar(10)
-        close (u)
-        call read_case(fname, 'stdin', cs, stat, msg)
-        open (newunit=u, file=fname, status='old')
-        close (u, status='delete')
+        integer :: u, stat
+        call read_deck_lines('test_stability_scratch.inp', [character(len=max(len(lines), len(control))) :: lines, control], &
+                             cs, stat, msg)
         if (stat /= 0) then
             res%exit_code = 2
             res%message = msg

@@ -13,6 +13,7 @@ program test_sweep
     use hn_sweep_report, only: sweep_sensitivities
     use hn_sensitivity, only: oat_sensitivity, regression_sensitivity
     use hn_random, only: rng_t
+    use hn_test_models, only: write_lines, delete_file
     use hn_deck, only: read_case
     use hn_run, only: run_case, run_result_t
     use hn_channels, only: channel_set_t, channels_define
@@ -33,8 +34,8 @@ program test_sweep
     call test_family_scale_disc_stiffness()
     call test_deck_errors()
     call test_diverging_member()
-    call delete(base)
-    call delete(scratch)
+    call delete_file(base)
+    call delete_file(scratch)
     call suite%finish()
 
 contains
@@ -55,25 +56,13 @@ contains
         close (w)
     end subroutine write_base
 
-    subroutine delete(path)
-        character(len=*), intent(in) :: path
-        integer :: u, ios
-        open (newunit=u, file=path, status='old', iostat=ios)
-        if (ios == 0) close (u, status='delete')
-    end subroutine delete
-
     !> A sweep deck in the scratch file, read.
     subroutine sweep_from(lines, sw, stat, msg)
         character(len=*), intent(in) :: lines(:)
         type(sweep_t), intent(out) :: sw
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: msg
-        integer :: u, k
-        open (newunit=u, file=scratch, status='replace', action='write')
-        do k = 1, size(lines)
-            write (u, '(a)') trim(lines(k))
-        end do
-        close (u)
+        call write_lines(scratch, lines)
         call read_sweep(scratch, 'sweep', sw, stat, msg)
     end subroutine sweep_from
 
