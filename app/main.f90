@@ -8,11 +8,12 @@
 !! The listing goes to standard output, diagnostics to standard error.
 !! Exit codes are listed in docs/errors.md.
 program hhneck
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-    use hn_kinds, only: msglen, wp
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use hn_kinds, only: msglen, wp, i8
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t, code_version, exit_usage, exit_deck, exit_ok, exit_output, &
+    use hn_version, only: code_version
+    use hn_run, only: run_case, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
                       exit_members_failed
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member
     use hn_sweep_report, only: sweep_finish
@@ -114,7 +115,7 @@ contains
         type(sweep_t) :: sw
         type(member_record_t), allocatable :: recs(:)
         real(wp), allocatable :: v(:, :)
-        integer(int64) :: c0, c1, rate
+        integer(i8) :: c0, c1, rate
         integer :: r
         call read_sweep('/dev/stdin', 'stdin', sw, stat, msg)
         if (stat /= 0) then

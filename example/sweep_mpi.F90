@@ -21,10 +21,11 @@ program sweep_mpi
 #ifdef HHNECK_MPI
     use mpi
 #endif
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-    use hn_kinds, only: wp, msglen
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use hn_kinds, only: wp, msglen, i8
     use hn_case, only: path_len
-    use hn_run, only: code_version, exit_deck, exit_usage, exit_output, exit_members_failed
+    use hn_version, only: code_version
+    use hn_run, only: exit_deck, exit_usage, exit_output, exit_members_failed
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member, nout
     use hn_sweep_report, only: sweep_finish
     implicit none
@@ -35,7 +36,7 @@ program sweep_mpi
     character(len=msglen) :: msg
     integer :: rank, nranks, stat, r, nrun, i, code
     logical :: h5_given, no_h5
-    integer(int64) :: c0, c1, rate
+    integer(i8) :: c0, c1, rate
     real(wp) :: wall
 #ifdef HHNECK_MPI
     integer :: ierr, win

@@ -9,7 +9,7 @@
 !! '*' in column 1 marks a comment; blank lines are ignored. CR LF line ends
 !! read as LF line ends; a carriage return anywhere else is an error.
 module hn_deck_reader
-    use hn_kinds, only: wp, msglen
+    use hn_kinds, only: wp, msglen, i8
     use hn_case, only: deck_line_t, path_len
     implicit none
     private
@@ -288,7 +288,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         integer :: u, n, cap
-        integer(8) :: sz
+        integer(i8) :: sz
         character(len=1) :: c
         character(len=:), allocatable :: tmp
         errmsg = ''

@@ -4,7 +4,7 @@ module hn_lapack
     implicit none
     private
 
-    public :: dposv, dpotrf, dpotrs, dpocon, dlansy, dgetrf, dgetrs
+    public :: dposv, dpotrf, dpocon, dlansy, dgetrf, dgetrs
 
     interface
         !> Solve A X = B for symmetric positive definite A (Cholesky).
@@ -24,14 +24,6 @@ module hn_lapack
             integer, intent(out) :: info
         end subroutine dpotrf
         !> Solve with a Cholesky factor from dpotrf.
-        pure subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-            import :: wp
-            character, intent(in) :: uplo
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(wp), intent(in) :: a(lda, *)
-            real(wp), intent(inout) :: b(ldb, *)
-            integer, intent(out) :: info
-        end subroutine dpotrs
         !> Reciprocal 1-norm condition estimate from a Cholesky factor.
         pure subroutine dpocon(uplo, n, a, lda, anorm, rcond, work, iwork, info)
             import :: wp

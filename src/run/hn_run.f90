@@ -19,12 +19,11 @@ module hn_run
     use hn_tree, only: dof_label
     use hn_assessment, only: assessment_t, assess, criteria_channels
     use hn_signals, only: signal_received
+    use hn_version, only: code_version
     implicit none
     private
 
-    public :: run_case, run_result_t, code_version, case_breakpoints
-
-    character(len=*), parameter :: code_version = '0.2.0'
+    public :: run_case, run_result_t, case_breakpoints
 
     real(wp), parameter :: switch_deadband = 1.0e-8_wp   !! |switching function| treated as zero
 

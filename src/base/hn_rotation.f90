@@ -11,8 +11,8 @@ module hn_rotation
     implicit none
     private
 
-    public :: cross, skew, rot_x, rot_y, rot_z, bryant_matrix, bryant_axes
-    public :: bryant_angles, rotation_vector, axis_angle_matrix, norm3, unit_matrix
+    public :: cross, skew, rot_y, bryant_matrix, bryant_axes
+    public :: rotation_vector, axis_angle_matrix, norm3, unit_matrix
 
 contains
 
@@ -45,14 +45,6 @@ contains
         m(1, 1) = one; m(2, 2) = one; m(3, 3) = one
     end function unit_matrix
 
-    !> Rotation by angle a [rad] about x.
-    pure function rot_x(a) result(m)
-        real(wp), intent(in) :: a
-        real(wp) :: m(3, 3)
-        real(wp) :: c, s
-        c = cos(a); s = sin(a)
-        m = reshape([one, zero, zero, zero, c, s, zero, -s, c], [3, 3])
-    end function rot_x
 
     !> Rotation by angle a [rad] about y.
     pure function rot_y(a) result(m)
@@ -63,14 +55,6 @@ contains
         m = reshape([c, zero, -s, zero, one, zero, s, zero, c], [3, 3])
     end function rot_y
 
-    !> Rotation by angle a [rad] about z.
-    pure function rot_z(a) result(m)
-        real(wp), intent(in) :: a
-        real(wp) :: m(3, 3)
-        real(wp) :: c, s
-        c = cos(a); s = sin(a)
-        m = reshape([c, s, zero, -s, c, zero, zero, zero, one], [3, 3])
-    end function rot_z
 
     !> Bryant-angle matrix Rx(q1) Ry(q2) Rz(q3) (child components -> parent components).
     pure function bryant_matrix(q) result(m)
@@ -104,15 +88,6 @@ contains
         u(:, 3) = [s2, -s1*c2, c1*c2]
     end function bryant_axes
 
-    !> Bryant angles of a rotation matrix (inverse of bryant_matrix), with
-    !! q2 in [-pi/2, pi/2].
-    pure function bryant_angles(m) result(q)
-        real(wp), intent(in) :: m(3, 3)
-        real(wp) :: q(3)
-        q(2) = asin(max(-one, min(one, m(1, 3))))
-        q(1) = atan2(-m(2, 3), m(3, 3))
-        q(3) = atan2(-m(1, 2), m(1, 1))
-    end function bryant_angles
 
     !> Rotation vector theta*n (axis n, angle theta in [0, pi]) of a rotation matrix.
     pure function rotation_vector(m) result(v)
