@@ -2,12 +2,13 @@
 # Installs what hhneck needs when it is missing, and nothing when it is all
 # there: gfortran, LAPACK/BLAS, the Fortran HDF5 library, pkg-config (Debian
 # packages), Open MPI for parameter sweeps on many cores (openmpi-bin,
-# libopenmpi-dev), fpm (from PyPI) and numpy, h5py, matplotlib for the
+# libopenmpi-dev), cmake and make (to build pFUnit for the tests, once, in
+# tools/pfunit.sh), fpm (from PyPI) and numpy, h5py, matplotlib for the
 # report tools. Run as root on Debian or Ubuntu. Safe to run again.
 set -eu
 
 missing=""
-for p in gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config openmpi-bin libopenmpi-dev; do
+for p in gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config openmpi-bin libopenmpi-dev cmake make; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
 done
 command -v python3 >/dev/null 2>&1 || missing="$missing python3"
