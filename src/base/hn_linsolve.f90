@@ -3,6 +3,7 @@
 !! and a condition estimate of a_ij.
 module hn_linsolve
     use hn_kinds, only: wp, zero, one, msglen
+    use hn_status, only: stat_ok, stat_singular, stat_ill_conditioned
     use hn_lapack, only: dposv, dpotrf, dpocon, dlansy
     implicit none
     private
@@ -27,8 +28,8 @@ contains
     end function solver_name
 
     !> Solve a x = b by Gaussian elimination with partial pivoting.
-    !! `a` and `b` are overwritten (b holds x on return). stat /= 0 when a
-    !! pivot is zero or below n*eps times the largest entry (singular).
+    !! `a` and `b` are overwritten (b holds x on return). stat = stat_singular
+    !! when a pivot is zero or below n*eps times the largest entry.
     !! pivot_ratio: smallest over largest |pivot| (a conditioning indicator).
     pure subroutine gauss_solve(a, b, stat, pivot_ratio, pivot_row)
         real(wp), intent(inout) :: a(:, :)
@@ -39,13 +40,13 @@ contains
         integer :: n, j, k, piv, kmin
         real(wp) :: tb, tol, tmp, pmin, pmax
         n = size(b)
-        stat = 0
+        stat = stat_ok
         tol = real(n, wp)*epsilon(one)*maxval(abs(a(1:n, 1:n)))
         pmin = huge(one); pmax = zero; kmin = 1
         do k = 1, n
             piv = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
             if (.not. (abs(a(piv, k)) > tol)) then
-                stat = k
+                stat = stat_singular
                 if (present(pivot_ratio)) pivot_ratio = zero
                 if (present(pivot_row)) pivot_row = k
                 return
@@ -77,14 +78,18 @@ contains
     end subroutine gauss_solve
 
     !> Solve a x = b for symmetric positive definite a with LAPACK dposv.
-    !! stat /= 0 when a is not positive definite.
-    pure subroutine cholesky_solve(a, b, stat)
+    !! stat = stat_singular when a is not positive definite.
+    pure subroutine cholesky_solve(a, b, stat, bad_row)
         real(wp), intent(inout) :: a(:, :)
         real(wp), intent(inout) :: b(:)
         integer, intent(out) :: stat
-        integer :: n
+        integer, intent(out), optional :: bad_row   !! order of the leading minor that is not positive definite
+        integer :: n, info
         n = size(b)
-        call dposv('U', n, 1, a, size(a, 1), b, n, stat)
+        call dposv('U', n, 1, a, size(a, 1), b, n, info)
+        stat = stat_ok
+        if (info /= 0) stat = stat_singular
+        if (present(bad_row)) bad_row = max(info, 0)
     end subroutine cholesky_solve
 
     !> Solve with the selected method; on failure errmsg says why and `row`
@@ -103,9 +108,8 @@ contains
         row = 0
         select case (method)
         case (solver_cholesky)
-            call cholesky_solve(a, b, stat)
-            if (stat /= 0) then
-                row = stat
+            call cholesky_solve(a, b, stat, row)
+            if (stat /= stat_ok) then
                 write (errmsg, '(a)') 'a_ij is not positive definite (Cholesky failed)'
                 return
             end if
@@ -120,7 +124,7 @@ contains
             end if
         end select
         if (ratio < ill) then
-            stat = -1
+            stat = stat_ill_conditioned
             write (errmsg, '(a,es9.2,a)') 'a_ij is ill-conditioned (pivot ratio ', ratio, ')'
         end if
     end subroutine linear_solve

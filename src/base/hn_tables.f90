@@ -2,6 +2,7 @@
 !! piecewise-linear table, and natural cubic splines.
 module hn_tables
     use hn_kinds, only: wp, zero, one
+    use hn_status, only: stat_ok, stat_bad_table
     implicit none
     private
 
@@ -20,19 +21,24 @@ module hn_tables
 
 contains
 
-    !> Store a table; stat = i > 0 when t(i) does not increase, -1 when empty.
-    pure subroutine table_set(tab, t, y, stat)
+    !> Store a table; stat = stat_bad_table when it is empty, t and y differ
+    !! in size, or a time does not increase (bad_point = its index).
+    pure subroutine table_set(tab, t, y, stat, bad_point)
         type(table_t), intent(out) :: tab
         real(wp), intent(in) :: t(:), y(:)
         integer, intent(out) :: stat
+        integer, intent(out), optional :: bad_point   !! index of the first time that does not increase (0: none)
         integer :: i
-        stat = 0
+        stat = stat_ok
+        if (present(bad_point)) bad_point = 0
         if (size(t) < 1 .or. size(t) /= size(y)) then
-            stat = -1; return
+            stat = stat_bad_table; return
         end if
         do i = 2, size(t)
             if (.not. (t(i) > t(i - 1))) then
-                stat = i; return
+                stat = stat_bad_table
+                if (present(bad_point)) bad_point = i
+                return
             end if
         end do
         tab%t = t

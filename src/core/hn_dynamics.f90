@@ -7,6 +7,7 @@
 !! work done by the prescribed motions.
 module hn_dynamics
     use hn_kinds, only: wp, zero, msglen, deg
+    use hn_status, only: stat_ok, stat_gimbal
     use hn_model, only: model_t
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities, kinetic_energy
     use hn_loads, only: body_loads_t, loads_allocate
@@ -146,7 +147,7 @@ contains
             end if
             cb = cos(beta)
             if (abs(cb) < cos_singular) then
-                stat = 2
+                stat = stat_gimbal
                 write (errmsg, '(a,es12.5,3a,f8.3,a)') 't = ', t, ' s: Bryant-angle singularity: body ', &
                     trim(model%tree%name(k)), ' has RY = ', beta/deg, &
                     ' deg (90 deg is singular: its RX and RZ axes coincide); lock or prescribe RX or RZ, or '// &
@@ -165,7 +166,7 @@ contains
         do i = 1, ws%npres
             ws%bf = ws%bf - ws%a(ws%ifree, ws%ipres(i))*ws%xdd(ws%ipres(i))
         end do
-        stat = 0
+        stat = stat_ok
         errmsg = ''
         if (ws%nfree > 0) call linear_solve(model%solver, ws%aff, ws%bf, stat, errmsg, k)
         if (stat /= 0) then

@@ -2,6 +2,7 @@
 !! a_ij (eq 17), the generalized active forces F_i (eq 19) and f_i (eq 18).
 module hn_kane
     use hn_kinds, only: wp, zero
+    use hn_status, only: stat_ok, stat_gimbal
     use hn_rotation, only: cross
     use hn_tree, only: body_tree_t
     use hn_kinematics, only: kinematics_t
@@ -93,17 +94,20 @@ contains
     !! plus the generalized forces q on coordinates: q on the translations of
     !! body k becomes a force pair at its joint point, q on its rotations a
     !! couple pair M with u_m . M = q_m (u_m the Bryant axes; M has no
-    !! component along a locked axis). stat = k when the Bryant axes of body
-    !! k are singular (cos(beta) = 0) and q acts on its rotations.
-    pure subroutine equivalent_body_loads(tree, kin, loads, force, moment, stat)
+    !! component along a locked axis). stat = stat_gimbal when the Bryant
+    !! axes of a body (bad_body) are singular (cos(beta) = 0) and q acts on
+    !! its rotations.
+    pure subroutine equivalent_body_loads(tree, kin, loads, force, moment, stat, bad_body)
         type(body_tree_t), intent(in) :: tree
         type(kinematics_t), intent(in) :: kin
         type(body_loads_t), intent(in) :: loads
         real(wp), intent(out) :: force(:, :), moment(:, :)   !! (3, nb) in R
         integer, intent(out) :: stat
+        integer, intent(out) :: bad_body   !! the body whose axes are singular (0: none)
         integer :: k, p, m, j
         real(wp) :: ft(3), qr(3), u(3, 3), c(3), det, adj(3, 3)
-        stat = 0
+        stat = stat_ok
+        bad_body = 0
         force = loads%force
         moment = loads%moment
         do k = 1, tree%nbody
@@ -134,7 +138,8 @@ contains
                 adj(:, 3) = cross(u(:, 1), u(:, 2))
                 det = dot_product(u(:, 1), adj(:, 1))
                 if (abs(det) < 1.0e-12_wp) then
-                    stat = k
+                    stat = stat_gimbal
+                    bad_body = k
                     cycle
                 end if
                 c = matmul(adj, qr)/det

@@ -16,6 +16,7 @@
 !!           finite differences, for stiff decks
 module hn_integrators
     use hn_kinds, only: wp, zero, one, two, half, msglen
+    use hn_status, only: stat_bad_input, stat_step_failed, stat_singular
     use hn_ode, only: ode_system_t
     use hn_lapack, only: dgetrf, dgetrs
     implicit none
@@ -136,7 +137,7 @@ contains
         case ('DOPRI5'); allocate (dopri5_t :: integ)
         case ('ROS2'); allocate (ros2_t :: integ)
         case default
-            stat = 1
+            stat = stat_bad_input
             allocate (rk4_t :: integ)
         end select
     end subroutine new_integrator
@@ -415,7 +416,7 @@ contains
         real(wp), intent(in) :: t, hmin
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
-        stat = 1
+        stat = stat_step_failed
         write (errmsg, '(a,es10.3,a,es12.5,a)') 'the step fell below ', hmin, ' s at t = ', t, &
             ' s: the deck may be too stiff for this method (try ROS2) or the tolerance too tight'
     end subroutine step_too_small
@@ -757,7 +758,7 @@ contains
             end do
             call dgetrf(n, n, me%wmat, n, me%ipiv, info)
             if (info /= 0) then
-                stat = 1
+                stat = stat_singular
                 write (errmsg, '(a,es12.5,a)') 'ROS2: the iteration matrix I - h d J is singular at t = ', me%t, ' s'
                 return
             end if

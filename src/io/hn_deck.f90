@@ -582,7 +582,7 @@ contains
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(named_table_t), allocatable, intent(out) :: tabs(:)
-        integer :: k, nt, i, npts, j, c, f, stat
+        integer :: k, nt, i, npts, j, c, f, stat, bad
         real(wp) :: tscale, yscale
         real(wp), allocatable :: t(:), y(:)
         nt = count(cards%key == 'TABLE')
@@ -621,12 +621,12 @@ contains
                     return
                 end if
             end do
-            call table_set(tabs(nt)%tab, t*tscale, y*yscale, stat)
-            if (stat > 0) then
-                c = i + 1 + (stat - 1)/3
+            call table_set(tabs(nt)%tab, t*tscale, y*yscale, stat, bad)
+            if (bad > 0) then
+                c = i + 1 + (bad - 1)/3
                 call rd%fail(rd%where(c)//' (TABLE '//trim(tabs(nt)%name)//' data, point '// &
-                             trim(int_str(stat))//'): times must increase strictly; found '// &
-                             trim(real_str(t(stat)))//' after '//trim(real_str(t(stat - 1))))
+                             trim(int_str(bad))//'): times must increase strictly; found '// &
+                             trim(real_str(t(bad)))//' after '//trim(real_str(t(bad - 1))))
                 return
             end if
             deallocate (t, y)

@@ -10,6 +10,7 @@
 !! read as LF line ends; a carriage return anywhere else is an error.
 module hn_deck_reader
     use hn_kinds, only: wp, msglen, i8
+    use hn_status, only: stat_bad_input
     use hn_case, only: deck_line_t, path_len
     implicit none
     private
@@ -60,7 +61,7 @@ contains
         class(deck_reader_t), intent(inout) :: me
         character(len=*), intent(in) :: msg
         if (me%stat /= 0) return
-        me%stat = 1
+        me%stat = stat_bad_input
         me%errmsg = msg
     end subroutine reader_fail
 

@@ -5,6 +5,7 @@
 !! f_i and xddot. Layout in docs/output-format.md (group /dump).
 module hn_dump
     use hn_kinds, only: wp, msglen
+    use hn_status, only: stat_ok
     use hn_model, only: model_t
     use hn_dynamics, only: dyn_workspace_t
     use hn_kinematics, only: body_accelerations
@@ -61,12 +62,13 @@ contains
         character(len=msglen), intent(out) :: errmsg
         real(wp) :: acc(3, model%tree%nbody), alpha(3, model%tree%nbody)
         real(wp) :: force(3, model%tree%nbody), moment(3, model%tree%nbody)
+        integer :: bad_body
         errmsg = ''
         call body_accelerations(model%tree, ws%kin, ws%xdd, acc, alpha)
-        call equivalent_body_loads(model%tree, ws%kin, ws%loads, force, moment, stat)
-        if (stat /= 0) then
-            write (errmsg, '(a,es12.5,a,i0,a)') 'dump at t = ', t, ' s: Bryant axes of body ', stat, &
-                ' are singular; joint couples cannot be written as body moments'
+        call equivalent_body_loads(model%tree, ws%kin, ws%loads, force, moment, stat, bad_body)
+        if (stat /= stat_ok) then
+            write (errmsg, '(a,es12.5,3a)') 'dump at t = ', t, ' s: Bryant axes of body ', &
+                trim(model%tree%name(bad_body)), ' are singular; joint couples cannot be written as body moments'
         end if
         call h5%append('/dump/time', [t])
         call h5%append('/dump/rotation', ws%kin%s)

@@ -36,7 +36,7 @@ contains
 
     !> Piecewise-linear acceleration table a(t) with position x0 and velocity
     !! v0 at t(1); integrated exactly. Outside the table the end acceleration
-    !! holds. stat = index of a non-increasing time, 0 on success.
+    !! holds. stat = stat_bad_table when the times do not increase.
     pure subroutine motion_accel_table(m, t, a, x0, v0, stat)
         type(motion_t), intent(out) :: m
         real(wp), intent(in) :: t(:), a(:), x0, v0

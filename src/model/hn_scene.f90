@@ -4,6 +4,7 @@
 !! and integrates only the bodies and coordinates that remain.
 module hn_scene
     use hn_kinds, only: wp, zero, msglen
+    use hn_status, only: stat_ok, stat_bad_model
     use hn_tree, only: body_tree_t, tree_allocate
     implicit none
     private
@@ -39,7 +40,7 @@ contains
         logical :: inset(tree%nbody), done(tree%nbody)
         real(wp) :: pos(3, tree%nbody), g(3), mtot, inertia(3, 3), d(3), eye(3, 3)
         integer :: k, p, n, nb, pass, i
-        stat = 0; errmsg = ''
+        stat = stat_ok; errmsg = ''
         nb = tree%nbody
         inset = .false.
         inset(survivor) = .true.
@@ -54,9 +55,9 @@ contains
                 if (done(k)) cycle
                 p = tree%parent(k)
                 if (p == 0) then
-                    stat = 1
+                    stat = stat_bad_model
                 else if (.not. inset(p)) then
-                    stat = 1
+                    stat = stat_bad_model
                 end if
                 if (stat /= 0) then
                     write (errmsg, '(5a)') 'body ', trim(tree%name(k)), ' does not hang from ', &
@@ -65,7 +66,7 @@ contains
                 end if
                 if (.not. done(p)) cycle
                 if (any(tree%q_ref(4:6, k) /= zero)) then
-                    stat = 1
+                    stat = stat_bad_model
                     write (errmsg, '(3a)') 'body ', trim(tree%name(k)), &
                         ' has a neutral rotation relative to its parent; MERGE needs the bodies aligned in the '// &
                         'neutral posture'

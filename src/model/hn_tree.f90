@@ -13,6 +13,7 @@
 !! head/neck model has x_(6(k-1)+m) as in the paper.
 module hn_tree
     use hn_kinds, only: wp, zero, msglen
+    use hn_status, only: stat_ok, stat_bad_model
     implicit none
     private
 
@@ -75,24 +76,27 @@ contains
     !! active-coordinate numbering and each body's chain of coordinates.
     !! Rejects parents out of range, loops, non-positive mass and inertia
     !! that is not symmetric positive definite.
-    pure subroutine tree_build(tree, stat, errmsg)
+    pure subroutine tree_build(tree, stat, errmsg, bad_body)
         type(body_tree_t), intent(inout) :: tree
-        integer, intent(out) :: stat                !! 0 on success
+        integer, intent(out) :: stat                !! stat_ok, or stat_bad_model with errmsg
         character(len=msglen), intent(out) :: errmsg !! reason on failure
+        integer, intent(out), optional :: bad_body  !! the body at fault (0 when none is)
         integer :: n, k, m, p, steps, pos, j
         logical, allocatable :: placed(:)
         real(wp) :: a(3, 3), d1, d2, d3, scale
 
-        stat = 0
+        stat = stat_ok
+        if (present(bad_body)) bad_body = 0
         errmsg = ''
         n = tree%nbody
         if (n < 1) then
-            stat = 1; errmsg = 'tree has no bodies'; return
+            stat = stat_bad_model; errmsg = 'tree has no bodies'; return
         end if
         do k = 1, n
             p = tree%parent(k)
             if (p < 0 .or. p > n .or. p == k) then
-                stat = 1
+                stat = stat_bad_model
+                if (present(bad_body)) bad_body = k
                 write (errmsg, '(a,i0,3a,i0,a,i0)') 'body ', k, ' (', trim(tree%name(k)), &
                     ') has parent ', p, '; expected 0..', n
                 if (p == k) errmsg = trim(errmsg)//' other than itself'
@@ -104,14 +108,16 @@ contains
                 p = tree%parent(p)
                 steps = steps + 1
                 if (steps > n) then
-                    stat = 1
+                    stat = stat_bad_model
+                if (present(bad_body)) bad_body = k
                     write (errmsg, '(a,i0,3a)') 'body ', k, ' (', trim(tree%name(k)), &
                         ') lies on a loop of parents; the bodies must form an open tree rooted at 0'
                     return
                 end if
             end do
             if (.not. (tree%mass(k) > zero) .or. tree%mass(k) > huge(1.0_wp)) then
-                stat = 1
+                stat = stat_bad_model
+                if (present(bad_body)) bad_body = k
                 write (errmsg, '(a,i0,3a,es10.3,a)') 'body ', k, ' (', trim(tree%name(k)), &
                     ') has mass ', tree%mass(k), ' kg; expected a positive finite mass'
                 return
@@ -124,7 +130,8 @@ contains
                  + a(1, 3)*(a(2, 1)*a(3, 2) - a(2, 2)*a(3, 1))
             if (maxval(abs(a - transpose(a))) > 1.0e-12_wp*scale .or. .not. (d1 > zero) &
                 .or. .not. (d2 > zero) .or. .not. (d3 > zero) .or. .not. (scale < huge(1.0_wp))) then
-                stat = 1
+                stat = stat_bad_model
+                if (present(bad_body)) bad_body = k
                 write (errmsg, '(a,i0,3a)') 'body ', k, ' (', trim(tree%name(k)), &
                     ') has an inertia matrix that is not symmetric positive definite'
                 return

@@ -6,6 +6,7 @@
 !! energy balance lost, a_ij singular, integrator failure.
 module hn_run
     use hn_kinds, only: wp, zero, one, msglen, i8
+    use hn_status, only: stat_ok, stat_not_finite, stat_energy_lost
     use hn_case, only: case_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
                            energy_t, nenergy
@@ -15,7 +16,7 @@ module hn_run
     use hn_results, only: results_t
     use hn_listing, only: listing_t
     use hn_dump, only: dump_record
-    use hn_motion, only: motion_breakpoints
+    use hn_breakpoints, only: case_breakpoints
     use hn_tree, only: dof_label
     use hn_assessment, only: assessment_t, assess, criteria_channels
     use hn_signals, only: signal_received
@@ -23,7 +24,7 @@ module hn_run
     implicit none
     private
 
-    public :: run_case, run_result_t, case_breakpoints
+    public :: run_case, run_result_t
 
     real(wp), parameter :: switch_deadband = 1.0e-8_wp   !! |switching function| treated as zero
 
@@ -51,45 +52,6 @@ module hn_run
     end type run_result_t
 
 contains
-
-    !> Times in (t_start, t_end) where an input table has a kink or jump:
-    !! knots of prescribed-motion tables, applied-load tables and muscle
-    !! activation tables; sorted, without repeats.
-    function case_breakpoints(cs) result(tb)
-        type(case_t), intent(in) :: cs
-        real(wp), allocatable :: tb(:), all(:)
-        integer :: j, e, i, n
-        allocate (all(0))
-        do j = 1, size(cs%model%prescribed)
-            if (cs%model%prescribed(j)) all = [all, motion_breakpoints(cs%model%motion(j))]
-        end do
-        do e = 1, size(cs%model%applied)
-            all = [all, cs%model%applied(e)%magnitude%t]
-        end do
-        do e = 1, size(cs%model%tables)
-            all = [all, cs%model%tables(e)%t]
-        end do
-        all = pack(all, all > cs%t_start .and. all < cs%t_end)
-        ! insertion sort, then drop repeats
-        do i = 2, size(all)
-            j = i
-            do while (j > 1)
-                if (all(j - 1) <= all(j)) exit
-                all([j - 1, j]) = all([j, j - 1])
-                j = j - 1
-            end do
-        end do
-        allocate (tb(size(all)))
-        n = 0
-        do i = 1, size(all)
-            if (n > 0) then
-                if (all(i) - tb(n) <= 1.0e-12_wp) cycle
-            end if
-            n = n + 1
-            tb(n) = all(i)
-        end do
-        tb = tb(1:n)
-    end function case_breakpoints
 
     !> Run the case, writing the listing on unit `lu` and results to
     !! `h5name` ('' for none). With keep_samples, every channel at every
@@ -321,9 +283,9 @@ contains
             character(len=msglen), intent(out) :: m
             type(energy_t) :: e
             real(wp) :: scale, resid
-            st = 0; m = ''
+            st = stat_ok; m = ''
             if (.not. all(abs(integ%y) <= huge(1.0_wp))) then
-                st = 1
+                st = stat_not_finite
                 write (m, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', integ%t, ' s'
                 return
             end if
@@ -337,7 +299,7 @@ contains
             resid = abs(e%total - ch%e0)
             res%energy_residual = max(res%energy_residual, resid)
             if (resid > 0.5_wp*res%energy_scale + 1.0e-3_wp) then
-                st = 1
+                st = stat_energy_lost
                 write (m, '(a,es12.5,a,es10.3,a,es10.3,a)') 'the energy balance was lost at t = ', integ%t, &
                     ' s (residual ', resid, ' J against energy flows of ', res%energy_scale, &
                     ' J): the solution is growing without a physical cause'
