@@ -64,7 +64,7 @@ program test_dump_newton_euler
 
     call h5%create(fname, stat, msg)
     call dump_open(h5, sys%model)
-    integ%rtol = 1.0e-8_wp; integ%atol = 1.0e-10_wp; integ%h = 1.0e-4_wp
+    call integ%set_tolerances(1.0e-8_wp, 1.0e-10_wp); call integ%set_step(1.0e-4_wp)
     t = zero
     call integ%init(sys, t, y, stat, msg)
     do i = 1, ntimes

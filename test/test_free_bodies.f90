@@ -52,7 +52,7 @@ contains
         y = zero
         y(7:9) = [0.1_wp, -0.2_wp, 0.05_wp]          ! drifting mass centre
         y(10:12) = [eps*spin, eps*spin, spin]        ! Bryant rates = body rates at zero angles
-        integ%rtol = 1.0e-12_wp; integ%atol = 1.0e-14_wp; integ%h = 1.0e-3_wp
+        call integ%set_tolerances(1.0e-12_wp, 1.0e-14_wp); call integ%set_step(1.0e-3_wp)
         t = zero
         call body_invariants(sys, y, t0e, h0, zax)
         call integ%init(sys, t, y, stat, msg)
@@ -152,7 +152,7 @@ contains
         h0 = angular_momentum(sys%model%tree, sys%ws%kin)
         pscale = sum(tree%mass)*maxval(abs(y(n + 1:2*n)))
         hscale = norm3(h0) + 0.1_wp*pscale
-        integ%rtol = 1.0e-12_wp; integ%atol = 1.0e-14_wp; integ%h = 1.0e-4_wp
+        call integ%set_tolerances(1.0e-12_wp, 1.0e-14_wp); call integ%set_step(1.0e-4_wp)
         t = zero; dp = zero; dh = zero
         call integ%init(sys, t, y, stat, msg)
         do while (t < 2.0_wp - 1.0e-9_wp)

@@ -85,7 +85,7 @@ contains
         character(len=msglen) :: msg
         sys%nquad = 1
         call new_integrator(name, integ, stat)
-        integ%h = h; integ%rtol = rtol; integ%atol = rtol*1.0e-2_wp
+        call integ%set_step(h); call integ%set_tolerances(rtol, rtol*1.0e-2_wp)
         call integ%init(sys, zero, [one, zero, zero], stat, msg)
         err = zero
         do i = 1, 200
@@ -147,14 +147,15 @@ contains
         character(len=100) :: d
         sys%nquad = 1
         call new_integrator(name, integ, stat)
-        integ%h = 2.0e-3_wp; integ%rtol = rtol; integ%atol = rtol*1.0e-2_wp
+        call integ%set_step(2.0e-3_wp); call integ%set_tolerances(rtol, rtol*1.0e-2_wp)
         call integ%init(sys, zero, [one, zero, zero], stat, msg)
         ends = zero; mids = zero
         do i = 1, 400
             call integ%step(sys, huge(one), stat, msg)
-            t = integ%t
-            ends = max(ends, maxval(abs(integ%y(1:2) - exact(sys, t))))
-            tm = 0.5_wp*(integ%told + integ%t)
+            t = integ%current_time()
+            ym = integ%current_state()
+            ends = max(ends, maxval(abs(ym(1:2) - exact(sys, t))))
+            tm = 0.5_wp*(integ%previous_time() + t)
             call integ%interpolate(tm, ym)
             mids = max(mids, maxval(abs(ym(1:2) - exact(sys, tm))))
             if (t > 2.0_wp) exit
@@ -176,13 +177,13 @@ contains
         sys%nquad = 1
         do k = 1, size(all)
             call new_integrator(all(k), integ, stat)
-            integ%h = 1.0e-2_wp; integ%rtol = 1.0e-6_wp; integ%atol = 1.0e-8_wp
+            call integ%set_step(1.0e-2_wp); call integ%set_tolerances(1.0e-6_wp, 1.0e-8_wp)
             call integ%init(sys, zero, [one, zero, zero], stat, msg)
             do i = 1, 10000
                 call integ%step(sys, tstop, stat, msg)
-                if (integ%t >= tstop) exit
+                if (integ%current_time() >= tstop) exit
             end do
-            ok = ok .and. integ%t == tstop
+            ok = ok .and. integ%current_time() == tstop
         end do
         call suite%check(ok, 'every integrator ends a step exactly on tstop')
     end subroutine test_lands_on_tstop

@@ -40,7 +40,7 @@ contains
         call pendulum_tree(tree, [m], [ic], [c], [one])
         call model_init(model, tree)
         call model_ode_init(sys, model)
-        integ%rtol = 1.0e-12_wp; integ%atol = 1.0e-14_wp; integ%h = 1.0e-3_wp
+        call integ%set_tolerances(1.0e-12_wp, 1.0e-14_wp); call integ%set_step(1.0e-3_wp)
         t = zero; y = zero; y(1) = theta0
         call integ%init(sys, t, y, stat, msg)
         dt = 1.0e-2_wp
@@ -69,7 +69,7 @@ contains
         character(len=msglen) :: msg
         tz = t0 - y0(1)*(t1 - t0)/(y1(1) - y0(1))
         do it = 1, 6
-            integ%rtol = 1.0e-13_wp; integ%atol = 1.0e-15_wp; integ%h = 1.0e-4_wp
+            call integ%set_tolerances(1.0e-13_wp, 1.0e-15_wp); call integ%set_step(1.0e-4_wp)
             call integ%init(sys, t0, y0, stat, msg)
             call integ%advance(sys, tz, y, tz, stat, msg)
             tz = tz - y(1)/y(2)

@@ -1,18 +1,22 @@
 !> Solution of a_ij xddot_j = f_i: Gaussian elimination with partial
-!! pivoting (the paper's method, own code) or LAPACK Cholesky (dposv),
+!! pivoting (the paper's method, own code) or Cholesky (own code),
 !! and a condition estimate of a_ij.
 module hn_linsolve
     use hn_kinds, only: wp, zero, one, msglen
     use hn_status, only: stat_ok, stat_singular, stat_ill_conditioned
-    use hn_lapack, only: dposv, dpotrf, dpocon, dlansy
+    use hn_lapack, only: dpotrf, dpocon, dlansy
     implicit none
     private
 
-    public :: solver_gauss, solver_cholesky, solver_name, gauss_solve, cholesky_solve
+    public :: solver_gauss, solver_cholesky, solver_articulated, solver_name, solver_names, solver_code
+    public :: gauss_solve, cholesky_solve, cholesky_factor, cholesky_substitute
     public :: linear_solve, spd_rcond
 
     integer, parameter :: solver_gauss = 1     !! Gaussian elimination, partial pivoting
-    integer, parameter :: solver_cholesky = 2  !! LAPACK dposv
+    integer, parameter :: solver_cholesky = 2  !! Cholesky (with a_ij and f_i by the recursive forms)
+    integer, parameter :: solver_articulated = 3  !! articulated-body algorithm, O(n), no a_ij
+    !> Deck names of the solvers, in the order of their codes.
+    character(len=8), parameter :: solver_names(3) = [character(len=8) :: 'GAUSS', 'CHOLESKY', 'ABA']
 
 contains
 
@@ -20,12 +24,18 @@ contains
     pure function solver_name(code) result(s)
         integer, intent(in) :: code
         character(len=:), allocatable :: s
-        select case (code)
-        case (solver_gauss); s = 'GAUSS'
-        case (solver_cholesky); s = 'CHOLESKY'
-        case default; s = 'UNKNOWN'
-        end select
+        if (code >= 1 .and. code <= size(solver_names)) then
+            s = trim(solver_names(code))
+        else
+            s = 'UNKNOWN'
+        end if
     end function solver_name
+
+    !> Code of a solver's deck name; 0 when unknown.
+    pure integer function solver_code(name) result(code)
+        character(len=*), intent(in) :: name
+        code = findloc(solver_names, name, dim=1)
+    end function solver_code
 
     !> Solve a x = b by Gaussian elimination with partial pivoting.
     !! `a` and `b` are overwritten (b holds x on return). stat = stat_singular
@@ -77,20 +87,64 @@ contains
         if (present(pivot_row)) pivot_row = kmin
     end subroutine gauss_solve
 
-    !> Solve a x = b for symmetric positive definite a with LAPACK dposv.
-    !! stat = stat_singular when a is not positive definite.
+    !> Solve a x = b for symmetric positive definite a by Cholesky
+    !! factorization a = L L^T (own column-oriented code: for the sizes of
+    !! this model it is several times faster than reference LAPACK's
+    !! recursive dpotrf). The lower triangle of `a` is overwritten by L, b
+    !! by x. stat = stat_singular when a is not positive definite.
     pure subroutine cholesky_solve(a, b, stat, bad_row)
         real(wp), intent(inout) :: a(:, :)
         real(wp), intent(inout) :: b(:)
         integer, intent(out) :: stat
         integer, intent(out), optional :: bad_row   !! order of the leading minor that is not positive definite
-        integer :: n, info
-        n = size(b)
-        call dposv('U', n, 1, a, size(a, 1), b, n, info)
-        stat = stat_ok
-        if (info /= 0) stat = stat_singular
-        if (present(bad_row)) bad_row = max(info, 0)
+        integer :: k
+        call cholesky_factor(a, stat, k)
+        if (present(bad_row)) bad_row = k
+        if (stat /= stat_ok) return
+        call cholesky_substitute(a, b)
     end subroutine cholesky_solve
+
+    !> In-place Cholesky factor L (lower triangle) of a symmetric positive
+    !! definite matrix, right-looking by columns (unit stride).
+    pure subroutine cholesky_factor(a, stat, bad_row)
+        real(wp), intent(inout) :: a(:, :)
+        integer, intent(out) :: stat
+        integer, intent(out) :: bad_row   !! first non-positive pivot (0: none)
+        integer :: n, j, k
+        real(wp) :: d
+        n = size(a, 1)
+        stat = stat_ok
+        bad_row = 0
+        do k = 1, n
+            d = a(k, k)
+            if (.not. (d > zero)) then
+                stat = stat_singular
+                bad_row = k
+                return
+            end if
+            d = sqrt(d)
+            a(k, k) = d
+            a(k + 1:n, k) = a(k + 1:n, k)/d
+            do j = k + 1, n
+                a(j:n, j) = a(j:n, j) - a(j:n, k)*a(j, k)
+            end do
+        end do
+    end subroutine cholesky_factor
+
+    !> Solve L L^T x = b in place with the factor of cholesky_factor.
+    pure subroutine cholesky_substitute(l, b)
+        real(wp), intent(in) :: l(:, :)
+        real(wp), intent(inout) :: b(:)
+        integer :: n, k
+        n = size(b)
+        do k = 1, n
+            b(k) = b(k)/l(k, k)
+            b(k + 1:n) = b(k + 1:n) - l(k + 1:n, k)*b(k)
+        end do
+        do k = n, 1, -1
+            b(k) = (b(k) - dot_product(l(k + 1:n, k), b(k + 1:n)))/l(k, k)
+        end do
+    end subroutine cholesky_substitute
 
     !> Solve with the selected method; on failure errmsg says why and `row`
     !! is the unknown concerned. A pivot ratio (Gauss) or squared diagonal

@@ -9,7 +9,7 @@ module hn_run
     use hn_status, only: stat_ok, stat_not_finite, stat_energy_lost
     use hn_case, only: case_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
-                           energy_t, nenergy
+                           energy_t, nenergy, dynamics_outputs, inertia_forces_free
     use hn_forces, only: switch_count, switching_functions
     use hn_integrators, only: integrator_t, new_integrator, spectral_radius
     use hn_channels, only: channel_set_t, channels_define, channels_compute
@@ -42,6 +42,7 @@ module hn_run
         integer :: nevals = 0            !! dynamics evaluations of the integrator
         integer :: nevals_output = 0     !! evaluations at output times
         integer :: nsteps = 0, nreject = 0, nevents = 0, njac = 0
+        integer :: nfact = 0             !! factorizations of the iteration matrix (implicit methods)
         real(wp) :: wall = zero          !! wall-clock time of the run loop [s]
         real(wp) :: energy_residual = zero   !! largest |energy balance residual| [J]
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
@@ -93,15 +94,14 @@ contains
             if (stat /= 0) then
                 call fail(exit_diverged, 'posture holding: '//trim(msg)); call finish(); return
             end if
-            sys%model%q_hold(sys%ws%ifree) = -matmul(sys%ws%a(sys%ws%ifree, sys%ws%ifree), dydt(nf + 1:2*nf))
+            sys%model%q_hold(sys%ws%ifree) = -inertia_forces_free(sys%model, sys%ws, dydt(nf + 1:2*nf))
             cs%model%q_hold = sys%model%q_hold
         end if
         call lst%model_summary(cs)
 
         call new_integrator(cs%integrator, integ, stat)
-        integ%h = cs%h
-        integ%rtol = cs%rtol
-        integ%atol = cs%atol
+        call integ%set_step(cs%h)
+        call integ%set_tolerances(cs%rtol, cs%atol)
         call integ%init(sys, t, y, stat, msg)
         if (stat /= 0) then
             call fail(exit_diverged, trim(msg)); call finish(); return
@@ -146,9 +146,9 @@ contains
         outputs: do
             tout = min(cs%t_start + ks*cs%sample_dt, cs%t_start + kp*cs%print_dt, cs%t_end)
             if (kd <= size(cs%dump_times)) tout = min(tout, cs%dump_times(kd))
-            do while (integ%t < tout - tol)
+            do while (integ%current_time() < tout - tol)
                 do while (ib <= size(tb))
-                    if (tb(ib) > integ%t + tol) exit
+                    if (tb(ib) > integ%current_time() + tol) exit
                     ib = ib + 1
                 end do
                 tstop = cs%t_end
@@ -179,22 +179,29 @@ contains
                     end if
                 end if
                 if (ib <= size(tb)) then
-                    if (abs(integ%t - tb(ib)) <= tol) then
+                    if (abs(integ%current_time() - tb(ib)) <= tol) then
                         ! a kink or jump of an input: start the formulas afresh
                         pending_restart = .true.
                         ib = ib + 1
                     end if
                 end if
-                tgood = integ%t
-                ygood = integ%y
+                tgood = integ%current_time()
+                ygood = integ%current_state()
             end do
-            ! output at tout from the dense output of the last step
+            ! output at tout from the dense output of the last step: y and its
+            ! derivative (xddot) interpolated, then kinematics and element loads
+            ! at that state (no a_ij, no solve); a dump needs a full evaluation
             t = tout
-            call integ%interpolate(t, y)
-            nev_out0 = nev_out0 + 1
-            call sys%rhs(t, y, dydt, stat, msg)
-            if (stat /= 0) then
-                call fail(exit_diverged, 'run stopped: '//trim(msg)); exit outputs
+            call integ%interpolate(t, y, dydt)
+            call dynamics_outputs(sys%model, sys%ws, t, y(1:nf), y(nf + 1:2*nf), dydt(nf + 1:2*nf))
+            if (kd <= size(cs%dump_times)) then
+                if (abs(t - cs%dump_times(kd)) <= tol) then
+                    nev_out0 = nev_out0 + 1
+                    call sys%rhs(t, y, dydt, stat, msg)
+                    if (stat /= 0) then
+                        call fail(exit_diverged, 'run stopped: '//trim(msg)); exit outputs
+                    end if
+                end if
             end if
             en = energy_terms(sys%model, sys%ws, y(2*nf + 1:))
             call channels_compute(cs, sys%ws, t, en, ch)
@@ -230,9 +237,10 @@ contains
         res%wall = real(c1 - c0, wp)/real(rate, wp)
         res%nevals_output = nev_out0
         res%nevals = sys%nevals - nev_out0
-        res%nsteps = integ%nsteps
-        res%nreject = integ%nreject
-        res%njac = integ%njac
+        res%nsteps = integ%steps()
+        res%nreject = integ%rejected()
+        res%njac = integ%jacobians()
+        res%nfact = integ%factorizations()
         if (keep) then
             res%samples_t = res%samples_t(1:ks)
             res%samples = res%samples(:, 1:ks)
@@ -283,13 +291,15 @@ contains
             character(len=msglen), intent(out) :: m
             type(energy_t) :: e
             real(wp) :: scale, resid
+            real(wp), allocatable :: yi(:)
             st = stat_ok; m = ''
-            if (.not. all(abs(integ%y) <= huge(1.0_wp))) then
+            yi = integ%current_state()
+            if (.not. all(abs(yi) <= huge(1.0_wp))) then
                 st = stat_not_finite
-                write (m, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', integ%t, ' s'
+                write (m, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', integ%current_time(), ' s'
                 return
             end if
-            e = energy_terms(sys%model, sys%ws, integ%y(2*nf + 1:))
+            e = energy_terms(sys%model, sys%ws, yi(2*nf + 1:))
             ! the scale is the energy of the deformation-level motion: the kinetic
             ! energy relative to the root's translation and the element, gravity
             ! and applied energies (not the work of driving the whole model along)
@@ -300,7 +310,7 @@ contains
             res%energy_residual = max(res%energy_residual, resid)
             if (resid > 0.5_wp*res%energy_scale + 1.0e-3_wp) then
                 st = stat_energy_lost
-                write (m, '(a,es12.5,a,es10.3,a,es10.3,a)') 'the energy balance was lost at t = ', integ%t, &
+                write (m, '(a,es12.5,a,es10.3,a,es10.3,a)') 'the energy balance was lost at t = ', integ%current_time(), &
                     ' s (residual ', resid, ' J against energy flows of ', res%energy_scale, &
                     ' J): the solution is growing without a physical cause'
             end if
@@ -335,7 +345,7 @@ contains
             real(wp) :: ta, tb_, tc, ga, gb, gc, t0, y0(size(y)), yc(size(y)), fc(size(y)), side
             integer :: k, kev, it
             st = 0; m = ''
-            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, sw_new)
+            call switching_functions(sys%model, integ%current_time(), sys%ws%kin, sys%ws%x, sw_new)
             kev = 0
             ! a sign change counts only between values clear of a dead band, so
             ! that a coordinate resting on its neutral value (roundoff noise)
@@ -347,14 +357,14 @@ contains
                     exit
                 end if
             end do
-            if (kev == 0 .or. integ%t - integ%told < 1.0e-9_wp) then
+            if (kev == 0 .or. integ%current_time() - integ%previous_time() < 1.0e-9_wp) then
                 sw_old = sw_new
                 return
             end if
             ! Illinois regula falsi on the dense output for the first switch
             side = sign(one, sw_new(kev))
-            ta = integ%told; tb_ = integ%t; ga = sw_old(kev); gb = sw_new(kev)
-            t0 = integ%told; y0 = integ%yold
+            ta = integ%previous_time(); tb_ = integ%current_time(); ga = sw_old(kev); gb = sw_new(kev)
+            t0 = integ%previous_time(); y0 = integ%previous_state()
             tc = tb_
             do it = 1, 40
                 tc = tb_ - gb*(tb_ - ta)/(gb - ga)
@@ -387,7 +397,7 @@ contains
             if (st /= 0) return
             pending_restart = .true.
             res%nevents = res%nevents + 1
-            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, sw_old)
+            call switching_functions(sys%model, integ%current_time(), sys%ws%kin, sys%ws%x, sw_old)
             sw_old(kev) = side*max(abs(sw_old(kev)), tiny(one))   ! this switch has happened
         end subroutine locate_events
 
