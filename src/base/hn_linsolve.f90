@@ -110,9 +110,17 @@ contains
         real(wp), intent(inout) :: a(:, :)
         integer, intent(out) :: stat
         integer, intent(out) :: bad_row   !! first non-positive pivot (0: none)
-        integer :: n, j, k
-        real(wp) :: d
-        n = size(a, 1)
+        call cholesky_kernel(size(a, 1), a, stat, bad_row)
+    end subroutine cholesky_factor
+
+    !> The factorization on an explicit-shape (contiguous) array, so that
+    !! the compiler vectorizes the column updates.
+    pure subroutine cholesky_kernel(n, a, stat, bad_row)
+        integer, intent(in) :: n
+        real(wp), intent(inout) :: a(n, n)
+        integer, intent(out) :: stat, bad_row
+        integer :: i, j, k
+        real(wp) :: d, akj
         stat = stat_ok
         bad_row = 0
         do k = 1, n
@@ -124,27 +132,47 @@ contains
             end if
             d = sqrt(d)
             a(k, k) = d
-            a(k + 1:n, k) = a(k + 1:n, k)/d
+            d = one/d
+            do i = k + 1, n
+                a(i, k) = a(i, k)*d
+            end do
             do j = k + 1, n
-                a(j:n, j) = a(j:n, j) - a(j:n, k)*a(j, k)
+                akj = a(j, k)
+                do i = j, n
+                    a(i, j) = a(i, j) - a(i, k)*akj
+                end do
             end do
         end do
-    end subroutine cholesky_factor
+    end subroutine cholesky_kernel
 
     !> Solve L L^T x = b in place with the factor of cholesky_factor.
     pure subroutine cholesky_substitute(l, b)
         real(wp), intent(in) :: l(:, :)
         real(wp), intent(inout) :: b(:)
-        integer :: n, k
-        n = size(b)
+        call substitute_kernel(size(b), l, b)
+    end subroutine cholesky_substitute
+
+    pure subroutine substitute_kernel(n, l, b)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: l(n, n)
+        real(wp), intent(inout) :: b(n)
+        integer :: i, k
+        real(wp) :: s
         do k = 1, n
             b(k) = b(k)/l(k, k)
-            b(k + 1:n) = b(k + 1:n) - l(k + 1:n, k)*b(k)
+            s = b(k)
+            do i = k + 1, n
+                b(i) = b(i) - l(i, k)*s
+            end do
         end do
         do k = n, 1, -1
-            b(k) = (b(k) - dot_product(l(k + 1:n, k), b(k + 1:n)))/l(k, k)
+            s = b(k)
+            do i = k + 1, n
+                s = s - l(i, k)*b(i)
+            end do
+            b(k) = s/l(k, k)
         end do
-    end subroutine cholesky_substitute
+    end subroutine substitute_kernel
 
     !> Solve with the selected method; on failure errmsg says why and `row`
     !! is the unknown concerned. A pivot ratio (Gauss) or squared diagonal

@@ -33,6 +33,7 @@ module hn_dynamics
     type :: dyn_workspace_t
         integer :: ndof = 0, nfree = 0, npres = 0
         integer, allocatable :: ifree(:), ipres(:)  !! free and prescribed coordinate numbers
+        integer :: free_offset = -1                 !! ifree = free_offset + (1..nfree) when contiguous, else -1
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
         type(element_output_t) :: eo                 !! element forces of the last evaluation
@@ -83,6 +84,9 @@ contains
                 i1 = i1 + 1; ws%ifree(i1) = j
             end if
         end do
+        if (ws%nfree > 0) then
+            if (ws%ifree(ws%nfree) - ws%ifree(1) + 1 == ws%nfree) ws%free_offset = ws%ifree(1) - 1
+        end if
         call kinematics_allocate(model%tree, ws%kin)
         call loads_allocate(ws%loads, model%tree%nbody, n)
         call element_output_allocate(model, ws%eo)
@@ -175,7 +179,7 @@ contains
             call f_recursive(model%tree, ws%kin, ws%loads, ws%f)
         end select
 
-        ws%aff = ws%a(ws%ifree, ws%ifree)
+        call free_block(ws, ws%a, ws%aff)
         ws%bf = ws%f(ws%ifree)
         do i = 1, ws%npres
             ws%bf = ws%bf - ws%a(ws%ifree, ws%ipres(i))*ws%xdd(ws%ipres(i))
@@ -200,6 +204,22 @@ contains
             ws%p_prescribed = ws%p_prescribed + ws%lambda(j)*ws%xd(j)
         end do
     end subroutine dynamics_evaluate
+
+    !> The free-free block of an (n, n) matrix (a slice when the free
+    !! coordinates are contiguous, as when a root body is prescribed).
+    pure subroutine free_block(ws, a, aff)
+        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: a(:, :)
+        real(wp), intent(out) :: aff(:, :)
+        integer :: f0, nf
+        f0 = ws%free_offset
+        nf = ws%nfree
+        if (f0 >= 0) then
+            aff = a(f0 + 1:f0 + nf, f0 + 1:f0 + nf)
+        else
+            aff = a(ws%ifree, ws%ifree)
+        end if
+    end subroutine free_block
 
     !> The Bryant sequence is singular at cos(beta) = 0 when the first and
     !! third angles are both unknowns: stop there rather than integrate a
@@ -331,9 +351,9 @@ contains
             call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
             call composite_rigid_body(model%tree, ws%kin, ws%a)
             call generalized_tangent(model, ws%kin, t, ws%x, ws%xd, kgen, cgen)
-            mass = ws%a(ws%ifree, ws%ifree)
-            stiffness = kgen(ws%ifree, ws%ifree)
-            damping = cgen(ws%ifree, ws%ifree)
+            call free_block(ws, ws%a, mass)
+            call free_block(ws, kgen, stiffness)
+            call free_block(ws, cgen, damping)
         end associate
     end subroutine model_tangent
 

@@ -197,7 +197,9 @@ contains
         type(rosw_tableau_t) :: tb
         real(wp), dimension(size(me%y)) :: ynew, fnew
         real(wp) :: h, err, fac
+        logical :: rejected
         stat = stat_ok; errmsg = ''
+        rejected = .false.
         tb = rosw_tableau()
         if (me%jac_age < 0 .or. me%jac_age >= me%jac_age_max) then
             call rosw_jacobian(me, sys, stat, errmsg)
@@ -209,6 +211,7 @@ contains
             if (stat /= stat_ok) return
             if (err <= one) exit
             me%nreject = me%nreject + 1
+            rejected = .true.
             me%hnext = h*max(fac_min, 0.9_wp*err**(-one/3.0_wp))
             if (me%hnext < me%hmin) then
                 call step_too_small(me%t, me%hmin, stat, errmsg)
@@ -224,6 +227,8 @@ contains
         if (stat /= stat_ok) return
         me%jac_age = me%jac_age + 1
         fac = min(fac_max, max(fac_min, 0.9_wp*err**(-one/3.0_wp)))
+        ! no growth right after a rejection (Hairer & Wanner's safeguard)
+        if (rejected) fac = min(fac, one)
         ! a clipped step does not shrink the next; a small increase is not
         ! worth a new factorization
         if (h >= me%hnext*0.999_wp .or. fac < one) then

@@ -1,0 +1,138 @@
+!> Benchmark (not a test) of whole runs: for the NBDL 15 g sled, the
+!! forehead impact 6-2 and case 6-2 with every element stiffness x1000
+!! (first 30 ms), each candidate setting against a DOPRI5 rtol 1e-10
+!! reference: head rotation error [deg], evaluations, Jacobians,
+!! factorizations, wall time of the run loop with HDF5 output every
+!! 0.1 ms, real-time factor (simulated / wall) and the ratio of the wall
+!! time of ADAMS rtol 1e-4 (run alternately with it, same session) to the
+!! candidate's. Wall times are the best of `nrep` alternating runs.
+!! Also the difference of the acceleration channels obtained from the
+!! dense output (the run's output path) against a full evaluation at the
+!! same states.
+!!
+!!   fpm run --example bench_stiff --profile release
+program bench_stiff
+    use hn_kinds, only: wp, msglen
+    use hn_case, only: case_t
+    use hn_deck, only: read_case
+    use hn_run, only: run_case, run_result_t
+    use hn_channels, only: channel_set_t, channels_define
+    implicit none
+
+    type :: config_t
+        character(len=8) :: method
+        real(wp) :: rtol
+        character(len=8) :: jacobian = 'STRUCT'
+    end type config_t
+
+    character(len=*), parameter :: h5tmp = 'bench_stiff_tmp.h5'
+    integer :: nrep = 3
+    character(len=16) :: arg
+
+    ! an argument 'quick': one repetition, NBDL only
+    arg = ''
+    if (command_argument_count() >= 1) call get_command_argument(1, arg)
+    if (arg == 'quick') nrep = 1
+
+    write (*, '(a)') 'case      method    rtol     Jacobian  err theta (deg)   evals  Jacs  facts  steps  rej' // &
+        '   wall (s)   RTF   ADAMS 1e-4 / wall'
+    call sweep('nbdl15g', 'input/nbdl15g.inp', 0.25_wp, 0.0_wp)
+    if (arg /= 'quick') then
+        call sweep('case6-2', 'input/case6-2.inp', 0.1_wp, 0.0_wp)
+        call sweep('stiff6-2', 'input/case6-2.inp', 0.03_wp, 1000.0_wp)
+    end if
+    call delete(h5tmp)
+
+contains
+
+    subroutine sweep(label, deck, t_end, stiffen)
+        character(len=*), intent(in) :: label, deck
+        real(wp), intent(in) :: t_end, stiffen
+        type(config_t), allocatable :: configs(:)
+        type(run_result_t) :: res, resa
+        real(wp), allocatable :: th_ref(:)
+        real(wp) :: eth, wall, wall_adams
+        integer :: k, r, ith
+
+        configs = [config_t('ROS34PW2', 1.0e-2_wp), config_t('ROS34PW2', 3.0e-3_wp), &
+                   config_t('ROS34PW2', 1.0e-3_wp), config_t('ROS34PW2', 1.0e-4_wp), &
+                   config_t('ROS34PW2', 1.0e-3_wp, 'FD'), config_t('ROS2', 1.0e-2_wp, 'FD'), &
+                   config_t('ADAMS', 1.0e-4_wp)]
+        call one_run(deck, t_end, stiffen, config_t('DOPRI5', 1.0e-10_wp), '', res, ith)
+        th_ref = res%samples(ith, :)
+        do k = 1, size(configs)
+            wall = huge(1.0_wp); wall_adams = huge(1.0_wp)
+            do r = 1, nrep
+                call one_run(deck, t_end, stiffen, config_t('ADAMS', 1.0e-4_wp), h5tmp, resa, ith)
+                wall_adams = min(wall_adams, resa%wall)
+                call one_run(deck, t_end, stiffen, configs(k), h5tmp, res, ith)
+                wall = min(wall, res%wall)
+            end do
+            eth = -1
+            if (res%exit_code == 0) eth = maxval(abs(res%samples(ith, :) - th_ref))
+            write (*, '(a9,1x,a8,es9.1,2x,a8,es14.3,i9,i6,i7,i7,i5,f11.4,f7.2,f10.1)') label, configs(k)%method, &
+                configs(k)%rtol, configs(k)%jacobian, eth, res%nevals, res%njac, res%nfact, res%nsteps, &
+                res%nreject, wall, t_end/wall, wall_adams/wall
+        end do
+    end subroutine sweep
+
+    !> One run of `deck` to t_end with configuration cfg, samples kept,
+    !! HDF5 written to h5name ('' for none).
+    subroutine one_run(deck, t_end, stiffen, cfg, h5name, r, i_th)
+        character(len=*), intent(in) :: deck, h5name
+        real(wp), intent(in) :: t_end, stiffen
+        type(config_t), intent(in) :: cfg
+        type(run_result_t), intent(out) :: r
+        integer, intent(out) :: i_th
+        type(case_t) :: cs
+        type(channel_set_t) :: ch
+        integer :: stat, lu
+        character(len=msglen) :: msg
+        character(len=*), parameter :: tmp = 'bench_stiff_deck.inp'
+        if (stiffen > 0) then
+            call copy_with_stiffen(deck, tmp, stiffen)
+            call read_case(tmp, tmp, cs, stat, msg)
+            call delete(tmp)
+        else
+            call read_case(deck, deck, cs, stat, msg)
+        end if
+        if (stat /= 0) error stop trim(msg)
+        cs%integrator = cfg%method
+        cs%rtol = cfg%rtol
+        cs%atol = cfg%rtol*1.0e-2_wp
+        cs%model%jacobian = cfg%jacobian
+        cs%t_end = t_end
+        cs%print_dt = t_end/10
+        call channels_define(cs, ch)
+        i_th = findloc(ch%name, 'HEAD_THETY', dim=1)
+        open (newunit=lu, file='/dev/null', action='write')
+        call run_case(cs, lu, h5name, r, keep_samples=.true.)
+        close (lu)
+    end subroutine one_run
+
+    !> A copy of a deck with every element stiffness times `factor` (STIFFEN card).
+    subroutine copy_with_stiffen(src, dst, factor)
+        character(len=*), intent(in) :: src, dst
+        real(wp), intent(in) :: factor
+        character(len=256) :: line
+        integer :: a, b, ios
+        open (newunit=a, file=src, status='old', action='read')
+        open (newunit=b, file=dst, status='replace', action='write')
+        do
+            read (a, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            write (b, '(a)') trim(line)
+        end do
+        write (b, '(a,f10.1)') 'STIFFEN   ', factor
+        close (a)
+        close (b)
+    end subroutine copy_with_stiffen
+
+    subroutine delete(fname)
+        character(len=*), intent(in) :: fname
+        integer :: u, ios
+        open (newunit=u, file=fname, status='old', iostat=ios)
+        if (ios == 0) close (u, status='delete')
+    end subroutine delete
+
+end program bench_stiff
