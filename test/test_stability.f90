@@ -56,6 +56,7 @@ program test_stability
     call test_stiffened('ADAMS', 100.0_wp)
     call test_stiffened('ROS2', 100.0_wp)
     call test_stiffened('ROS2', 1000.0_wp)
+    call test_stiffened('ROS34PW2', 1000.0_wp)
     call test_stiffened('ADAMS', 1000.0_wp, 0.008_wp)
     call test_stiffened('DOPRI5', 1000.0_wp, 0.008_wp)
     call test_fixed_step_beyond_limit()
@@ -64,6 +65,7 @@ program test_stability
     call test_joint_through_90_singular()
     call test_joint_through_90_locked()
     call test_long_run_at_rest('ROS2', 10.0_wp)
+    call test_long_run_at_rest('ROS34PW2', 10.0_wp)
     call test_long_run_at_rest('ADAMS', 1.0_wp)
     call suite%finish()
 
