@@ -48,7 +48,7 @@ set -e
 python3 tools/check_incomplete.py "$tmp/diverge.h5" 0.1
 
 echo "== a run stopped by SIGTERM: exit code 5, a valid result file marked incomplete"
-sed 's/^CONTROL   0.25      1.0E-4    0.005     ADAMS     1.0E-4    1.0E-7/CONTROL   0.25      1.0E-5    0.005     RK4/' \
+sed 's/^CONTROL .*/CONTROL   0.25      1.0E-5    0.005     RK4/' \
     input/nbdl15g.inp > "$tmp/long.inp"
 set +e
 "$exe" --h5 "$tmp/term.h5" < "$tmp/long.inp" > "$tmp/term.out" 2> "$tmp/term.err" &
