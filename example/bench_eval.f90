@@ -17,6 +17,7 @@ program bench_eval
     use hn_deck, only: read_case
     use hn_dynamics, only: dyn_workspace_t, dynamics_setup, dynamics_evaluate
     use hn_linsolve, only: solver_gauss, solver_cholesky, solver_articulated
+    use hn_random, only: rng_t
     use hn_ode, only: ode_system_t
     use hn_dynamics, only: model_ode_t, model_ode_init, state_size, coordinates_to_state
     implicit none
@@ -59,6 +60,7 @@ contains
         integer, intent(in) :: solver
         real(wp), intent(in), optional :: xbase(:)
         type(dyn_workspace_t) :: ws
+        type(rng_t) :: rng
         integer, parameter :: nrep = 41
         real(wp) :: samples(nrep), r
         real(wp), allocatable :: x(:), xd(:), xdd(:)
@@ -68,13 +70,15 @@ contains
         model%solver = solver
         call dynamics_setup(model, ws)
         allocate (x(ws%nfree), xd(ws%nfree), xdd(ws%nfree))
+        call rng%seed(7)      ! the same states for every solver and build
         do j = 1, ws%nfree
-            call random_number(r)
+            r = rng%uniform(0.0_wp, 1.0_wp)
             x(j) = 0.1_wp*(r - 0.5_wp)
             if (present(xbase)) x(j) = xbase(ws%ifree(j)) + 0.01_wp*(r - 0.5_wp)
-            call random_number(r)
-            xd(j) = r - 0.5_wp
+            xd(j) = rng%uniform(-0.5_wp, 0.5_wp)
         end do
+        call dynamics_evaluate(model, ws, 0.01_wp, x, xd, xdd, st, m)
+        if (st /= 0) error stop 'bench_eval: the evaluation failed: '//trim(m)
         ninner = max(1, 20000/ws%ndof**2*10)
         do rep = 1, nrep
             call system_clock(c0, rate)

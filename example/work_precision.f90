@@ -56,7 +56,8 @@ contains
                   (config_t('ABM4', 4.0e-4_wp*hs/2**k, 0.0_wp), k=0, 5), &
                   (config_t('DOPRI5', 1.0e-4_wp, 10.0_wp**(-k)), k=3, 9), &
                   (config_t('ADAMS', 1.0e-4_wp, 10.0_wp**(-k)), k=3, 9), &
-                  (config_t('ROS2', 1.0e-4_wp, 10.0_wp**(-k)), k=2, 5)]
+                  (config_t('ROS2', 1.0e-4_wp, 10.0_wp**(-k)), k=2, 5), &
+                  (config_t('ROS34PW2', 1.0e-4_wp, 10.0_wp**(-k)), k=2, 6)]
 
         call one_run(deck, t_end, stiffen, config_t('DOPRI5', 1.0e-5_wp, 1.0e-11_wp), res, ith, iom)
         th_ref = res%samples(ith, :)
