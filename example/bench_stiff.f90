@@ -58,34 +58,47 @@ contains
         type(run_result_t) :: res, resa
         real(wp), allocatable :: th_ref(:)
         real(wp) :: eth, wall, wall_adams
+        real(wp), allocatable :: walls(:), errs(:)
+        type(run_result_t), allocatable :: results(:)
         integer :: k, r, ith
 
         configs = [config_t('ROS34PW2', 1.0e-2_wp), config_t('ROS34PW2', 3.0e-3_wp), &
                    config_t('ROS34PW2', 1.0e-3_wp), config_t('ROS34PW2', 1.0e-4_wp), &
                    config_t('ROS34PW2', 1.0e-3_wp, 'FD'), config_t('ROS2', 1.0e-2_wp, 'FD'), &
                    config_t('ADAMS', 1.0e-4_wp)]
+        allocate (walls(size(configs)), errs(size(configs)), results(size(configs)))
         call one_run(deck, t_end, stiffen, config_t('DOPRI5', 1.0e-10_wp), '', res, ith)
         th_ref = res%samples(ith, :)
+        wall_adams = huge(1.0_wp)
         do k = 1, size(configs)
-            wall = huge(1.0_wp); wall_adams = huge(1.0_wp)
+            wall = huge(1.0_wp)
             do r = 1, nrep
-                call one_run(deck, t_end, stiffen, config_t('ADAMS', 1.0e-4_wp), h5tmp, resa, ith)
-                wall_adams = min(wall_adams, resa%wall)
+                ! ADAMS rtol 1e-4 alternately with the candidates (best of all its runs)
+                if (k == 1 .or. k == size(configs) .or. r == 1) then
+                    call one_run(deck, t_end, stiffen, config_t('ADAMS', 1.0e-4_wp), h5tmp, resa, ith)
+                    wall_adams = min(wall_adams, resa%wall)
+                end if
                 call one_run(deck, t_end, stiffen, configs(k), h5tmp, res, ith)
                 wall = min(wall, res%wall)
             end do
             eth = -1
             if (res%exit_code == 0) eth = maxval(abs(res%samples(ith, :) - th_ref))
-            write (*, '(a9,1x,a8,es9.1,2x,a8,es14.3,i9,i6,i7,i7,i5,f11.4,f7.2,f10.1)') label, configs(k)%method, &
-                configs(k)%rtol, configs(k)%jacobian, eth, res%nevals, res%njac, res%nfact, res%nsteps, &
-                res%nreject, wall, t_end/wall, wall_adams/wall
+            walls(k) = wall
+            results(k) = res
+            errs(k) = eth
         end do
+        do k = 1, size(configs)
+            write (*, '(a9,1x,a8,es9.1,2x,a8,es14.3,i9,i6,i7,i7,i5,f11.4,f7.2,f10.1)') label, configs(k)%method, &
+                configs(k)%rtol, configs(k)%jacobian, errs(k), results(k)%nevals, results(k)%njac, results(k)%nfact, &
+                results(k)%nsteps, results(k)%nreject, walls(k), t_end/walls(k), wall_adams/walls(k)
+        end do
+        flush (6)
     end subroutine sweep
 
     !> Head acceleration at every 0.1 ms sample of the NBDL run from the
-    !! derivative of the dense output (the run's output path) against a
-    !! full evaluation at the same interpolated state: largest difference
-    !! in g and relative to the largest head acceleration.
+    !! derivative of the dense output against a full evaluation at the same
+    !! interpolated state (the run's output path solves xddot exactly):
+    !! largest difference in g and relative to the largest head acceleration.
     subroutine acceleration_check(method, rtol)
         character(len=*), intent(in) :: method
         real(wp), intent(in) :: rtol
@@ -114,7 +127,7 @@ contains
             call integ%advance(sys, t, y, cs%t_end, stat, msg)
             if (stat /= 0) error stop trim(msg)
             call integ%interpolate(t, y, dydt)
-            call dynamics_outputs(sys%model, sys%ws, t, y(1:nf), y(nf + 1:2*nf), dydt(nf + 1:2*nf))
+            call dynamics_outputs(sys%model, sys%ws, t, y(1:nf), y(nf + 1:2*nf), stat, dydt(nf + 1:2*nf))
             call body_accelerations(sys%model%tree, sys%ws%kin, sys%ws%xdd, acc, alpha)
             a_int = acc(:, h); w_int = alpha(:, h)
             call sys%rhs(t, y, f, stat, msg)

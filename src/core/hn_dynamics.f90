@@ -253,22 +253,30 @@ contains
         end do
     end subroutine gimbal_check
 
-    !> The lean evaluation for outputs: at (t, xf, xdf) with the free
-    !! accelerations xddf already known (for instance the derivative of the
-    !! integrator's dense output), fill the workspace as dynamics_evaluate
-    !! would -- coordinates, kinematics, element loads and outputs, xddot --
-    !! without forming a_ij or solving. Body accelerations then follow from
-    !! body_accelerations(tree, ws%kin, ws%xdd, ...). ws%a, ws%f and
-    !! p_prescribed are left as they are.
-    pure subroutine dynamics_outputs(model, ws, t, xf, xdf, xddf)
+    !> The lean evaluation for outputs at (t, xf, xdf): fill the workspace
+    !! as dynamics_evaluate would -- coordinates, kinematics, element loads
+    !! and outputs, xddot -- without forming a_ij. The free accelerations
+    !! are either given (xddf, for instance the derivative of the
+    !! integrator's dense output) or solved by the articulated-body
+    !! algorithm on the kinematics and loads just computed (exact, O(n)).
+    !! Body accelerations then follow from body_accelerations(tree,
+    !! ws%kin, ws%xdd, ...). ws%a, ws%f and p_prescribed are left as they are.
+    pure subroutine dynamics_outputs(model, ws, t, xf, xdf, stat, xddf)
         type(model_t), intent(in) :: model
         type(dyn_workspace_t), intent(inout) :: ws
         real(wp), intent(in) :: t, xf(:), xdf(:)
-        real(wp), intent(in) :: xddf(:)      !! free accelerations at t
+        integer, intent(out) :: stat                   !! stat_ok, or stat_singular from the solve
+        real(wp), intent(in), optional :: xddf(:)      !! free accelerations at t (else solved)
+        integer :: k
         call state_to_coordinates(model, ws, t, xf, xdf)
         call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
         call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
-        ws%xdd(ws%ifree) = xddf
+        stat = stat_ok
+        if (present(xddf)) then
+            ws%xdd(ws%ifree) = xddf
+        else
+            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k)
+        end if
     end subroutine dynamics_outputs
 
     !> Generalized inertia forces a_FF xddot_F of the free coordinates for

@@ -188,12 +188,15 @@ contains
                 tgood = integ%current_time()
                 ygood = integ%current_state()
             end do
-            ! output at tout from the dense output of the last step: y and its
-            ! derivative (xddot) interpolated, then kinematics and element loads
-            ! at that state (no a_ij, no solve); a dump needs a full evaluation
+            ! output at tout from the dense output of the last step: kinematics,
+            ! element loads and xddot (articulated-body solve, no a_ij) at the
+            ! interpolated state; a dump needs a full evaluation
             t = tout
-            call integ%interpolate(t, y, dydt)
-            call dynamics_outputs(sys%model, sys%ws, t, y(1:nf), y(nf + 1:2*nf), dydt(nf + 1:2*nf))
+            call integ%interpolate(t, y)
+            call dynamics_outputs(sys%model, sys%ws, t, y(1:nf), y(nf + 1:2*nf), stat)
+            if (stat /= 0) then
+                call fail(exit_diverged, 'run stopped: singular joint at an output time'); exit outputs
+            end if
             if (kd <= size(cs%dump_times)) then
                 if (abs(t - cs%dump_times(kd)) <= tol) then
                     nev_out0 = nev_out0 + 1
