@@ -82,7 +82,7 @@ class Result:
                     self.discs = Family(g, chan, "_P")
                     self.disc_area = g["area"][:]
             else:
-                print("animate.py: %s has no /model/elements (written before hhneck 0.3): "
+                print("animate.py: %s has no /model/elements (written by an older hhneck): "
                       "drawing the bodies only" % path, file=sys.stderr)
         self.nb = len(self.bodies)
         self.root = int(np.flatnonzero(self.parent == 0)[0])
@@ -128,9 +128,9 @@ def ellipsoid_axes(mass, inertia):
 
 
 def body_shapes(res):
-    """Local outline of each body: ('box', centre_x, half_width, z_lo, z_hi) for
-    vertebrae, ('ellipsoid', semi_axes, axes) for the head; plus the tip of
-    the posterior process (local point or None)."""
+    """Local outline of each body: ('box', centre_x, half_width, z_lo, z_hi,
+    process_tip) for vertebrae (the tip a local point or None) and
+    ('ellipsoid', semi_axes, principal_directions, None) for the head."""
     plates = {k: {"lo": None, "hi": None, "r": []} for k in range(1, res.nb + 1)}
     if res.discs is not None:
         for e in range(len(res.discs.name)):
@@ -202,7 +202,7 @@ def join(segs):
 
 
 class Geometry:
-    """Everything drawn, in R, at one sample: bodies, elements, marks."""
+    """The bodies' outlines and the sled and ground marks, in R, at one sample."""
 
     def __init__(self, res):
         self.res = res
@@ -247,6 +247,8 @@ class Geometry:
 
 def frame_indices(time, t_frames):
     """Index of the sample nearest to each frame time."""
+    if len(time) < 2:
+        return np.zeros(len(t_frames), dtype=int)
     j = np.clip(np.searchsorted(time, t_frames), 1, len(time) - 1)
     return np.where(np.abs(time[j - 1] - t_frames) <= np.abs(time[j] - t_frames), j - 1, j)
 
