@@ -15,7 +15,7 @@ program bench_stiff
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     use hn_dynamics, only: model_ode_t, model_ode_init, state_size, coordinates_to_state, dynamics_outputs
     use hn_kinematics, only: body_accelerations
@@ -171,7 +171,10 @@ contains
         call channels_define(cs, ch)
         i_th = findloc(ch%name, 'HEAD_THETY', dim=1)
         open (newunit=lu, file='/dev/null', action='write')
-        call run_case(cs, lu, h5name, r, keep_samples=.true.)
+        block
+            type(run_state_t) :: run
+            call run%execute(cs, lu, h5name, r, keep_samples=.true.)
+        end block
         close (lu)
     end subroutine one_run
 
