@@ -21,6 +21,7 @@ program bench_stiff
     use hn_kinematics, only: body_accelerations
     use hn_integrators, only: integrator_t, new_integrator
     use hn_kinds, only: g_std
+    use bench_decks, only: copy_with_stiffen, delete_file
     implicit none
 
     type :: config_t
@@ -47,7 +48,7 @@ program bench_stiff
         call sweep('case6-2', 'input/case6-2.inp', 0.1_wp, 0.0_wp)
         call sweep('stiff6-2', 'input/case6-2.inp', 0.03_wp, 100.0_wp)
     end if
-    call delete(h5tmp)
+    call delete_file(h5tmp)
 
 contains
 
@@ -157,7 +158,7 @@ contains
         if (stiffen > 0) then
             call copy_with_stiffen(deck, tmp, stiffen)
             call read_case(tmp, tmp, cs, stat, msg)
-            call delete(tmp)
+            call delete_file(tmp)
         else
             call read_case(deck, deck, cs, stat, msg)
         end if
@@ -177,30 +178,5 @@ contains
         end block
         close (lu)
     end subroutine one_run
-
-    !> A copy of a deck with every element stiffness times `factor` (STIFFEN card).
-    subroutine copy_with_stiffen(src, dst, factor)
-        character(len=*), intent(in) :: src, dst
-        real(wp), intent(in) :: factor
-        character(len=256) :: line
-        integer :: a, b, ios
-        open (newunit=a, file=src, status='old', action='read')
-        open (newunit=b, file=dst, status='replace', action='write')
-        do
-            read (a, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            write (b, '(a)') trim(line)
-        end do
-        write (b, '(a,f10.1)') 'STIFFEN   ', factor
-        close (a)
-        close (b)
-    end subroutine copy_with_stiffen
-
-    subroutine delete(fname)
-        character(len=*), intent(in) :: fname
-        integer :: u, ios
-        open (newunit=u, file=fname, status='old', iostat=ios)
-        if (ios == 0) close (u, status='delete')
-    end subroutine delete
 
 end program bench_stiff

@@ -22,7 +22,7 @@
 module hn_jacobian
     use hn_kinds, only: wp, zero, one
     use hn_rotation, only: cross
-    use hn_model, only: model_t, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
+    use hn_model, only: model_t, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs, family_count
     use hn_kinematics, only: kinematics_t
     use hn_tree, only: body_tree_t
     use hn_discs, only: disc_deformation, disc_resultants, inv_left_jacobian
@@ -63,7 +63,7 @@ contains
         end if
         do fam = 1, size(line_families)
             if (.not. model%family_on(line_families(fam))) cycle
-            do e = 1, line_count(model, line_families(fam))
+            do e = 1, family_count(model, line_families(fam))
                 call add_line(model, kin, t, line_families(fam), e, kgen, cgen)
             end do
         end do
@@ -77,19 +77,8 @@ contains
     ! ---------------------------------------------------------------------
     ! Coupling to the line-element types: the only place that knows the
     ! families (ligament_t, muscle_t, spring_t). With one line_attach_t for
-    ! all line elements these three procedures become one-liners.
+    ! all line elements these two procedures become one-liners.
     ! ---------------------------------------------------------------------
-
-    !> Number of line elements of a family.
-    pure integer function line_count(model, fam) result(n)
-        type(model_t), intent(in) :: model
-        integer, intent(in) :: fam
-        select case (fam)
-        case (fam_ligaments); n = size(model%ligaments)
-        case (fam_muscles); n = size(model%muscles)
-        case default; n = size(model%springs)
-        end select
-    end function line_count
 
     !> Attachments of line element e of a family: bodies and points (body frames).
     pure subroutine line_attachment(model, fam, e, ka, ca, kb, cb)

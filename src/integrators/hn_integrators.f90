@@ -195,6 +195,15 @@ module hn_integrators
             real(wp), intent(in) :: e(:), y0(:), y1(:)
             real(wp) :: r
         end function err_norm
+        !> Interpolation at or beyond the end of the last step (or with no
+        !! step yet): y and f of the current point; .false. otherwise.
+        module function at_current_point(me, tout, yout, dydt) result(done)
+            class(integrator_t), intent(in) :: me
+            real(wp), intent(in) :: tout
+            real(wp), intent(out) :: yout(:)
+            real(wp), intent(out), optional :: dydt(:)
+            logical :: done
+        end function at_current_point
         !> The message of a step size below hmin.
         module subroutine step_too_small(t, hmin, stat, errmsg)
             real(wp), intent(in) :: t, hmin
@@ -445,12 +454,8 @@ contains
         real(wp), intent(out) :: yout(:)        !! y(tout)
         real(wp), intent(out), optional :: dydt(:)  !! y'(tout) of the interpolant
         real(wp) :: h, s, h00, h10, h01, h11
+        if (at_current_point(me, tout, yout, dydt)) return
         h = me%t - me%told
-        if (h <= zero .or. tout >= me%t) then
-            yout = me%y
-            if (present(dydt)) dydt = me%f
-            return
-        end if
         s = (tout - me%told)/h
         h00 = (one + two*s)*(one - s)**2
         h10 = s*(one - s)**2

@@ -25,22 +25,16 @@ submodule(hn_integrators) hn_integrators_adams
 contains
 
     !> A restart empties the differences; the next step starts at order 1.
-    module subroutine adams_reset_history(me)
-        class(adams_t), intent(inout) :: me
+    module procedure adams_reset_history
         integer :: n
         n = size(me%y)
         if (.not. allocated(me%phi)) allocate (me%phi(n, 16), me%wt(n))
         me%start = .true.
         me%phi = zero
-    end subroutine adams_reset_history
+    end procedure adams_reset_history
 
     !> One step of the variable-order Adams PECE method.
-    module subroutine adams_step(me, sys, tstop, stat, errmsg)
-        class(adams_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: tstop
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+    module procedure adams_step
         real(wp), dimension(size(me%y)) :: p, yp
         type(adams_errors_t) :: e
         real(wp) :: hwant
@@ -65,7 +59,7 @@ contains
         call adams_correct(me, sys, p, yp, stat, errmsg)
         if (stat /= stat_ok) return
         call adams_next_order_and_step(me, e, hwant)
-    end subroutine adams_step
+    end procedure adams_step
 
     !> The first step after a start or restart: order 1 and a step size from
     !! the size of f.
@@ -293,18 +287,10 @@ contains
 
     !> Shampine & Gordon's interpolation from the divided differences of the
     !! last step (order kold), with the derivative of the interpolant.
-    module subroutine adams_interpolate(me, tout, yout, dydt)
-        class(adams_t), intent(in) :: me
-        real(wp), intent(in) :: tout
-        real(wp), intent(out) :: yout(:)
-        real(wp), intent(out), optional :: dydt(:)
+    module procedure adams_interpolate
         real(wp) :: hi, term, gamma, eta, psijm1, gi(13), wi(13), rho(13)
         integer :: i, j, ki, kip1, limit1
-        if (me%t - me%told <= zero .or. tout >= me%t) then
-            yout = me%y
-            if (present(dydt)) dydt = me%f
-            return
-        end if
+        if (at_current_point(me, tout, yout, dydt)) return
         hi = tout - me%t
         ki = me%kold + 1
         kip1 = ki + 1
@@ -339,6 +325,6 @@ contains
                 dydt = dydt + rho(i)*me%phi(:, i)
             end do
         end if
-    end subroutine adams_interpolate
+    end procedure adams_interpolate
 
 end submodule hn_integrators_adams

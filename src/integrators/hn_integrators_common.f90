@@ -24,6 +24,13 @@ contains
         r = sqrt(sum((e/(me%atol + me%rtol*max(abs(y0), abs(y1))))**2)/size(e))
     end procedure err_norm
 
+    module procedure at_current_point
+        done = me%t - me%told <= zero .or. tout >= me%t
+        if (.not. done) return
+        yout = me%y
+        if (present(dydt)) dydt = me%f
+    end procedure at_current_point
+
     module procedure step_too_small
         stat = stat_step_failed
         write (errmsg, '(a,es10.3,a,es12.5,a)') 'the step fell below ', hmin, ' s at t = ', t, &

@@ -5,12 +5,7 @@ submodule(hn_integrators) hn_integrators_explicit
 contains
 
     !> One RK4 step of the fixed size (clipped to tstop).
-    module subroutine rk4_step(me, sys, tstop, stat, errmsg)
-        class(rk4_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: tstop
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+    module procedure rk4_step
         real(wp), dimension(size(me%y)) :: k2, k3, k4, ynew, fnew
         real(wp) :: h
         h = clip_step(me%t, me%h, tstop)
@@ -19,7 +14,7 @@ contains
         call sys%rhs(me%t + h, ynew, fnew, stat, errmsg)
         if (stat /= 0) return
         call accept(me, me%t + h, ynew, fnew)
-    end subroutine rk4_step
+    end procedure rk4_step
 
     !> One RK4 step of size h from (t, y) with f = g(t, y) given.
     subroutine rk4_formula(sys, t, y, f, h, ynew, k2, k3, k4, stat, errmsg)
@@ -35,19 +30,13 @@ contains
     end subroutine rk4_formula
 
     !> A restart forgets the history: the next steps start with RK4 again.
-    module subroutine abm4_reset_history(me)
-        class(abm4_t), intent(inout) :: me
+    module procedure abm4_reset_history
         me%nhist = 0
         if (.not. allocated(me%fh)) allocate (me%fh(size(me%y), 3))
-    end subroutine abm4_reset_history
+    end procedure abm4_reset_history
 
     !> One ABM4 PECE step (RK4 while the history is short).
-    module subroutine abm4_step(me, sys, tstop, stat, errmsg)
-        class(abm4_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: tstop
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+    module procedure abm4_step
         real(wp), dimension(size(me%y)) :: k2, k3, k4, yp, fp, yc, fc
         real(wp) :: h
         h = clip_step(me%t, me%h, tstop)
@@ -71,24 +60,18 @@ contains
         me%fh(:, 1) = me%f
         me%nhist = min(3, me%nhist + 1)
         call accept(me, me%t + h, yc, fc)
-    end subroutine abm4_step
+    end procedure abm4_step
 
     !> Dense-output coefficients cleared; the next step starts from h.
-    module subroutine dopri5_reset_history(me)
-        class(dopri5_t), intent(inout) :: me
+    module procedure dopri5_reset_history
         if (.not. allocated(me%rcont)) allocate (me%rcont(size(me%y), 5))
         me%rcont = zero
         me%rcont(:, 1) = me%y
         if (me%hnext <= zero) me%hnext = me%h
-    end subroutine dopri5_reset_history
+    end procedure dopri5_reset_history
 
     !> One accepted Dormand-Prince 5(4) step with error control.
-    module subroutine dopri5_step(me, sys, tstop, stat, errmsg)
-        class(dopri5_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: tstop
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+    module procedure dopri5_step
         real(wp), parameter :: c2 = 1.0_wp/5, c3 = 3.0_wp/10, c4 = 4.0_wp/5, c5 = 8.0_wp/9
         real(wp), parameter :: a21 = 1.0_wp/5
         real(wp), parameter :: a31 = 3.0_wp/40, a32 = 9.0_wp/40
@@ -140,26 +123,18 @@ contains
         fac = min(fac_max, max(fac_min, 0.9_wp*err**(-0.2_wp)))
         if (h >= me%hnext*0.999_wp .or. fac < one) me%hnext = h*fac   ! a clipped step does not shrink hnext
         call accept(me, me%t + h, ynew, k7)
-    end subroutine dopri5_step
+    end procedure dopri5_step
 
     !> Shampine's 4th-order dense output of the last step, and its derivative.
-    module subroutine dopri5_interpolate(me, tout, yout, dydt)
-        class(dopri5_t), intent(in) :: me
-        real(wp), intent(in) :: tout
-        real(wp), intent(out) :: yout(:)
-        real(wp), intent(out), optional :: dydt(:)
+    module procedure dopri5_interpolate
         real(wp) :: s, s1, h
+        if (at_current_point(me, tout, yout, dydt)) return
         h = me%t - me%told
-        if (h <= zero .or. tout >= me%t) then
-            yout = me%y
-            if (present(dydt)) dydt = me%f
-            return
-        end if
         s = (tout - me%told)/h
         s1 = one - s
         yout = me%rcont(:, 1) + s*(me%rcont(:, 2) + s1*(me%rcont(:, 3) + s*(me%rcont(:, 4) + s1*me%rcont(:, 5))))
         if (present(dydt)) dydt = (me%rcont(:, 2) + (one - two*s)*me%rcont(:, 3) + s*(two - 3.0_wp*s)*me%rcont(:, 4) &
                                    + two*s*s1*(one - two*s)*me%rcont(:, 5))/h
-    end subroutine dopri5_interpolate
+    end procedure dopri5_interpolate
 
 end submodule hn_integrators_explicit

@@ -48,14 +48,13 @@ contains
     ! ------------------------------------------------------------------ ROS2
 
     !> The Jacobian is kept over a restart: at a kink of the inputs it changes little.
-    module subroutine ros2_reset_history(me)
-        class(ros2_t), intent(inout) :: me
+    module procedure ros2_reset_history
         if (.not. allocated(me%tdot)) then
             allocate (me%tdot(size(me%y)))
             me%jac_age = -1
         end if
         if (me%hnext <= zero) me%hnext = me%h
-    end subroutine ros2_reset_history
+    end procedure ros2_reset_history
 
     !> Jacobian (forward differences of the whole system) and time
     !! derivative of g at the current point.
@@ -83,12 +82,7 @@ contains
     !!   k3 = W^-1 (F2 - e32 (k2 - F1) - 2 (k1 - F0) + h d T)
     !!   error = h (k1 - 2 k2 + k3) / 6
     !! with T = dg/dt by a forward difference.
-    module subroutine ros2_step(me, sys, tstop, stat, errmsg)
-        class(ros2_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: tstop
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+    module procedure ros2_step
         real(wp), parameter :: d = one/(two + sqrt(two)), e32 = 6.0_wp + sqrt(two)
         real(wp), dimension(size(me%y)) :: k1, k2, k3, f1, f2, ynew
         real(wp) :: h, err
@@ -121,22 +115,31 @@ contains
             call me%w%solve(k3)
             err = max(err_norm(me, h/6.0_wp*(k1 - two*k2 + k3), me%y, ynew), err_floor)
             if (err <= one) exit
-            me%nreject = me%nreject + 1
-            me%hnext = h*max(fac_min, 0.8_wp*err**(-one/3.0_wp))
-            if (me%hnext < me%hmin) then
-                call step_too_small(me%t, me%hmin, stat, errmsg)
-                return
-            end if
-            if (me%jac_age > 0) then
-                ! an aged Jacobian may be the cause: form a fresh one
-                call ros2_jacobian(me, sys, stat, errmsg)
-                if (stat /= stat_ok) return
-            end if
+            call shrink_after_rejection(me, h, err, 0.8_wp, me%hnext, stat, errmsg)
+            if (stat /= stat_ok) return
+            ! an aged Jacobian may be the cause: form a fresh one
+            if (me%jac_age > 0) call ros2_jacobian(me, sys, stat, errmsg)
+            if (stat /= stat_ok) return
         end do
         me%jac_age = me%jac_age + 1
         if (h >= me%hnext*0.999_wp .or. err > half) me%hnext = h*min(fac_max, max(fac_min, 0.8_wp*err**(-one/3.0_wp)))
         call accept(me, me%t + h, ynew, f2)
-    end subroutine ros2_step
+    end procedure ros2_step
+
+    !> A rejected step of an order-2(3) pair: count it and shrink the step by
+    !! safety err^(-1/3) (at most to fac_min); stat_step_failed below hmin.
+    subroutine shrink_after_rejection(me, h, err, safety, hnext, stat, errmsg)
+        class(integrator_t), intent(inout) :: me
+        real(wp), intent(in) :: h, err, safety
+        real(wp), intent(out) :: hnext
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        stat = stat_ok
+        errmsg = ''
+        me%nreject = me%nreject + 1
+        hnext = h*max(fac_min, safety*err**(-one/3.0_wp))
+        if (hnext < me%hmin) call step_too_small(me%t, me%hmin, stat, errmsg)
+    end subroutine shrink_after_rejection
 
     ! ------------------------------------------------------------------ ROS34PW2
 
@@ -163,8 +166,7 @@ contains
     end function rosw_tableau
 
     !> A restart keeps the Jacobian (it changes little at a kink of the inputs).
-    module subroutine rosw_reset_history(me)
-        class(rosw_t), intent(inout) :: me
+    module procedure rosw_reset_history
         if (.not. allocated(me%u)) then
             allocate (me%u(size(me%y), ns))
             me%jac_age = -1
@@ -172,7 +174,7 @@ contains
         end if
         me%u = zero
         if (me%hnext <= zero) me%hnext = me%h
-    end subroutine rosw_reset_history
+    end procedure rosw_reset_history
 
     !> Form the Jacobian at the current point.
     subroutine rosw_jacobian(me, sys, stat, errmsg)
@@ -188,12 +190,7 @@ contains
     !> One accepted ROS34PW2 step: four stages with one factorization of
     !! I - h gamma J (reused while h and J stay), error from the embedded
     !! order-2 solution, the next step from err^(-1/3).
-    module subroutine rosw_step(me, sys, tstop, stat, errmsg)
-        class(rosw_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: tstop
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+    module procedure rosw_step
         type(rosw_tableau_t) :: tb
         real(wp), dimension(size(me%y)) :: ynew, fnew
         real(wp) :: h, err, fac
@@ -210,18 +207,12 @@ contains
             call rosw_stages(me, sys, tb, h, ynew, err, stat, errmsg)
             if (stat /= stat_ok) return
             if (err <= one) exit
-            me%nreject = me%nreject + 1
             rejected = .true.
-            me%hnext = h*max(fac_min, 0.9_wp*err**(-one/3.0_wp))
-            if (me%hnext < me%hmin) then
-                call step_too_small(me%t, me%hmin, stat, errmsg)
-                return
-            end if
-            if (me%jac_age > 0) then
-                ! an aged Jacobian may be the cause: form a fresh one
-                call rosw_jacobian(me, sys, stat, errmsg)
-                if (stat /= stat_ok) return
-            end if
+            call shrink_after_rejection(me, h, err, 0.9_wp, me%hnext, stat, errmsg)
+            if (stat /= stat_ok) return
+            ! an aged Jacobian may be the cause: form a fresh one
+            if (me%jac_age > 0) call rosw_jacobian(me, sys, stat, errmsg)
+            if (stat /= stat_ok) return
         end do
         call sys%rhs(me%t + h, ynew, fnew, stat, errmsg)
         if (stat /= stat_ok) return
@@ -236,7 +227,7 @@ contains
             if (fac >= one .and. fac <= keep_step_factor) me%hnext = h
         end if
         call accept(me, me%t + h, ynew, fnew)
-    end subroutine rosw_step
+    end procedure rosw_step
 
     !> The four stages of one attempt with step h: ynew and the error norm.
     subroutine rosw_stages(me, sys, tb, h, ynew, err, stat, errmsg)
@@ -290,20 +281,12 @@ contains
     !> Dense output of order 3 from the stages of the last step (the
     !! interpolant of Rang & Angermann's method as tabulated by PETSc's
     !! TSROSW), and its derivative.
-    module subroutine rosw_interpolate(me, tout, yout, dydt)
-        class(rosw_t), intent(in) :: me
-        real(wp), intent(in) :: tout
-        real(wp), intent(out) :: yout(:)
-        real(wp), intent(out), optional :: dydt(:)
+    module procedure rosw_interpolate
         type(rosw_tableau_t) :: tb
         real(wp) :: h, s, bth(ns), dbth(ns), dj, ddj
         integer :: i, j
+        if (at_current_point(me, tout, yout, dydt)) return
         h = me%t - me%told
-        if (h <= zero .or. tout >= me%t) then
-            yout = me%y
-            if (present(dydt)) dydt = me%f
-            return
-        end if
         tb = rosw_tableau()
         s = (tout - me%told)/h
         do i = 1, ns
@@ -320,6 +303,6 @@ contains
                 dydt = dydt + (ddj/h)*me%u(:, j)
             end if
         end do
-    end subroutine rosw_interpolate
+    end procedure rosw_interpolate
 
 end submodule hn_integrators_rosenbrock
