@@ -52,6 +52,9 @@ module hn_integrators
     real(wp), parameter :: rk4_stability = 2.78_wp, abm4_stability = 1.2_wp
     !> Step-size change limits of the error-controlled methods per step.
     real(wp), parameter :: fac_min = 0.2_wp, fac_max = 5.0_wp
+    !> A step at least this fraction of the planned one was not shortened to
+    !! land on tstop (a shortened step does not shrink the next).
+    real(wp), parameter :: unclipped = 0.999_wp
 
     !> Common state and settings of an integrator.
     type, abstract :: integrator_t

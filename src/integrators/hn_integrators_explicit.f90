@@ -121,7 +121,7 @@ contains
         me%rcont(:, 4) = me%rcont(:, 2) - h*k7 - me%rcont(:, 3)
         me%rcont(:, 5) = h*(d1*k1 + d3*k3 + d4*k4 + d5*k5 + d6*k6 + d7*k7)
         fac = min(fac_max, max(fac_min, 0.9_wp*err**(-0.2_wp)))
-        if (h >= me%hnext*0.999_wp .or. fac < one) me%hnext = h*fac   ! a clipped step does not shrink hnext
+        if (h >= me%hnext*unclipped .or. fac < one) me%hnext = h*fac   ! a clipped step does not shrink hnext
         call accept(me, me%t + h, ynew, k7)
     end procedure dopri5_step
 

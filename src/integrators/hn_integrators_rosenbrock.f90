@@ -122,7 +122,7 @@ contains
             if (stat /= stat_ok) return
         end do
         me%jac_age = me%jac_age + 1
-        if (h >= me%hnext*0.999_wp .or. err > half) me%hnext = h*min(fac_max, max(fac_min, 0.8_wp*err**(-one/3.0_wp)))
+        if (h >= me%hnext*unclipped .or. err > half) me%hnext = h*min(fac_max, max(fac_min, 0.8_wp*err**(-one/3.0_wp)))
         call accept(me, me%t + h, ynew, f2)
     end procedure ros2_step
 
@@ -222,7 +222,7 @@ contains
         if (rejected) fac = min(fac, one)
         ! a clipped step does not shrink the next; a small increase is not
         ! worth a new factorization
-        if (h >= me%hnext*0.999_wp .or. fac < one) then
+        if (h >= me%hnext*unclipped .or. fac < one) then
             me%hnext = h*fac
             if (fac >= one .and. fac <= keep_step_factor) me%hnext = h
         end if
