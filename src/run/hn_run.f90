@@ -20,6 +20,7 @@ module hn_run
     use hn_tree, only: dof_label
     use hn_assessment, only: assessment_t, assess, criteria_channels
     use hn_signals, only: signal_received
+    use hn_progress, only: progress_t, limit_diagnosis
     use hn_version, only: code_version
     implicit none
     private
@@ -38,6 +39,7 @@ module hn_run
         character(len=12) :: status = 'complete'
         character(len=msglen) :: message = ''
         character(len=msglen) :: warning = ''   !! a complete run whose results are doubtful
+        character(len=msglen) :: file_note = '' !! what happened to result files (removed, kept in)
         real(wp) :: t_reached = zero
         integer :: nevals = 0            !! dynamics evaluations of the integrator
         integer :: nevals_output = 0     !! evaluations at output times
@@ -67,6 +69,7 @@ contains
         type(channel_set_t) :: ch
         type(results_t) :: out
         type(listing_t) :: lst
+        type(progress_t) :: prog
         type(energy_t) :: en, en0
         real(wp), allocatable :: y(:), dydt(:), ygood(:), vmax(:), vmin(:), tmax(:), tmin(:), tb(:)
         real(wp), allocatable :: sw_old(:), sw_new(:), crit_hist(:, :)
@@ -111,7 +114,7 @@ contains
         ch%head_r0 = sys%ws%kin%r(:, cs%head) - sys%ws%kin%r(:, cs%t1)
         ch%t1_r0 = sys%ws%kin%r(:, cs%t1)
         if (len_trim(h5name) > 0) then
-            call out%open(cs, ch, trim(h5name), code_version, stat, msg)
+            call out%open(cs, ch, trim(h5name), code_version, stat, msg, res%file_note)
             if (stat /= 0) then
                 call fail(exit_output, trim(msg)); return
             end if
@@ -143,6 +146,7 @@ contains
         nev_out0 = 0
         pending_restart = .false.
         call system_clock(c0, rate)
+        call prog%start(cs%t_start, cs%t_end, cs%progress, cs%wall_limit, cs%step_limit)
         outputs: do
             tout = min(cs%t_start + ks*cs%sample_dt, cs%t_start + kp*cs%print_dt, cs%t_end)
             if (kd <= size(cs%dump_times)) tout = min(tout, cs%dump_times(kd))
@@ -187,6 +191,12 @@ contains
                 end if
                 tgood = integ%t
                 ygood = integ%y
+                call prog%update(integ%t, integ%t - integ%told, integ%nsteps, stat, msg)
+                if (stat /= 0) then
+                    call fail(exit_diverged, 'run stopped: '//trim(msg)// &
+                              limit_diagnosis(sys, tgood, ygood, integ%t - integ%told, cs%integrator))
+                    exit outputs
+                end if
             end do
             ! output at tout from the dense output of the last step
             t = tout
@@ -205,6 +215,9 @@ contains
             if (kd <= size(cs%dump_times)) do_dump = abs(t - cs%dump_times(kd)) <= tol
             if (do_sample) then
                 call out%sample(t, ch, sys%ws)
+                if (out%failed()) then
+                    call fail(exit_output, out%error()); exit outputs
+                end if
                 crit_hist(ks + 1, :) = ch%value(icrit)
                 if (keep) then
                     res%samples_t(ks + 1) = t
@@ -226,6 +239,7 @@ contains
             res%t_reached = t
             if (t >= cs%t_end - tol) exit outputs
         end do outputs
+        call prog%finish()
         call system_clock(c1)
         res%wall = real(c1 - c0, wp)/real(rate, wp)
         res%nevals_output = nev_out0
@@ -251,7 +265,7 @@ contains
 
         !> Listing tables, peaks, energy balance and the end-of-run lines; close the file.
         subroutine finish()
-            character(len=msglen) :: line
+            character(len=msglen) :: line, note
             integer :: st
             if (allocated(res%times)) then
                 call lst%histories(ch, res%times, res%rows, res%nrows)
@@ -273,8 +287,13 @@ contains
                 res%nevals, ' DYNAMICS EVALUATIONS + ', res%nevals_output, ' AT OUTPUTS, ', res%wall, ' S WALL TIME'
             call lst%message(line)
             if (res%exit_code /= exit_ok) call lst%message('RUN INCOMPLETE: '//trim(res%message))
-            call out%close(ch, trim(res%status), trim(res%message), st, line)
-            if (st /= 0 .and. res%exit_code == exit_ok) call fail(exit_output, trim(line))
+            call out%close(ch, trim(res%status), trim(res%message), st, line, note)
+            if (st /= 0) call fail(exit_output, trim(line))
+            if (len_trim(note) > 0 .and. len_trim(res%file_note) > 0) then
+                res%file_note = trim(res%file_note)//'; '//note
+            else if (len_trim(note) > 0) then
+                res%file_note = note
+            end if
         end subroutine finish
 
         !> The accepted state must be finite and keep the energy balance.
