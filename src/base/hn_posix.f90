@@ -15,7 +15,7 @@ module hn_posix
     private
 
     public :: file_kind, stdin_kind, kind_name, is_terminal, process_id, process_alive, host_name, &
-              make_directories, remove_file, rename_file, read_stdin_block, raw_write_stderr, exit_now, &
+              make_directories, remove_directory, remove_file, rename_file, read_stdin_block, raw_write_stderr, exit_now, &
               parent_directory, is_absolute, join_path
 
     integer, parameter, public :: kind_missing = 0, kind_regular = 1, kind_directory = 2, kind_char_device = 3, &
@@ -48,6 +48,11 @@ module hn_posix
             integer(c_int), value :: mode
             integer(c_int) :: r
         end function c_mkdir
+        function c_rmdir(path) bind(C, name='rmdir') result(r)
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: r
+        end function c_rmdir
         function c_unlink(path) bind(C, name='unlink') result(r)
             import :: c_int, c_char
             character(kind=c_char), intent(in) :: path(*)
@@ -194,6 +199,13 @@ contains
             end if
         end do
     end subroutine make_directories
+
+    !> Remove the empty directory `path`; stat /= 0 when it could not be removed.
+    subroutine remove_directory(path, stat)
+        character(len=*), intent(in) :: path   !! directory
+        integer, intent(out) :: stat           !! 0 on success
+        stat = int(c_rmdir(path//c_null_char))
+    end subroutine remove_directory
 
     !> Remove file `path`; stat /= 0 when it could not be removed.
     subroutine remove_file(path, stat)

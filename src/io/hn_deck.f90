@@ -29,6 +29,7 @@ module hn_deck
     character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
     real(wp), parameter :: big_length = 10.0_wp     !! largest coordinate of a point [m]
     real(wp), parameter :: big_modulus = 1.0e13_wp  !! largest modulus or stiffness accepted
+    integer, parameter :: max_table_points = 100000 !! points of one TABLE
     real(wp), parameter :: tiny_value = 1.0e-30_wp  !! a table whose values are all below this is zero in effect
 
     !> One card with its continuation cards: deck lines first .. first+ncont.
@@ -220,8 +221,8 @@ contains
             if (need < 0) then
                 s = rd%raw(i, 2)
                 read (s, *, iostat=ios) npts
-                if (ios /= 0 .or. npts < 1) then
-                    call rd%int(i, 2, 'number of points', npts, 1, 100000)
+                if (ios /= 0 .or. npts < 1 .or. npts > max_table_points) then
+                    call rd%int(i, 2, 'number of points', npts, 1, max_table_points)
                     if (.not. rd%failed()) call rd%fail(rd%where(i)//': bad TABLE point count')
                     return
                 end if
@@ -708,6 +709,7 @@ contains
         type(card_t), intent(in) :: cards(:)
         type(named_table_t), allocatable, intent(out) :: tabs(:)
         integer :: k, nt, i, npts, j, c, f, stat, bad
+        character(len=12) :: v1, v2
         real(wp) :: tscale, yscale
         real(wp), allocatable :: t(:), y(:)
         nt = count(cards%key == 'TABLE')
@@ -725,7 +727,7 @@ contains
                              trim(tabs(nt)%name)//'" is defined twice; expected a new name')
                 return
             end if
-            call rd%int(i, 2, 'number of points', npts, 1, 100000)
+            call rd%int(i, 2, 'number of points', npts, 1, max_table_points)
             call rd%real(i, 3, 'time scale', 's per unit', tscale, 1.0e-9_wp, 1.0e3_wp, default=one)
             call rd%real(i, 4, 'value scale', 'per unit', yscale, -1.0e9_wp, 1.0e9_wp, default=one)
             if (rd%failed()) return
@@ -746,10 +748,13 @@ contains
                     return
                 end if
             end do
-            if (maxval(abs(y)) > zero .and. maxval(abs(y))*abs(yscale) < tiny_value) &
-                write (tabs(nt)%warning, '(5a,es9.2,a,es9.2,a)') 'table ', trim(tabs(nt)%name), ' (', &
-                    rd%where(i), '): value scale ', yscale, ' makes its largest value ', &
-                    maxval(abs(y))*abs(yscale), ', zero in effect; check the scale (F4)'
+            if (maxval(abs(y)) > zero .and. maxval(abs(y))*abs(yscale) < tiny_value) then
+                write (v1, '(es9.2)') yscale
+                write (v2, '(es9.2)') maxval(abs(y))*abs(yscale)
+                tabs(nt)%warning = 'table '//trim(tabs(nt)%name)//': value scale '//trim(adjustl(v1))// &
+                                   ' makes its largest value '//trim(adjustl(v2))//', zero in effect; check F4 at '// &
+                                   rd%where(i)
+            end if
             call table_set(tabs(nt)%tab, t*tscale, y*yscale, stat, bad)
             if (bad > 0) then
                 c = i + 1 + (bad - 1)/3

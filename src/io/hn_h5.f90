@@ -222,6 +222,11 @@ contains
         character(len=:), allocatable :: dir
         integer :: st, kind
         call h5_quiet()
+        if (me%is_open) call h5_close(me, .false., stat, errmsg)
+        me%stat = stat_ok
+        me%errmsg = ''
+        me%nser = 0
+        me%last = 0
         me%final_name = name
         me%temp_name = name//'.part'
         me%lock_name = name//'.lock'

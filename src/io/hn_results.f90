@@ -103,7 +103,7 @@ contains
                                'per column in column_units')
             call h%attr_string('/coordinates/xd', 'column_units', coord_units(cs, '/s'))
             call h%attr_string('/coordinates/xd', 'columns', coord_labels(cs))
-            if (size(cs%dump_times) > 0) call dump_open(h, cs%model)
+            if (size(cs%dump_times) > 0) call dump_open(h, cs%model, size(cs%dump_times))
             call h%flush()
             stat = h%stat
             errmsg = h%errmsg

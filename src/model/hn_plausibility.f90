@@ -31,21 +31,21 @@ contains
         integer :: k, e
         real(wp) :: ev(3), reach
         character(len=160) :: w
+        character(len=300) :: wl
         allocate (warnings(0))
         associate (t => model%tree)
             do k = 1, t%nbody
                 if (t%mass(k) < light_mass) then
-                    write (w, '(3a,es9.2,a)') 'body ', trim(t%name(k)), ': mass ', t%mass(k), &
-                        ' kg is far below the vertebral range (0.376 to 0.526 kg); a body this light needs '// &
-                        'tiny steps and can make the run crawl (check units)'
-                    call add(w)
+                    write (wl, '(3a,es9.2,a)') 'body ', trim(t%name(k)), ': mass', t%mass(k), &
+                        ' kg, far below the vertebrae''s 0.376-0.526 kg: needs tiny steps, the run may crawl'// &
+                        ' (check units)'
+                    call add(wl)
                 end if
                 ev = eigenvalues3(t%inertia(:, :, k))
                 if (ev(1) < small_inertia) then
-                    write (w, '(3a,es9.2,a)') 'body ', trim(t%name(k)), ': smallest principal inertia ', ev(1), &
-                        ' kg m2 is far below the vertebral range (2.96E-04 to 7.96E-04 kg m2); it needs tiny '// &
-                        'steps and can make the run crawl (check units)'
-                    call add(w)
+                    write (wl, '(3a,es9.2,a)') 'body ', trim(t%name(k)), ': smallest principal inertia', ev(1), &
+                        ' kg m2, far below the vertebrae''s 2.96E-04-7.96E-04: the run may crawl (check units)'
+                    call add(wl)
                 end if
                 if (ev(3) > (ev(1) + ev(2))*(1 + 1.0e-9_wp)) then
                     write (w, '(3a,3es10.3,a)') 'body ', trim(t%name(k)), ': principal moments', ev, &

@@ -21,6 +21,7 @@ module hn_run
     use hn_assessment, only: assessment_t, assess, criteria_channels
     use hn_signals, only: signal_received
     use hn_progress, only: progress_t, limit_diagnosis
+    use hn_history, only: history_t
     use hn_version, only: code_version
     implicit none
     private
@@ -47,8 +48,7 @@ module hn_run
         real(wp) :: wall = zero          !! wall-clock time of the run loop [s]
         real(wp) :: energy_residual = zero   !! largest |energy balance residual| [J]
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
-        real(wp), allocatable :: times(:), rows(:, :)   !! the listing rows
-        integer :: nrows = 0
+        integer :: nrows = 0                             !! rows of the listing's time histories
         real(wp), allocatable :: samples_t(:), samples(:, :)  !! (optional) every channel at every sample
         type(assessment_t) :: criteria                   !! injury criteria of the run
     end type run_result_t
@@ -73,9 +73,10 @@ contains
         type(energy_t) :: en, en0
         real(wp), allocatable :: y(:), dydt(:), ygood(:), vmax(:), vmin(:), tmax(:), tmin(:), tb(:)
         real(wp), allocatable :: sw_old(:), sw_new(:), crit_hist(:, :)
+        type(history_t) :: rows, crit   !! listing rows and criteria channels, memory bounded
         integer :: icrit(size(criteria_channels)), k
         real(wp) :: t, tout, tol, tstop, tgood
-        integer :: stat, nf, ks, kp, kd, ib, nprint_max, nsw, nsample_max, nev_out0
+        integer :: stat, nf, ks, kp, kd, ib, nsw, nsample_max, nev_out0
         integer(i8) :: c0, c1, rate
         character(len=msglen) :: msg
         logical :: do_sample, do_print, do_dump, keep, pending_restart
@@ -119,13 +120,12 @@ contains
                 call fail(exit_output, trim(msg)); return
             end if
         end if
-        nprint_max = nint((cs%t_end - cs%t_start)/cs%print_dt) + 2
-        allocate (res%times(nprint_max), res%rows(ch%n, nprint_max))
+        call rows%init(1 + ch%n)
         if (keep) then
             nsample_max = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
             allocate (res%samples_t(nsample_max), res%samples(ch%n, nsample_max))
         end if
-        allocate (crit_hist(nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2, size(criteria_channels)))
+        call crit%init(size(criteria_channels))
         do k = 1, size(criteria_channels)
             icrit(k) = findloc(ch%name, criteria_channels(k), dim=1)
         end do
@@ -218,7 +218,7 @@ contains
                 if (out%failed()) then
                     call fail(exit_output, out%error()); exit outputs
                 end if
-                crit_hist(ks + 1, :) = ch%value(icrit)
+                call crit%add(ch%value(icrit))
                 if (keep) then
                     res%samples_t(ks + 1) = t
                     res%samples(:, ks + 1) = ch%value
@@ -227,8 +227,7 @@ contains
             end if
             if (do_print) then
                 res%nrows = res%nrows + 1
-                res%times(res%nrows) = t
-                res%rows(:, res%nrows) = ch%value
+                call rows%add([t, ch%value])
                 kp = kp + 1
                 call out%flush(ch)
             end if
@@ -251,7 +250,12 @@ contains
             res%samples_t = res%samples_t(1:ks)
             res%samples = res%samples(:, 1:ks)
         end if
-        call assess(cs%t_start, cs%sample_dt, crit_hist(1:ks, :), res%criteria)
+        allocate (crit_hist(crit%n, crit%m))
+        do k = 1, crit%m
+            crit_hist(:, k) = crit%column(k)
+        end do
+        call crit%clear()
+        call assess(cs%t_start, cs%sample_dt, crit_hist, res%criteria)
         call finish()
     contains
 
@@ -267,8 +271,9 @@ contains
         subroutine finish()
             character(len=msglen) :: line, note
             integer :: st
-            if (allocated(res%times)) then
-                call lst%histories(ch, res%times, res%rows, res%nrows)
+            if (rows%m > 0) then
+                call lst%histories(ch, rows)
+                call rows%clear()
                 call lst%peaks(ch, vmax, tmax, vmin, tmin)
                 call lst%criteria(res%criteria)
                 call out%criteria(res%criteria)
