@@ -73,7 +73,7 @@ program hhneck
             sweep = .true.
         case ('--version')
             write (output_unit, '(a)') 'hhneck '//code_version
-            stop
+            stop 0, quiet=.true.
         case ('--help', '-h')
             call help()
         case default
@@ -105,7 +105,7 @@ program hhneck
     end do
     if (check_only) then
         write (error_unit, '(a)') 'hhneck: deck is valid: '//trim(cs%model%title)
-        stop
+        stop 0, quiet=.true.
     end if
     if (sample > 0.0_wp) then
         if ((cs%t_end - cs%t_start)/sample > 1.0e7_wp) call usage('--sample gives more than 1E7 samples for this run')
@@ -154,7 +154,7 @@ contains
         end if
         if (check_only) then
             write (error_unit, '(a)') 'hhneck: sweep deck is valid: '//trim(sw%title)
-            stop
+            stop 0, quiet=.true.
         end if
         if (.not. h5_given) h5name = sw%h5file
         if (no_h5) h5name = ''
@@ -180,7 +180,7 @@ contains
             stop exit_members_failed, quiet=.true.
         end if
         write (error_unit, '(a,i0,a)') 'hhneck: sweep finished; all ', size(recs), ' member runs complete'
-        stop
+        stop 0, quiet=.true.
     end subroutine run_sweep
 
     subroutine h5name_argument()
@@ -270,7 +270,7 @@ contains
             '  1  bad command line       4  the result file could not be written', &
             '  2  deck error (located)   5  interrupted by SIGINT or SIGTERM; files kept', &
             '                            6  a sweep finished but some member runs failed'
-        stop
+        stop 0, quiet=.true.
     end subroutine help
 
 end program hhneck

@@ -125,7 +125,7 @@ contains
             call model_set_neutral(cs%model)
             call plausibility_warnings(cs%model, cs%warnings)
             do k = 1, size(tabs)
-                if (len_trim(tabs(k)%warning) > 0) cs%warnings = [cs%warnings, tabs(k)%warning]
+                if (len_trim(tabs(k)%warning) > 0) cs%warnings = [character(len=160) :: cs%warnings, tabs(k)%warning]
             end do
         end if
     end subroutine interpret
@@ -749,8 +749,8 @@ contains
                 end if
             end do
             if (maxval(abs(y)) > zero .and. maxval(abs(y))*abs(yscale) < tiny_value) then
-                write (v1, '(es9.2)') yscale
-                write (v2, '(es9.2)') maxval(abs(y))*abs(yscale)
+                write (v1, '(es11.2e3)') yscale
+                write (v2, '(es11.2e3)') maxval(abs(y))*abs(yscale)
                 tabs(nt)%warning = 'table '//trim(tabs(nt)%name)//': value scale '//trim(adjustl(v1))// &
                                    ' makes its largest value '//trim(adjustl(v2))//', zero in effect; check F4 at '// &
                                    rd%where(i)

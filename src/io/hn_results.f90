@@ -107,8 +107,13 @@ contains
             call h%flush()
             stat = h%stat
             errmsg = h%errmsg
+            ! a file that could not be set up is removed with its lock (the message says so)
+            if (stat /= stat_ok) call h%close(.false., stat, errmsg)
         end associate
-        if (stat /= stat_ok) return
+        if (stat /= stat_ok) then
+            me%active = .false.
+            return
+        end if
         allocate (me%time(block), me%chan(block, ch%n), me%pos(3, nb, block), me%rot(3, 3, nb, block))
         allocate (me%x(n, block), me%xd(n, block))
         me%nbuf = 0

@@ -89,7 +89,7 @@ contains
                 '--max-steps) was reached', where_now()
         else if (me%wall_limit > zero .and. wall >= me%wall_limit) then
             stat = stat_step_failed
-            errmsg = 'the wall-time limit of '//num(me%wall_limit, '(g0.4)')//' s (RUNLIMIT card or '// &
+            errmsg = 'the wall-time limit of '//seconds(me%wall_limit)//' s (RUNLIMIT card or '// &
                      '--max-wall) was reached'//where_now()
         end if
         if (me%mode == progress_off) return
@@ -115,7 +115,7 @@ contains
             frac = (t - me%t0)/max(me%t_end - me%t0, tiny(1.0_wp))
             write (buf, '(a,f10.5,a,f10.5,a,f5.1,a,f9.1,a,es9.2,a)') 'hhneck: t =', t, ' s of', me%t_end, ' s (', &
                 100*frac, ' %), ', wall, ' s wall, step', h, ' s, '
-            if (frac > 1.0e-3_wp) then
+            if (frac > 1.0e-6_wp) then
                 s = trim(buf)//' about '//trim(duration(wall*(1 - frac)/frac))//' to go'
             else
                 s = trim(buf)//' time to go not yet known'
@@ -127,6 +127,15 @@ contains
                 num(wall, '(f0.1)')//' s wall and '//num(real(nsteps, wp), '(i0)')//' steps (last step '// &
                 num(h, '(es9.2)')//' s)'
         end function where_now
+        function seconds(x) result(s)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: s
+            if (abs(x - nint(x)) < 1.0e-9_wp*max(1.0_wp, abs(x))) then
+                s = num(x, '(i0)')
+            else
+                s = num(x, '(g0.4)')
+            end if
+        end function seconds
         function num(x, fmt) result(s)
             real(wp), intent(in) :: x
             character(len=*), intent(in) :: fmt
