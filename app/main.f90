@@ -13,7 +13,7 @@ program hhneck
     use hn_deck, only: read_case
     use hn_deck_reader, only: parse_real, stdin_path
     use hn_version, only: code_version
-    use hn_run, only: run_case, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
+    use hn_run, only: run_state_t, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
                       exit_members_failed, exit_interrupted
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member
     use hn_sweep_report, only: sweep_finish
@@ -23,6 +23,7 @@ program hhneck
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
+    type(run_state_t) :: run
     character(len=path_len) :: h5name, arg, deck, source
     character(len=path_len), allocatable :: search(:)
     character(len=msglen) :: msg
@@ -122,7 +123,7 @@ program hhneck
     if (no_h5) h5name = ''
     ! from here on a signal stops the run at its next step, files closed and marked
     call defer_signals()
-    call run_case(cs, output_unit, trim(h5name), res)
+    call run%execute(cs, output_unit, trim(h5name), res)
     if (res%exit_code /= exit_ok) then
         write (error_unit, '(a)') 'hhneck: '//trim(res%message)
         if (len_trim(res%file_note) > 0) write (error_unit, '(a)') 'hhneck: '//trim(res%file_note)
