@@ -220,8 +220,7 @@ contains
         integer, intent(out) :: stat                  !! stat_ok or stat_io
         character(len=msglen), intent(out) :: errmsg  !! the reason on failure
         character(len=:), allocatable :: dir
-        integer :: st, kind, err
-        integer(hid_t) :: fapl
+        integer :: st, kind
         call h5_quiet()
         if (me%is_open) call h5_close(me, .false., stat, errmsg)
         me%stat = stat_ok
@@ -264,12 +263,7 @@ contains
         if (me%stat == stat_ok .and. kind == kind_regular) &
             call add_note(me, 'replaced '//me%temp_name//' left by an earlier run')
         if (me%stat == stat_ok) then
-            ! the 1.10 file format: chunk indexes of growing series are extensible
-            ! arrays, compact in memory and on disk however long the run
-            call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, st)
-            if (st >= 0) call h5pset_libver_bounds_f(fapl, H5F_LIBVER_V110_F, H5F_LIBVER_LATEST_F, st)
-            call h5fcreate_f(me%temp_name, H5F_ACC_TRUNC_F, me%id, st, access_prp=fapl)
-            call h5pclose_f(fapl, err)
+            call h5fcreate_f(me%temp_name, H5F_ACC_TRUNC_F, me%id, st)
             if (st < 0) then
                 me%stat = stat_io
                 me%errmsg = 'cannot create '//me%temp_name//': '//h5_error_summary()
