@@ -308,7 +308,7 @@ contains
         if (stat == stat_ok .and. status /= 'complete' .and. file_kind(me%h5%final_name) == kind_regular) then
             write (tt, '(f12.5)') me%t_last
             write (note, '(5a,i0,a)') 'results up to t = ', trim(adjustl(tt)), ' s kept in ', me%h5%final_name, &
-                ' (marked incomplete, ', me%nwritten, ' samples)'
+                ' (marked incomplete, ', me%nwritten, trim(merge(' sample) ', ' samples)', me%nwritten == 1))
         end if
     end subroutine results_close
 
