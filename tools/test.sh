@@ -30,6 +30,8 @@ echo "== HDF5 results readable by h5py"
 tmp=$(mktemp -d)
 fpm run -- --h5 "$tmp/case6-2.h5" < input/case6-2.inp > "$tmp/listing.txt"
 python3 tools/check_results.py "$tmp/case6-2.h5"
+echo "== animations and the ParaView sidecar (docs/animation.md)"
+sh test/scripts/animate.sh
 echo "== a bad deck: exit code 2, located message on stderr, no result file"
 sed 's/^CONTROL   0.1  /CONTROL   -0.1 /' input/case6-2.inp > "$tmp/bad.inp"
 set +e

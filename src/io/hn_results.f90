@@ -21,6 +21,7 @@ module hn_results
     use hn_dump, only: dump_open
     use hn_assessment, only: assessment_t
     use hn_posix, only: file_kind, kind_regular
+    use hn_results_model, only: write_element_tables
     implicit none
     private
 
@@ -184,6 +185,7 @@ contains
         call h%write_int('/model/prescribed', merge(1, 0, cs%model%prescribed), [n])
         call h%attr_string('/model/prescribed', 'units', '1')
         call h%attr_string('/model/prescribed', 'description', '1 where the coordinate is prescribed, 0 where free')
+        call write_element_tables(h, cs%model)
     end subroutine write_model
 
     !> Labels of the active coordinates, e.g. "T1.tx T1.ty ...".
