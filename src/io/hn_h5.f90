@@ -440,14 +440,7 @@ contains
         integer(hid_t) :: space, dset
         integer(hsize_t) :: hd(max(size(dims), 1))
         integer :: err
-        if (me%stat /= stat_ok) return
-        if (size(dims) == 0) then
-            call h5screate_f(H5S_SCALAR_F, space, err)
-        else
-            hd = int(dims, hsize_t)
-            call h5screate_simple_f(size(dims), hd, space, err)
-        end if
-        call check(me, err, 'dataspace of '//path)
+        call new_space(me, dims, space, path)
         if (me%stat /= stat_ok) return
         call h5dcreate_f(me%id, path, dtype, space, dset, err)
         call check(me, err, 'creating '//path)
@@ -507,6 +500,23 @@ contains
         call h5sclose_f(space, err)
     end subroutine h5_attr_real
 
+    !> A dataspace of shape dims (scalar when dims is empty).
+    subroutine new_space(me, dims, space, what)
+        class(h5_file_t), intent(inout) :: me
+        integer, intent(in) :: dims(:)
+        integer(hid_t), intent(out) :: space
+        character(len=*), intent(in) :: what
+        integer(hsize_t) :: hd(max(size(dims), 1))
+        integer :: err
+        if (size(dims) == 0) then
+            call h5screate_f(H5S_SCALAR_F, space, err)
+        else
+            hd = int(dims, hsize_t)
+            call h5screate_simple_f(size(dims), hd, space, err)
+        end if
+        call check(me, err, 'dataspace of '//what)
+    end subroutine new_space
+
     !> A new attribute (an old one of that name deleted) and its dataspace.
     subroutine new_attribute(me, path, name, dtype, dims, attr, space)
         class(h5_file_t), intent(inout) :: me
@@ -516,7 +526,6 @@ contains
         integer(hid_t), intent(out) :: attr, space
         integer :: err
         logical :: exists
-        integer(hsize_t) :: hd(max(size(dims), 1))
         attr = -1; space = -1
         call h5aexists_by_name_f(me%id, path, name, exists, err)
         call check(me, err, 'looking for attribute '//name//' of '//path)
@@ -525,13 +534,7 @@ contains
             call h5adelete_by_name_f(me%id, path, name, err)
             call check(me, err, 'replacing attribute '//name//' of '//path)
         end if
-        if (size(dims) == 0) then
-            call h5screate_f(H5S_SCALAR_F, space, err)
-        else
-            hd = int(dims, hsize_t)
-            call h5screate_simple_f(size(dims), hd, space, err)
-        end if
-        call check(me, err, 'dataspace of attribute '//name)
+        call new_space(me, dims, space, 'attribute '//name)
         if (me%stat /= stat_ok) return
         call h5acreate_by_name_f(me%id, path, name, dtype, space, attr, err)
         call check(me, err, 'creating attribute '//name//' of '//path)
