@@ -7,8 +7,8 @@ module hn_forces
     use hn_model, only: model_t, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, loads_clear
-    use hn_line_elements, only: line_geometry_t, line_geometry, apply_line_tension, spring_tension, &
-                                ligament_tension, muscle_tension, ligament_energy
+    use hn_line_elements, only: line_geometry_t, line_geometries, apply_line_tensions, spring_tension, &
+                                spring_energy, ligament_tension, muscle_tension, ligament_energy
     use hn_discs, only: apply_disc
     use hn_joint_limits, only: limit_force
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
@@ -54,8 +54,8 @@ contains
         type(body_loads_t), intent(inout) :: loads
         type(element_output_t), intent(inout) :: eo
         integer :: k, e
-        real(wp) :: act, ten, u, pd, v(3), p(3), pv(3)
-        type(line_geometry_t) :: g
+        real(wp) :: u, pd, v(3), p(3), pv(3)
+        type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles)), gs(size(model%springs))
 
         call loads_clear(loads)
         eo%u_elastic = zero; eo%p_diss = zero; eo%p_muscle = zero; eo%p_applied = zero
@@ -72,28 +72,18 @@ contains
             end do
         end if
         if (model%family_on(fam_ligaments)) then
-            do e = 1, size(model%ligaments)
-                associate (l => model%ligaments(e))
-                    call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
-                    ten = ligament_tension(l, g%length)
-                    call apply_line_tension(loads, kin, l%body_a, l%body_b, g, ten)
-                    eo%u_elastic = eo%u_elastic + ligament_energy(l, g%length)
-                    eo%ligament(:, e) = [ten, g%length]
-                end associate
-            end do
+            call line_geometries(kin, model%ligaments%line_attach_t, gl)
+            eo%ligament(1, :) = ligament_tension(model%ligaments, gl%length)
+            eo%ligament(2, :) = gl%length
+            call apply_line_tensions(loads, kin, model%ligaments%line_attach_t, gl, eo%ligament(1, :))
+            eo%u_elastic = eo%u_elastic + sum(ligament_energy(model%ligaments, gl%length))
         end if
         if (model%family_on(fam_muscles)) then
-            do e = 1, size(model%muscles)
-                associate (m => model%muscles(e))
-                    call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
-                    act = zero
-                    if (m%activation > 0) act = table_value(model%tables(m%activation), t)
-                    ten = muscle_tension(m, g%length, g%rate, act)
-                    call apply_line_tension(loads, kin, m%body_a, m%body_b, g, ten)
-                    eo%p_muscle = eo%p_muscle + ten*g%rate
-                    eo%muscle(:, e) = [ten, g%length]
-                end associate
-            end do
+            call line_geometries(kin, model%muscles%line_attach_t, gm)
+            eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, muscle_activations(model, t))
+            eo%muscle(2, :) = gm%length
+            call apply_line_tensions(loads, kin, model%muscles%line_attach_t, gm, eo%muscle(1, :))
+            eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
         end if
         if (model%family_on(fam_limits)) then
             do e = 1, size(model%limits)
@@ -105,15 +95,11 @@ contains
             end do
         end if
         if (model%family_on(fam_springs)) then
-            do e = 1, size(model%springs)
-                associate (s => model%springs(e))
-                    call line_geometry(kin, s%body_a, s%point_a, s%body_b, s%point_b, g)
-                    eo%spring(e) = spring_tension(s, g%length, g%rate)
-                    call apply_line_tension(loads, kin, s%body_a, s%body_b, g, eo%spring(e))
-                    eo%u_elastic = eo%u_elastic + 0.5_wp*s%stiffness*(g%length - s%free_length)**2
-                    eo%p_diss = eo%p_diss + s%damping*g%rate**2
-                end associate
-            end do
+            call line_geometries(kin, model%springs%line_attach_t, gs)
+            eo%spring = spring_tension(model%springs, gs%length, gs%rate)
+            call apply_line_tensions(loads, kin, model%springs%line_attach_t, gs, eo%spring)
+            eo%u_elastic = eo%u_elastic + sum(spring_energy(model%springs, gs%length))
+            eo%p_diss = eo%p_diss + sum(model%springs%damping*gs%rate**2)
         end if
         do e = 1, size(model%applied)
             associate (al => model%applied(e))
@@ -129,6 +115,18 @@ contains
             end associate
         end do
     end subroutine compute_loads
+
+    !> Activation a(t) of every muscle (zero without an activation table).
+    pure function muscle_activations(model, t) result(act)
+        type(model_t), intent(in) :: model   !! the model
+        real(wp), intent(in) :: t            !! time [s]
+        real(wp) :: act(size(model%muscles))
+        integer :: e
+        act = zero
+        do e = 1, size(model%muscles)
+            if (model%muscles(e)%activation > 0) act(e) = table_value(model%tables(model%muscles(e)%activation), t)
+        end do
+    end function muscle_activations
 
     !> Number of switching functions of the one-way elements.
     pure integer function switch_count(model) result(n)
@@ -151,8 +149,8 @@ contains
         type(kinematics_t), intent(in) :: kin
         real(wp), intent(in) :: x(:)
         real(wp), intent(out) :: sw(:)
-        type(line_geometry_t) :: g
-        real(wp) :: act
+        type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles))
+        real(wp) :: act(size(model%muscles))
         integer :: e, i
         sw = 1.0_wp
         i = 0
@@ -160,24 +158,19 @@ contains
             i = i + 1
             if (model%family_on(fam_limits)) sw(i) = x(model%limits(e)%dof) - model%limits(e)%xneutral
         end do
-        do e = 1, size(model%muscles)
-            i = i + 1
-            if (.not. model%family_on(fam_muscles)) cycle
-            associate (m => model%muscles(e))
-                call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
-                act = zero
-                if (m%activation > 0) act = table_value(model%tables(m%activation), t)
-                sw(i) = m%m1*(g%length - m%rest_length) + m%m2*g%rate + act*m%fmax
+        if (model%family_on(fam_muscles)) then
+            call line_geometries(kin, model%muscles%line_attach_t, gm)
+            act = muscle_activations(model, t)
+            associate (m => model%muscles)
+                sw(i + 1:i + size(m)) = m%m1*(gm%length - m%length0) + m%m2*gm%rate + act*m%fmax
             end associate
-        end do
+        end if
+        i = i + size(model%muscles)
+        if (model%family_on(fam_ligaments)) call line_geometries(kin, model%ligaments%line_attach_t, gl)
         do e = 1, size(model%ligaments)
             if (model%ligaments(e)%l1 <= zero) cycle
             i = i + 1
-            if (.not. model%family_on(fam_ligaments)) cycle
-            associate (l => model%ligaments(e))
-                call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
-                sw(i) = g%length - l%slack_length
-            end associate
+            if (model%family_on(fam_ligaments)) sw(i) = gl(e)%length - model%ligaments(e)%length0
         end do
     end subroutine switching_functions
 

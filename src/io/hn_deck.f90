@@ -11,7 +11,7 @@ module hn_deck
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
-    use hn_line_elements, only: ligament_t, muscle_t, spring_t
+    use hn_line_elements, only: line_attach_t, ligament_t, muscle_t, spring_t
     use hn_joint_limits, only: joint_limit_t
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
     use hn_linsolve, only: solver_gauss, solver_cholesky
@@ -806,15 +806,12 @@ contains
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
-        integer :: k, i, f, kb, m, j, fam, ninternal, nlimdrop
-        character(len=10) :: s
+        integer :: k, i, ninternal, nlimdrop
+        logical :: keep
         character(len=100) :: note
-        type(disc_t) :: d
         type(ligament_t) :: g
         type(muscle_t) :: mu
         type(spring_t) :: sp
-        type(joint_limit_t) :: lim
-        real(wp) :: v
 
         ninternal = 0
         nlimdrop = 0
@@ -822,125 +819,32 @@ contains
             i = cards(k)%first
             select case (cards(k)%key)
             case ('DISC')
-                d = disc_t()
-                call rd%name(i, 1, 'disc name', d%name)
-                d%body_a = body_ref(rd, i, 2, 'lower body', bnames, .false.)
-                d%body_b = body_ref(rd, i, 3, 'upper body', bnames, .false.)
-                call distinct_bodies(rd, i, d%body_a, d%body_b)
-                call rd%real(i, 4, 'area A', 'm^2', d%area, 1.0e-8_wp, 1.0_wp)
-                call rd%real(i, 5, 'thickness h', 'm', d%h, 1.0e-5_wp, 1.0_wp)
-                call rd%real(i, 6, 'modulus d1', 'Pa', d%d1, 1.0e-3_wp, big_modulus)
-                call rd%real(i, 7, 'viscous modulus d2', 'Pa s', d%d2, zero, big_modulus)
-                do f = 1, 3
-                    call rd%real(i + 1, f, 'lower plate centre', 'm', d%pa(f), -big_length, big_length)
-                    call rd%real(i + 1, 3 + f, 'upper plate centre', 'm', d%pb(f), -big_length, big_length)
-                end do
-                call rd%real(i + 1, 7, 'plate tilt', 'deg', v, -90.0_wp, 90.0_wp, default=zero)
-                d%tilt = v*deg
-                call rd%real(i + 2, 1, 'shear modulus G', 'Pa', d%g, 1.0e-3_wp, big_modulus)
-                call rd%real(i + 2, 2, 'second moment Ix', 'm^4', d%ix, 1.0e-20_wp, one)
-                call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
-                call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
-                call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
-                if (rd%failed()) return
-                call map_ends(d%body_a, d%pa, d%body_b, d%pb)
-                if (d%body_a == d%body_b) cycle
-                cs%model%discs = [cs%model%discs, d]
+                call disc_card(rd, i, bnames, bmap, ninternal, cs%model%discs)
             case ('LIGAMENT')
                 g = ligament_t()
-                call rd%name(i, 1, 'ligament name', g%name)
-                g%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
-                g%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
-                call distinct_bodies(rd, i, g%body_a, g%body_b)
+                call line_card(rd, i, 'ligament', g%line_attach_t, i, 7, keep)
                 call rd%real(i, 4, 'l1', 'N/m', g%l1, zero, big_modulus)
                 call rd%real(i, 5, 'l2', 'N/m^n', g%l2, zero, 1.0e30_wp)
                 call rd%real(i, 6, 'exponent n', '-', g%n, one, 10.0_wp, default=2.0_wp)
-                call rd%real(i, 7, 'slack length', 'm', g%slack_length, 1.0e-6_wp, big_length, default=-one)
-                call line_points(rd, i + 1, g%point_a, g%point_b)
-                if (rd%failed()) return
-                call map_ends(g%body_a, g%point_a, g%body_b, g%point_b)
-                if (g%body_a == g%body_b) cycle
-                cs%model%ligaments = [cs%model%ligaments, g]
+                if (keep .and. .not. rd%failed()) cs%model%ligaments = [cs%model%ligaments, g]
             case ('MUSCLE')
                 mu = muscle_t()
-                call rd%name(i, 1, 'muscle name', mu%name)
-                mu%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
-                mu%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
-                call distinct_bodies(rd, i, mu%body_a, mu%body_b)
+                call line_card(rd, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
                 call rd%real(i, 4, 'stiffness m1', 'N/m', mu%m1, zero, big_modulus)
                 call rd%real(i, 5, 'damping m2', 'N s/m', mu%m2, zero, big_modulus)
                 call rd%real(i, 6, 'active force Fmax', 'N', mu%fmax, zero, 1.0e6_wp, default=zero)
-                if (.not. rd%is_blank(i, 7)) then
-                    mu%activation = table_ref(rd, i, 7, tabs)
-                end if
-                call line_points(rd, i + 1, mu%point_a, mu%point_b)
-                call rd%real(i + 1, 7, 'rest length', 'm', mu%rest_length, 1.0e-6_wp, big_length, default=-one)
-                if (rd%failed()) return
-                call map_ends(mu%body_a, mu%point_a, mu%body_b, mu%point_b)
-                if (mu%body_a == mu%body_b) cycle
-                cs%model%muscles = [cs%model%muscles, mu]
+                if (.not. rd%is_blank(i, 7)) mu%activation = table_ref(rd, i, 7, tabs)
+                if (keep .and. .not. rd%failed()) cs%model%muscles = [cs%model%muscles, mu]
             case ('SPRING')
                 sp = spring_t()
-                call rd%name(i, 1, 'spring name', s)
-                sp%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
-                sp%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
-                call distinct_bodies(rd, i, sp%body_a, sp%body_b)
+                call line_card(rd, i, 'spring', sp%line_attach_t, i, 6, keep)
                 call rd%real(i, 4, 'stiffness', 'N/m', sp%stiffness, zero, big_modulus)
                 call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
-                call rd%real(i, 6, 'free length', 'm', sp%free_length, zero, big_length, default=-one)
-                call line_points(rd, i + 1, sp%point_a, sp%point_b)
-                if (rd%failed()) return
-                call map_ends(sp%body_a, sp%point_a, sp%body_b, sp%point_b)
-                if (sp%body_a == sp%body_b) cycle
-                cs%model%springs = [cs%model%springs, sp]
+                if (keep .and. .not. rd%failed()) cs%model%springs = [cs%model%springs, sp]
             case ('LIMIT')
-                lim = joint_limit_t()
-                if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
-                    nlimdrop = nlimdrop + 1          ! a damper inside a merged body
-                    cycle
-                end if
-                call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
-                if (rd%failed()) return
-                if (j == 0) then
-                    nlimdrop = nlimdrop + 1          ! a damper on a locked coordinate does nothing
-                    cycle
-                end if
-                lim%body = kb; lim%local = m; lim%dof = j
-                call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
-                call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
-                if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
-                    call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
-                                 trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
-                    return
-                end if
-                call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
-                call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
-                call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
-                             default=max(lim%xmin, min(lim%xmax, cs%model%tree%q_ref(m, kb)/unit_factor(m))))
-                lim%xmin = lim%xmin*unit_factor(m)
-                lim%xmax = lim%xmax*unit_factor(m)
-                lim%xneutral = lim%xneutral*unit_factor(m)
-                if (.not. rd%failed()) cs%model%limits = [cs%model%limits, lim]
+                call limit_card(rd, i, cs, bnames, bmap, nlimdrop)
             case ('FAMILY')
-                call rd%name(i, 1, 'element family', s)
-                if (rd%failed()) return
-                fam = findloc(family_name, s(1:9), dim=1)
-                if (fam == 0) then
-                    call rd%fail(rd%context(i, 1, 'element family')//': found "'// &
-                                 trim(s)//'"; expected one of '//join(family_name))
-                    return
-                end if
-                call rd%name(i, 2, 'ON or OFF', s)
-                if (s /= 'ON' .and. s /= 'OFF' .and. .not. rd%failed()) then
-                    call rd%fail(rd%context(i, 2, 'ON or OFF')//': found "'//trim(s)// &
-                                 '"; expected ON or OFF')
-                    return
-                end if
-                cs%model%family_on(fam) = s == 'ON'
-                if (s == 'OFF') then
-                    note = 'FAMILY '//trim(family_name(fam))//' OFF'
-                    call add_scene_note(cs, note)
-                end if
+                call family_card(rd, i, cs)
             end select
             if (rd%failed()) return
         end do
@@ -953,21 +857,160 @@ contains
             call add_scene_note(cs, note)
         end if
     contains
-        !> Old body numbers and points -> reduced tree (MERGE); counts internal elements.
-        subroutine map_ends(ka, pa, kb2, pb)
-            integer, intent(inout) :: ka, kb2
-            real(wp), intent(inout) :: pa(3), pb(3)
-            if (ka > 0) then
-                pa = pa + bmap%shift(:, ka)
-                ka = bmap%new(ka)
-            end if
-            if (kb2 > 0) then
-                pb = pb + bmap%shift(:, kb2)
-                kb2 = bmap%new(kb2)
-            end if
-            if (ka == kb2) ninternal = ninternal + 1
-        end subroutine map_ends
+        !> The attachment of a LIGAMENT, MUSCLE or SPRING card: name (F1),
+        !! bodies (F2, F3), points (first continuation card, F1-F6) and free
+        !! length (line ll, field lf; blank: the neutral length), moved onto
+        !! merged bodies; keep is false for an element inside one merged body.
+        subroutine line_card(rd, i, what, at, ll, lf, keep)
+            type(deck_reader_t), intent(inout) :: rd
+            integer, intent(in) :: i, ll, lf
+            character(len=*), intent(in) :: what
+            type(line_attach_t), intent(inout) :: at
+            logical, intent(out) :: keep
+            character(len=10) :: nm
+            keep = .false.
+            call rd%name(i, 1, what//' name', nm)
+            at%name = nm
+            at%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
+            at%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
+            call distinct_bodies(rd, i, at%body_a, at%body_b)
+            call line_points(rd, i + 1, at%point_a, at%point_b)
+            select case (what)
+            case ('ligament')
+                call rd%real(ll, lf, 'slack length', 'm', at%length0, 1.0e-6_wp, big_length, default=-one)
+            case ('muscle')
+                call rd%real(ll, lf, 'rest length', 'm', at%length0, 1.0e-6_wp, big_length, default=-one)
+            case default
+                call rd%real(ll, lf, 'free length', 'm', at%length0, zero, big_length, default=-one)
+            end select
+            if (rd%failed()) return
+            call map_ends(bmap, at%body_a, at%point_a, at%body_b, at%point_b, ninternal)
+            keep = at%body_a /= at%body_b
+        end subroutine line_card
     end subroutine element_cards
+
+    !> Old body numbers and points -> reduced tree (MERGE); counts the
+    !! elements with both ends on one merged body.
+    pure subroutine map_ends(bmap, ka, pa, kb, pb, ninternal)
+        type(body_map_t), intent(in) :: bmap
+        integer, intent(inout) :: ka, kb
+        real(wp), intent(inout) :: pa(3), pb(3)
+        integer, intent(inout) :: ninternal
+        if (ka > 0) then
+            pa = pa + bmap%shift(:, ka)
+            ka = bmap%new(ka)
+        end if
+        if (kb > 0) then
+            pb = pb + bmap%shift(:, kb)
+            kb = bmap%new(kb)
+        end if
+        if (ka == kb) ninternal = ninternal + 1
+    end subroutine map_ends
+
+    !> A DISC card and its two continuation cards, appended to `discs`.
+    subroutine disc_card(rd, i, bnames, bmap, ninternal, discs)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        integer, intent(inout) :: ninternal
+        type(disc_t), allocatable, intent(inout) :: discs(:)
+        type(disc_t) :: d
+        integer :: f
+        real(wp) :: v
+        d = disc_t()
+        call rd%name(i, 1, 'disc name', d%name)
+        d%body_a = body_ref(rd, i, 2, 'lower body', bnames, .false.)
+        d%body_b = body_ref(rd, i, 3, 'upper body', bnames, .false.)
+        call distinct_bodies(rd, i, d%body_a, d%body_b)
+        call rd%real(i, 4, 'area A', 'm^2', d%area, 1.0e-8_wp, 1.0_wp)
+        call rd%real(i, 5, 'thickness h', 'm', d%h, 1.0e-5_wp, 1.0_wp)
+        call rd%real(i, 6, 'modulus d1', 'Pa', d%d1, 1.0e-3_wp, big_modulus)
+        call rd%real(i, 7, 'viscous modulus d2', 'Pa s', d%d2, zero, big_modulus)
+        do f = 1, 3
+            call rd%real(i + 1, f, 'lower plate centre', 'm', d%pa(f), -big_length, big_length)
+            call rd%real(i + 1, 3 + f, 'upper plate centre', 'm', d%pb(f), -big_length, big_length)
+        end do
+        call rd%real(i + 1, 7, 'plate tilt', 'deg', v, -90.0_wp, 90.0_wp, default=zero)
+        d%tilt = v*deg
+        call rd%real(i + 2, 1, 'shear modulus G', 'Pa', d%g, 1.0e-3_wp, big_modulus)
+        call rd%real(i + 2, 2, 'second moment Ix', 'm^4', d%ix, 1.0e-20_wp, one)
+        call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
+        call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
+        call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
+        if (rd%failed()) return
+        call map_ends(bmap, d%body_a, d%pa, d%body_b, d%pb, ninternal)
+        if (d%body_a == d%body_b) return
+        discs = [discs, d]
+    end subroutine disc_card
+
+    !> A LIMIT card (joint-limit damper); dropped on a locked or merged coordinate.
+    subroutine limit_card(rd, i, cs, bnames, bmap, nlimdrop)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        integer, intent(inout) :: nlimdrop
+        type(joint_limit_t) :: lim
+        integer :: kb, m, j
+        lim = joint_limit_t()
+        if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
+            nlimdrop = nlimdrop + 1          ! a damper inside a merged body
+            return
+        end if
+        call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
+        if (rd%failed()) return
+        if (j == 0) then
+            nlimdrop = nlimdrop + 1          ! a damper on a locked coordinate does nothing
+            return
+        end if
+        lim%body = kb; lim%local = m; lim%dof = j
+        call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
+        call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
+        if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
+            call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
+                         trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
+            return
+        end if
+        call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
+        call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
+        call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
+                     default=max(lim%xmin, min(lim%xmax, cs%model%tree%q_ref(m, kb)/unit_factor(m))))
+        lim%xmin = lim%xmin*unit_factor(m)
+        lim%xmax = lim%xmax*unit_factor(m)
+        lim%xneutral = lim%xneutral*unit_factor(m)
+        if (.not. rd%failed()) cs%model%limits = [cs%model%limits, lim]
+    end subroutine limit_card
+
+    !> FAMILY name ON|OFF: switch an element family.
+    subroutine family_card(rd, i, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        integer :: fam
+        character(len=10) :: s
+        character(len=100) :: note
+        call rd%name(i, 1, 'element family', s)
+        if (rd%failed()) return
+        fam = findloc(family_name, s(1:9), dim=1)
+        if (fam == 0) then
+            call rd%fail(rd%context(i, 1, 'element family')//': found "'// &
+                         trim(s)//'"; expected one of '//join(family_name))
+            return
+        end if
+        call rd%name(i, 2, 'ON or OFF', s)
+        if (s /= 'ON' .and. s /= 'OFF' .and. .not. rd%failed()) then
+            call rd%fail(rd%context(i, 2, 'ON or OFF')//': found "'//trim(s)// &
+                         '"; expected ON or OFF')
+            return
+        end if
+        cs%model%family_on(fam) = s == 'ON'
+        if (s == 'OFF') then
+            note = 'FAMILY '//trim(family_name(fam))//' OFF'
+            call add_scene_note(cs, note)
+        end if
+    end subroutine family_card
 
     !> FORCE and COUPLE cards (moved onto merged bodies).
     subroutine load_cards(rd, cards, cs, bnames, bmap, tabs)

@@ -5,7 +5,7 @@ module hn_model
     use hn_tree, only: body_tree_t
     use hn_motion, only: motion_t
     use hn_tables, only: table_t
-    use hn_line_elements, only: spring_t, ligament_t, muscle_t, line_geometry_t, line_geometry
+    use hn_line_elements, only: spring_t, ligament_t, muscle_t, set_neutral_lengths
     use hn_discs, only: disc_t, disc_set_reference
     use hn_joint_limits, only: joint_limit_t
     use hn_applied, only: applied_load_t
@@ -85,7 +85,6 @@ contains
     pure subroutine model_set_neutral(model)
         type(model_t), intent(inout) :: model
         type(kinematics_t) :: kin
-        type(line_geometry_t) :: g
         real(wp) :: x0(model%tree%ndof)
         integer :: e
         x0 = neutral_coordinates(model)
@@ -94,24 +93,9 @@ contains
         do e = 1, size(model%discs)
             call disc_set_reference(model%discs(e), kin)
         end do
-        do e = 1, size(model%ligaments)
-            associate (l => model%ligaments(e))
-                call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
-                if (l%slack_length < zero) l%slack_length = g%length
-            end associate
-        end do
-        do e = 1, size(model%muscles)
-            associate (m => model%muscles(e))
-                call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
-                if (m%rest_length < zero) m%rest_length = g%length
-            end associate
-        end do
-        do e = 1, size(model%springs)
-            associate (s => model%springs(e))
-                call line_geometry(kin, s%body_a, s%point_a, s%body_b, s%point_b, g)
-                if (s%free_length < zero) s%free_length = g%length
-            end associate
-        end do
+        call set_neutral_lengths(kin, model%ligaments%line_attach_t)
+        call set_neutral_lengths(kin, model%muscles%line_attach_t)
+        call set_neutral_lengths(kin, model%springs%line_attach_t)
     end subroutine model_set_neutral
 
 end module hn_model
