@@ -8,11 +8,13 @@ module hn_forces
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, loads_clear
     use hn_line_elements, only: line_geometry_t, line_geometries, apply_line_tensions, spring_tension, &
-                                spring_energy, ligament_tension, muscle_tension, ligament_energy
+                                spring_energy, ligament_tension, muscle_tension, ligament_energy, &
+                                muscle_law_value, muscle_hill
     use hn_discs, only: apply_disc
     use hn_joint_limits, only: limit_force
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
     use hn_tables, only: table_value
+    use hn_muscle, only: activation_value
     use hn_rotation, only: cross
     implicit none
     private
@@ -23,7 +25,7 @@ module hn_forces
     type :: element_output_t
         real(wp), allocatable :: disc(:, :)         !! (6, nd) resultants: shear x, y, axial, bending x, y, torque
         real(wp), allocatable :: ligament(:, :)     !! (2, nl) tension [N], length [m]
-        real(wp), allocatable :: muscle(:, :)       !! (2, nm) tension [N], length [m]
+        real(wp), allocatable :: muscle(:, :)       !! (3, nm) tension [N], length [m], activation
         real(wp), allocatable :: limit(:)           !! (nlim) generalized force [N or N m]
         real(wp), allocatable :: spring(:)          !! (ns) tension [N]
         real(wp) :: u_elastic = zero                !! energy stored in discs, ligaments, springs [J]
@@ -39,7 +41,7 @@ contains
         type(model_t), intent(in) :: model
         type(element_output_t), intent(out) :: eo
         allocate (eo%disc(6, size(model%discs)), eo%ligament(2, size(model%ligaments)))
-        allocate (eo%muscle(2, size(model%muscles)), eo%limit(size(model%limits)))
+        allocate (eo%muscle(3, size(model%muscles)), eo%limit(size(model%limits)))
         allocate (eo%spring(size(model%springs)))
         eo%disc = zero; eo%ligament = zero; eo%muscle = zero; eo%limit = zero; eo%spring = zero
     end subroutine element_output_allocate
@@ -80,7 +82,8 @@ contains
         end if
         if (model%family_on(fam_muscles)) then
             call line_geometries(kin, model%muscles%line_attach_t, gm)
-            eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, muscle_activations(model, t))
+            eo%muscle(3, :) = muscle_activations(model, t)
+            eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, eo%muscle(3, :))
             eo%muscle(2, :) = gm%length
             call apply_line_tensions(loads, kin, model%muscles%line_attach_t, gm, eo%muscle(1, :))
             eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
@@ -116,7 +119,8 @@ contains
         end do
     end subroutine compute_loads
 
-    !> Activation a(t) of every muscle (zero without an activation table).
+    !> Activation a(t) of every muscle: its activation history (Hill-type
+    !! law) or table (eq 11); zero without either.
     pure function muscle_activations(model, t) result(act)
         type(model_t), intent(in) :: model   !! the model
         real(wp), intent(in) :: t            !! time [s]
@@ -124,7 +128,13 @@ contains
         integer :: e
         act = zero
         do e = 1, size(model%muscles)
-            if (model%muscles(e)%activation > 0) act(e) = table_value(model%tables(model%muscles(e)%activation), t)
+            associate (m => model%muscles(e))
+                if (m%law == muscle_hill) then
+                    if (m%history > 0) act(e) = activation_value(model%activations(m%history), t)
+                else if (m%activation > 0) then
+                    act(e) = table_value(model%tables(m%activation), t)
+                end if
+            end associate
         end do
     end function muscle_activations
 
@@ -140,7 +150,8 @@ contains
 
     !> Switching functions whose sign changes mark where the one-way
     !! elements switch: a joint damper's coordinate crossing its neutral value
-    !! (the damping switches on or off), a muscle's law m1 d + m2 d' + a Fmax
+    !! (the damping switches on or off), a muscle's law (m1 d + m2 d' + a Fmax
+    !! or the Hill force)
     !! crossing zero (tension starts or stops), a ligament with l1 > 0
     !! becoming taut. Families switched off give +1.
     pure subroutine switching_functions(model, t, kin, x, sw)
@@ -161,9 +172,7 @@ contains
         if (model%family_on(fam_muscles)) then
             call line_geometries(kin, model%muscles%line_attach_t, gm)
             act = muscle_activations(model, t)
-            associate (m => model%muscles)
-                sw(i + 1:i + size(m)) = m%m1*(gm%length - m%length0) + m%m2*gm%rate + act*m%fmax
-            end associate
+            sw(i + 1:i + size(model%muscles)) = muscle_law_value(model%muscles, gm%length, gm%rate, act)
         end if
         i = i + size(model%muscles)
         if (model%family_on(fam_ligaments)) call line_geometries(kin, model%ligaments%line_attach_t, gl)

@@ -9,13 +9,16 @@ module hn_line_elements
     use hn_rotation, only: cross, norm3
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, add_point_force
+    use hn_muscle, only: hill_t, hill_force
     implicit none
     private
 
     public :: line_attach_t, line_geometry_t, line_geometry, line_geometries, apply_line_tension, &
               apply_line_tensions, attachment_point, set_neutral_lengths
     public :: spring_t, spring_tension, spring_energy, ligament_t, ligament_tension, ligament_energy
-    public :: muscle_t, muscle_tension
+    public :: muscle_t, muscle_tension, muscle_law_value
+
+    integer, parameter, public :: muscle_passive = 1, muscle_hill = 2   !! muscle laws: eq 11, Hill-type
 
     !> Where a line element is attached: the part every kind shares.
     type :: line_attach_t
@@ -47,14 +50,18 @@ module hn_line_elements
         real(wp) :: n = 2.0_wp            !! exponent
     end type ligament_t
 
-    !> Muscle (eq 11): tension-only two-parameter viscoelastic element,
-    !! F = max(0, m1 d + m2 d' + a(t) Fmax), d = L - L0; it never pushes.
-    !! The activation a(t) in [0, 1] (a table, beyond the paper) is optional.
+    !> Muscle, tension only: the paper's two-parameter viscoelastic element
+    !! (eq 11), F = max(0, m1 d + m2 d' + a(t) Fmax), d = L - L0, with an
+    !! optional activation table a(t) (beyond the paper); or a Hill-type
+    !! muscle (hn_muscle) driven by an activation history.
     type, extends(line_attach_t) :: muscle_t
-        real(wp) :: m1 = zero             !! stiffness [N/m]
-        real(wp) :: m2 = zero             !! damping [N s/m]
-        real(wp) :: fmax = zero           !! force at full activation [N]
-        integer :: activation = 0         !! table number of a(t); 0 = passive
+        integer :: law = muscle_passive   !! muscle_passive (eq 11) or muscle_hill
+        real(wp) :: m1 = zero             !! eq 11 stiffness [N/m]
+        real(wp) :: m2 = zero             !! eq 11 damping [N s/m]
+        real(wp) :: fmax = zero           !! eq 11 force at full activation [N]
+        integer :: activation = 0         !! eq 11: model table of a(t); 0 = passive
+        type(hill_t) :: hill              !! Hill-type law parameters
+        integer :: history = 0            !! Hill: model activation history; 0 = none (a = 0)
     end type muscle_t
 
 contains
@@ -81,14 +88,28 @@ contains
         u = 0.5_wp*g%l1*d**2 + g%l2*d**(g%n + one)/(g%n + one)
     end function ligament_energy
 
-    !> Muscle tension (eq 11, tension only) at length L, rate L' and activation a.
+    !> Muscle tension (tension only) at length L, rate L' and activation a.
     elemental real(wp) function muscle_tension(m, length, rate, act) result(t)
         type(muscle_t), intent(in) :: m      !! the muscle
         real(wp), intent(in) :: length       !! current length [m]
         real(wp), intent(in) :: rate         !! lengthening rate [m/s]
         real(wp), intent(in) :: act          !! activation a(t) in [0, 1]
-        t = max(zero, m%m1*(length - m%length0) + m%m2*rate + act*m%fmax)
+        t = max(zero, muscle_law_value(m, length, rate, act))
     end function muscle_tension
+
+    !> The muscle's law before the tension-only clip: m1 d + m2 d' + a Fmax
+    !! (eq 11) or the Hill force; the muscle pulls while it is positive.
+    elemental real(wp) function muscle_law_value(m, length, rate, act) result(f)
+        type(muscle_t), intent(in) :: m      !! the muscle
+        real(wp), intent(in) :: length       !! current length [m]
+        real(wp), intent(in) :: rate         !! lengthening rate [m/s]
+        real(wp), intent(in) :: act          !! activation a(t) in [0, 1]
+        if (m%law == muscle_hill) then
+            f = hill_force(m%hill, length - m%length0, rate, act)
+        else
+            f = m%m1*(length - m%length0) + m%m2*rate + act*m%fmax
+        end if
+    end function muscle_law_value
 
     !> Spring-damper tension k (L - L0) + c L'.
     elemental real(wp) function spring_tension(s, length, rate) result(t)

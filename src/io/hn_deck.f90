@@ -11,7 +11,8 @@ module hn_deck
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
-    use hn_line_elements, only: line_attach_t, ligament_t, muscle_t, spring_t
+    use hn_line_elements, only: line_attach_t, ligament_t, muscle_t, spring_t, muscle_hill
+    use hn_muscle, only: activation_t
     use hn_joint_limits, only: joint_limit_t
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
     use hn_linsolve, only: solver_gauss, solver_cholesky
@@ -123,7 +124,7 @@ contains
         character(len=*), intent(in) :: key
         select case (key)
         case ('DISC'); n = 2
-        case ('LIGAMENT', 'MUSCLE', 'SPRING', 'FORCE'); n = 1
+        case ('LIGAMENT', 'MUSCLE', 'SPRING', 'FORCE', 'HILL', 'ACTIVATE'); n = 1
         case ('TABLE'); n = -1
         case default; n = 0
         end select
@@ -134,10 +135,10 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(29) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(32) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
-            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE']
+            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -806,7 +807,7 @@ contains
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
-        integer :: k, i, ninternal, nlimdrop
+        integer :: k, i, ninternal, nlimdrop, it
         logical :: keep
         character(len=100) :: note
         type(ligament_t) :: g
@@ -815,6 +816,8 @@ contains
 
         ninternal = 0
         nlimdrop = 0
+        call activation_cards(rd, cards, cs%model%activations)
+        if (rd%failed()) return
         do k = 1, size(cards)
             i = cards(k)%first
             select case (cards(k)%key)
@@ -833,7 +836,21 @@ contains
                 call rd%real(i, 4, 'stiffness m1', 'N/m', mu%m1, zero, big_modulus)
                 call rd%real(i, 5, 'damping m2', 'N s/m', mu%m2, zero, big_modulus)
                 call rd%real(i, 6, 'active force Fmax', 'N', mu%fmax, zero, 1.0e6_wp, default=zero)
-                if (.not. rd%is_blank(i, 7)) mu%activation = table_ref(rd, i, 7, tabs)
+                if (.not. rd%is_blank(i, 7)) then
+                    it = table_ref(rd, i, 7, tabs)
+                    if (.not. rd%failed()) then
+                        cs%model%tables = [cs%model%tables, tabs(it)%tab]
+                        mu%activation = size(cs%model%tables)
+                    end if
+                end if
+                if (keep .and. .not. rd%failed()) cs%model%muscles = [cs%model%muscles, mu]
+            case ('HILL')
+                mu = muscle_t(law=muscle_hill)
+                call line_card(rd, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
+                call rd%real(i, 4, 'maximum isometric force F0', 'N', mu%hill%f0, zero, 1.0e5_wp)
+                call rd%real(i, 5, 'optimal fibre length', 'm', mu%hill%lopt, 1.0e-3_wp, one)
+                if (.not. rd%is_blank(i, 6)) mu%history = history_ref(rd, i, 6, cs%model%activations)
+                call rd%real(i, 7, 'damping', 'N s/m', mu%hill%damping, zero, 1.0e5_wp, default=zero)
                 if (keep .and. .not. rd%failed()) cs%model%muscles = [cs%model%muscles, mu]
             case ('SPRING')
                 sp = spring_t()
@@ -888,6 +905,51 @@ contains
             keep = at%body_a /= at%body_b
         end subroutine line_card
     end subroutine element_cards
+
+    !> ACTIVATE cards: the activation histories of Hill-type muscles.
+    subroutine activation_cards(rd, cards, hist)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(activation_t), allocatable, intent(inout) :: hist(:)
+        type(activation_t) :: ah
+        integer :: k, i
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'ACTIVATE') cycle
+            i = cards(k)%first
+            ah = activation_t()
+            call rd%name(i, 1, 'history name', ah%name)
+            if (rd%failed()) return
+            if (any(hist%name == ah%name)) then
+                call rd%fail(rd%context(i, 1, 'history name')//': activation history "'//trim(ah%name)// &
+                             '" is defined twice; expected a new name')
+                return
+            end if
+            call rd%real(i, 2, 'pre-activation u0', '-', ah%u0, zero, one)
+            call rd%real(i, 3, 'reflex activation u1', '-', ah%u1, zero, one)
+            call rd%real(i, 4, 'pulse onset', 's', ah%t_onset, -1.0e4_wp, 1.0e4_wp)
+            call rd%real(i, 5, 'reflex delay', 's', ah%delay, zero, 10.0_wp)
+            call rd%real(i, 6, 'rise time', 's', ah%rise, zero, 10.0_wp, default=zero)
+            call rd%real(i + 1, 1, 'activation time constant', 's', ah%tau_act, 1.0e-4_wp, 10.0_wp, default=0.015_wp)
+            call rd%real(i + 1, 2, 'deactivation time constant', 's', ah%tau_deact, 1.0e-4_wp, 10.0_wp, &
+                         default=0.05_wp)
+            if (rd%failed()) return
+            hist = [hist, ah]
+        end do
+    end subroutine activation_cards
+
+    !> Activation history named in field f (an ACTIVATE card).
+    integer function history_ref(rd, i, f, hist) result(ih)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, f
+        type(activation_t), intent(in) :: hist(:)
+        character(len=10) :: s
+        ih = 0
+        call rd%name(i, f, 'activation history', s)
+        if (rd%failed()) return
+        ih = findloc(hist%name, s, dim=1)
+        if (ih == 0) call rd%fail(rd%context(i, f, 'activation history')//': found "'//trim(s)// &
+                                  '"; expected the name of an ACTIVATE card')
+    end function history_ref
 
     !> Old body numbers and points -> reduced tree (MERGE); counts the
     !! elements with both ends on one merged body.

@@ -5,6 +5,7 @@ module hn_model
     use hn_tree, only: body_tree_t
     use hn_motion, only: motion_t
     use hn_tables, only: table_t
+    use hn_muscle, only: activation_t
     use hn_line_elements, only: spring_t, ligament_t, muscle_t, set_neutral_lengths
     use hn_discs, only: disc_t, disc_set_reference
     use hn_joint_limits, only: joint_limit_t
@@ -36,6 +37,7 @@ module hn_model
         type(joint_limit_t), allocatable :: limits(:)
         type(applied_load_t), allocatable :: applied(:)
         type(table_t), allocatable :: tables(:)        !! activation tables referenced by muscles
+        type(activation_t), allocatable :: activations(:)  !! activation histories of Hill-type muscles
         real(wp), allocatable :: q_hold(:)             !! (n) constant generalized forces (posture holding)
         logical :: family_on(nfamilies) = .true.       !! element families switched on
         integer :: solver = solver_gauss               !! solver of a_ij xddot = f
@@ -66,7 +68,7 @@ contains
         model%prescribed = .false.
         model%q_hold = zero
         allocate (model%springs(0), model%discs(0), model%ligaments(0), model%muscles(0))
-        allocate (model%limits(0), model%applied(0), model%tables(0))
+        allocate (model%limits(0), model%applied(0), model%tables(0), model%activations(0))
     end subroutine model_init
 
     !> Active coordinates of the neutral configuration (every coordinate at

@@ -13,6 +13,7 @@ module hn_channels
     use hn_applied, only: applied_vector, applied_couple
     use hn_rotation, only: cross
     use hn_model, only: fam_discs, fam_ligaments, fam_muscles, fam_limits
+    use hn_line_elements, only: muscle_hill
     implicit none
     private
 
@@ -102,6 +103,10 @@ contains
         end do
         do e = 1, size(cs%model%muscles)
             call add(ch, trim(cs%model%muscles(e)%name), 'N', 'MUSCLES')
+        end do
+        do e = 1, size(cs%model%muscles)
+            if (cs%model%muscles(e)%law == muscle_hill) &
+                call add(ch, 'A_'//trim(cs%model%muscles(e)%name), '-', 'MUSCLE ACTIVATION')
         end do
         do e = 1, size(cs%model%limits)
             k = cs%model%limits(e)%body
@@ -209,6 +214,10 @@ contains
         end do
         do e = 1, size(cs%model%muscles)
             call put(merge(ws%eo%muscle(1, e), zero, cs%model%family_on(fam_muscles)))
+        end do
+        do e = 1, size(cs%model%muscles)
+            if (cs%model%muscles(e)%law == muscle_hill) &
+                call put(merge(ws%eo%muscle(3, e), zero, cs%model%family_on(fam_muscles)))
         end do
         do e = 1, size(cs%model%limits)
             call put(merge(ws%eo%limit(e), zero, cs%model%family_on(fam_limits)))
