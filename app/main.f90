@@ -18,16 +18,17 @@ program hhneck
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member
     use hn_sweep_report, only: sweep_finish
     use hn_signals, only: catch_signals
+    use hn_calibrate, only: calibration_t, read_calibration, calibrate
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
     character(len=path_len) :: h5name, arg
     character(len=msglen) :: msg
-    logical :: h5_given, no_h5, check_only, sweep
+    logical :: h5_given, no_h5, check_only, sweep, calib
     integer :: i, stat, nargs
     real(wp) :: sample, rtol
 
-    h5_given = .false.; no_h5 = .false.; check_only = .false.; sweep = .false.
+    h5_given = .false.; no_h5 = .false.; check_only = .false.; sweep = .false.; calib = .false.
     sample = -1.0_wp
     rtol = -1.0_wp
     h5name = ''
@@ -61,6 +62,8 @@ program hhneck
             check_only = .true.
         case ('--sweep')
             sweep = .true.
+        case ('--calibrate')
+            calib = .true.
         case ('--version')
             write (output_unit, '(a)') 'hhneck '//code_version
             stop
@@ -73,6 +76,7 @@ program hhneck
     end do
 
     if (sweep) call run_sweep()
+    if (calib) call run_calibration()
     call read_case('/dev/stdin', 'stdin', cs, stat, msg)
     if (stat /= 0) then
         write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
@@ -152,10 +156,28 @@ contains
         stop
     end subroutine run_sweep
 
+    !> A calibration deck from standard input (docs/validation.md): the fit
+    !! history and the fitted parameters on standard output.
+    subroutine run_calibration()
+        type(calibration_t) :: cal
+        real(wp), allocatable :: v(:)
+        real(wp) :: j
+        integer :: n
+        call read_calibration('/dev/stdin', 'stdin', cal, stat, msg)
+        if (stat /= 0) then
+            write (error_unit, '(a)') 'hhneck: calibration deck error: '//trim(msg)
+            stop exit_deck, quiet=.true.
+        end if
+        allocate (v(size(cal%sw(1)%params)))
+        call calibrate(cal, output_unit, v, j, n)
+        write (error_unit, '(a,i0,a,f8.5)') 'hhneck: calibration finished after ', n, ' evaluations; objective ', j
+        stop
+    end subroutine run_calibration
+
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
         if (len(problem) > 0) write (error_unit, '(a)') 'hhneck: '//problem
-        write (error_unit, '(a)') 'usage: hhneck [--sweep] [--h5 FILE | --no-h5] [--sample SECONDS] [--rtol TOL] '// &
+        write (error_unit, '(a)') 'usage: hhneck [--sweep | --calibrate] [--h5 FILE | --no-h5] [--sample SECONDS] [--rtol TOL] '// &
             '[--check] [--version] < DECK'
         if (len(problem) > 0) stop exit_usage, quiet=.true.
         stop

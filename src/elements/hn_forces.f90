@@ -11,7 +11,7 @@ module hn_forces
                                 spring_energy, ligament_tension, muscle_tension, ligament_energy, &
                                 muscle_law_value, muscle_hill
     use hn_discs, only: apply_disc
-    use hn_joint_limits, only: limit_force
+    use hn_joint_limits, only: limit_force, range_moment, range_energy
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
     use hn_tables, only: table_value
     use hn_muscle, only: activation_value
@@ -94,6 +94,12 @@ contains
                     eo%limit(e) = limit_force(lim, x(lim%dof), xd(lim%dof))
                     loads%q(lim%dof) = loads%q(lim%dof) + eo%limit(e)
                     eo%p_diss = eo%p_diss - eo%limit(e)*xd(lim%dof)
+                end associate
+            end do
+            do e = 1, size(model%ranges)
+                associate (r => model%ranges(e))
+                    loads%q(r%dof) = loads%q(r%dof) + range_moment(r, x(r%dof))
+                    eo%u_elastic = eo%u_elastic + range_energy(r, x(r%dof))
                 end associate
             end do
         end if

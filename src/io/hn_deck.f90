@@ -3,17 +3,17 @@
 !! names the source, line, columns, card and field, what was found and
 !! what was expected.
 module hn_deck
-    use hn_kinds, only: wp, zero, one, deg, msglen
+    use hn_kinds, only: wp, zero, one, deg, msglen, g_std
     use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
     use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name
-    use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
+    use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic, motion_eval
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
     use hn_line_elements, only: line_attach_t, ligament_t, muscle_t, spring_t, muscle_hill
     use hn_muscle, only: activation_t
-    use hn_joint_limits, only: joint_limit_t
+    use hn_joint_limits, only: joint_limit_t, joint_range_t
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
     use hn_linsolve, only: solver_gauss, solver_cholesky
     use hn_rotation, only: norm3
@@ -816,7 +816,7 @@ contains
 
         ninternal = 0
         nlimdrop = 0
-        call activation_cards(rd, cards, cs%model%activations)
+        call activation_cards(rd, cards, cs)
         if (rd%failed()) return
         do k = 1, size(cards)
             i = cards(k)%first
@@ -860,6 +860,8 @@ contains
                 if (keep .and. .not. rd%failed()) cs%model%springs = [cs%model%springs, sp]
             case ('LIMIT')
                 call limit_card(rd, i, cs, bnames, bmap, nlimdrop)
+            case ('ROM')
+                call range_card(rd, i, cs, bnames, bmap, nlimdrop)
             case ('FAMILY')
                 call family_card(rd, i, cs)
             end select
@@ -906,11 +908,14 @@ contains
         end subroutine line_card
     end subroutine element_cards
 
-    !> ACTIVATE cards: the activation histories of Hill-type muscles.
-    subroutine activation_cards(rd, cards, hist)
+    !> ACTIVATE cards: the activation histories of Hill-type muscles. A blank
+    !! onset is the sled pulse onset: the first time the prescribed
+    !! translational acceleration of the root body exceeds 1 g (never, when
+    !! it does not).
+    subroutine activation_cards(rd, cards, cs)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
-        type(activation_t), allocatable, intent(inout) :: hist(:)
+        type(case_t), intent(inout) :: cs
         type(activation_t) :: ah
         integer :: k, i
         do k = 1, size(cards)
@@ -919,23 +924,50 @@ contains
             ah = activation_t()
             call rd%name(i, 1, 'history name', ah%name)
             if (rd%failed()) return
-            if (any(hist%name == ah%name)) then
+            if (any(cs%model%activations%name == ah%name)) then
                 call rd%fail(rd%context(i, 1, 'history name')//': activation history "'//trim(ah%name)// &
                              '" is defined twice; expected a new name')
                 return
             end if
             call rd%real(i, 2, 'pre-activation u0', '-', ah%u0, zero, one)
             call rd%real(i, 3, 'reflex activation u1', '-', ah%u1, zero, one)
-            call rd%real(i, 4, 'pulse onset', 's', ah%t_onset, -1.0e4_wp, 1.0e4_wp)
+            if (rd%is_blank(i, 4)) then
+                ah%t_onset = pulse_onset(cs)
+            else
+                call rd%real(i, 4, 'pulse onset', 's', ah%t_onset, -1.0e4_wp, 1.0e4_wp)
+            end if
             call rd%real(i, 5, 'reflex delay', 's', ah%delay, zero, 10.0_wp)
             call rd%real(i, 6, 'rise time', 's', ah%rise, zero, 10.0_wp, default=zero)
             call rd%real(i + 1, 1, 'activation time constant', 's', ah%tau_act, 1.0e-4_wp, 10.0_wp, default=0.015_wp)
             call rd%real(i + 1, 2, 'deactivation time constant', 's', ah%tau_deact, 1.0e-4_wp, 10.0_wp, &
                          default=0.05_wp)
             if (rd%failed()) return
-            hist = [hist, ah]
+            cs%model%activations = [cs%model%activations, ah]
         end do
     end subroutine activation_cards
+
+    !> First time (on a 0.1 ms grid) the prescribed translational
+    !! acceleration of the root body exceeds 1 g; huge when it never does.
+    function pulse_onset(cs) result(t0)
+        type(case_t), intent(in) :: cs
+        real(wp) :: t0, t, a(3), x, xd
+        integer :: root, m, j, n
+        t0 = huge(one)
+        root = findloc(cs%model%tree%parent, 0, dim=1)
+        do n = 0, nint((cs%t_end - cs%t_start)/1.0e-4_wp)
+            t = cs%t_start + n*1.0e-4_wp
+            a = zero
+            do m = 1, 3
+                j = cs%model%tree%dof_index(m, root)
+                if (j == 0) cycle
+                if (cs%model%prescribed(j)) call motion_eval(cs%model%motion(j), t, x, xd, a(m))
+            end do
+            if (norm3(a) > g_std) then
+                t0 = t
+                return
+            end if
+        end do
+    end function pulse_onset
 
     !> Activation history named in field f (an ACTIVATE card).
     integer function history_ref(rd, i, f, hist) result(ih)
@@ -1044,6 +1076,49 @@ contains
         lim%xneutral = lim%xneutral*unit_factor(m)
         if (.not. rd%failed()) cs%model%limits = [cs%model%limits, lim]
     end subroutine limit_card
+
+    !> A ROM card: body, rotation, physiological range (deg), stiffness at
+    !! the edge K [N m/rad] and the excess t0 [deg] over which it grows
+    !! e-fold; dropped (counted with the dampers) on a locked or merged coordinate.
+    subroutine range_card(rd, i, cs, bnames, bmap, ndrop)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        integer, intent(inout) :: ndrop
+        type(joint_range_t) :: r
+        integer :: kb, m, j
+        if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
+            ndrop = ndrop + 1
+            return
+        end if
+        call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
+        if (rd%failed()) return
+        if (m <= 3) then
+            call rd%fail(rd%context(i, 2, 'coordinate')//': found '//coord_names(m)//'; expected a rotation '// &
+                         '(RX, RY or RZ): ROM cards hold joint rotations')
+            return
+        end if
+        if (j == 0) then
+            ndrop = ndrop + 1
+            return
+        end if
+        r%dof = j
+        r%label = trim(cs%model%tree%name(kb))//' '//coord_names(m)
+        call rd%real(i, 3, 'lower end of range', 'deg', r%xmin, -180.0_wp, 180.0_wp)
+        call rd%real(i, 4, 'upper end of range', 'deg', r%xmax, -180.0_wp, 180.0_wp)
+        if (.not. rd%failed() .and. .not. (r%xmax > r%xmin)) then
+            call rd%fail(rd%context(i, 4, 'upper end of range')//': found '//trim(rd%raw(i, 4))// &
+                         '; expected a value above the lower end '//trim(rd%raw(i, 3)))
+            return
+        end if
+        call rd%real(i, 5, 'stiffness at the edge K', 'N m/rad', r%k, zero, big_modulus)
+        call rd%real(i, 6, 'e-fold excess t0', 'deg', r%t0, 0.01_wp, 90.0_wp, default=5.0_wp)
+        if (rd%failed()) return
+        r%xmin = r%xmin*deg; r%xmax = r%xmax*deg; r%t0 = r%t0*deg
+        cs%model%ranges = [cs%model%ranges, r]
+    end subroutine range_card
 
     !> FAMILY name ON|OFF: switch an element family.
     subroutine family_card(rd, i, cs)

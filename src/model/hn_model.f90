@@ -8,7 +8,7 @@ module hn_model
     use hn_muscle, only: activation_t
     use hn_line_elements, only: spring_t, ligament_t, muscle_t, set_neutral_lengths
     use hn_discs, only: disc_t, disc_set_reference
-    use hn_joint_limits, only: joint_limit_t
+    use hn_joint_limits, only: joint_limit_t, joint_range_t
     use hn_applied, only: applied_load_t
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities
     use hn_linsolve, only: solver_gauss
@@ -35,6 +35,7 @@ module hn_model
         type(ligament_t), allocatable :: ligaments(:)
         type(muscle_t), allocatable :: muscles(:)
         type(joint_limit_t), allocatable :: limits(:)
+        type(joint_range_t), allocatable :: ranges(:)  !! resistance beyond the range of motion (LIMITS family)
         type(applied_load_t), allocatable :: applied(:)
         type(table_t), allocatable :: tables(:)        !! activation tables referenced by muscles
         type(activation_t), allocatable :: activations(:)  !! activation histories of Hill-type muscles
@@ -68,7 +69,8 @@ contains
         model%prescribed = .false.
         model%q_hold = zero
         allocate (model%springs(0), model%discs(0), model%ligaments(0), model%muscles(0))
-        allocate (model%limits(0), model%applied(0), model%tables(0), model%activations(0))
+        allocate (model%limits(0), model%applied(0), model%tables(0), model%activations(0), &
+                  model%ranges(0))
     end subroutine model_init
 
     !> Active coordinates of the neutral configuration (every coordinate at

@@ -21,6 +21,7 @@ module hn_run
     use hn_assessment, only: assessment_t, assess, criteria_channels
     use hn_signals, only: signal_received
     use hn_version, only: code_version
+    use hn_joint_limits, only: range_track, range_warnings, range_margin
     implicit none
     private
 
@@ -69,7 +70,7 @@ contains
         type(listing_t) :: lst
         type(energy_t) :: en, en0
         real(wp), allocatable :: y(:), dydt(:), ygood(:), vmax(:), vmin(:), tmax(:), tmin(:), tb(:)
-        real(wp), allocatable :: sw_old(:), sw_new(:), crit_hist(:, :)
+        real(wp), allocatable :: sw_old(:), sw_new(:), crit_hist(:, :), rom_peak(:), rom_time(:)
         integer :: icrit(size(criteria_channels)), k
         real(wp) :: t, tout, tol, tstop, tgood
         integer :: stat, nf, ks, kp, kd, ib, nprint_max, nsw, nsample_max, nev_out0
@@ -128,6 +129,8 @@ contains
         end do
         allocate (vmax(ch%n), vmin(ch%n), tmax(ch%n), tmin(ch%n))
         vmax = -huge(1.0_wp); vmin = huge(1.0_wp); tmax = t; tmin = t
+        allocate (rom_peak(size(cs%model%ranges)), rom_time(size(cs%model%ranges)))
+        rom_peak = zero; rom_time = t
 
         tb = [real(wp) ::]
         if (cs%events /= 'NONE') tb = case_breakpoints(cs)
@@ -258,6 +261,7 @@ contains
                 call lst%peaks(ch, vmax, tmax, vmin, tmin)
                 call lst%criteria(res%criteria)
                 call out%criteria(res%criteria)
+                call range_report()
             end if
             write (line, '(a,es11.4,a,es10.3,a,es10.3,a)') 'ENERGY BALANCE: TOTAL AT START ', ch%e0, &
                 ' J; LARGEST RESIDUAL ', res%energy_residual, ' J AGAINST ENERGY FLOWS OF ', res%energy_scale, ' J'
@@ -276,6 +280,21 @@ contains
             call out%close(ch, trim(res%status), trim(res%message), st, line)
             if (st /= 0 .and. res%exit_code == exit_ok) call fail(exit_output, trim(line))
         end subroutine finish
+
+        !> Joints past their physiological range by more than the margin: in
+        !! the listing, and summed up in the run's warning (stderr).
+        subroutine range_report()
+            character(len=160), allocatable :: lines(:)
+            integer :: k
+            lines = range_warnings(cs%model%ranges, rom_peak, rom_time, range_margin)
+            do k = 1, size(lines)
+                call lst%message(lines(k))
+            end do
+            if (size(lines) == 0 .or. len_trim(res%warning) > 0) return
+            k = count(rom_peak(1:maxloc(rom_peak, dim=1)) > range_margin)
+            write (res%warning, '(a,i0,2a)') 'WARNING: ', size(lines), ' joint rotation(s) past the physiological '// &
+                'range plus margin; largest: ', trim(lines(k)(16:))
+        end subroutine range_report
 
         !> The accepted state must be finite and keep the energy balance.
         subroutine check_state(st, m)
@@ -393,6 +412,7 @@ contains
 
         subroutine track_peaks()
             integer :: k
+            call range_track(cs%model%ranges, sys%ws%x, t, rom_peak, rom_time)
             do k = 1, ch%n
                 if (ch%value(k) > vmax(k)) then
                     vmax(k) = ch%value(k); tmax(k) = t

@@ -19,7 +19,8 @@ module hn_sweep
     implicit none
     private
 
-    public :: sweep_t, sweep_param_t, member_record_t, read_sweep, sweep_design, sweep_member_case, &
+    public :: sweep_t, sweep_param_t, member_record_t, read_sweep, read_sweep_lines, sweep_design, &
+              sweep_member_case, spread_value, &
               run_member, field_text
     public :: output_names, output_units, nout
 
@@ -86,14 +87,44 @@ contains
         type(sweep_t), intent(out) :: sw
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
-        type(deck_reader_t) :: rd, bd
-        type(case_t) :: base
-        character(len=10) :: s
-        integer :: i, np, ntitle, nbase, ndesign, p
+        type(deck_reader_t) :: rd
         rd%top = source
         call read_card_images(rd, path, source, 0)
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the sweep deck is empty; expected a TITLE card first')
+        call parse_sweep(rd, source, sw)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_sweep
+
+    !> A sweep deck already read into card images (INCLUDE expanded), e.g.
+    !! one assembled in memory by the calibration for each of its cases.
+    subroutine read_sweep_lines(lines, source, sw, stat, errmsg)
+        type(deck_line_t), intent(in) :: lines(:)   !! card images
+        character(len=*), intent(in) :: source      !! name of the deck in messages
+        type(sweep_t), intent(out) :: sw
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(deck_reader_t) :: rd
+        rd%top = source
+        rd%lines = lines
+        rd%nlines = size(lines)
+        call parse_sweep(rd, source, sw)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_sweep_lines
+
+    !> The cards of a sweep deck, the base deck they name, and every
+    !! parameter checked against the base deck.
+    subroutine parse_sweep(rd, source, sw)
+        type(deck_reader_t), intent(inout) :: rd
+        character(len=*), intent(in) :: source
+        type(sweep_t), intent(out) :: sw
+        type(deck_reader_t) :: bd
+        type(case_t) :: base
+        character(len=10) :: s
+        character(len=msglen) :: errmsg
+        integer :: i, np, ntitle, nbase, ndesign, p, stat
         allocate (sw%params(0))
         ntitle = 0; nbase = 0; ndesign = 0
         do i = 1, rd%nlines
@@ -181,9 +212,7 @@ contains
                 trim(int_str(design_runs(sw)))//' runs; at most '//trim(int_str(max_runs))//' are allowed')
         end if
         if (.not. rd%failed()) call check_extremes(rd, sw)
-        stat = rd%stat
-        errmsg = rd%errmsg
-    end subroutine read_sweep
+    end subroutine parse_sweep
 
     !> One PARAM card: name, kind, target, item, low, high, spacing.
     subroutine param_card(rd, i, sw)
@@ -501,8 +530,8 @@ contains
         select case (f)
         case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G']
         case (fam_ligaments); items(1:2) = [character(len=10) :: 'L1', 'L2']
-        case (fam_muscles); items(1:2) = [character(len=10) :: 'M1', 'M2']
-        case (fam_limits); items(1:2) = [character(len=10) :: 'C0', 'C1']
+        case (fam_muscles); items = [character(len=10) :: 'M1', 'M2', 'F0']
+        case (fam_limits); items = [character(len=10) :: 'C0', 'C1', 'ROMK']
         case (fam_springs); items(1:2) = [character(len=10) :: 'K', 'C']
         end select
     end function family_items
@@ -538,11 +567,15 @@ contains
             select case (item)
             case ('M1'); cs%model%muscles%m1 = factor*cs%model%muscles%m1
             case ('M2'); cs%model%muscles%m2 = factor*cs%model%muscles%m2
+            case ('F0')      ! Hill-type muscles: F0 and the damping that is proportional to it
+                cs%model%muscles%hill%f0 = factor*cs%model%muscles%hill%f0
+                cs%model%muscles%hill%damping = factor*cs%model%muscles%hill%damping
             end select
         case (fam_limits)
             select case (item)
             case ('C0'); cs%model%limits%c0 = factor*cs%model%limits%c0
             case ('C1'); cs%model%limits%c1 = factor*cs%model%limits%c1
+            case ('ROMK'); cs%model%ranges%k = factor*cs%model%ranges%k
             end select
         case (fam_springs)
             select case (item)
