@@ -125,7 +125,7 @@ contains
             write (w, '(a,a,a,f6.1,a,f6.1,a,f6.1,a,f7.1,a,f5.1,a)') 'WARNING: joint ', trim(ranges(k)%label), &
                 ' went ', peak(k)/deg, ' deg past its physiological range [', ranges(k)%xmin/deg, ', ', &
                 ranges(k)%xmax/deg, '] deg at ', 1000*tpeak(k), ' ms (margin ', margin/deg, ' deg)'
-            lines = [lines, w]
+            lines = [character(len=160) :: lines, w]
         end do
     end function range_warnings
 
