@@ -167,6 +167,15 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
 ACT = dict(u0=0.05, u1=0.5, delay=0.070, rise=0.020, tau_act=0.015, tau_deact=0.050)
+# FITTED scale factors (SCALE cards) on the values of this script; the output of
+# hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
+FITTED_SCALES = [
+    ("SIGMA", "MUSCLES", "F0", 1.0),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 1.0), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 1.0),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.0),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 1.0),      # range-of-motion stiffness / 50 N m/rad
+]
 
 # ---------------------------------------------------------------- limits
 # S3: total range of motion (deg) skull-C2 / C2-T1: flexion-extension 40/82,
@@ -310,6 +319,12 @@ for name in names[1:]:
     r = rom(name)
     for c in ("RX", "RY", "RZ"):
         w(card("ROM", name, c, round(-r[c], 4), round(r[c], 4), ROM_K, ROM_T0))
+w("*")
+w("* FITTED FACTORS: scale factors on the values above, fitted by the calibration")
+w("* (hhneck --calibrate < input/calibrate_nbdl.inp; reference/parameters.md).")
+w("*         name      family    item      factor")
+for (name, fam, item, value) in FITTED_SCALES:
+    w(card("SCALE", name, fam, item, value))
 w("*")
 w(card("HEADNECK", "HEAD", "T1"))
 for line in "\n".join(out).split("\n"):

@@ -7,7 +7,7 @@ module hn_deck
     use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
-    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name
+    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name, family_items, scale_family
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic, motion_eval
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
@@ -135,10 +135,10 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(32) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(33) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
-            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM']
+            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM', 'SCALE']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -875,6 +875,10 @@ contains
             write (note, '(i0,a)') nlimdrop, ' JOINT-LIMIT DAMPERS DROPPED: ON LOCKED OR MERGED COORDINATES'
             call add_scene_note(cs, note)
         end if
+        do k = 1, size(cards)
+            if (cards(k)%key == 'SCALE') call scale_card(rd, cards(k)%first, cs)
+            if (rd%failed()) return
+        end do
     contains
         !> The attachment of a LIGAMENT, MUSCLE or SPRING card: name (F1),
         !! bodies (F2, F3), points (first continuation card, F1-F6) and free
@@ -1119,6 +1123,36 @@ contains
         r%xmin = r%xmin*deg; r%xmax = r%xmax*deg; r%t0 = r%t0*deg
         cs%model%ranges = [cs%model%ranges, r]
     end subroutine range_card
+
+    !> SCALE name family item factor: multiply one property of every element
+    !! of a family (the items of a sweep's FAMILY parameters), after every
+    !! element card; the named factors a calibration fits (FIELD4 SCALE name).
+    subroutine scale_card(rd, i, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        character(len=10) :: s, item, items(3)
+        integer :: fam
+        real(wp) :: factor
+        call rd%name(i, 1, 'factor name', s)
+        call rd%name(i, 2, 'element family', s)
+        if (rd%failed()) return
+        fam = findloc(family_name, s(1:9), dim=1)
+        if (fam == 0) then
+            call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
+                         join(family_name))
+            return
+        end if
+        call rd%name(i, 3, 'item', item)
+        items = family_items(fam)
+        if (.not. rd%failed() .and. .not. any(items == item .and. len_trim(items) > 0)) then
+            call rd%fail(rd%context(i, 3, 'item')//': found "'//trim(item)//'"; expected one of '//join(items))
+            return
+        end if
+        call rd%real(i, 4, 'factor', '-', factor, 1.0e-6_wp, 1.0e6_wp)
+        if (rd%failed()) return
+        call scale_family(cs%model, fam, item, factor)
+    end subroutine scale_card
 
     !> FAMILY name ON|OFF: switch an element family.
     subroutine family_card(rd, i, cs)

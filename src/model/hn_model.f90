@@ -15,7 +15,7 @@ module hn_model
     implicit none
     private
 
-    public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count
+    public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, scale_family
 
     !> Element families that can be switched on and off.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
@@ -101,5 +101,59 @@ contains
         call set_neutral_lengths(kin, model%muscles%line_attach_t)
         call set_neutral_lengths(kin, model%springs%line_attach_t)
     end subroutine model_set_neutral
+
+    !> Properties of a family that a FAMILY parameter may scale.
+    pure function family_items(f) result(items)
+        integer, intent(in) :: f
+        character(len=10) :: items(3)
+        items = ''
+        select case (f)
+        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G']
+        case (fam_ligaments); items(1:2) = [character(len=10) :: 'L1', 'L2']
+        case (fam_muscles); items = [character(len=10) :: 'M1', 'M2', 'F0']
+        case (fam_limits); items = [character(len=10) :: 'C0', 'C1', 'ROMK']
+        case (fam_springs); items(1:2) = [character(len=10) :: 'K', 'C']
+        end select
+    end function family_items
+
+    !> Multiply one property of every element of a family by `factor`.
+    pure subroutine scale_family(model, f, item, factor)
+        type(model_t), intent(inout) :: model
+        integer, intent(in) :: f
+        character(len=*), intent(in) :: item
+        real(wp), intent(in) :: factor
+        select case (f)
+        case (fam_discs)
+            select case (item)
+            case ('E'); model%discs%d1 = factor*model%discs%d1
+            case ('VISCOUS'); model%discs%d2 = factor*model%discs%d2
+            case ('G'); model%discs%g = factor*model%discs%g
+            end select
+        case (fam_ligaments)
+            select case (item)
+            case ('L1'); model%ligaments%l1 = factor*model%ligaments%l1
+            case ('L2'); model%ligaments%l2 = factor*model%ligaments%l2
+            end select
+        case (fam_muscles)
+            select case (item)
+            case ('M1'); model%muscles%m1 = factor*model%muscles%m1
+            case ('M2'); model%muscles%m2 = factor*model%muscles%m2
+            case ('F0')      ! Hill-type muscles: F0 and the damping that is proportional to it
+                model%muscles%hill%f0 = factor*model%muscles%hill%f0
+                model%muscles%hill%damping = factor*model%muscles%hill%damping
+            end select
+        case (fam_limits)
+            select case (item)
+            case ('C0'); model%limits%c0 = factor*model%limits%c0
+            case ('C1'); model%limits%c1 = factor*model%limits%c1
+            case ('ROMK'); model%ranges%k = factor*model%ranges%k
+            end select
+        case (fam_springs)
+            select case (item)
+            case ('K'); model%springs%stiffness = factor*model%springs%stiffness
+            case ('C'); model%springs%damping = factor*model%springs%damping
+            end select
+        end select
+    end subroutine scale_family
 
 end module hn_model

@@ -28,7 +28,7 @@ module hn_calibrate
     private
 
     public :: volunteer_t, read_volunteers, cora_rating, score_t, score_samples, calibration_t, read_calibration, &
-              calibrate, evaluate, nelder_mead, objective_fn
+              calibrate, evaluate, nelder_mead, objective_fn, member_histories, rated_histories
 
     integer, parameter, public :: nrated = 5, npeaks = 6
     character(len=10), parameter, public :: rated_channels(nrated) = [character(len=10) :: 'HEAD_AX', 'HEAD_AZ', &
@@ -69,6 +69,7 @@ module hn_calibrate
         type(sweep_t), allocatable :: sw(:)
         type(volunteer_t), allocatable :: vol(:)
         integer :: max_evals = 200, nstart = 8, seed = 1
+        real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
     end type calibration_t
 
     abstract interface
@@ -226,14 +227,10 @@ contains
         real(wp), intent(in) :: t0, dt               !! first sample time and interval [s]
         real(wp), intent(in) :: samples(:, :)        !! (nchannel, nsample)
         type(score_t), intent(out) :: sc
-        real(wp) :: f(size(samples, 2)), tm(size(samples, 2)), y(size(vd%t), nrated), lag, pk(2)
-        integer :: k, i, p
-        do i = 1, size(tm)
-            tm(i) = 1000*(t0 + (i - 1)*dt)
-        end do
+        real(wp) :: y(size(vd%t), nrated), lag, pk(2)
+        integer :: k, p
+        y = rated_histories(vd, names, t0, dt, samples)
         do k = 1, nrated
-            call cfc_filter(samples(findloc(names, rated_channels(k), dim=1), :), dt, 60.0_wp, f)
-            y(:, k) = interp(vd%t, tm, f)
             call cora_rating(vd%t, y(:, k), vd%mean(:, k), vd%sd(:, k), sc%corridor(k), sc%xcorr(k), &
                              sc%rating(k), lag)
         end do
@@ -243,6 +240,54 @@ contains
             sc%z(p) = (pk(1) - vd%peak_mean(p))/vd%peak_sd(p)
         end do
     end subroutine score_samples
+
+    !> The rated channels of a run, CFC 60, at the volunteers' times.
+    function rated_histories(vd, names, t0, dt, samples) result(y)
+        type(volunteer_t), intent(in) :: vd
+        character(len=*), intent(in) :: names(:)     !! channel names of the rows of samples
+        real(wp), intent(in) :: t0, dt               !! first sample time and interval [s]
+        real(wp), intent(in) :: samples(:, :)        !! (nchannel, nsample)
+        real(wp) :: y(size(vd%t), nrated)
+        real(wp) :: f(size(samples, 2)), tm(size(samples, 2))
+        integer :: k, i
+        do i = 1, size(tm)
+            tm(i) = 1000*(t0 + (i - 1)*dt)
+        end do
+        do k = 1, nrated
+            call cfc_filter(samples(findloc(names, rated_channels(k), dim=1), :), dt, 60.0_wp, f)
+            y(:, k) = interp(vd%t, tm, f)
+        end do
+    end function rated_histories
+
+    !> Run every case of the calibration at parameter values v: the rated
+    !! channels at the volunteers' times, y(:, :, case); ok false when a run fails.
+    subroutine member_histories(cal, v, y, ok)
+        type(calibration_t), intent(in) :: cal
+        real(wp), intent(in) :: v(:)                 !! one value per parameter
+        real(wp), intent(out) :: y(:, :, :)          !! (nt, nrated, ncase)
+        logical, intent(out) :: ok
+        type(case_t) :: cs
+        type(run_result_t) :: res
+        type(channel_set_t) :: ch
+        integer :: c, stat, lu
+        character(len=msglen) :: msg
+        ok = .true.
+        y = zero
+        do c = 1, size(cal%sw)
+            call sweep_member_case(cal%sw(c), v, cs, stat, msg)
+            if (stat /= stat_ok) then
+                ok = .false.; return
+            end if
+            open (newunit=lu, file='/dev/null', action='write')
+            call run_case(cs, lu, '', res, keep_samples=.true.)
+            close (lu)
+            if (res%exit_code /= exit_ok) then
+                ok = .false.; return
+            end if
+            call channels_define(cs, ch)
+            y(1:size(cal%vol(c)%t), :, c) = rated_histories(cal%vol(c), ch%name, cs%t_start, cs%sample_dt, res%samples)
+        end do
+    end subroutine member_histories
 
     !> Linear interpolation of (xp, fp) at x, end values held (numpy.interp).
     pure function interp(x, xp, fp) result(f)
@@ -307,7 +352,9 @@ contains
 
     !> Read a calibration deck: TITLE; CASE path (columns 11-80) followed by
     !! DATA directory of that case's volunteers; FIT NELDER max-evaluations
-    !! starting-points seed; PARAM cards as in a sweep deck. Each case's
+    !! starting-points seed; PARAM cards as in a sweep deck; optional VALUES
+    !! cards (up to 7 values each, in PARAM order), the point scored when
+    !! max-evaluations is 0 (default: the decks' own values). Each case's
     !! parameters are bound to its own deck through a sweep (same checks).
     subroutine read_calibration(path, source, cal, stat, errmsg)
         character(len=*), intent(in) :: path, source
@@ -317,10 +364,11 @@ contains
         type(deck_reader_t) :: rd
         type(deck_line_t), allocatable :: params(:), sl(:)
         character(len=10) :: s
-        integer :: i, c, nfit
+        integer :: i, c, nfit, f
+        real(wp) :: x
         rd%top = source
         call read_card_images(rd, path, source, 0)
-        allocate (cal%decks(0), cal%data(0), params(0))
+        allocate (cal%decks(0), cal%data(0), params(0), cal%values(0))
         nfit = 0
         do i = 1, rd%nlines
             if (rd%failed()) exit
@@ -342,10 +390,16 @@ contains
                 call rd%int(i, 3, 'starting points', cal%nstart, 2, 10000)
                 call rd%int(i, 4, 'seed', cal%seed, 1, 2147483646)
             case ('PARAM'); params = [params, rd%lines(i)]
+            case ('VALUES')
+                do f = 1, 7
+                    if (rd%is_blank(i, f)) cycle
+                    call rd%real(i, f, 'parameter value', '-', x, -1.0e30_wp, 1.0e30_wp)
+                    cal%values = [cal%values, x]
+                end do
             case ('END'); exit
             case default
                 call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(rd%key(i))// &
-                             '"; expected TITLE, CASE, DATA, FIT, PARAM or END')
+                             '"; expected TITLE, CASE, DATA, FIT, PARAM, VALUES or END')
             end select
         end do
         if (.not. rd%failed() .and. (size(cal%decks) == 0 .or. size(cal%data) /= size(cal%decks) .or. nfit /= 1)) &
@@ -530,8 +584,9 @@ contains
         associate (par => cal%sw(1)%params)
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
-            if (cal%max_evals == 0) then                 ! score the decks as they are
+            if (cal%max_evals == 0) then                 ! score the decks as they are, or at VALUES
                 vbest = par%nominal
+                if (size(cal%values) == size(par)) vbest = cal%values
                 call evaluate(cal, vbest, jbest, sc, ok)
                 nevals = 1
                 call score_report(cal, sc, jbest, lu)
