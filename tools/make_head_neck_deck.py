@@ -305,20 +305,20 @@ w("*")
 w("* JOINT LIMITS (eqs 12-13): one-way dampers on the three rotations of every")
 w("* joint; ranges S3 split per joint (A); C0 %.2f, C1 %.0f N m s/rad per rad (A)" % (LIMIT_C0, LIMIT_C1))
 w("*         body      coord     min (deg) max (deg) C0        C1")
+rom_cards = []
 for name in names[1:]:
     r = rom(name)
     for c in ("RX", "RY", "RZ"):
         w(card("LIMIT", name, c, round(-r[c], 4), round(r[c], 4), LIMIT_C0, LIMIT_C1))
+        rom_cards.append(card("ROM", name, c, round(-r[c], 4), round(r[c], 4), ROM_K, ROM_T0))
 w("*")
 w("* RANGE OF MOTION: resistance beyond the physiological range of each joint")
 w("* rotation (the S3 ranges of the LIMIT cards), Q = -K t0 (exp(e/t0) - 1) for an")
 w("* excess e; K %.0f N m/rad, t0 %.0f deg (A): the ligaments and facets that stop" % (ROM_K, ROM_T0))
 w("* a real joint. A run warns when a joint goes more than 5 deg past its range.")
 w("*         body      coord     min (deg) max (deg) K         t0 (deg)")
-for name in names[1:]:
-    r = rom(name)
-    for c in ("RX", "RY", "RZ"):
-        w(card("ROM", name, c, round(-r[c], 4), round(r[c], 4), ROM_K, ROM_T0))
+for c in rom_cards:
+    w(c)
 w("*")
 w("* FITTED FACTORS: scale factors on the values above, fitted by the calibration")
 w("* (hhneck --calibrate < input/calibrate_nbdl.inp; reference/parameters.md).")

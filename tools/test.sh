@@ -71,6 +71,8 @@ wait "$pid"
 set -e
 [ ! -e "$tmp/kill.h5" ]
 echo "PASS  no kill.h5 after SIGKILL (the partial file stays under kill.h5.part)"
+echo "== listings of the regression decks against reference/outputs"
+HHNECK="$exe" sh test/scripts/listing_references.sh
 echo "== a parameter sweep over MPI: 2 ranks give exactly the serial results; diverging members are reported"
 # the same compiler wrapper and flags for the serial main program and the MPI
 # driver, so that the member runs are the same machine code

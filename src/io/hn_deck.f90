@@ -858,10 +858,8 @@ contains
                 call rd%real(i, 4, 'stiffness', 'N/m', sp%stiffness, zero, big_modulus)
                 call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
                 if (keep .and. .not. rd%failed()) cs%model%springs = [cs%model%springs, sp]
-            case ('LIMIT')
-                call limit_card(rd, i, cs, bnames, bmap, nlimdrop)
-            case ('ROM')
-                call range_card(rd, i, cs, bnames, bmap, nlimdrop)
+            case ('LIMIT', 'ROM')
+                call joint_card(rd, i, cs, bnames, bmap, nlimdrop)
             case ('FAMILY')
                 call family_card(rd, i, cs)
             end select
@@ -1042,70 +1040,70 @@ contains
         discs = [discs, d]
     end subroutine disc_card
 
-    !> A LIMIT card (joint-limit damper); dropped on a locked or merged coordinate.
-    subroutine limit_card(rd, i, cs, bnames, bmap, nlimdrop)
+    !> Body (F1) and coordinate (F2) of a LIMIT or ROM card; false, and the
+    !! card counted as dropped, when the coordinate is locked or its body
+    !! merged (the element would do nothing).
+    logical function joint_coordinate(rd, i, cs, bnames, bmap, kb, m, j, ndrop) result(keep)
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i
-        type(case_t), intent(inout) :: cs
+        type(case_t), intent(in) :: cs
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
-        integer, intent(inout) :: nlimdrop
-        type(joint_limit_t) :: lim
-        integer :: kb, m, j
-        lim = joint_limit_t()
+        integer, intent(out) :: kb, m, j
+        integer, intent(inout) :: ndrop
+        keep = .false.
+        kb = 1; m = 1; j = 0
         if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
-            nlimdrop = nlimdrop + 1          ! a damper inside a merged body
+            ndrop = ndrop + 1
             return
         end if
         call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
         if (rd%failed()) return
         if (j == 0) then
-            nlimdrop = nlimdrop + 1          ! a damper on a locked coordinate does nothing
+            ndrop = ndrop + 1
             return
         end if
-        lim%body = kb; lim%local = m; lim%dof = j
-        call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
-        call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
-        if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
-            call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
-                         trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
-            return
-        end if
-        call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
-        call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
-        call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
-                     default=max(lim%xmin, min(lim%xmax, cs%model%tree%q_ref(m, kb)/unit_factor(m))))
-        lim%xmin = lim%xmin*unit_factor(m)
-        lim%xmax = lim%xmax*unit_factor(m)
-        lim%xneutral = lim%xneutral*unit_factor(m)
-        if (.not. rd%failed()) cs%model%limits = [cs%model%limits, lim]
-    end subroutine limit_card
+        keep = .true.
+    end function joint_coordinate
 
-    !> A ROM card: body, rotation, physiological range (deg), stiffness at
-    !! the edge K [N m/rad] and the excess t0 [deg] over which it grows
-    !! e-fold; dropped (counted with the dampers) on a locked or merged coordinate.
-    subroutine range_card(rd, i, cs, bnames, bmap, ndrop)
+    !> A LIMIT card (one-way joint-limit damper) or a ROM card (resistance
+    !! beyond the physiological range: rotation, range (deg), stiffness at the
+    !! edge K [N m/rad], excess t0 [deg] over which it grows e-fold); dropped
+    !! on a locked or merged coordinate.
+    subroutine joint_card(rd, i, cs, bnames, bmap, ndrop)
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i
         type(case_t), intent(inout) :: cs
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         integer, intent(inout) :: ndrop
+        type(joint_limit_t) :: lim
         type(joint_range_t) :: r
         integer :: kb, m, j
-        if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
-            ndrop = ndrop + 1
+        if (.not. joint_coordinate(rd, i, cs, bnames, bmap, kb, m, j, ndrop)) return
+        if (rd%key(i) == 'LIMIT') then
+            lim = joint_limit_t()
+            lim%body = kb; lim%local = m; lim%dof = j
+            call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
+            call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
+            if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
+                call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
+                             trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
+                return
+            end if
+            call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
+            call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
+            call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
+                         default=max(lim%xmin, min(lim%xmax, cs%model%tree%q_ref(m, kb)/unit_factor(m))))
+            lim%xmin = lim%xmin*unit_factor(m)
+            lim%xmax = lim%xmax*unit_factor(m)
+            lim%xneutral = lim%xneutral*unit_factor(m)
+            if (.not. rd%failed()) cs%model%limits = [cs%model%limits, lim]
             return
         end if
-        call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
-        if (rd%failed()) return
         if (m <= 3) then
             call rd%fail(rd%context(i, 2, 'coordinate')//': found '//coord_names(m)//'; expected a rotation '// &
                          '(RX, RY or RZ): ROM cards hold joint rotations')
-            return
-        end if
-        if (j == 0) then
-            ndrop = ndrop + 1
             return
         end if
         r%dof = j
@@ -1122,7 +1120,8 @@ contains
         if (rd%failed()) return
         r%xmin = r%xmin*deg; r%xmax = r%xmax*deg; r%t0 = r%t0*deg
         cs%model%ranges = [cs%model%ranges, r]
-    end subroutine range_card
+    end subroutine joint_card
+
 
     !> SCALE name family item factor: multiply one property of every element
     !! of a family (the items of a sweep's FAMILY parameters), after every

@@ -103,8 +103,6 @@ contains
         end do
         do e = 1, size(cs%model%muscles)
             call add(ch, trim(cs%model%muscles(e)%name), 'N', 'MUSCLES')
-        end do
-        do e = 1, size(cs%model%muscles)
             if (cs%model%muscles(e)%law == muscle_hill) &
                 call add(ch, 'A_'//trim(cs%model%muscles(e)%name), '-', 'MUSCLE ACTIVATION')
         end do
@@ -214,8 +212,6 @@ contains
         end do
         do e = 1, size(cs%model%muscles)
             call put(merge(ws%eo%muscle(1, e), zero, cs%model%family_on(fam_muscles)))
-        end do
-        do e = 1, size(cs%model%muscles)
             if (cs%model%muscles(e)%law == muscle_hill) &
                 call put(merge(ws%eo%muscle(3, e), zero, cs%model%family_on(fam_muscles)))
         end do

@@ -28,7 +28,7 @@ module hn_calibrate
     private
 
     public :: volunteer_t, read_volunteers, cora_rating, score_t, score_samples, calibration_t, read_calibration, &
-              calibrate, evaluate, nelder_mead, objective_fn, member_histories, rated_histories
+              calibrate, evaluate, nelder_mead, objective_fn, member_histories, rated_histories, read_runs_csv
 
     integer, parameter, public :: nrated = 5, npeaks = 6
     character(len=10), parameter, public :: rated_channels(nrated) = [character(len=10) :: 'HEAD_AX', 'HEAD_AZ', &
@@ -98,7 +98,7 @@ contains
         real(wp) :: pk(2)
         real(wp), allocatable :: pks(:, :)
         do f = 1, 4
-            call read_csv(trim(dir)//'/'//trim(files(f))//'.csv', t, runs, stat, errmsg)
+            call read_runs_csv(trim(dir)//'/'//trim(files(f))//'.csv', t, runs, stat, errmsg)
             if (stat /= stat_ok) return
             if (f == 1) then
                 nt = size(t); vd%nrun = size(runs, 2); vd%t = t
@@ -310,11 +310,12 @@ contains
     end function interp
 
     !> Read a CSV file with a header line: first column time, then one column per run.
-    subroutine read_csv(file, t, runs, stat, errmsg)
-        character(len=*), intent(in) :: file
-        real(wp), allocatable, intent(out) :: t(:), runs(:, :)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+    subroutine read_runs_csv(file, t, runs, stat, errmsg)
+        character(len=*), intent(in) :: file               !! the file
+        real(wp), allocatable, intent(out) :: t(:)         !! first column
+        real(wp), allocatable, intent(out) :: runs(:, :)   !! (row, run) the other columns
+        integer, intent(out) :: stat                       !! stat_ok or stat_bad_input
+        character(len=msglen), intent(out) :: errmsg       !! what went wrong
         character(len=8192) :: line
         integer :: u, ios, ncol, nrow, k
         real(wp), allocatable :: row(:)
@@ -348,7 +349,7 @@ contains
             runs(k, :) = row(2:)
         end do
         close (u)
-    end subroutine read_csv
+    end subroutine read_runs_csv
 
     !> Read a calibration deck: TITLE; CASE path (columns 11-80) followed by
     !! DATA directory of that case's volunteers; FIT NELDER max-evaluations
