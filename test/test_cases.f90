@@ -6,7 +6,7 @@ program test_cases
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_h5, only: h5_read_real, h5_dims, h5_read_string_attr
     use hn_testing, only: test_suite_t
     implicit none
@@ -40,7 +40,10 @@ contains
             return
         end if
         open (newunit=lu, status='scratch')
-        call run_case(cs, lu, h5name, res)
+        block
+            type(run_state_t) :: run
+            call run%execute(cs, lu, h5name, res)
+        end block
         close (lu)
         call h5_read_string_attr(h5name, '/', 'status', status, stat)
         ok = res%exit_code == 0 .and. stat == 0 .and. status == 'complete'

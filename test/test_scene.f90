@@ -8,7 +8,7 @@ program test_scene
     use hn_case, only: case_t
     use hn_deck, only: read_case
     use hn_dynamics, only: dyn_workspace_t, dynamics_setup, dynamics_evaluate
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     use hn_testing, only: test_suite_t
     use hn_test_models, only: rng_t, read_deck_lines
@@ -150,8 +150,14 @@ contains
         full%sample_dt = 1.0e-3_wp; sag%sample_dt = 1.0e-3_wp
         call channels_define(full, ch)
         open (newunit=lu, file='/dev/null', action='write')
-        call run_case(full, lu, '', rf, keep_samples=.true.)
-        call run_case(sag, lu, '', rs, keep_samples=.true.)
+        block
+            type(run_state_t) :: run
+            call run%execute(full, lu, '', rf, keep_samples=.true.)
+        end block
+        block
+            type(run_state_t) :: run
+            call run%execute(sag, lu, '', rs, keep_samples=.true.)
+        end block
         close (lu)
         dev = zero; outmax = zero
         n = min(size(rf%samples_t), size(rs%samples_t))

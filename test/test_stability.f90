@@ -5,7 +5,7 @@
 program test_stability
     use hn_kinds, only: wp, msglen, deg
     use hn_case, only: case_t
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     use hn_testing, only: test_suite_t
     use hn_test_models, only: read_deck_lines
@@ -86,7 +86,10 @@ contains
         end if
         call channels_define(cs, ch)
         open (newunit=u, file='/dev/null', action='write')
-        call run_case(cs, u, '', res, keep_samples=.true.)
+        block
+            type(run_state_t) :: run
+            call run%execute(cs, u, '', res, keep_samples=.true.)
+        end block
         close (u)
     end subroutine run_lines
 

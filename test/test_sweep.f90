@@ -15,7 +15,7 @@ program test_sweep
     use hn_random, only: rng_t
     use hn_test_models, only: write_lines, delete_file
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     implicit none
     type(test_suite_t) :: suite
@@ -384,7 +384,10 @@ contains
         real(wp) :: peak, t_peak
         call read_case(base, base, cs, stat, msg)
         open (newunit=lu, file='/dev/null', action='write')
-        call run_case(cs, lu, '', res, keep_samples=.true.)
+        block
+            type(run_state_t) :: run
+            call run%execute(cs, lu, '', res, keep_samples=.true.)
+        end block
         close (lu)
         call channels_define(cs, ch)
         k = findloc(ch%name, 'HEAD_THETY', dim=1)

@@ -166,15 +166,15 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
-ACT = dict(u0=0.05, u1=0.5, delay=0.070, rise=0.020, tau_act=0.015, tau_deact=0.050)
+ACT = dict(u0=0.16196, u1=0.377179, delay=0.051279, rise=0.020, tau_act=0.015, tau_deact=0.050)
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.0),      # sigma_max / 0.5 MPa
-    ("VISCOUS", "DISCS", "VISCOUS", 1.0), # disc retardation time / 5 ms
-    ("SHEAR", "DISCS", "G", 1.0),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.0),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 1.0),      # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 1.86819),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 5.02588), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 1.25898),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.10484),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.147055),     # range-of-motion stiffness / 50 N m/rad
 ]
 
 # ---------------------------------------------------------------- limits

@@ -33,7 +33,8 @@ generate() {
     for pf in test/unit/*.pf; do
         [ -e "$pf" ] || continue
         name=$(basename "$pf" .pf)
-        python3 "$PF/bin/funitproc" "$pf" "$out/${name}_suite.F90" > /dev/null
+        python3 "$PF/bin/funitproc" "$pf" "$out/${name}_suite.F90" > /dev/null 2>&1 ||
+            { python3 "$PF/bin/funitproc" "$pf" "$out/${name}_suite.F90"; exit 1; }
         # the suite function is external: give it an explicit interface, and
         # use the wrapper module funitproc writes beside it so that fpm links
         # the suite's object file

@@ -24,7 +24,7 @@ VARIANTS = [
 def deck_variant(sev, repl, path):
     out = []
     for line in open("input/nbdl%s.inp" % sev):
-        key = line[30:32] if line.startswith("PRESCRIB  T1") else None
+        key = line[20:22] if line.startswith("PRESCRIB  T1") else None
         out.append((repl[key] + "\n") if key in repl else line)
     open(path, "w").write("".join(out))
 

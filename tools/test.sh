@@ -23,10 +23,15 @@ echo "== fpm test (debug build: $DEBUG_FLAGS)"
 fpm test --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK"
 echo "== fpm test (checking build: $CHECK_FLAGS)"
 fpm test --flag "$CHECK_FLAGS $PF_INC" --link-flag "$PF_LINK"
+echo "== robustness: full disk, files in the way, concurrent runs, signals, endless and huge inputs (debug, checking)"
+HHNECK=$(fpm run --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | tail -n 1) sh test/scripts/robustness.sh
+HHNECK=$(fpm run --flag "$CHECK_FLAGS $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | tail -n 1) sh test/scripts/robustness.sh
 echo "== HDF5 results readable by h5py"
 tmp=$(mktemp -d)
 fpm run -- --h5 "$tmp/case6-2.h5" < input/case6-2.inp > "$tmp/listing.txt"
 python3 tools/check_results.py "$tmp/case6-2.h5"
+echo "== animations and the ParaView sidecar (docs/animation.md)"
+sh test/scripts/animate.sh
 echo "== a bad deck: exit code 2, located message on stderr, no result file"
 sed 's/^CONTROL   0.1  /CONTROL   -0.1 /' input/case6-2.inp > "$tmp/bad.inp"
 set +e

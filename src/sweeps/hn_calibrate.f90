@@ -13,7 +13,7 @@
 !! from the best of them, in the unit cube of the parameter ranges (LOG
 !! ranges in logarithms), points clamped to the bounds. Deterministic: the
 !! same deck gives the same fit on every machine. Member runs are those of
-!! the sweep (sweep_member_case, run_case).
+!! the sweep (sweep_member_case, run_state_t).
 module hn_calibrate
     use hn_kinds, only: wp, zero, one, msglen
     use hn_status, only: stat_ok, stat_bad_input
@@ -21,7 +21,7 @@ module hn_calibrate
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
     use hn_sweep, only: sweep_t, sweep_param_t, read_sweep_lines, sweep_member_case, sweep_design, spread_value, &
                         field_text, par_field
-    use hn_run, only: run_case, run_result_t, exit_ok
+    use hn_run, only: run_state_t, run_result_t, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
     implicit none
@@ -268,6 +268,7 @@ contains
         logical, intent(out) :: ok
         type(case_t) :: cs
         type(run_result_t) :: res
+        type(run_state_t) :: run
         type(channel_set_t) :: ch
         integer :: c, stat, lu
         character(len=msglen) :: msg
@@ -279,7 +280,7 @@ contains
                 ok = .false.; return
             end if
             open (newunit=lu, file='/dev/null', action='write')
-            call run_case(cs, lu, '', res, keep_samples=.true.)
+            call run%execute(cs, lu, '', res, keep_samples=.true.)
             close (lu)
             if (res%exit_code /= exit_ok) then
                 ok = .false.; return
@@ -440,6 +441,7 @@ contains
         logical, intent(out) :: ok                   !! every run complete
         type(case_t) :: cs
         type(run_result_t) :: res
+        type(run_state_t) :: run
         type(channel_set_t) :: ch
         integer :: c, stat, lu
         character(len=msglen) :: msg
@@ -451,7 +453,7 @@ contains
                 ok = .false.; exit
             end if
             open (newunit=lu, file='/dev/null', action='write')
-            call run_case(cs, lu, '', res, keep_samples=.true.)
+            call run%execute(cs, lu, '', res, keep_samples=.true.)
             close (lu)
             if (res%exit_code /= exit_ok) then
                 ok = .false.; exit

@@ -11,7 +11,7 @@ module hn_sweep
     use hn_deck, only: read_case_lines
     use hn_tree, only: tree_build
     use hn_model, only: model_set_neutral, family_name, family_count, family_items, scale_family
-    use hn_run, only: run_case, run_result_t, exit_deck, exit_ok
+    use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
     use hn_random, only: rng_t
@@ -538,6 +538,7 @@ contains
         type(member_record_t), intent(out) :: rec
         type(case_t) :: cs
         type(run_result_t) :: res
+        type(run_state_t) :: run
         integer :: stat, lu, ios
         character(len=msglen) :: msg
         call sweep_member_case(sw, v, cs, stat, msg)
@@ -552,7 +553,7 @@ contains
             rec%message = 'cannot open /dev/null for the discarded listing'
             return
         end if
-        call run_case(cs, lu, '', res, keep_samples=.true.)
+        call run%execute(cs, lu, '', res, keep_samples=.true.)
         close (lu)
         rec%status = res%exit_code
         rec%t_reached = res%t_reached
