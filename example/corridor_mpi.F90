@@ -27,7 +27,7 @@ program corridor_mpi
     character(len=path_len) :: deck, prefix
     character(len=msglen) :: msg
     real(wp), allocatable :: v(:, :), y(:, :, :, :), ysum(:, :, :, :), ok(:), oksum(:), mean(:, :), sd(:, :)
-    integer :: rank, nranks, ierr, stat, r, c, k, nt, nc, nm, u, i, nok
+    integer :: rank, nranks, ierr, stat, r, c, k, nt, nc, nm, u, i, nok, nwin
     logical :: good, inside(1)
     real(wp) :: cover
     rank = 0; nranks = 1
@@ -85,20 +85,20 @@ program corridor_mpi
             end do
             write (u, '(a)') ''
             do i = 1, nt
-                write (u, '(f8.2,*(",",es14.6))') cal%vol(c)%t(i), (mean(i, k), sd(i, k), cal%vol(c)%mean(i, k), &
+                write (u, '(f8.2,*(:,",",es14.6))') cal%vol(c)%t(i), (mean(i, k), sd(i, k), cal%vol(c)%mean(i, k), &
                                                                     cal%vol(c)%sd(i, k), k=1, nrated)
             end do
             close (u)
             do k = 1, nrated
-                nok = 0; cover = 0
+                nwin = 0; cover = 0
                 do i = 1, nt
                     if (cal%vol(c)%t(i) < 30.0_wp .or. cal%vol(c)%t(i) > 250.0_wp) cycle
-                    nok = nok + 1
+                    nwin = nwin + 1
                     inside = abs(cal%vol(c)%mean(i, k) - mean(i, k)) <= sd(i, k)
                     if (inside(1)) cover = cover + 1
                 end do
                 write (output_unit, '(a,a,a10,a,f6.1,a)') trim(case_tag(cal%decks(c))), ' ', rated_channels(k), &
-                    ': volunteer mean inside the model mean +- 1 SD ', 100*cover/nok, ' % of 30-250 ms'
+                    ': volunteer mean inside the model mean +- 1 SD ', 100*cover/nwin, ' % of 30-250 ms'
             end do
         end do
     end if

@@ -1202,32 +1202,6 @@ contains
         keep = d%body_a /= d%body_b
     end subroutine disc_card
 
-    !> Body (F1) and coordinate (F2) of a LIMIT or ROM card; false, and the
-    !! card counted as dropped, when the coordinate is locked or its body
-    !! merged (the element would do nothing).
-    logical function joint_coordinate(rd, i, cs, bnames, bmap, kb, m, j, ndrop) result(keep)
-        type(deck_reader_t), intent(inout) :: rd
-        integer, intent(in) :: i
-        type(case_t), intent(in) :: cs
-        character(len=10), intent(in) :: bnames(:)
-        type(body_map_t), intent(in) :: bmap
-        integer, intent(out) :: kb, m, j
-        integer, intent(inout) :: ndrop
-        keep = .false.
-        kb = 1; m = 1; j = 0
-        if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
-            ndrop = ndrop + 1
-            return
-        end if
-        call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
-        if (rd%failed()) return
-        if (j == 0) then
-            ndrop = ndrop + 1
-            return
-        end if
-        keep = .true.
-    end function joint_coordinate
-
     !> A LIMIT card (one-way joint-limit damper) or a ROM card (resistance
     !! beyond the physiological range: rotation, range (deg), stiffness at the
     !! edge K [N m/rad], excess t0 [deg] over which it grows e-fold); dropped
@@ -1243,7 +1217,17 @@ contains
         type(joint_limit_t) :: lim
         type(joint_range_t) :: r
         integer :: kb, m, j
-        if (.not. joint_coordinate(rd, i, cs, bnames, bmap, kb, m, j, ndrop)) return
+        ! a body absorbed by MERGE or a locked coordinate: the element would do nothing
+        if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
+            ndrop = ndrop + 1
+            return
+        end if
+        call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
+        if (rd%failed()) return
+        if (j == 0) then
+            ndrop = ndrop + 1
+            return
+        end if
         if (rd%key(i) == 'LIMIT') then
             lim = joint_limit_t()
             lim%body = kb; lim%local = m; lim%dof = j

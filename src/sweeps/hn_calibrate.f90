@@ -227,9 +227,16 @@ contains
         real(wp), intent(in) :: t0, dt               !! first sample time and interval [s]
         real(wp), intent(in) :: samples(:, :)        !! (nchannel, nsample)
         type(score_t), intent(out) :: sc
-        real(wp) :: y(size(vd%t), nrated), lag, pk(2)
+        call score_histories(vd, rated_histories(vd, names, t0, dt, samples), sc)
+    end subroutine score_samples
+
+    !> Score the rated channels y (CFC 60, at the volunteers' times) against the volunteers.
+    subroutine score_histories(vd, y, sc)
+        type(volunteer_t), intent(in) :: vd
+        real(wp), intent(in) :: y(:, :)              !! (nt, nrated)
+        type(score_t), intent(out) :: sc
+        real(wp) :: lag, pk(2)
         integer :: k, p
-        y = rated_histories(vd, names, t0, dt, samples)
         do k = 1, nrated
             call cora_rating(vd%t, y(:, k), vd%mean(:, k), vd%sd(:, k), sc%corridor(k), sc%xcorr(k), &
                              sc%rating(k), lag)
@@ -239,7 +246,7 @@ contains
             sc%peak(p) = pk(1); sc%time(p) = pk(2)
             sc%z(p) = (pk(1) - vd%peak_mean(p))/vd%peak_sd(p)
         end do
-    end subroutine score_samples
+    end subroutine score_histories
 
     !> The rated channels of a run, CFC 60, at the volunteers' times.
     function rated_histories(vd, names, t0, dt, samples) result(y)
@@ -268,7 +275,6 @@ contains
         logical, intent(out) :: ok
         type(case_t) :: cs
         type(run_result_t) :: res
-        type(run_state_t) :: run
         type(channel_set_t) :: ch
         integer :: c, stat, lu
         character(len=msglen) :: msg
@@ -280,7 +286,10 @@ contains
                 ok = .false.; return
             end if
             open (newunit=lu, file='/dev/null', action='write')
-            call run%execute(cs, lu, '', res, keep_samples=.true.)
+            block
+                type(run_state_t) :: run         ! a fresh run object for every case
+                call run%execute(cs, lu, '', res, keep_samples=.true.)
+            end block
             close (lu)
             if (res%exit_code /= exit_ok) then
                 ok = .false.; return
@@ -439,35 +448,20 @@ contains
         real(wp), intent(out) :: j                   !! the objective
         type(score_t), intent(out) :: sc(:)          !! (ncase)
         logical, intent(out) :: ok                   !! every run complete
-        type(case_t) :: cs
-        type(run_result_t) :: res
-        type(run_state_t) :: run
-        type(channel_set_t) :: ch
-        integer :: c, stat, lu
-        character(len=msglen) :: msg
+        real(wp), allocatable :: y(:, :, :)
         real(wp) :: rsum, psum
-        ok = .true.; rsum = zero; psum = zero
+        integer :: c
+        allocate (y(maxval([(size(cal%vol(c)%t), c=1, size(cal%vol))]), nrated, size(cal%sw)))
+        call member_histories(cal, v, y, ok)
+        j = failed_objective
+        if (.not. ok) return
+        rsum = zero; psum = zero
         do c = 1, size(cal%sw)
-            call sweep_member_case(cal%sw(c), v, cs, stat, msg)
-            if (stat /= stat_ok) then
-                ok = .false.; exit
-            end if
-            open (newunit=lu, file='/dev/null', action='write')
-            call run%execute(cs, lu, '', res, keep_samples=.true.)
-            close (lu)
-            if (res%exit_code /= exit_ok) then
-                ok = .false.; exit
-            end if
-            call channels_define(cs, ch)
-            call score_samples(cal%vol(c), ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c))
+            call score_histories(cal%vol(c), y(1:size(cal%vol(c)%t), :, c), sc(c))
             rsum = rsum + sum(sc(c)%rating)/nrated
             psum = psum + sum(max(zero, abs(sc(c)%z) - one))/npeaks
         end do
-        if (ok) then
-            j = (one - rsum/size(cal%sw)) + peak_weight*psum/size(cal%sw)
-        else
-            j = failed_objective
-        end if
+        j = (one - rsum/size(cal%sw)) + peak_weight*psum/size(cal%sw)
     end subroutine evaluate
 
     !> Nelder-Mead on the unit cube from u0 with initial steps `step`;
