@@ -1015,6 +1015,7 @@ contains
         cs%model%muscles = cs%model%muscles(1:nel(3))
         cs%model%springs = cs%model%springs(1:nel(4))
         cs%model%limits = cs%model%limits(1:nel(5))
+        cs%model%ranges = cs%model%ranges(1:nel(6))
         if (ninternal > 0) then
             write (note, '(i0,a)') ninternal, ' ELEMENTS DROPPED: BOTH ENDS ON ONE MERGED BODY'
             call add_scene_note(cs, note)
