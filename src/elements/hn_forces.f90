@@ -74,18 +74,18 @@ contains
             end do
         end if
         if (model%family_on(fam_ligaments)) then
-            call line_geometries(kin, model%ligaments%line_attach_t, gl)
+            call line_geometries(kin, model%ligaments, gl)
             eo%ligament(1, :) = ligament_tension(model%ligaments, gl%length)
             eo%ligament(2, :) = gl%length
-            call apply_line_tensions(loads, kin, model%ligaments%line_attach_t, gl, eo%ligament(1, :))
+            call apply_line_tensions(loads, kin, model%ligaments, gl, eo%ligament(1, :))
             eo%u_elastic = eo%u_elastic + sum(ligament_energy(model%ligaments, gl%length))
         end if
         if (model%family_on(fam_muscles)) then
-            call line_geometries(kin, model%muscles%line_attach_t, gm)
+            call line_geometries(kin, model%muscles, gm)
             eo%muscle(3, :) = muscle_activations(model, t)
             eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, eo%muscle(3, :))
             eo%muscle(2, :) = gm%length
-            call apply_line_tensions(loads, kin, model%muscles%line_attach_t, gm, eo%muscle(1, :))
+            call apply_line_tensions(loads, kin, model%muscles, gm, eo%muscle(1, :))
             eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
         end if
         if (model%family_on(fam_limits)) then
@@ -104,9 +104,9 @@ contains
             end do
         end if
         if (model%family_on(fam_springs)) then
-            call line_geometries(kin, model%springs%line_attach_t, gs)
+            call line_geometries(kin, model%springs, gs)
             eo%spring = spring_tension(model%springs, gs%length, gs%rate)
-            call apply_line_tensions(loads, kin, model%springs%line_attach_t, gs, eo%spring)
+            call apply_line_tensions(loads, kin, model%springs, gs, eo%spring)
             eo%u_elastic = eo%u_elastic + sum(spring_energy(model%springs, gs%length))
             eo%p_diss = eo%p_diss + sum(model%springs%damping*gs%rate**2)
         end if
@@ -176,12 +176,12 @@ contains
             if (model%family_on(fam_limits)) sw(i) = x(model%limits(e)%dof) - model%limits(e)%xneutral
         end do
         if (model%family_on(fam_muscles)) then
-            call line_geometries(kin, model%muscles%line_attach_t, gm)
+            call line_geometries(kin, model%muscles, gm)
             act = muscle_activations(model, t)
             sw(i + 1:i + size(model%muscles)) = muscle_law_value(model%muscles, gm%length, gm%rate, act)
         end if
         i = i + size(model%muscles)
-        if (model%family_on(fam_ligaments)) call line_geometries(kin, model%ligaments%line_attach_t, gl)
+        if (model%family_on(fam_ligaments)) call line_geometries(kin, model%ligaments, gl)
         do e = 1, size(model%ligaments)
             if (model%ligaments(e)%l1 <= zero) cycle
             i = i + 1

@@ -168,7 +168,7 @@ contains
     !> Geometry of every element of a list of line elements.
     pure subroutine line_geometries(kin, at, g)
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
-        type(line_attach_t), intent(in) :: at(:)     !! the elements' attachments
+        class(line_attach_t), intent(in) :: at(:)    !! the elements (any kind)
         type(line_geometry_t), intent(out) :: g(:)   !! (size(at)) their geometry
         integer :: e
         do e = 1, size(at)
@@ -191,7 +191,7 @@ contains
     pure subroutine apply_line_tensions(loads, kin, at, g, tension)
         type(body_loads_t), intent(inout) :: loads
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
-        type(line_attach_t), intent(in) :: at(:)     !! the elements' attachments
+        class(line_attach_t), intent(in) :: at(:)    !! the elements (any kind)
         type(line_geometry_t), intent(in) :: g(:)    !! their geometry
         real(wp), intent(in) :: tension(:)           !! their tensions [N]
         integer :: e
@@ -204,7 +204,7 @@ contains
     !! the configuration of `kin` (the neutral one).
     pure subroutine set_neutral_lengths(kin, at)
         type(kinematics_t), intent(in) :: kin        !! kinematics in the neutral configuration
-        type(line_attach_t), intent(inout) :: at(:)  !! the elements' attachments
+        class(line_attach_t), intent(inout) :: at(:) !! the elements (any kind)
         type(line_geometry_t) :: g(size(at))
         integer :: e
         call line_geometries(kin, at, g)

@@ -1082,14 +1082,14 @@ contains
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
         type(activation_t) :: ah
-        integer :: k, i
+        integer :: k, i, k2
         do k = 1, size(cards)
             if (cards(k)%key /= 'ACTIVATE') cycle
             i = cards(k)%first
             ah = activation_t()
             call rd%name(i, 1, 'history name', ah%name)
             if (rd%failed()) return
-            if (any(cs%model%activations%name == ah%name)) then
+            if (any([(cs%model%activations(k2)%name == ah%name, k2=1, size(cs%model%activations))])) then
                 call rd%fail(rd%context(i, 1, 'history name')//': activation history "'//trim(ah%name)// &
                              '" is defined twice; expected a new name')
                 return
@@ -1143,7 +1143,9 @@ contains
         ih = 0
         call rd%name(i, f, 'activation history', s)
         if (rd%failed()) return
-        ih = findloc(hist%name, s, dim=1)
+        do ih = size(hist), 1, -1
+            if (hist(ih)%name == s) exit
+        end do
         if (ih == 0) call rd%fail(rd%context(i, f, 'activation history')//': found "'//trim(s)// &
                                   '"; expected the name of an ACTIVATE card')
     end function history_ref
@@ -1284,13 +1286,8 @@ contains
         real(wp) :: factor
         call rd%name(i, 1, 'factor name', s)
         call rd%name(i, 2, 'element family', s)
+        fam = family_ref(rd, i, s)
         if (rd%failed()) return
-        fam = findloc(family_name, s(1:9), dim=1)
-        if (fam == 0) then
-            call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
-                         join(family_name))
-            return
-        end if
         call rd%name(i, 3, 'item', item)
         items = family_items(fam)
         if (.not. rd%failed() .and. .not. any(items == item .and. len_trim(items) > 0)) then
@@ -1301,6 +1298,18 @@ contains
         if (rd%failed()) return
         call scale_family(cs%model, fam, item, factor)
     end subroutine scale_card
+
+    !> Element family named s in field F2 of line i (an error when unknown).
+    integer function family_ref(rd, i, s) result(fam)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        character(len=*), intent(in) :: s
+        fam = 0
+        if (rd%failed()) return
+        fam = findloc(family_name, s(1:min(len(s), 9)), dim=1)
+        if (fam == 0) call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
+                                   join(family_name))
+    end function family_ref
 
     !> FAMILY name ON|OFF: switch an element family.
     subroutine family_card(rd, i, cs)
@@ -1403,14 +1412,8 @@ contains
             call rd%name(i, 2, 'element family', s, optional_blank=.true.)
             if (rd%failed()) return
             fam = 0
-            if (len_trim(s) > 0) then
-                fam = findloc(family_name, s(1:9), dim=1)
-                if (fam == 0) then
-                    call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
-                                 join(family_name))
-                    return
-                end if
-            end if
+            if (len_trim(s) > 0) fam = family_ref(rd, i, s)
+            if (rd%failed()) return
             associate (m => cs%model)
                 if (fam == 0 .or. family_name(max(fam, 1)) == 'DISCS') then
                     m%discs%d1 = fac*m%discs%d1

@@ -97,9 +97,9 @@ contains
         do e = 1, size(model%discs)
             call disc_set_reference(model%discs(e), kin)
         end do
-        call set_neutral_lengths(kin, model%ligaments%line_attach_t)
-        call set_neutral_lengths(kin, model%muscles%line_attach_t)
-        call set_neutral_lengths(kin, model%springs%line_attach_t)
+        call set_neutral_lengths(kin, model%ligaments)
+        call set_neutral_lengths(kin, model%muscles)
+        call set_neutral_lengths(kin, model%springs)
     end subroutine model_set_neutral
 
     !> Properties of a family that a FAMILY parameter may scale.

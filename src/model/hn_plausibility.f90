@@ -64,9 +64,9 @@ contains
                                      ref_disc_bending, 'N m/rad')
                 end associate
             end do
-            call check_lines('ligament', model%ligaments%line_attach_t)
-            call check_lines('muscle', model%muscles%line_attach_t)
-            call check_lines('spring', model%springs%line_attach_t)
+            call check_lines('ligament', model%ligaments)
+            call check_lines('muscle', model%muscles)
+            call check_lines('spring', model%springs)
             do e = 1, size(model%ligaments)
                 associate (l => model%ligaments(e))
                     call check_range('ligament '//trim(l%name)//' tension at 2 mm stretch', &
@@ -102,7 +102,7 @@ contains
         !> Both attachment points of every line element of a list.
         subroutine check_lines(kind, at)
             character(len=*), intent(in) :: kind
-            type(line_attach_t), intent(in) :: at(:)
+            class(line_attach_t), intent(in) :: at(:)
             integer :: i
             do i = 1, size(at)
                 call check_point(at(i)%body_a, at(i)%point_a, kind//' '//at(i)%name)
