@@ -17,6 +17,7 @@ program hhneck
                       exit_members_failed, exit_interrupted
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member
     use hn_sweep_report, only: sweep_finish
+    use hn_calibrate, only: calibration_t, read_calibration, calibrate
     use hn_signals, only: catch_signals, defer_signals
     use hn_progress, only: progress_off, progress_auto, progress_on
     use hn_posix, only: is_terminal, stdin_kind, kind_char_device, exit_now
@@ -27,13 +28,13 @@ program hhneck
     character(len=path_len) :: h5name, arg, deck, source
     character(len=path_len), allocatable :: search(:)
     character(len=msglen) :: msg
-    logical :: h5_given, no_h5, check_only, sweep
+    logical :: h5_given, no_h5, check_only, sweep, calib
     integer :: i, stat, nargs, progress, max_steps
     real(wp) :: sample, rtol, max_wall
 
     ! until the deck is read there is nothing to close: a signal ends the program at once
     call catch_signals(exit_interrupted)
-    h5_given = .false.; no_h5 = .false.; check_only = .false.; sweep = .false.
+    h5_given = .false.; no_h5 = .false.; check_only = .false.; sweep = .false.; calib = .false.
     sample = -1.0_wp
     rtol = -1.0_wp
     max_wall = -1.0_wp
@@ -72,6 +73,8 @@ program hhneck
             check_only = .true.
         case ('--sweep')
             sweep = .true.
+        case ('--calibrate')
+            calib = .true.
         case ('--version')
             write (output_unit, '(a)') 'hhneck '//code_version
             stop 0, quiet=.true.
@@ -96,6 +99,7 @@ program hhneck
     end if
 
     if (sweep) call run_sweep()
+    if (calib) call run_calibration()
     call read_case(trim(deck), trim(source), cs, stat, msg, search)
     if (stat /= 0) then
         write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
@@ -184,6 +188,24 @@ contains
         stop 0, quiet=.true.
     end subroutine run_sweep
 
+    !> A calibration deck (docs/sweeps.md, docs/validation.md): the fit
+    !! history and the fitted parameters on standard output.
+    subroutine run_calibration()
+        type(calibration_t) :: cal
+        real(wp), allocatable :: v(:)
+        real(wp) :: j
+        integer :: n
+        call read_calibration(trim(deck), trim(source), cal, stat, msg)
+        if (stat /= 0) then
+            write (error_unit, '(a)') 'hhneck: calibration deck error: '//trim(msg)
+            stop exit_deck, quiet=.true.
+        end if
+        allocate (v(size(cal%sw(1)%params)))
+        call calibrate(cal, output_unit, v, j, n)
+        write (error_unit, '(a,i0,a,f8.5)') 'hhneck: calibration finished after ', n, ' evaluations; objective ', j
+        stop 0, quiet=.true.
+    end subroutine run_calibration
+
     subroutine h5name_argument()
         if (i == nargs) call usage('--h5 needs a file name')
         i = i + 1
@@ -252,6 +274,7 @@ contains
             '                     (instead of CONTROL F5; the absolute tolerance becomes TOL/1000)', &
             '  --check            read and check the deck (warnings included), do not run', &
             '  --sweep            the deck is a parameter-sweep deck (docs/sweeps.md)', &
+            '  --calibrate        the deck is a calibration deck: fit its parameters (docs/sweeps.md)', &
             '  -I DIR, --include-path DIR', &
             '                     look for INCLUDE files in DIR too (repeatable); after the', &
             '                     including file''s directory and the working directory, and', &

@@ -6,8 +6,9 @@
 !!
 !! (the cards go to a file: fpm itself may print build progress on stdout)
 program nbdl_tables
-    use hn_kinds, only: wp
+    use hn_kinds, only: wp, msglen
     use hn_filters, only: cfc_filter
+    use hn_calibrate, only: read_runs_csv
     implicit none
     character(len=512) :: dir, outfile
     integer :: out
@@ -30,11 +31,13 @@ contains
     subroutine table(name, file, scale)
         character(len=*), intent(in) :: name, file, scale
         real(wp), allocatable :: t(:), runs(:, :), filt(:), mean(:)
-        integer :: nrun, k, j, n, npts
+        integer :: nrun, k, j, n, npts, stat
+        character(len=msglen) :: msg
         character(len=80) :: card
         character(len=10) :: nm
         real(wp) :: v(3), tt(3)
-        call read_csv(file, t, runs)
+        call read_runs_csv(file, t, runs, stat, msg)
+        if (stat /= 0) error stop trim(msg)
         nrun = size(runs, 2)
         n = size(t)
         allocate (filt(n), mean(n))
@@ -64,35 +67,5 @@ contains
         if (k > 0) write (out, '(10x,3(f10.1,f10.4))') (tt(j), v(j), j=1, k)
     end subroutine table
 
-    !> Read a CSV file with a header line, first column time, then one column per run.
-    subroutine read_csv(file, t, runs)
-        character(len=*), intent(in) :: file
-        real(wp), allocatable, intent(out) :: t(:), runs(:, :)
-        character(len=4096) :: line
-        integer :: u, ios, ncol, nrow, k
-        real(wp), allocatable :: row(:)
-        open (newunit=u, file=file, status='old', action='read', iostat=ios)
-        if (ios /= 0) error stop 'cannot open '//file
-        read (u, '(a)') line
-        ncol = 1
-        do k = 1, len_trim(line)
-            if (line(k:k) == ',') ncol = ncol + 1
-        end do
-        nrow = 0
-        do
-            read (u, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            if (len_trim(line) > 0) nrow = nrow + 1
-        end do
-        rewind (u)
-        read (u, '(a)') line
-        allocate (t(nrow), runs(nrow, ncol - 1), row(ncol))
-        do k = 1, nrow
-            read (u, *) row
-            t(k) = row(1)
-            runs(k, :) = row(2:)
-        end do
-        close (u)
-    end subroutine read_csv
 
 end program nbdl_tables

@@ -215,7 +215,7 @@ contains
                  t%joint_child(3, 2) == -0.05_wp .and. abs(cs%x0(5) - 10*deg) < 1.0e-15_wp .and. &
                  abs(cs%xd0(5) - 20*deg) < 1.0e-15_wp .and. m%prescribed(1) .and. &
                  abs(xdd - 2*g_std) < 1.0e-12_wp .and. abs(m%limits(1)%xmax - 45*deg) < 1.0e-15_wp .and. &
-                 m%limits(1)%dof == 5 .and. abs(m%springs(1)%free_length - 0.1_wp) < 1.0e-15_wp
+                 m%limits(1)%dof == 5 .and. abs(m%springs(1)%length0 - 0.1_wp) < 1.0e-15_wp
         end associate
         call suite%check(ok, 'valid deck: every value lands where the card says, in SI units')
     end subroutine test_valid_deck

@@ -39,7 +39,7 @@ program test_dump_newton_euler
         model%springs(e)%body_b = e + 4
         model%springs(e)%point_a = [0.01_wp*e, -0.02_wp, 0.03_wp]
         model%springs(e)%point_b = [-0.02_wp, 0.01_wp*e, 0.02_wp]
-        model%springs(e)%free_length = 0.03_wp
+        model%springs(e)%length0 = 0.03_wp
         model%springs(e)%stiffness = 800.0_wp
         model%springs(e)%damping = 2.0_wp
     end do

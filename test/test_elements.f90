@@ -252,7 +252,7 @@ contains
 
     function sample_ligament() result(g)
         type(ligament_t) :: g
-        g%l1 = 2.0e4_wp; g%l2 = 3.0e7_wp; g%n = 2.2_wp; g%slack_length = 0.02_wp
+        g%l1 = 2.0e4_wp; g%l2 = 3.0e7_wp; g%n = 2.2_wp; g%length0 = 0.02_wp
     end function sample_ligament
 
     subroutine test_ligament_hand_value()
@@ -277,7 +277,7 @@ contains
 
     subroutine test_muscle_hand_value()
         type(muscle_t) :: m
-        m%m1 = 800.0_wp; m%m2 = 60.0_wp; m%rest_length = 0.1_wp
+        m%m1 = 800.0_wp; m%m2 = 60.0_wp; m%length0 = 0.1_wp
         ! 800 * 0.005 + 60 * 0.2 = 16 N
         call suite%near(muscle_tension(m, 0.105_wp, 0.2_wp, zero), 16.0_wp, 1.0e-12_wp, &
                         "muscle tension F = m1 d + m2 d' (eq 11)")
@@ -285,7 +285,7 @@ contains
 
     subroutine test_muscle_never_pushes()
         type(muscle_t) :: m
-        m%m1 = 800.0_wp; m%m2 = 60.0_wp; m%rest_length = 0.1_wp
+        m%m1 = 800.0_wp; m%m2 = 60.0_wp; m%length0 = 0.1_wp
         call suite%check(muscle_tension(m, 0.095_wp, zero, zero) == zero .and. &
                          muscle_tension(m, 0.105_wp, -0.5_wp, zero) == zero .and. &
                          muscle_tension(m, 0.095_wp, -1.0_wp, zero) == zero, &
@@ -294,7 +294,7 @@ contains
 
     subroutine test_muscle_activation()
         type(muscle_t) :: m
-        m%m1 = 800.0_wp; m%m2 = 60.0_wp; m%rest_length = 0.1_wp; m%fmax = 300.0_wp
+        m%m1 = 800.0_wp; m%m2 = 60.0_wp; m%length0 = 0.1_wp; m%fmax = 300.0_wp
         ! slack and shortening, yet half activation pulls: 800 (-0.01) + 60 (-0.5) + 0.5 * 300 = 112 N
         call suite%near(muscle_tension(m, 0.09_wp, -0.5_wp, 0.5_wp), 112.0_wp, 1.0e-12_wp, &
                         'muscle activation adds a(t) Fmax to the passive law')

@@ -136,7 +136,7 @@ contains
             model%springs(e)%body_b = 1 + mod(e + 1, 5)
             model%springs(e)%point_a = [rng%uniform(-0.05_wp, 0.05_wp), rng%uniform(-0.05_wp, 0.05_wp), 0.03_wp]
             model%springs(e)%point_b = [rng%uniform(-0.05_wp, 0.05_wp), rng%uniform(-0.05_wp, 0.05_wp), -0.03_wp]
-            model%springs(e)%free_length = 0.04_wp
+            model%springs(e)%length0 = 0.04_wp
             model%springs(e)%stiffness = 500.0_wp
             model%springs(e)%damping = 0.5_wp
         end do

@@ -67,7 +67,7 @@ contains
             model%springs(e)%body_b = e + 3
             model%springs(e)%point_a = [rng%uniform(-0.05_wp, 0.05_wp), rng%uniform(-0.05_wp, 0.05_wp), 0.02_wp]
             model%springs(e)%point_b = [rng%uniform(-0.05_wp, 0.05_wp), rng%uniform(-0.05_wp, 0.05_wp), 0.02_wp]
-            model%springs(e)%free_length = 0.05_wp
+            model%springs(e)%length0 = 0.05_wp
             model%springs(e)%stiffness = 2000.0_wp
             model%springs(e)%damping = 3.0_wp
         end do

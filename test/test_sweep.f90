@@ -52,6 +52,8 @@ contains
             if (line(1:8) == 'CONTROL ') line = 'CONTROL   0.05      5.0E-5    0.005     RK4'
             write (w, '(a)') trim(line)
         end do
+        ! the disc retardation time of the earlier model (5 ms), so that RK4 at 50 us stays stable
+        write (w, '(a)') 'SCALE     RK4STABLE DISCS     VISCOUS   0.2'
         close (u)
         close (w)
     end subroutine write_base

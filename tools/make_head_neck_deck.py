@@ -153,13 +153,28 @@ def at(body, dx, dy, dz, ref=None):
     base = centre[body] if ref is None else ref
     return (body, (base[0] + dx, base[1] + dy, base[2] + dz))
 MUSCLES = [
-    # name, origin, insertion, m1 (N/m), m2 (N s/m)        all A; m1, m2 tuned (docs/validation.md)
-    ("SCM", lambda s: at("T1", 0.060, s * 0.025, -0.040), lambda s: at("HEAD", -0.005, s * 0.050, 0.015, OC), 3000.0, 400.0),
-    ("SPLC", lambda s: at("C7", -0.045, s * 0.008, 0.0), lambda s: at("HEAD", -0.040, s * 0.045, 0.020, OC), 3000.0, 400.0),
-    ("TRAP", lambda s: at("T1", -0.050, s * 0.080, -0.010), lambda s: at("HEAD", -0.060, s * 0.020, 0.025, OC), 3000.0, 400.0),
-    ("SSC", lambda s: at("C5", -0.025, s * 0.020, 0.0), lambda s: at("HEAD", -0.055, s * 0.015, 0.020, OC), 3000.0, 400.0),
-    ("LCOL", lambda s: at("T1", 0.012, s * 0.008, 0.0), lambda s: at("C2", 0.010, s * 0.006, 0.0), 1500.0, 200.0),
-    ("LCAP", lambda s: at("C5", 0.012, s * 0.012, 0.0), lambda s: at("HEAD", 0.015, s * 0.010, 0.005, OC), 1500.0, 200.0),
+    # name, origin, insertion, PCSA per side (cm^2, A), optimal fibre length (m, A)
+    ("SCM", lambda s: at("T1", 0.060, s * 0.025, -0.040), lambda s: at("HEAD", -0.005, s * 0.050, 0.015, OC), 4.9, 0.12),
+    ("SPLC", lambda s: at("C7", -0.045, s * 0.008, 0.0), lambda s: at("HEAD", -0.040, s * 0.045, 0.020, OC), 3.3, 0.09),
+    ("TRAP", lambda s: at("T1", -0.050, s * 0.080, -0.010), lambda s: at("HEAD", -0.060, s * 0.020, 0.025, OC), 4.5, 0.10),
+    ("SSC", lambda s: at("C5", -0.025, s * 0.020, 0.0), lambda s: at("HEAD", -0.055, s * 0.015, 0.020, OC), 4.6, 0.08),
+    ("LCOL", lambda s: at("T1", 0.012, s * 0.008, 0.0), lambda s: at("C2", 0.010, s * 0.006, 0.0), 1.1, 0.05),
+    ("LCAP", lambda s: at("C5", 0.012, s * 0.012, 0.0), lambda s: at("HEAD", 0.015, s * 0.010, 0.005, OC), 1.0, 0.05),
+]
+SIGMA_MAX = 0.5e6     # maximum isometric stress, Pa (FITTED scale: FAMILY MUSCLES F0; reference/parameters.md)
+MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
+# activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
+# onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
+# time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
+ACT = dict(u0=0.16196, u1=0.377179, delay=0.051279, rise=0.020, tau_act=0.015, tau_deact=0.050)
+# FITTED scale factors (SCALE cards) on the values of this script; the output of
+# hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
+FITTED_SCALES = [
+    ("SIGMA", "MUSCLES", "F0", 1.86819),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 5.02588), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 1.25898),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.10484),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.147055),     # range-of-motion stiffness / 50 N m/rad
 ]
 
 # ---------------------------------------------------------------- limits
@@ -178,6 +193,8 @@ def rom(body):
     return {"RX": lb / 2, "RY": fe / 2, "RZ": ax / 2}
 LIMIT_C0 = 0.05      # A: N m s/rad inside the range
 LIMIT_C1 = 100.0     # A: N m s/rad per rad beyond a limit
+ROM_K = 50.0         # A: resistance beyond the range, N m/rad at its edge
+ROM_T0 = 3.0         # A: excess (deg) over which that resistance grows e-fold
 
 # ---------------------------------------------------------------- write
 out = []
@@ -262,26 +279,52 @@ for name in names[1:]:
             w(card("LIGAMENT", nm, p, name, 0.0, l2, n))
             w(cont(*[round(v, 6) for v in pa], *[round(v, 6) for v in pb]))
 w("*")
-w("* MUSCLES (eq 11) tension only, F = m1 d + m2 d', passive (no activation);")
-w("* six groups per side, origins and insertions A (simplified anatomy); m1, m2")
-w("* TUNED against the NBDL 15 g runs (CORA-style rating of the head channels;")
-w("* starting values 2000 N/m, 100 N s/m; docs/validation.md).")
-w("*         name      body a    body b    m1        m2        Fmax")
+w("* MUSCLES: Hill-type (contractile element with force-length and force-velocity")
+w("* relations, passive element, damping along the line; docs/deck-format.md),")
+w("* six groups per side, origins and insertions A (simplified anatomy).")
+w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (FITTED scale); PCSA, optimal fibre" % (SIGMA_MAX / 1e6))
+w("* length A; damping %.2f s/m x F0 (A). The paper's passive muscle (eq 11) stays" % MUSCLE_DAMPING)
+w("* available as the MUSCLE card.")
+w("*         name      body a    body b    F0 (N)    lopt (m)  history   damping")
 w("*         point on a x y z (m)          point on b x y z (m)          rest len")
-for (mname, org, ins, m1, m2) in MUSCLES:
+for (mname, org, ins, pcsa, lopt) in MUSCLES:
+    f0 = pcsa * 1e-4 * SIGMA_MAX
     for s, side in ((1, "L"), (-1, "R")):
         ba, pa = org(s)
         bb, pb = ins(s)
-        w(card("MUSCLE", mname + side, ba, bb, m1, m2, 0.0))
+        w(card("HILL", mname + side, ba, bb, round(f0, 2), lopt, "NECK", round(MUSCLE_DAMPING * f0, 3)))
         w(cont(*[round(v, 6) for v in rel(pa, ba)], *[round(v, 6) for v in rel(pb, bb)]))
+w("* Activation history of all muscles: bracing level u0, reflex level u1 FITTED,")
+w("* onset blank = sled pulse onset (prescribed T1 acceleration first above 1 g),")
+w("* reflex delay FITTED, rise time A; time constants Thelen 2003.")
+w("*         name      u0        u1        onset (s) delay (s) rise (s)")
+w("*         tau act   tau deact")
+w(card("ACTIVATE", "NECK", ACT["u0"], ACT["u1"], None, ACT["delay"], ACT["rise"]))
+w(cont(ACT["tau_act"], ACT["tau_deact"]))
 w("*")
 w("* JOINT LIMITS (eqs 12-13): one-way dampers on the three rotations of every")
 w("* joint; ranges S3 split per joint (A); C0 %.2f, C1 %.0f N m s/rad per rad (A)" % (LIMIT_C0, LIMIT_C1))
 w("*         body      coord     min (deg) max (deg) C0        C1")
+rom_cards = []
 for name in names[1:]:
     r = rom(name)
     for c in ("RX", "RY", "RZ"):
         w(card("LIMIT", name, c, round(-r[c], 4), round(r[c], 4), LIMIT_C0, LIMIT_C1))
+        rom_cards.append(card("ROM", name, c, round(-r[c], 4), round(r[c], 4), ROM_K, ROM_T0))
+w("*")
+w("* RANGE OF MOTION: resistance beyond the physiological range of each joint")
+w("* rotation (the S3 ranges of the LIMIT cards), Q = -K t0 (exp(e/t0) - 1) for an")
+w("* excess e; K %.0f N m/rad, t0 %.0f deg (A): the ligaments and facets that stop" % (ROM_K, ROM_T0))
+w("* a real joint. A run warns when a joint goes more than 5 deg past its range.")
+w("*         body      coord     min (deg) max (deg) K         t0 (deg)")
+for c in rom_cards:
+    w(c)
+w("*")
+w("* FITTED FACTORS: scale factors on the values above, fitted by the calibration")
+w("* (hhneck --calibrate < input/calibrate_nbdl.inp; reference/parameters.md).")
+w("*         name      family    item      factor")
+for (name, fam, item, value) in FITTED_SCALES:
+    w(card("SCALE", name, fam, item, value))
 w("*")
 w(card("HEADNECK", "HEAD", "T1"))
 for line in "\n".join(out).split("\n"):

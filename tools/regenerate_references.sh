@@ -9,7 +9,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 tmp=$(mktemp -d)
-for c in case6-1 case6-2 case6-5 nbdl15g hybrid3_flexion; do
+for c in case6-1 case6-2 case6-5 nbdl15g nbdl12g hybrid3_flexion rear8g; do
     echo "regenerating reference/outputs/$c" >&2
     fpm run --profile release -- --no-h5 < "input/$c.inp" > "reference/outputs/$c.txt"
     fpm run --profile release -- --sample 1.0E-3 --rtol 1.0E-8 --h5 "$tmp/$c.h5" < "input/$c.inp" > /dev/null

@@ -2,7 +2,7 @@
 !! regulations prescribe: HIC15 and HIC36 of the head resultant acceleration
 !! (CFC 1000), Nij in its four modes at the occipital condyle (CFC 600), NIC
 !! (CFC 60), and the peak upper-neck tension, compression, shear and moments
-!! (CFC 600). Limits from ../shared/docs/reference-data.md.
+!! (CFC 600). Limits from reference/reference-data.md.
 module hn_assessment
     use hn_kinds, only: wp, zero, g_std
     use hn_filters, only: cfc_filter

@@ -7,12 +7,14 @@ module hn_forces
     use hn_model, only: model_t, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, loads_clear
-    use hn_line_elements, only: line_geometry_t, line_geometry, apply_line_tension, spring_tension, &
-                                ligament_tension, muscle_tension, ligament_energy
+    use hn_line_elements, only: line_geometry_t, line_geometries, apply_line_tensions, spring_tension, &
+                                spring_energy, ligament_tension, muscle_tension, ligament_energy, &
+                                muscle_law_value, muscle_hill
     use hn_discs, only: apply_disc
-    use hn_joint_limits, only: limit_force
+    use hn_joint_limits, only: limit_force, range_moment, range_energy
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
     use hn_tables, only: table_value
+    use hn_muscle, only: activation_value
     use hn_rotation, only: cross
     implicit none
     private
@@ -23,7 +25,7 @@ module hn_forces
     type :: element_output_t
         real(wp), allocatable :: disc(:, :)         !! (6, nd) resultants: shear x, y, axial, bending x, y, torque
         real(wp), allocatable :: ligament(:, :)     !! (2, nl) tension [N], length [m]
-        real(wp), allocatable :: muscle(:, :)       !! (2, nm) tension [N], length [m]
+        real(wp), allocatable :: muscle(:, :)       !! (3, nm) tension [N], length [m], activation
         real(wp), allocatable :: limit(:)           !! (nlim) generalized force [N or N m]
         real(wp), allocatable :: spring(:)          !! (ns) tension [N]
         real(wp) :: u_elastic = zero                !! energy stored in discs, ligaments, springs [J]
@@ -39,7 +41,7 @@ contains
         type(model_t), intent(in) :: model
         type(element_output_t), intent(out) :: eo
         allocate (eo%disc(6, size(model%discs)), eo%ligament(2, size(model%ligaments)))
-        allocate (eo%muscle(2, size(model%muscles)), eo%limit(size(model%limits)))
+        allocate (eo%muscle(3, size(model%muscles)), eo%limit(size(model%limits)))
         allocate (eo%spring(size(model%springs)))
         eo%disc = zero; eo%ligament = zero; eo%muscle = zero; eo%limit = zero; eo%spring = zero
     end subroutine element_output_allocate
@@ -54,8 +56,8 @@ contains
         type(body_loads_t), intent(inout) :: loads
         type(element_output_t), intent(inout) :: eo
         integer :: k, e
-        real(wp) :: act, ten, u, pd, v(3), p(3), pv(3)
-        type(line_geometry_t) :: g
+        real(wp) :: u, pd, v(3), p(3), pv(3)
+        type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles)), gs(size(model%springs))
 
         call loads_clear(loads)
         eo%u_elastic = zero; eo%p_diss = zero; eo%p_muscle = zero; eo%p_applied = zero
@@ -72,28 +74,19 @@ contains
             end do
         end if
         if (model%family_on(fam_ligaments)) then
-            do e = 1, size(model%ligaments)
-                associate (l => model%ligaments(e))
-                    call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
-                    ten = ligament_tension(l, g%length)
-                    call apply_line_tension(loads, kin, l%body_a, l%body_b, g, ten)
-                    eo%u_elastic = eo%u_elastic + ligament_energy(l, g%length)
-                    eo%ligament(:, e) = [ten, g%length]
-                end associate
-            end do
+            call line_geometries(kin, model%ligaments, gl)
+            eo%ligament(1, :) = ligament_tension(model%ligaments, gl%length)
+            eo%ligament(2, :) = gl%length
+            call apply_line_tensions(loads, kin, model%ligaments, gl, eo%ligament(1, :))
+            eo%u_elastic = eo%u_elastic + sum(ligament_energy(model%ligaments, gl%length))
         end if
         if (model%family_on(fam_muscles)) then
-            do e = 1, size(model%muscles)
-                associate (m => model%muscles(e))
-                    call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
-                    act = zero
-                    if (m%activation > 0) act = table_value(model%tables(m%activation), t)
-                    ten = muscle_tension(m, g%length, g%rate, act)
-                    call apply_line_tension(loads, kin, m%body_a, m%body_b, g, ten)
-                    eo%p_muscle = eo%p_muscle + ten*g%rate
-                    eo%muscle(:, e) = [ten, g%length]
-                end associate
-            end do
+            call line_geometries(kin, model%muscles, gm)
+            eo%muscle(3, :) = muscle_activations(model, t)
+            eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, eo%muscle(3, :))
+            eo%muscle(2, :) = gm%length
+            call apply_line_tensions(loads, kin, model%muscles, gm, eo%muscle(1, :))
+            eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
         end if
         if (model%family_on(fam_limits)) then
             do e = 1, size(model%limits)
@@ -103,17 +96,19 @@ contains
                     eo%p_diss = eo%p_diss - eo%limit(e)*xd(lim%dof)
                 end associate
             end do
-        end if
-        if (model%family_on(fam_springs)) then
-            do e = 1, size(model%springs)
-                associate (s => model%springs(e))
-                    call line_geometry(kin, s%body_a, s%point_a, s%body_b, s%point_b, g)
-                    eo%spring(e) = spring_tension(s, g%length, g%rate)
-                    call apply_line_tension(loads, kin, s%body_a, s%body_b, g, eo%spring(e))
-                    eo%u_elastic = eo%u_elastic + 0.5_wp*s%stiffness*(g%length - s%free_length)**2
-                    eo%p_diss = eo%p_diss + s%damping*g%rate**2
+            do e = 1, size(model%ranges)
+                associate (r => model%ranges(e))
+                    loads%q(r%dof) = loads%q(r%dof) + range_moment(r, x(r%dof))
+                    eo%u_elastic = eo%u_elastic + range_energy(r, x(r%dof))
                 end associate
             end do
+        end if
+        if (model%family_on(fam_springs)) then
+            call line_geometries(kin, model%springs, gs)
+            eo%spring = spring_tension(model%springs, gs%length, gs%rate)
+            call apply_line_tensions(loads, kin, model%springs, gs, eo%spring)
+            eo%u_elastic = eo%u_elastic + sum(spring_energy(model%springs, gs%length))
+            eo%p_diss = eo%p_diss + sum(model%springs%damping*gs%rate**2)
         end if
         do e = 1, size(model%applied)
             associate (al => model%applied(e))
@@ -130,6 +125,25 @@ contains
         end do
     end subroutine compute_loads
 
+    !> Activation a(t) of every muscle: its activation history (Hill-type
+    !! law) or table (eq 11); zero without either.
+    pure function muscle_activations(model, t) result(act)
+        type(model_t), intent(in) :: model   !! the model
+        real(wp), intent(in) :: t            !! time [s]
+        real(wp) :: act(size(model%muscles))
+        integer :: e
+        act = zero
+        do e = 1, size(model%muscles)
+            associate (m => model%muscles(e))
+                if (m%law == muscle_hill) then
+                    if (m%history > 0) act(e) = activation_value(model%activations(m%history), t)
+                else if (m%activation > 0) then
+                    act(e) = table_value(model%tables(m%activation), t)
+                end if
+            end associate
+        end do
+    end function muscle_activations
+
     !> Number of switching functions of the one-way elements.
     pure integer function switch_count(model) result(n)
         type(model_t), intent(in) :: model
@@ -142,7 +156,8 @@ contains
 
     !> Switching functions whose sign changes mark where the one-way
     !! elements switch: a joint damper's coordinate crossing its neutral value
-    !! (the damping switches on or off), a muscle's law m1 d + m2 d' + a Fmax
+    !! (the damping switches on or off), a muscle's law (m1 d + m2 d' + a Fmax
+    !! or the Hill force)
     !! crossing zero (tension starts or stops), a ligament with l1 > 0
     !! becoming taut. Families switched off give +1.
     pure subroutine switching_functions(model, t, kin, x, sw)
@@ -151,8 +166,8 @@ contains
         type(kinematics_t), intent(in) :: kin
         real(wp), intent(in) :: x(:)
         real(wp), intent(out) :: sw(:)
-        type(line_geometry_t) :: g
-        real(wp) :: act
+        type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles))
+        real(wp) :: act(size(model%muscles))
         integer :: e, i
         sw = 1.0_wp
         i = 0
@@ -160,24 +175,17 @@ contains
             i = i + 1
             if (model%family_on(fam_limits)) sw(i) = x(model%limits(e)%dof) - model%limits(e)%xneutral
         end do
-        do e = 1, size(model%muscles)
-            i = i + 1
-            if (.not. model%family_on(fam_muscles)) cycle
-            associate (m => model%muscles(e))
-                call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
-                act = zero
-                if (m%activation > 0) act = table_value(model%tables(m%activation), t)
-                sw(i) = m%m1*(g%length - m%rest_length) + m%m2*g%rate + act*m%fmax
-            end associate
-        end do
+        if (model%family_on(fam_muscles)) then
+            call line_geometries(kin, model%muscles, gm)
+            act = muscle_activations(model, t)
+            sw(i + 1:i + size(model%muscles)) = muscle_law_value(model%muscles, gm%length, gm%rate, act)
+        end if
+        i = i + size(model%muscles)
+        if (model%family_on(fam_ligaments)) call line_geometries(kin, model%ligaments, gl)
         do e = 1, size(model%ligaments)
             if (model%ligaments(e)%l1 <= zero) cycle
             i = i + 1
-            if (.not. model%family_on(fam_ligaments)) cycle
-            associate (l => model%ligaments(e))
-                call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
-                sw(i) = g%length - l%slack_length
-            end associate
+            if (model%family_on(fam_ligaments)) sw(i) = gl(e)%length - model%ligaments(e)%length0
         end do
     end subroutine switching_functions
 

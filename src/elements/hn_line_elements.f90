@@ -1,18 +1,32 @@
 !> Point-to-point elements acting along the line between an attachment point
-!! on one body and one on another: linear spring-dampers, ligaments
-!! (tension only, F = l1 d + l2 d^n, eq 10) and muscles (tension only,
-!! F = m1 d + m2 d', eq 11).
+!! on one body and one on another. Every kind shares one attachment record,
+!! `line_attach_t` (name, bodies, points, free length), and the procedures
+!! over it (geometry, loads, neutral lengths); each kind adds its law:
+!! linear spring-dampers, ligaments (tension only, F = l1 d + l2 d^n, eq 10)
+!! and muscles (tension only, F = m1 d + m2 d', eq 11).
 module hn_line_elements
     use hn_kinds, only: wp, zero, one
     use hn_rotation, only: cross, norm3
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, add_point_force
+    use hn_muscle, only: hill_t, hill_force
     implicit none
     private
 
-    public :: line_geometry_t, line_geometry, apply_line_tension, attachment_point
-    public :: spring_t, spring_tension, ligament_t, ligament_tension, ligament_energy
-    public :: muscle_t, muscle_tension
+    public :: line_attach_t, line_geometry_t, line_geometry, line_geometries, apply_line_tension, &
+              apply_line_tensions, attachment_point, set_neutral_lengths
+    public :: spring_t, spring_tension, spring_energy, ligament_t, ligament_tension, ligament_energy
+    public :: muscle_t, muscle_tension, muscle_law_value
+
+    integer, parameter, public :: muscle_passive = 1, muscle_hill = 2   !! muscle laws: eq 11, Hill-type
+
+    !> Where a line element is attached: the part every kind shares.
+    type :: line_attach_t
+        character(len=12) :: name = ''
+        integer :: body_a = 0, body_b = 0                !! bodies (0 = inertial frame)
+        real(wp) :: point_a(3) = zero, point_b(3) = zero !! attachments in body frames, from the mass centre [m]
+        real(wp) :: length0 = -one                       !! free (slack, rest) length [m]; negative: the neutral length
+    end type line_attach_t
 
     !> Where a line element is and how fast it lengthens.
     type :: line_geometry_t
@@ -23,48 +37,41 @@ module hn_line_elements
     end type line_geometry_t
 
     !> Linear spring-damper between two bodies (tension positive).
-    type :: spring_t
-        integer :: body_a = 0, body_b = 0        !! bodies (0 = inertial frame)
-        real(wp) :: point_a(3) = zero, point_b(3) = zero !! attachment in body frames, from the mass centre [m]
-        real(wp) :: free_length = -one           !! unstretched length [m]; negative: the neutral length
+    type, extends(line_attach_t) :: spring_t
         real(wp) :: stiffness = zero             !! [N/m]
         real(wp) :: damping = zero               !! [N s/m]
     end type spring_t
 
     !> Ligament (eq 10): tension-only nonlinear band, F = l1 d + l2 d^n for
     !! stretch d = L - L0 > 0, zero when slack.
-    type :: ligament_t
-        character(len=12) :: name = ''
-        integer :: body_a = 0, body_b = 0
-        real(wp) :: point_a(3) = zero, point_b(3) = zero  !! attachments, body frames [m]
-        real(wp) :: slack_length = -one   !! L0 [m]; negative: the neutral length
+    type, extends(line_attach_t) :: ligament_t
         real(wp) :: l1 = zero             !! linear coefficient [N/m]
         real(wp) :: l2 = zero             !! nonlinear coefficient [N/m^n]
         real(wp) :: n = 2.0_wp            !! exponent
     end type ligament_t
 
-    !> Muscle (eq 11): tension-only two-parameter viscoelastic element,
-    !! F = max(0, m1 d + m2 d' + a(t) Fmax), d = L - L0; it never pushes.
-    !! The activation a(t) in [0, 1] (a table, beyond the paper) is optional.
-    type :: muscle_t
-        character(len=12) :: name = ''
-        integer :: body_a = 0, body_b = 0
-        real(wp) :: point_a(3) = zero, point_b(3) = zero
-        real(wp) :: rest_length = -one    !! L0 [m]; negative: the neutral length
-        real(wp) :: m1 = zero             !! stiffness [N/m]
-        real(wp) :: m2 = zero             !! damping [N s/m]
-        real(wp) :: fmax = zero           !! force at full activation [N]
-        integer :: activation = 0         !! table number of a(t); 0 = passive
+    !> Muscle, tension only: the paper's two-parameter viscoelastic element
+    !! (eq 11), F = max(0, m1 d + m2 d' + a(t) Fmax), d = L - L0, with an
+    !! optional activation table a(t) (beyond the paper); or a Hill-type
+    !! muscle (hn_muscle) driven by an activation history.
+    type, extends(line_attach_t) :: muscle_t
+        integer :: law = muscle_passive   !! muscle_passive (eq 11) or muscle_hill
+        real(wp) :: m1 = zero             !! eq 11 stiffness [N/m]
+        real(wp) :: m2 = zero             !! eq 11 damping [N s/m]
+        real(wp) :: fmax = zero           !! eq 11 force at full activation [N]
+        integer :: activation = 0         !! eq 11: model table of a(t); 0 = passive
+        type(hill_t) :: hill              !! Hill-type law parameters
+        integer :: history = 0            !! Hill: model activation history; 0 = none (a = 0)
     end type muscle_t
 
 contains
 
     !> Ligament tension (eq 10) at length L.
-    pure real(wp) function ligament_tension(g, length) result(t)
-        type(ligament_t), intent(in) :: g
-        real(wp), intent(in) :: length
+    elemental real(wp) function ligament_tension(g, length) result(t)
+        type(ligament_t), intent(in) :: g    !! the ligament
+        real(wp), intent(in) :: length       !! current length [m]
         real(wp) :: d
-        d = length - g%slack_length
+        d = length - g%length0
         if (d > zero) then
             t = g%l1*d + g%l2*d**g%n
         else
@@ -73,28 +80,60 @@ contains
     end function ligament_tension
 
     !> Elastic energy stored in a ligament at length L.
-    pure real(wp) function ligament_energy(g, length) result(u)
-        type(ligament_t), intent(in) :: g
-        real(wp), intent(in) :: length
+    elemental real(wp) function ligament_energy(g, length) result(u)
+        type(ligament_t), intent(in) :: g    !! the ligament
+        real(wp), intent(in) :: length       !! current length [m]
         real(wp) :: d
-        d = max(zero, length - g%slack_length)
+        d = max(zero, length - g%length0)
         u = 0.5_wp*g%l1*d**2 + g%l2*d**(g%n + one)/(g%n + one)
     end function ligament_energy
 
-    !> Muscle tension (eq 11, tension only) at length L, rate L' and activation a.
-    pure real(wp) function muscle_tension(m, length, rate, act) result(t)
-        type(muscle_t), intent(in) :: m
-        real(wp), intent(in) :: length, rate, act
-        t = max(zero, m%m1*(length - m%rest_length) + m%m2*rate + act*m%fmax)
+    !> Muscle tension (tension only) at length L, rate L' and activation a.
+    elemental real(wp) function muscle_tension(m, length, rate, act) result(t)
+        type(muscle_t), intent(in) :: m      !! the muscle
+        real(wp), intent(in) :: length       !! current length [m]
+        real(wp), intent(in) :: rate         !! lengthening rate [m/s]
+        real(wp), intent(in) :: act          !! activation a(t) in [0, 1]
+        t = max(zero, muscle_law_value(m, length, rate, act))
     end function muscle_tension
+
+    !> The muscle's law before the tension-only clip: m1 d + m2 d' + a Fmax
+    !! (eq 11) or the Hill force; the muscle pulls while it is positive.
+    elemental real(wp) function muscle_law_value(m, length, rate, act) result(f)
+        type(muscle_t), intent(in) :: m      !! the muscle
+        real(wp), intent(in) :: length       !! current length [m]
+        real(wp), intent(in) :: rate         !! lengthening rate [m/s]
+        real(wp), intent(in) :: act          !! activation a(t) in [0, 1]
+        if (m%law == muscle_hill) then
+            f = hill_force(m%hill, length - m%length0, rate, act)
+        else
+            f = m%m1*(length - m%length0) + m%m2*rate + act*m%fmax
+        end if
+    end function muscle_law_value
+
+    !> Spring-damper tension k (L - L0) + c L'.
+    elemental real(wp) function spring_tension(s, length, rate) result(t)
+        type(spring_t), intent(in) :: s      !! the spring
+        real(wp), intent(in) :: length       !! current length [m]
+        real(wp), intent(in) :: rate         !! lengthening rate [m/s]
+        t = s%stiffness*(length - s%length0) + s%damping*rate
+    end function spring_tension
+
+    !> Elastic energy k (L - L0)^2 / 2 of a spring.
+    elemental real(wp) function spring_energy(s, length) result(u)
+        type(spring_t), intent(in) :: s      !! the spring
+        real(wp), intent(in) :: length       !! current length [m]
+        u = 0.5_wp*s%stiffness*(length - s%length0)**2
+    end function spring_energy
 
     !> Position and velocity (R) of a point fixed in body k at body-frame
     !! offset c from the mass centre (k = 0: c is a point of R).
     pure subroutine attachment_point(kin, k, c, p, v)
-        type(kinematics_t), intent(in) :: kin
-        integer, intent(in) :: k
-        real(wp), intent(in) :: c(3)
-        real(wp), intent(out) :: p(3), v(3)
+        type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
+        integer, intent(in) :: k               !! body (0: inertial frame)
+        real(wp), intent(in) :: c(3)           !! point in the body frame [m]
+        real(wp), intent(out) :: p(3)          !! position in R [m]
+        real(wp), intent(out) :: v(3)          !! velocity in R [m/s]
         real(wp) :: d(3)
         if (k == 0) then
             p = c; v = zero
@@ -107,9 +146,11 @@ contains
 
     !> Geometry of the line from point ca on body ka to point cb on body kb.
     pure subroutine line_geometry(kin, ka, ca, kb, cb, g)
-        type(kinematics_t), intent(in) :: kin
-        integer, intent(in) :: ka, kb
-        real(wp), intent(in) :: ca(3), cb(3)
+        type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
+        integer, intent(in) :: ka              !! body of end a
+        real(wp), intent(in) :: ca(3)          !! point a in body ka's frame [m]
+        integer, intent(in) :: kb              !! body of end b
+        real(wp), intent(in) :: cb(3)          !! point b in body kb's frame [m]
         type(line_geometry_t), intent(out) :: g
         real(wp) :: va(3), vb(3), d(3)
         call attachment_point(kin, ka, ca, g%pa, va)
@@ -124,22 +165,52 @@ contains
         g%rate = dot_product(g%unit, vb - va)
     end subroutine line_geometry
 
+    !> Geometry of every element of a list of line elements.
+    pure subroutine line_geometries(kin, at, g)
+        type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
+        class(line_attach_t), intent(in) :: at(:)    !! the elements (any kind)
+        type(line_geometry_t), intent(out) :: g(:)   !! (size(at)) their geometry
+        integer :: e
+        do e = 1, size(at)
+            call line_geometry(kin, at(e)%body_a, at(e)%point_a, at(e)%body_b, at(e)%point_b, g(e))
+        end do
+    end subroutine line_geometries
+
     !> Apply a tension (positive pulls the ends together) along the line.
     pure subroutine apply_line_tension(loads, kin, ka, kb, g, tension)
         type(body_loads_t), intent(inout) :: loads
-        type(kinematics_t), intent(in) :: kin
-        integer, intent(in) :: ka, kb
-        type(line_geometry_t), intent(in) :: g
-        real(wp), intent(in) :: tension
+        type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
+        integer, intent(in) :: ka, kb          !! bodies of ends a and b
+        type(line_geometry_t), intent(in) :: g !! the line's geometry
+        real(wp), intent(in) :: tension        !! [N]
         if (ka > 0) call add_point_force(loads, ka, kin%r(:, ka), g%pa, tension*g%unit)
         if (kb > 0) call add_point_force(loads, kb, kin%r(:, kb), g%pb, -tension*g%unit)
     end subroutine apply_line_tension
 
-    !> Spring-damper tension k (L - L0) + c L'.
-    pure real(wp) function spring_tension(s, length, rate) result(t)
-        type(spring_t), intent(in) :: s
-        real(wp), intent(in) :: length, rate
-        t = s%stiffness*(length - s%free_length) + s%damping*rate
-    end function spring_tension
+    !> Apply the tensions of a list of line elements to their bodies.
+    pure subroutine apply_line_tensions(loads, kin, at, g, tension)
+        type(body_loads_t), intent(inout) :: loads
+        type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
+        class(line_attach_t), intent(in) :: at(:)    !! the elements (any kind)
+        type(line_geometry_t), intent(in) :: g(:)    !! their geometry
+        real(wp), intent(in) :: tension(:)           !! their tensions [N]
+        integer :: e
+        do e = 1, size(at)
+            call apply_line_tension(loads, kin, at(e)%body_a, at(e)%body_b, g(e), tension(e))
+        end do
+    end subroutine apply_line_tensions
+
+    !> Free lengths not given explicitly (negative) become the lengths in
+    !! the configuration of `kin` (the neutral one).
+    pure subroutine set_neutral_lengths(kin, at)
+        type(kinematics_t), intent(in) :: kin        !! kinematics in the neutral configuration
+        class(line_attach_t), intent(inout) :: at(:) !! the elements (any kind)
+        type(line_geometry_t) :: g(size(at))
+        integer :: e
+        call line_geometries(kin, at, g)
+        do e = 1, size(at)
+            if (at(e)%length0 < zero) at(e)%length0 = g(e)%length
+        end do
+    end subroutine set_neutral_lengths
 
 end module hn_line_elements

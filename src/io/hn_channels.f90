@@ -21,6 +21,7 @@ module hn_channels
     use hn_applied, only: applied_vector, applied_couple
     use hn_rotation, only: cross
     use hn_model, only: fam_discs, fam_ligaments, fam_muscles, fam_limits
+    use hn_line_elements, only: muscle_hill
     implicit none
     private
 
@@ -45,7 +46,7 @@ module hn_channels
     integer, parameter :: q_joint_rot = 13    !! Bryant angle `comp` (4..6) of body `item` [deg]
     integer, parameter :: q_disc = 14         !! resultant `comp` of disc `item` (1 shear x, 3 axial, 5 moment y)
     integer, parameter :: q_ligament = 15     !! tension of ligament `item` [N]
-    integer, parameter :: q_muscle = 16       !! tension of muscle `item` [N]
+    integer, parameter :: q_muscle = 16       !! tension (comp 1) [N] or activation (comp 3) of muscle `item`
     integer, parameter :: q_limit = 17        !! generalized force of joint-limit damper `item` [N or N m]
     integer, parameter :: q_energy = 18       !! energy term `comp` (e_* below) [J]
 
@@ -140,7 +141,8 @@ contains
         integer :: k, e, m, n
         associate (model => cs%model, tree => cs%model%tree)
             n = size(fixed_channels) + 3*(tree%nbody - 1) + 3*size(model%discs) + size(model%ligaments) + &
-                size(model%muscles) + size(model%limits) + size(energy_channels)
+                size(model%muscles) + count(model%muscles%law == muscle_hill) + size(model%limits) + &
+                size(energy_channels)
             allocate (c(n))
             n = size(fixed_channels)
             c(1:n) = fixed_channels
@@ -164,7 +166,9 @@ contains
                 call add(channel_t(model%ligaments(e)%name, 'N', 'LIGAMENTS', q_ligament, e, 0))
             end do
             do e = 1, size(model%muscles)
-                call add(channel_t(model%muscles(e)%name, 'N', 'MUSCLES', q_muscle, e, 0))
+                call add(channel_t(model%muscles(e)%name, 'N', 'MUSCLES', q_muscle, e, 1))
+                if (model%muscles(e)%law == muscle_hill) &
+                    call add(channel_t('A_'//model%muscles(e)%name, '-', 'MUSCLE ACTIVATION', q_muscle, e, 3))
             end do
             do e = 1, size(model%limits)
                 k = model%limits(e)%body
@@ -247,7 +251,7 @@ contains
                 end if
             case (q_disc); v = merge(ws%eo%disc(c%comp, c%item), zero, model%family_on(fam_discs))
             case (q_ligament); v = merge(ws%eo%ligament(1, c%item), zero, model%family_on(fam_ligaments))
-            case (q_muscle); v = merge(ws%eo%muscle(1, c%item), zero, model%family_on(fam_muscles))
+            case (q_muscle); v = merge(ws%eo%muscle(c%comp, c%item), zero, model%family_on(fam_muscles))
             case (q_limit); v = merge(ws%eo%limit(c%item), zero, model%family_on(fam_limits))
             case (q_energy); v = energy_value(en, c%comp, ch%e0)
             case default; v = zero

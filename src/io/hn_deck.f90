@@ -3,16 +3,17 @@
 !! names the source, line, columns, card and field, what was found and
 !! what was expected.
 module hn_deck
-    use hn_kinds, only: wp, zero, one, deg, msglen
+    use hn_kinds, only: wp, zero, one, deg, msglen, g_std
     use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
-    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name
-    use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
+    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name, family_items, scale_family
+    use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic, motion_eval
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
-    use hn_line_elements, only: ligament_t, muscle_t, spring_t
-    use hn_joint_limits, only: joint_limit_t
+    use hn_line_elements, only: line_attach_t, ligament_t, muscle_t, spring_t, muscle_hill
+    use hn_muscle, only: activation_t
+    use hn_joint_limits, only: joint_limit_t, joint_range_t
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
     use hn_linsolve, only: solver_cholesky, solver_names, solver_code
     use hn_integrators, only: integrator_names
@@ -172,7 +173,7 @@ contains
         character(len=*), intent(in) :: key
         select case (key)
         case ('DISC'); n = 2
-        case ('LIGAMENT', 'MUSCLE', 'SPRING', 'FORCE'); n = 1
+        case ('LIGAMENT', 'MUSCLE', 'SPRING', 'FORCE', 'HILL', 'ACTIVATE'); n = 1
         case ('TABLE'); n = -1
         case default; n = 0
         end select
@@ -183,10 +184,11 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(30) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(34) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
-            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'RUNLIMIT']
+            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM', 'SCALE', &
+            'RUNLIMIT']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -952,148 +954,71 @@ contains
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
-        integer :: k, i, f, kb, m, j, fam, ninternal, nlimdrop, nel(5)
-        character(len=10) :: s
-        character(len=100) :: note
+        integer :: k, i, ninternal, nlimdrop, it, nel(6)
+        logical :: keep
         type(disc_t) :: d
+        character(len=100) :: note
         type(ligament_t) :: g
         type(muscle_t) :: mu
         type(spring_t) :: sp
-        type(joint_limit_t) :: lim
-        real(wp) :: v
 
         ninternal = 0
         nlimdrop = 0
+        call activation_cards(rd, cards, cs)
+        if (rd%failed()) return
         ! room for every element card, trimmed at the end (appending one by one is quadratic)
-        deallocate (cs%model%discs, cs%model%ligaments, cs%model%muscles, cs%model%springs, cs%model%limits)
+        deallocate (cs%model%discs, cs%model%ligaments, cs%model%muscles, cs%model%springs, cs%model%limits, &
+                    cs%model%ranges)
         allocate (cs%model%discs(count(cards%key == 'DISC')), cs%model%ligaments(count(cards%key == 'LIGAMENT')), &
-                  cs%model%muscles(count(cards%key == 'MUSCLE')), cs%model%springs(count(cards%key == 'SPRING')), &
-                  cs%model%limits(count(cards%key == 'LIMIT')))
+                  cs%model%muscles(count(cards%key == 'MUSCLE' .or. cards%key == 'HILL')), &
+                  cs%model%springs(count(cards%key == 'SPRING')), cs%model%limits(count(cards%key == 'LIMIT')), &
+                  cs%model%ranges(count(cards%key == 'ROM')))
         nel = 0
         do k = 1, size(cards)
             i = cards(k)%first
             select case (cards(k)%key)
             case ('DISC')
-                d = disc_t()
-                call rd%name(i, 1, 'disc name', d%name)
-                d%body_a = body_ref(rd, i, 2, 'lower body', bnames, .false.)
-                d%body_b = body_ref(rd, i, 3, 'upper body', bnames, .false.)
-                call distinct_bodies(rd, i, d%body_a, d%body_b)
-                call rd%real(i, 4, 'area A', 'm^2', d%area, 1.0e-8_wp, 1.0_wp)
-                call rd%real(i, 5, 'thickness h', 'm', d%h, 1.0e-5_wp, 1.0_wp)
-                call rd%real(i, 6, 'modulus d1', 'Pa', d%d1, 1.0e-3_wp, big_modulus)
-                call rd%real(i, 7, 'viscous modulus d2', 'Pa s', d%d2, zero, big_modulus)
-                do f = 1, 3
-                    call rd%real(i + 1, f, 'lower plate centre', 'm', d%pa(f), -big_length, big_length)
-                    call rd%real(i + 1, 3 + f, 'upper plate centre', 'm', d%pb(f), -big_length, big_length)
-                end do
-                call rd%real(i + 1, 7, 'plate tilt', 'deg', v, -90.0_wp, 90.0_wp, default=zero)
-                d%tilt = v*deg
-                call rd%real(i + 2, 1, 'shear modulus G', 'Pa', d%g, 1.0e-3_wp, big_modulus)
-                call rd%real(i + 2, 2, 'second moment Ix', 'm^4', d%ix, 1.0e-20_wp, one)
-                call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
-                call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
-                call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
-                if (rd%failed()) return
-                call map_ends(d%body_a, d%pa, d%body_b, d%pb)
-                if (d%body_a == d%body_b) cycle
-                nel(1) = nel(1) + 1; cs%model%discs(nel(1)) = d
+                call disc_card(rd, i, bnames, bmap, ninternal, d, keep)
+                if (keep) call append(1)
             case ('LIGAMENT')
                 g = ligament_t()
-                call rd%name(i, 1, 'ligament name', g%name)
-                g%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
-                g%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
-                call distinct_bodies(rd, i, g%body_a, g%body_b)
+                call line_card(rd, i, 'ligament', g%line_attach_t, i, 7, keep)
                 call rd%real(i, 4, 'l1', 'N/m', g%l1, zero, big_modulus)
                 call rd%real(i, 5, 'l2', 'N/m^n', g%l2, zero, 1.0e30_wp)
                 call rd%real(i, 6, 'exponent n', '-', g%n, one, 10.0_wp, default=2.0_wp)
-                call rd%real(i, 7, 'slack length', 'm', g%slack_length, 1.0e-6_wp, big_length, default=-one)
-                call line_points(rd, i + 1, g%point_a, g%point_b)
-                if (rd%failed()) return
-                call map_ends(g%body_a, g%point_a, g%body_b, g%point_b)
-                if (g%body_a == g%body_b) cycle
-                nel(2) = nel(2) + 1; cs%model%ligaments(nel(2)) = g
+                if (keep .and. .not. rd%failed()) call append(2)
             case ('MUSCLE')
                 mu = muscle_t()
-                call rd%name(i, 1, 'muscle name', mu%name)
-                mu%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
-                mu%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
-                call distinct_bodies(rd, i, mu%body_a, mu%body_b)
+                call line_card(rd, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
                 call rd%real(i, 4, 'stiffness m1', 'N/m', mu%m1, zero, big_modulus)
                 call rd%real(i, 5, 'damping m2', 'N s/m', mu%m2, zero, big_modulus)
                 call rd%real(i, 6, 'active force Fmax', 'N', mu%fmax, zero, 1.0e6_wp, default=zero)
                 if (.not. rd%is_blank(i, 7)) then
-                    mu%activation = table_ref(rd, i, 7, tabs)
+                    it = table_ref(rd, i, 7, tabs)
+                    if (.not. rd%failed()) then
+                        cs%model%tables = [cs%model%tables, tabs(it)%tab]
+                        mu%activation = size(cs%model%tables)
+                    end if
                 end if
-                call line_points(rd, i + 1, mu%point_a, mu%point_b)
-                call rd%real(i + 1, 7, 'rest length', 'm', mu%rest_length, 1.0e-6_wp, big_length, default=-one)
-                if (rd%failed()) return
-                call map_ends(mu%body_a, mu%point_a, mu%body_b, mu%point_b)
-                if (mu%body_a == mu%body_b) cycle
-                nel(3) = nel(3) + 1; cs%model%muscles(nel(3)) = mu
+                if (keep .and. .not. rd%failed()) call append(3)
+            case ('HILL')
+                mu = muscle_t(law=muscle_hill)
+                call line_card(rd, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
+                call rd%real(i, 4, 'maximum isometric force F0', 'N', mu%hill%f0, zero, 1.0e5_wp)
+                call rd%real(i, 5, 'optimal fibre length', 'm', mu%hill%lopt, 1.0e-3_wp, one)
+                if (.not. rd%is_blank(i, 6)) mu%history = history_ref(rd, i, 6, cs%model%activations)
+                call rd%real(i, 7, 'damping', 'N s/m', mu%hill%damping, zero, 1.0e5_wp, default=zero)
+                if (keep .and. .not. rd%failed()) call append(3)
             case ('SPRING')
                 sp = spring_t()
-                call rd%name(i, 1, 'spring name', s)
-                sp%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
-                sp%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
-                call distinct_bodies(rd, i, sp%body_a, sp%body_b)
+                call line_card(rd, i, 'spring', sp%line_attach_t, i, 6, keep)
                 call rd%real(i, 4, 'stiffness', 'N/m', sp%stiffness, zero, big_modulus)
                 call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
-                call rd%real(i, 6, 'free length', 'm', sp%free_length, zero, big_length, default=-one)
-                call line_points(rd, i + 1, sp%point_a, sp%point_b)
-                if (rd%failed()) return
-                call map_ends(sp%body_a, sp%point_a, sp%body_b, sp%point_b)
-                if (sp%body_a == sp%body_b) cycle
-                nel(4) = nel(4) + 1; cs%model%springs(nel(4)) = sp
-            case ('LIMIT')
-                lim = joint_limit_t()
-                if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
-                    nlimdrop = nlimdrop + 1          ! a damper inside a merged body
-                    cycle
-                end if
-                call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
-                if (rd%failed()) return
-                if (j == 0) then
-                    nlimdrop = nlimdrop + 1          ! a damper on a locked coordinate does nothing
-                    cycle
-                end if
-                lim%body = kb; lim%local = m; lim%dof = j
-                call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
-                call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
-                if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
-                    call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
-                                 trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
-                    return
-                end if
-                call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
-                call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
-                call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
-                             default=max(lim%xmin, min(lim%xmax, cs%model%tree%q_ref(m, kb)/unit_factor(m))))
-                lim%xmin = lim%xmin*unit_factor(m)
-                lim%xmax = lim%xmax*unit_factor(m)
-                lim%xneutral = lim%xneutral*unit_factor(m)
-                if (rd%failed()) return
-                nel(5) = nel(5) + 1; cs%model%limits(nel(5)) = lim
+                if (keep .and. .not. rd%failed()) call append(4)
+            case ('LIMIT', 'ROM')
+                call joint_card(rd, i, cs, bnames, bmap, nlimdrop, nel(5:6))
             case ('FAMILY')
-                call rd%name(i, 1, 'element family', s)
-                if (rd%failed()) return
-                fam = findloc(family_name, s(1:9), dim=1)
-                if (fam == 0) then
-                    call rd%fail(rd%context(i, 1, 'element family')//': found "'// &
-                                 trim(s)//'"; expected one of '//join(family_name))
-                    return
-                end if
-                call rd%name(i, 2, 'ON or OFF', s)
-                if (s /= 'ON' .and. s /= 'OFF' .and. .not. rd%failed()) then
-                    call rd%fail(rd%context(i, 2, 'ON or OFF')//': found "'//trim(s)// &
-                                 '"; expected ON or OFF')
-                    return
-                end if
-                cs%model%family_on(fam) = s == 'ON'
-                if (s == 'OFF') then
-                    note = 'FAMILY '//trim(family_name(fam))//' OFF'
-                    call add_scene_note(cs, note)
-                end if
+                call family_card(rd, i, cs)
             end select
             if (rd%failed()) return
         end do
@@ -1102,6 +1027,7 @@ contains
         cs%model%muscles = cs%model%muscles(1:nel(3))
         cs%model%springs = cs%model%springs(1:nel(4))
         cs%model%limits = cs%model%limits(1:nel(5))
+        cs%model%ranges = cs%model%ranges(1:nel(6))
         if (ninternal > 0) then
             write (note, '(i0,a)') ninternal, ' ELEMENTS DROPPED: BOTH ENDS ON ONE MERGED BODY'
             call add_scene_note(cs, note)
@@ -1110,22 +1036,321 @@ contains
             write (note, '(i0,a)') nlimdrop, ' JOINT-LIMIT DAMPERS DROPPED: ON LOCKED OR MERGED COORDINATES'
             call add_scene_note(cs, note)
         end if
+        do k = 1, size(cards)
+            if (cards(k)%key == 'SCALE') call scale_card(rd, cards(k)%first, cs)
+            if (rd%failed()) return
+        end do
     contains
-        !> Old body numbers and points -> reduced tree (MERGE); counts internal elements.
-        subroutine map_ends(ka, pa, kb2, pb)
-            integer, intent(inout) :: ka, kb2
-            real(wp), intent(inout) :: pa(3), pb(3)
-            if (ka > 0) then
-                pa = pa + bmap%shift(:, ka)
-                ka = bmap%new(ka)
-            end if
-            if (kb2 > 0) then
-                pb = pb + bmap%shift(:, kb2)
-                kb2 = bmap%new(kb2)
-            end if
-            if (ka == kb2) ninternal = ninternal + 1
-        end subroutine map_ends
+        !> Put the element just read into slot nel(kind) + 1 of its list.
+        subroutine append(kind)
+            integer, intent(in) :: kind
+            nel(kind) = nel(kind) + 1
+            select case (kind)
+            case (1); cs%model%discs(nel(1)) = d
+            case (2); cs%model%ligaments(nel(2)) = g
+            case (3); cs%model%muscles(nel(3)) = mu
+            case (4); cs%model%springs(nel(4)) = sp
+            end select
+        end subroutine append
+
+        !> The attachment of a LIGAMENT, MUSCLE or SPRING card: name (F1),
+        !! bodies (F2, F3), points (first continuation card, F1-F6) and free
+        !! length (line ll, field lf; blank: the neutral length), moved onto
+        !! merged bodies; keep is false for an element inside one merged body.
+        subroutine line_card(rd, i, what, at, ll, lf, keep)
+            type(deck_reader_t), intent(inout) :: rd
+            integer, intent(in) :: i, ll, lf
+            character(len=*), intent(in) :: what
+            type(line_attach_t), intent(inout) :: at
+            logical, intent(out) :: keep
+            character(len=10) :: nm
+            keep = .false.
+            call rd%name(i, 1, what//' name', nm)
+            at%name = nm
+            at%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
+            at%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
+            call distinct_bodies(rd, i, at%body_a, at%body_b)
+            call line_points(rd, i + 1, at%point_a, at%point_b)
+            select case (what)
+            case ('ligament')
+                call rd%real(ll, lf, 'slack length', 'm', at%length0, 1.0e-6_wp, big_length, default=-one)
+            case ('muscle')
+                call rd%real(ll, lf, 'rest length', 'm', at%length0, 1.0e-6_wp, big_length, default=-one)
+            case default
+                call rd%real(ll, lf, 'free length', 'm', at%length0, zero, big_length, default=-one)
+            end select
+            if (rd%failed()) return
+            call map_ends(bmap, at%body_a, at%point_a, at%body_b, at%point_b, ninternal)
+            keep = at%body_a /= at%body_b
+        end subroutine line_card
     end subroutine element_cards
+
+    !> ACTIVATE cards: the activation histories of Hill-type muscles. A blank
+    !! onset is the sled pulse onset: the first time the prescribed
+    !! translational acceleration of the root body exceeds 1 g (never, when
+    !! it does not).
+    subroutine activation_cards(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        type(activation_t) :: ah
+        integer :: k, i, k2
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'ACTIVATE') cycle
+            i = cards(k)%first
+            ah = activation_t()
+            call rd%name(i, 1, 'history name', ah%name)
+            if (rd%failed()) return
+            if (any([(cs%model%activations(k2)%name == ah%name, k2=1, size(cs%model%activations))])) then
+                call rd%fail(rd%context(i, 1, 'history name')//': activation history "'//trim(ah%name)// &
+                             '" is defined twice; expected a new name')
+                return
+            end if
+            call rd%real(i, 2, 'pre-activation u0', '-', ah%u0, zero, one)
+            call rd%real(i, 3, 'reflex activation u1', '-', ah%u1, zero, one)
+            if (rd%is_blank(i, 4)) then
+                ah%t_onset = pulse_onset(cs)
+            else
+                call rd%real(i, 4, 'pulse onset', 's', ah%t_onset, -1.0e4_wp, 1.0e4_wp)
+            end if
+            call rd%real(i, 5, 'reflex delay', 's', ah%delay, zero, 10.0_wp)
+            call rd%real(i, 6, 'rise time', 's', ah%rise, zero, 10.0_wp, default=zero)
+            call rd%real(i + 1, 1, 'activation time constant', 's', ah%tau_act, 1.0e-4_wp, 10.0_wp, default=0.015_wp)
+            call rd%real(i + 1, 2, 'deactivation time constant', 's', ah%tau_deact, 1.0e-4_wp, 10.0_wp, &
+                         default=0.05_wp)
+            if (rd%failed()) return
+            cs%model%activations = [cs%model%activations, ah]
+        end do
+    end subroutine activation_cards
+
+    !> First time (on a 0.1 ms grid) the prescribed translational
+    !! acceleration of the root body exceeds 1 g; huge when it never does.
+    function pulse_onset(cs) result(t0)
+        type(case_t), intent(in) :: cs
+        real(wp) :: t0, t, a(3), x, xd
+        integer :: root, m, j, n
+        t0 = huge(one)
+        root = findloc(cs%model%tree%parent, 0, dim=1)
+        do n = 0, nint((cs%t_end - cs%t_start)/1.0e-4_wp)
+            t = cs%t_start + n*1.0e-4_wp
+            a = zero
+            do m = 1, 3
+                j = cs%model%tree%dof_index(m, root)
+                if (j == 0) cycle
+                if (cs%model%prescribed(j)) call motion_eval(cs%model%motion(j), t, x, xd, a(m))
+            end do
+            if (norm3(a) > g_std) then
+                t0 = t
+                return
+            end if
+        end do
+    end function pulse_onset
+
+    !> Activation history named in field f (an ACTIVATE card).
+    integer function history_ref(rd, i, f, hist) result(ih)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, f
+        type(activation_t), intent(in) :: hist(:)
+        character(len=10) :: s
+        ih = 0
+        call rd%name(i, f, 'activation history', s)
+        if (rd%failed()) return
+        do ih = size(hist), 1, -1
+            if (hist(ih)%name == s) exit
+        end do
+        if (ih == 0) call rd%fail(rd%context(i, f, 'activation history')//': found "'//trim(s)// &
+                                  '"; expected the name of an ACTIVATE card')
+    end function history_ref
+
+    !> Old body numbers and points -> reduced tree (MERGE); counts the
+    !! elements with both ends on one merged body.
+    pure subroutine map_ends(bmap, ka, pa, kb, pb, ninternal)
+        type(body_map_t), intent(in) :: bmap
+        integer, intent(inout) :: ka, kb
+        real(wp), intent(inout) :: pa(3), pb(3)
+        integer, intent(inout) :: ninternal
+        if (ka > 0) then
+            pa = pa + bmap%shift(:, ka)
+            ka = bmap%new(ka)
+        end if
+        if (kb > 0) then
+            pb = pb + bmap%shift(:, kb)
+            kb = bmap%new(kb)
+        end if
+        if (ka == kb) ninternal = ninternal + 1
+    end subroutine map_ends
+
+    !> A DISC card and its two continuation cards; keep is false for a disc
+    !! inside one merged body.
+    subroutine disc_card(rd, i, bnames, bmap, ninternal, d, keep)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        integer, intent(inout) :: ninternal
+        type(disc_t), intent(out) :: d
+        logical, intent(out) :: keep
+        integer :: f
+        real(wp) :: v
+        d = disc_t()
+        call rd%name(i, 1, 'disc name', d%name)
+        d%body_a = body_ref(rd, i, 2, 'lower body', bnames, .false.)
+        d%body_b = body_ref(rd, i, 3, 'upper body', bnames, .false.)
+        call distinct_bodies(rd, i, d%body_a, d%body_b)
+        call rd%real(i, 4, 'area A', 'm^2', d%area, 1.0e-8_wp, 1.0_wp)
+        call rd%real(i, 5, 'thickness h', 'm', d%h, 1.0e-5_wp, 1.0_wp)
+        call rd%real(i, 6, 'modulus d1', 'Pa', d%d1, 1.0e-3_wp, big_modulus)
+        call rd%real(i, 7, 'viscous modulus d2', 'Pa s', d%d2, zero, big_modulus)
+        do f = 1, 3
+            call rd%real(i + 1, f, 'lower plate centre', 'm', d%pa(f), -big_length, big_length)
+            call rd%real(i + 1, 3 + f, 'upper plate centre', 'm', d%pb(f), -big_length, big_length)
+        end do
+        call rd%real(i + 1, 7, 'plate tilt', 'deg', v, -90.0_wp, 90.0_wp, default=zero)
+        d%tilt = v*deg
+        call rd%real(i + 2, 1, 'shear modulus G', 'Pa', d%g, 1.0e-3_wp, big_modulus)
+        call rd%real(i + 2, 2, 'second moment Ix', 'm^4', d%ix, 1.0e-20_wp, one)
+        call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
+        call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
+        call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
+        if (rd%failed()) return
+        call map_ends(bmap, d%body_a, d%pa, d%body_b, d%pb, ninternal)
+        keep = d%body_a /= d%body_b
+    end subroutine disc_card
+
+    !> A LIMIT card (one-way joint-limit damper) or a ROM card (resistance
+    !! beyond the physiological range: rotation, range (deg), stiffness at the
+    !! edge K [N m/rad], excess t0 [deg] over which it grows e-fold); dropped
+    !! on a locked or merged coordinate.
+    subroutine joint_card(rd, i, cs, bnames, bmap, ndrop, nel)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        integer, intent(inout) :: ndrop
+        integer, intent(inout) :: nel(2)              !! dampers and ranges so far in cs%model
+        type(joint_limit_t) :: lim
+        type(joint_range_t) :: r
+        integer :: kb, m, j
+        ! a body absorbed by MERGE or a locked coordinate: the element would do nothing
+        if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
+            ndrop = ndrop + 1
+            return
+        end if
+        call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
+        if (rd%failed()) return
+        if (j == 0) then
+            ndrop = ndrop + 1
+            return
+        end if
+        if (rd%key(i) == 'LIMIT') then
+            lim = joint_limit_t()
+            lim%body = kb; lim%local = m; lim%dof = j
+            call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
+            call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
+            if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
+                call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
+                             trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
+                return
+            end if
+            call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
+            call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
+            call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
+                         default=max(lim%xmin, min(lim%xmax, cs%model%tree%q_ref(m, kb)/unit_factor(m))))
+            lim%xmin = lim%xmin*unit_factor(m)
+            lim%xmax = lim%xmax*unit_factor(m)
+            lim%xneutral = lim%xneutral*unit_factor(m)
+            if (rd%failed()) return
+            nel(1) = nel(1) + 1; cs%model%limits(nel(1)) = lim
+            return
+        end if
+        if (m <= 3) then
+            call rd%fail(rd%context(i, 2, 'coordinate')//': found '//coord_names(m)//'; expected a rotation '// &
+                         '(RX, RY or RZ): ROM cards hold joint rotations')
+            return
+        end if
+        r%dof = j
+        r%label = trim(cs%model%tree%name(kb))//' '//coord_names(m)
+        call rd%real(i, 3, 'lower end of range', 'deg', r%xmin, -180.0_wp, 180.0_wp)
+        call rd%real(i, 4, 'upper end of range', 'deg', r%xmax, -180.0_wp, 180.0_wp)
+        if (.not. rd%failed() .and. .not. (r%xmax > r%xmin)) then
+            call rd%fail(rd%context(i, 4, 'upper end of range')//': found '//trim(rd%raw(i, 4))// &
+                         '; expected a value above the lower end '//trim(rd%raw(i, 3)))
+            return
+        end if
+        call rd%real(i, 5, 'stiffness at the edge K', 'N m/rad', r%k, zero, big_modulus)
+        call rd%real(i, 6, 'e-fold excess t0', 'deg', r%t0, 0.01_wp, 90.0_wp, default=5.0_wp)
+        if (rd%failed()) return
+        r%xmin = r%xmin*deg; r%xmax = r%xmax*deg; r%t0 = r%t0*deg
+        nel(2) = nel(2) + 1; cs%model%ranges(nel(2)) = r
+    end subroutine joint_card
+
+
+    !> SCALE name family item factor: multiply one property of every element
+    !! of a family (the items of a sweep's FAMILY parameters), after every
+    !! element card; the named factors a calibration fits (FIELD4 SCALE name).
+    subroutine scale_card(rd, i, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        character(len=10) :: s, item, items(3)
+        integer :: fam
+        real(wp) :: factor
+        call rd%name(i, 1, 'factor name', s)
+        call rd%name(i, 2, 'element family', s)
+        fam = family_ref(rd, i, s)
+        if (rd%failed()) return
+        call rd%name(i, 3, 'item', item)
+        items = family_items(fam)
+        if (.not. rd%failed() .and. .not. any(items == item .and. len_trim(items) > 0)) then
+            call rd%fail(rd%context(i, 3, 'item')//': found "'//trim(item)//'"; expected one of '//join(items))
+            return
+        end if
+        call rd%real(i, 4, 'factor', '-', factor, 1.0e-6_wp, 1.0e6_wp)
+        if (rd%failed()) return
+        call scale_family(cs%model, fam, item, factor)
+    end subroutine scale_card
+
+    !> Element family named s in field F2 of line i (an error when unknown).
+    integer function family_ref(rd, i, s) result(fam)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        character(len=*), intent(in) :: s
+        fam = 0
+        if (rd%failed()) return
+        fam = findloc(family_name, s(1:min(len(s), 9)), dim=1)
+        if (fam == 0) call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
+                                   join(family_name))
+    end function family_ref
+
+    !> FAMILY name ON|OFF: switch an element family.
+    subroutine family_card(rd, i, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        integer :: fam
+        character(len=10) :: s
+        character(len=100) :: note
+        call rd%name(i, 1, 'element family', s)
+        if (rd%failed()) return
+        fam = findloc(family_name, s(1:9), dim=1)
+        if (fam == 0) then
+            call rd%fail(rd%context(i, 1, 'element family')//': found "'// &
+                         trim(s)//'"; expected one of '//join(family_name))
+            return
+        end if
+        call rd%name(i, 2, 'ON or OFF', s)
+        if (s /= 'ON' .and. s /= 'OFF' .and. .not. rd%failed()) then
+            call rd%fail(rd%context(i, 2, 'ON or OFF')//': found "'//trim(s)// &
+                         '"; expected ON or OFF')
+            return
+        end if
+        cs%model%family_on(fam) = s == 'ON'
+        if (s == 'OFF') then
+            note = 'FAMILY '//trim(family_name(fam))//' OFF'
+            call add_scene_note(cs, note)
+        end if
+    end subroutine family_card
 
     !> FORCE and COUPLE cards (moved onto merged bodies).
     subroutine load_cards(rd, cards, cs, bnames, bmap, tabs)
@@ -1199,14 +1424,8 @@ contains
             call rd%name(i, 2, 'element family', s, optional_blank=.true.)
             if (rd%failed()) return
             fam = 0
-            if (len_trim(s) > 0) then
-                fam = findloc(family_name, s(1:9), dim=1)
-                if (fam == 0) then
-                    call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
-                                 join(family_name))
-                    return
-                end if
-            end if
+            if (len_trim(s) > 0) fam = family_ref(rd, i, s)
+            if (rd%failed()) return
             associate (m => cs%model)
                 if (fam == 0 .or. family_name(max(fam, 1)) == 'DISCS') then
                     m%discs%d1 = fac*m%discs%d1

@@ -5,16 +5,17 @@ module hn_model
     use hn_tree, only: body_tree_t
     use hn_motion, only: motion_t
     use hn_tables, only: table_t
-    use hn_line_elements, only: spring_t, ligament_t, muscle_t, line_geometry_t, line_geometry
+    use hn_muscle, only: activation_t
+    use hn_line_elements, only: spring_t, ligament_t, muscle_t, set_neutral_lengths
     use hn_discs, only: disc_t, disc_set_reference
-    use hn_joint_limits, only: joint_limit_t
+    use hn_joint_limits, only: joint_limit_t, joint_range_t
     use hn_applied, only: applied_load_t
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities
     use hn_linsolve, only: solver_gauss
     implicit none
     private
 
-    public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count
+    public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, scale_family
 
     !> Element families that can be switched on and off.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
@@ -34,8 +35,10 @@ module hn_model
         type(ligament_t), allocatable :: ligaments(:)
         type(muscle_t), allocatable :: muscles(:)
         type(joint_limit_t), allocatable :: limits(:)
+        type(joint_range_t), allocatable :: ranges(:)  !! resistance beyond the range of motion (LIMITS family)
         type(applied_load_t), allocatable :: applied(:)
         type(table_t), allocatable :: tables(:)        !! activation tables referenced by muscles
+        type(activation_t), allocatable :: activations(:)  !! activation histories of Hill-type muscles
         real(wp), allocatable :: q_hold(:)             !! (n) constant generalized forces (posture holding)
         logical :: family_on(nfamilies) = .true.       !! element families switched on
         integer :: solver = solver_gauss               !! solver of a_ij xddot = f
@@ -67,7 +70,8 @@ contains
         model%prescribed = .false.
         model%q_hold = zero
         allocate (model%springs(0), model%discs(0), model%ligaments(0), model%muscles(0))
-        allocate (model%limits(0), model%applied(0), model%tables(0))
+        allocate (model%limits(0), model%applied(0), model%tables(0), model%activations(0), &
+                  model%ranges(0))
     end subroutine model_init
 
     !> Active coordinates of the neutral configuration (every coordinate at
@@ -86,7 +90,6 @@ contains
     pure subroutine model_set_neutral(model)
         type(model_t), intent(inout) :: model
         type(kinematics_t) :: kin
-        type(line_geometry_t) :: g
         real(wp) :: x0(model%tree%ndof)
         integer :: e
         x0 = neutral_coordinates(model)
@@ -95,24 +98,63 @@ contains
         do e = 1, size(model%discs)
             call disc_set_reference(model%discs(e), kin)
         end do
-        do e = 1, size(model%ligaments)
-            associate (l => model%ligaments(e))
-                call line_geometry(kin, l%body_a, l%point_a, l%body_b, l%point_b, g)
-                if (l%slack_length < zero) l%slack_length = g%length
-            end associate
-        end do
-        do e = 1, size(model%muscles)
-            associate (m => model%muscles(e))
-                call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
-                if (m%rest_length < zero) m%rest_length = g%length
-            end associate
-        end do
-        do e = 1, size(model%springs)
-            associate (s => model%springs(e))
-                call line_geometry(kin, s%body_a, s%point_a, s%body_b, s%point_b, g)
-                if (s%free_length < zero) s%free_length = g%length
-            end associate
-        end do
+        call set_neutral_lengths(kin, model%ligaments)
+        call set_neutral_lengths(kin, model%muscles)
+        call set_neutral_lengths(kin, model%springs)
     end subroutine model_set_neutral
+
+    !> Properties of a family that a FAMILY parameter may scale.
+    pure function family_items(f) result(items)
+        integer, intent(in) :: f
+        character(len=10) :: items(3)
+        items = ''
+        select case (f)
+        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G']
+        case (fam_ligaments); items(1:2) = [character(len=10) :: 'L1', 'L2']
+        case (fam_muscles); items = [character(len=10) :: 'M1', 'M2', 'F0']
+        case (fam_limits); items = [character(len=10) :: 'C0', 'C1', 'ROMK']
+        case (fam_springs); items(1:2) = [character(len=10) :: 'K', 'C']
+        end select
+    end function family_items
+
+    !> Multiply one property of every element of a family by `factor`.
+    pure subroutine scale_family(model, f, item, factor)
+        type(model_t), intent(inout) :: model
+        integer, intent(in) :: f
+        character(len=*), intent(in) :: item
+        real(wp), intent(in) :: factor
+        select case (f)
+        case (fam_discs)
+            select case (item)
+            case ('E'); model%discs%d1 = factor*model%discs%d1
+            case ('VISCOUS'); model%discs%d2 = factor*model%discs%d2
+            case ('G'); model%discs%g = factor*model%discs%g
+            end select
+        case (fam_ligaments)
+            select case (item)
+            case ('L1'); model%ligaments%l1 = factor*model%ligaments%l1
+            case ('L2'); model%ligaments%l2 = factor*model%ligaments%l2
+            end select
+        case (fam_muscles)
+            select case (item)
+            case ('M1'); model%muscles%m1 = factor*model%muscles%m1
+            case ('M2'); model%muscles%m2 = factor*model%muscles%m2
+            case ('F0')      ! Hill-type muscles: F0 and the damping that is proportional to it
+                model%muscles%hill%f0 = factor*model%muscles%hill%f0
+                model%muscles%hill%damping = factor*model%muscles%hill%damping
+            end select
+        case (fam_limits)
+            select case (item)
+            case ('C0'); model%limits%c0 = factor*model%limits%c0
+            case ('C1'); model%limits%c1 = factor*model%limits%c1
+            case ('ROMK'); model%ranges%k = factor*model%ranges%k
+            end select
+        case (fam_springs)
+            select case (item)
+            case ('K'); model%springs%stiffness = factor*model%springs%stiffness
+            case ('C'); model%springs%damping = factor*model%springs%damping
+            end select
+        end select
+    end subroutine scale_family
 
 end module hn_model

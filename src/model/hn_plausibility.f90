@@ -6,6 +6,7 @@
 module hn_plausibility
     use hn_kinds, only: wp, zero, half
     use hn_model, only: model_t
+    use hn_line_elements, only: line_attach_t
     implicit none
     private
 
@@ -63,25 +64,20 @@ contains
                                      ref_disc_bending, 'N m/rad')
                 end associate
             end do
+            call check_lines('ligament', model%ligaments)
+            call check_lines('muscle', model%muscles)
+            call check_lines('spring', model%springs)
             do e = 1, size(model%ligaments)
                 associate (l => model%ligaments(e))
-                    call check_point(l%body_a, l%point_a, 'ligament '//l%name)
-                    call check_point(l%body_b, l%point_b, 'ligament '//l%name)
                     call check_range('ligament '//trim(l%name)//' tension at 2 mm stretch', &
                                      l%l1*2.0e-3_wp + l%l2*(2.0e-3_wp)**l%n, ref_ligament_2mm, 'N')
                 end associate
             end do
             do e = 1, size(model%muscles)
-                associate (m => model%muscles(e))
-                    call check_point(m%body_a, m%point_a, 'muscle '//m%name)
-                    call check_point(m%body_b, m%point_b, 'muscle '//m%name)
-                    call check_range('muscle '//trim(m%name)//' stiffness m1', m%m1, ref_muscle_m1, 'N/m')
-                    call check_range('muscle '//trim(m%name)//' damping m2', m%m2, ref_muscle_m2, 'N s/m')
-                end associate
-            end do
-            do e = 1, size(model%springs)
-                call check_point(model%springs(e)%body_a, model%springs(e)%point_a, 'spring')
-                call check_point(model%springs(e)%body_b, model%springs(e)%point_b, 'spring')
+                call check_range('muscle '//trim(model%muscles(e)%name)//' stiffness m1', model%muscles(e)%m1, &
+                                 ref_muscle_m1, 'N/m')
+                call check_range('muscle '//trim(model%muscles(e)%name)//' damping m2', model%muscles(e)%m2, &
+                                 ref_muscle_m2, 'N s/m')
             end do
             do e = 1, size(model%applied)
                 call check_point(model%applied(e)%body, model%applied(e)%point, 'applied load')
@@ -102,6 +98,17 @@ contains
             tmp(n + 1) = text
             call move_alloc(tmp, warnings)
         end subroutine add
+
+        !> Both attachment points of every line element of a list.
+        subroutine check_lines(kind, at)
+            character(len=*), intent(in) :: kind
+            class(line_attach_t), intent(in) :: at(:)
+            integer :: i
+            do i = 1, size(at)
+                call check_point(at(i)%body_a, at(i)%point_a, kind//' '//at(i)%name)
+                call check_point(at(i)%body_b, at(i)%point_b, kind//' '//at(i)%name)
+            end do
+        end subroutine check_lines
 
         !> A point farther from its body's mass centre than max(0.25 m, 5 radii of gyration).
         subroutine check_point(k, p, what)

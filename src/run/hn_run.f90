@@ -26,6 +26,7 @@ module hn_run
     use hn_progress, only: progress_t, limit_diagnosis
     use hn_history, only: history_t
     use hn_version, only: code_version
+    use hn_joint_limits, only: range_track, range_warnings, range_margin
     implicit none
     private
 
@@ -99,6 +100,7 @@ module hn_run
         type(energy_t) :: en0                       !! energy terms at the start
         type(run_result_t) :: res
         type(peaks_t) :: peaks
+        real(wp), allocatable :: rom_peak(:), rom_time(:)   !! largest excess beyond each joint range [rad], when [s]
         type(criteria_columns_t) :: icol
         type(history_t) :: rows                     !! listing rows (t, every channel), memory bounded
         type(history_t) :: crit                     !! assessment inputs at every sample, memory bounded
@@ -253,6 +255,8 @@ contains
             me%tol = time_match*max(cs%sample_dt, 1.0e-6_wp)
             me%ks = 0; me%kp = 0; me%kd = 1
         end associate
+        allocate (me%rom_peak(size(me%cs%model%ranges)), me%rom_time(size(me%cs%model%ranges)))
+        me%rom_peak = zero; me%rom_time = me%cs%t_start
     end subroutine init_outputs
 
     !> The next output time: the earliest of the next sample, listing row,
@@ -549,6 +553,7 @@ contains
         class(run_state_t), intent(inout) :: me
         real(wp), intent(in) :: t
         integer :: k
+        call range_track(me%cs%model%ranges, me%sys%ws%x, t, me%rom_peak, me%rom_time)
         do k = 1, me%ch%n
             if (me%ch%value(k) > me%peaks%vmax(k)) then
                 me%peaks%vmax(k) = me%ch%value(k); me%peaks%tmax(k) = t
@@ -596,6 +601,7 @@ contains
             call me%lst%peaks(me%ch, me%peaks%vmax, me%peaks%tmax, me%peaks%vmin, me%peaks%tmin)
             call me%lst%criteria(me%res%criteria)
             call me%out%criteria(me%res%criteria)
+            call range_report(me)
         end if
         call end_of_run_lines(me)
         call me%out%close(me%ch, trim(me%res%status), trim(me%res%message), st, line, note)
@@ -608,6 +614,22 @@ contains
         me%running = .false.
         res = me%res
     end subroutine run_finish
+
+    !> Joints past their physiological range by more than the margin: one
+    !! line each in the listing, and summed up in the run's warning (stderr).
+    subroutine range_report(me)
+        type(run_state_t), intent(inout) :: me
+        character(len=160), allocatable :: lines(:)
+        integer :: k
+        lines = range_warnings(me%cs%model%ranges, me%rom_peak, me%rom_time, range_margin)
+        do k = 1, size(lines)
+            call me%lst%message(lines(k))
+        end do
+        if (size(lines) == 0 .or. len_trim(me%res%warning) > 0) return
+        k = count(me%rom_peak(1:maxloc(me%rom_peak, dim=1)) > range_margin)
+        write (me%res%warning, '(a,i0,2a)') 'WARNING: ', size(lines), ' joint rotation(s) past the physiological '// &
+            'range plus margin; largest: ', trim(lines(k)(16:))
+    end subroutine range_report
 
     !> The energy balance, an accuracy warning, the counts and the status
     !! in the listing.

@@ -10,8 +10,7 @@ module hn_sweep
     use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper
     use hn_deck, only: read_case_lines
     use hn_tree, only: tree_build
-    use hn_model, only: model_set_neutral, family_name, family_count, fam_discs, fam_ligaments, fam_muscles, &
-                        fam_limits, fam_springs
+    use hn_model, only: model_set_neutral, family_name, family_count, family_items, scale_family
     use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
@@ -19,7 +18,8 @@ module hn_sweep
     implicit none
     private
 
-    public :: sweep_t, sweep_param_t, member_record_t, read_sweep, sweep_design, sweep_member_case, &
+    public :: sweep_t, sweep_param_t, member_record_t, read_sweep, read_sweep_lines, sweep_design, &
+              sweep_member_case, spread_value, &
               run_member, field_text
     public :: output_names, output_units, nout
 
@@ -86,14 +86,44 @@ contains
         type(sweep_t), intent(out) :: sw
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
-        type(deck_reader_t) :: rd, bd
-        type(case_t) :: base
-        character(len=10) :: s
-        integer :: i, np, ntitle, nbase, ndesign, p
+        type(deck_reader_t) :: rd
         rd%top = source
         call read_card_images(rd, path, source, 0)
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the sweep deck is empty; expected a TITLE card first')
+        call parse_sweep(rd, source, sw)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_sweep
+
+    !> A sweep deck already read into card images (INCLUDE expanded), e.g.
+    !! one assembled in memory by the calibration for each of its cases.
+    subroutine read_sweep_lines(lines, source, sw, stat, errmsg)
+        type(deck_line_t), intent(in) :: lines(:)   !! card images
+        character(len=*), intent(in) :: source      !! name of the deck in messages
+        type(sweep_t), intent(out) :: sw
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(deck_reader_t) :: rd
+        rd%top = source
+        rd%lines = lines
+        rd%nlines = size(lines)
+        call parse_sweep(rd, source, sw)
+        stat = rd%stat
+        errmsg = rd%errmsg
+    end subroutine read_sweep_lines
+
+    !> The cards of a sweep deck, the base deck they name, and every
+    !! parameter checked against the base deck.
+    subroutine parse_sweep(rd, source, sw)
+        type(deck_reader_t), intent(inout) :: rd
+        character(len=*), intent(in) :: source
+        type(sweep_t), intent(out) :: sw
+        type(deck_reader_t) :: bd
+        type(case_t) :: base
+        character(len=10) :: s
+        character(len=msglen) :: errmsg
+        integer :: i, np, ntitle, nbase, ndesign, p, stat
         allocate (sw%params(0))
         ntitle = 0; nbase = 0; ndesign = 0
         do i = 1, rd%nlines
@@ -181,9 +211,7 @@ contains
                 trim(int_str(design_runs(sw)))//' runs; at most '//trim(int_str(max_runs))//' are allowed')
         end if
         if (.not. rd%failed()) call check_extremes(rd, sw)
-        stat = rd%stat
-        errmsg = rd%errmsg
-    end subroutine read_sweep
+    end subroutine parse_sweep
 
     !> One PARAM card: name, kind, target, item, low, high, spacing.
     subroutine param_card(rd, i, sw)
@@ -473,7 +501,7 @@ contains
             associate (q => sw%params(p))
                 select case (q%kind)
                 case (par_family)
-                    call scale_family(cs, q%family, q%item, v(p))
+                    call scale_family(cs%model, q%family, q%item, v(p))
                 case (par_body)
                     if (q%item == 'MASS') then
                         cs%model%tree%mass(q%body) = v(p)*cs%model%tree%mass(q%body)
@@ -493,20 +521,6 @@ contains
         cs%h5file = ''
     end subroutine sweep_member_case
 
-    !> Properties of a family that a FAMILY parameter may scale.
-    pure function family_items(f) result(items)
-        integer, intent(in) :: f
-        character(len=10) :: items(3)
-        items = ''
-        select case (f)
-        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G']
-        case (fam_ligaments); items(1:2) = [character(len=10) :: 'L1', 'L2']
-        case (fam_muscles); items(1:2) = [character(len=10) :: 'M1', 'M2']
-        case (fam_limits); items(1:2) = [character(len=10) :: 'C0', 'C1']
-        case (fam_springs); items(1:2) = [character(len=10) :: 'K', 'C']
-        end select
-    end function family_items
-
     pure function items_text(f) result(s)
         integer, intent(in) :: f
         character(len=40) :: s
@@ -515,42 +529,6 @@ contains
         s = trim(items(1))//', '//trim(items(2))
         if (len_trim(items(3)) > 0) s = trim(items(1))//', '//trim(items(2))//' or '//trim(items(3))
     end function items_text
-
-    !> Multiply one property of every element of a family by `factor`.
-    pure subroutine scale_family(cs, f, item, factor)
-        type(case_t), intent(inout) :: cs
-        integer, intent(in) :: f
-        character(len=*), intent(in) :: item
-        real(wp), intent(in) :: factor
-        select case (f)
-        case (fam_discs)
-            select case (item)
-            case ('E'); cs%model%discs%d1 = factor*cs%model%discs%d1
-            case ('VISCOUS'); cs%model%discs%d2 = factor*cs%model%discs%d2
-            case ('G'); cs%model%discs%g = factor*cs%model%discs%g
-            end select
-        case (fam_ligaments)
-            select case (item)
-            case ('L1'); cs%model%ligaments%l1 = factor*cs%model%ligaments%l1
-            case ('L2'); cs%model%ligaments%l2 = factor*cs%model%ligaments%l2
-            end select
-        case (fam_muscles)
-            select case (item)
-            case ('M1'); cs%model%muscles%m1 = factor*cs%model%muscles%m1
-            case ('M2'); cs%model%muscles%m2 = factor*cs%model%muscles%m2
-            end select
-        case (fam_limits)
-            select case (item)
-            case ('C0'); cs%model%limits%c0 = factor*cs%model%limits%c0
-            case ('C1'); cs%model%limits%c1 = factor*cs%model%limits%c1
-            end select
-        case (fam_springs)
-            select case (item)
-            case ('K'); cs%model%springs%stiffness = factor*cs%model%springs%stiffness
-            case ('C'); cs%model%springs%damping = factor*cs%model%springs%damping
-            end select
-        end select
-    end subroutine scale_family
 
     !> Run member `v` of the sweep (listing discarded, no HDF5) and
     !! summarise it. A member that fails keeps its exit code and message.

@@ -47,7 +47,7 @@ cards = [l.rstrip("\n") for l in open(sys.argv[2]) if not l.startswith("*")]
 bodies = [l.split()[1] for l in cards if l.startswith("BODY ")]
 want = {"LIGAMENT": {}, "MUSCLE": {}, "DISC": {}}
 for n, l in enumerate(cards):
-    key = l[:10].strip()
+    key = {"HILL": "MUSCLE"}.get(l[:10].strip(), l[:10].strip())   # Hill-type muscles are muscles too
     if key in want:
         w = l.split()
         pts = [float(v) for v in cards[n + 1].split()[:6]]

@@ -1,0 +1,145 @@
+!> Hill-type muscle law and first-order activation dynamics (beyond the
+!! 1978 paper, whose muscle is the passive element of eq 11).
+!!
+!! Force along the muscle line (tension positive, never pushing):
+!!   F = max(0, F0 [a fL(l) fV(v) + fPE(l)] + c L')
+!! with the normalised fibre length l = 1 + (L - L0)/lopt (fibres at their
+!! optimal length lopt in the neutral posture, rigid tendon, no pennation)
+!! and the normalised lengthening rate v = L'/(vmax lopt):
+!!   fL(l)  = exp(-(l - 1)^2/gamma)                       (Thelen 2003)
+!!   fPE(l) = (exp(kpe (l - 1)/eps0) - 1)/(exp(kpe) - 1), l > 1; 0 otherwise
+!!   fV(v)  = (1 + v)/(1 - v/af) for -1 <= v <= 0 (Hill's hyperbola),
+!!            0 for v < -1, and flen - (flen - 1) b/(b + v) for v > 0
+!!            with b = (flen - 1)/(2 (1 + 1/af)): the eccentric branch starts
+!!            with twice the concentric slope and saturates at flen.
+!! c L' is the damping element acting along the line.
+!!
+!! Activation: excitation u(t) = u0 until t1 = onset + delay, then a ramp to
+!! u1 over the rise time, then u1; da/dt = (u - a)/tau with a(t <= t1) = u0.
+!! The history is monotone, so one time constant holds throughout (tau_act
+!! when u1 >= u0, tau_deact otherwise) and a(t) is solved in closed form:
+!! no state is added to the mechanical ODE.
+module hn_muscle
+    use hn_kinds, only: wp, zero, one
+    implicit none
+    private
+
+    public :: hill_t, activation_t, hill_force, hill_fl, hill_fv, hill_fpe, activation_value, excitation_value
+
+    !> Parameters of one Hill-type muscle.
+    type :: hill_t
+        real(wp) :: f0 = zero        !! maximum isometric force PCSA x sigma_max [N]
+        real(wp) :: lopt = 0.1_wp    !! optimal fibre length [m]
+        real(wp) :: vmax = 10.0_wp   !! maximum shortening velocity [lopt/s]
+        real(wp) :: damping = zero   !! damping along the line [N s/m]
+        real(wp) :: gamma = 0.45_wp  !! width of the force-length curve
+        real(wp) :: kpe = 4.0_wp     !! shape of the passive curve
+        real(wp) :: eps0 = 0.6_wp    !! passive strain at F0
+        real(wp) :: af = 0.25_wp     !! Hill's a/F0
+        real(wp) :: flen = 1.4_wp    !! eccentric force limit [F0]
+    end type hill_t
+
+    !> An activation history: bracing level, reflex onset, rise, time constant.
+    type :: activation_t
+        character(len=10) :: name = ''
+        real(wp) :: u0 = zero        !! pre-activation (bracing) level
+        real(wp) :: u1 = zero        !! reflex level
+        real(wp) :: t_onset = zero   !! sled pulse onset [s]
+        real(wp) :: delay = zero     !! reflex delay after the onset [s]
+        real(wp) :: rise = zero      !! rise time of the excitation [s]
+        real(wp) :: tau_act = 0.015_wp    !! activation time constant [s]
+        real(wp) :: tau_deact = 0.05_wp   !! deactivation time constant [s]
+    end type activation_t
+
+contains
+
+    !> Active force-length relation fL(l) at normalised fibre length l.
+    elemental real(wp) function hill_fl(h, l) result(f)
+        type(hill_t), intent(in) :: h   !! the muscle
+        real(wp), intent(in) :: l       !! fibre length / optimal length
+        f = exp(-(l - one)**2/h%gamma)
+    end function hill_fl
+
+    !> Passive force-length relation fPE(l) (zero at and below lopt).
+    elemental real(wp) function hill_fpe(h, l) result(f)
+        type(hill_t), intent(in) :: h   !! the muscle
+        real(wp), intent(in) :: l       !! fibre length / optimal length
+        if (l > one) then
+            f = (exp(h%kpe*(l - one)/h%eps0) - one)/(exp(h%kpe) - one)
+        else
+            f = zero
+        end if
+    end function hill_fpe
+
+    !> Force-velocity relation fV(v) at normalised lengthening rate v.
+    elemental real(wp) function hill_fv(h, v) result(f)
+        type(hill_t), intent(in) :: h   !! the muscle
+        real(wp), intent(in) :: v       !! lengthening rate / (vmax lopt); negative shortening
+        real(wp) :: b
+        if (v <= -one) then
+            f = zero
+        else if (v <= zero) then
+            f = (one + v)/(one - v/h%af)
+        else
+            b = (h%flen - one)/(2*(one + one/h%af))
+            f = h%flen - (h%flen - one)*b/(b + v)
+        end if
+    end function hill_fv
+
+    !> Unclipped Hill force F0 [a fL fV + fPE] + c L' at stretch d = L - L0,
+    !! lengthening rate L' and activation a (negative only when the damper
+    !! pushes harder than the fibres pull).
+    elemental real(wp) function hill_force(h, d, rate, act) result(f)
+        type(hill_t), intent(in) :: h      !! the muscle
+        real(wp), intent(in) :: d          !! stretch from the neutral length [m]
+        real(wp), intent(in) :: rate       !! lengthening rate [m/s]
+        real(wp), intent(in) :: act        !! activation in [0, 1]
+        real(wp) :: l
+        l = one + d/h%lopt
+        f = h%f0*(act*hill_fl(h, l)*hill_fv(h, rate/(h%vmax*h%lopt)) + hill_fpe(h, l)) + h%damping*rate
+    end function hill_force
+
+    !> Excitation u(t): u0, a linear ramp to u1 over the rise time from
+    !! onset + delay, then u1.
+    elemental real(wp) function excitation_value(ah, t) result(u)
+        type(activation_t), intent(in) :: ah   !! the history
+        real(wp), intent(in) :: t              !! time [s]
+        real(wp) :: t1
+        t1 = ah%t_onset + ah%delay
+        if (t <= t1) then
+            u = ah%u0
+        else if (t >= t1 + ah%rise) then
+            u = ah%u1
+        else
+            u = ah%u0 + (ah%u1 - ah%u0)*(t - t1)/ah%rise
+        end if
+    end function excitation_value
+
+    !> Activation a(t), the exact solution of da/dt = (u - a)/tau for the
+    !! excitation of `excitation_value` with a = u0 up to the reflex onset.
+    elemental real(wp) function activation_value(ah, t) result(a)
+        type(activation_t), intent(in) :: ah   !! the history
+        real(wp), intent(in) :: t              !! time [s]
+        real(wp) :: t1, tau, s, a2, tr
+        t1 = ah%t_onset + ah%delay
+        tau = merge(ah%tau_act, ah%tau_deact, ah%u1 >= ah%u0)
+        if (t <= t1) then
+            a = ah%u0
+            return
+        end if
+        if (ah%rise > zero) then
+            s = (ah%u1 - ah%u0)/ah%rise
+            tr = min(t - t1, ah%rise)
+            ! a = u - s tau (1 - exp(-tr/tau)) while the ramp lasts
+            a2 = ah%u0 + s*tr - s*tau*(one - exp(-tr/tau))
+            if (t - t1 <= ah%rise) then
+                a = a2
+                return
+            end if
+        else
+            a2 = ah%u0
+        end if
+        a = ah%u1 + (a2 - ah%u1)*exp(-(t - t1 - ah%rise)/tau)
+    end function activation_value
+
+end module hn_muscle
