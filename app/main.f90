@@ -13,7 +13,7 @@ program hhneck
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
     use hn_version, only: code_version
-    use hn_run, only: run_case, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
+    use hn_run, only: run_state_t, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
                       exit_members_failed
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member
     use hn_sweep_report, only: sweep_finish
@@ -21,6 +21,7 @@ program hhneck
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
+    type(run_state_t) :: run
     character(len=path_len) :: h5name, arg
     character(len=msglen) :: msg
     logical :: h5_given, no_h5, check_only, sweep
@@ -96,7 +97,7 @@ program hhneck
     if (.not. h5_given) h5name = cs%h5file
     if (no_h5) h5name = ''
     call catch_signals()
-    call run_case(cs, output_unit, trim(h5name), res)
+    call run%execute(cs, output_unit, trim(h5name), res)
     if (res%exit_code /= exit_ok) then
         write (error_unit, '(a)') 'hhneck: '//trim(res%message)
         if (len_trim(h5name) > 0) write (error_unit, '(a)') 'hhneck: results up to t = '// &

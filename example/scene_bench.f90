@@ -10,7 +10,7 @@ program scene_bench
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     implicit none
 
@@ -58,7 +58,10 @@ contains
             ix(i) = findloc(c%name, chans(i), dim=1)
         end do
         open (newunit=u, file='/dev/null', action='write')
-        call run_case(cs, u, '', r, keep_samples=.true.)
+        block
+            type(run_state_t) :: run
+            call run%execute(cs, u, '', r, keep_samples=.true.)
+        end block
         close (u)
         r%nsteps = cs%model%tree%ndof
         r%njac = count(.not. cs%model%prescribed)

@@ -12,7 +12,7 @@ program work_precision
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     implicit none
 
@@ -127,7 +127,10 @@ contains
             i_th = findloc(ch%name, 'HEAD_THETY', dim=1)
             i_om = findloc(ch%name, 'HEAD_OMEGY', dim=1)
             open (newunit=lu, file='/dev/null', action='write')
-            call run_case(cs, lu, '', r, keep_samples=.true.)
+            block
+                type(run_state_t) :: run
+                call run%execute(cs, lu, '', r, keep_samples=.true.)
+            end block
             close (lu)
         end subroutine one_run
 

@@ -10,7 +10,7 @@ program test_regression
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t
+    use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     use hn_h5, only: h5_dims, h5_read_real, h5_read_string_attr
     use hn_testing, only: test_suite_t
@@ -60,7 +60,10 @@ contains
         cs%atol = 1.0e-11_wp
         call channels_define(cs, ch)
         open (newunit=lu, file='/dev/null', action='write')
-        call run_case(cs, lu, '', res, keep_samples=.true.)
+        block
+            type(run_state_t) :: run
+            call run%execute(cs, lu, '', res, keep_samples=.true.)
+        end block
         close (lu)
         ok = res%exit_code == 0 .and. size(res%samples_t) == nt
         if (ok) ok = maxval(abs(res%samples_t - t)) < 1.0e-9_wp

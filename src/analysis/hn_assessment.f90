@@ -10,11 +10,18 @@ module hn_assessment
     implicit none
     private
 
-    public :: assessment_t, assess, criteria_channels
+    public :: assessment_t, assess, criteria_input_t, criteria_input_allocate
 
-    !> The channels the assessment reads, in this order.
-    character(len=8), parameter :: criteria_channels(7) = [character(len=8) :: 'HEAD_AX', 'HEAD_AY', 'HEAD_AZ', &
-                                                           'T1_AX', 'OC_FX', 'OC_FZ', 'OC_MY']
+    !> The sampled channels the assessment reads, by name.
+    type :: criteria_input_t
+        real(wp), allocatable :: head_ax(:)   !! head mass-centre x-acceleration, global axes [g] (channel HEAD_AX)
+        real(wp), allocatable :: head_ay(:)   !! ... y [g] (HEAD_AY)
+        real(wp), allocatable :: head_az(:)   !! ... z [g] (HEAD_AZ)
+        real(wp), allocatable :: t1_ax(:)     !! T1 x-acceleration [g] (T1_AX)
+        real(wp), allocatable :: oc_fx(:)     !! occipital-condyle shear force [N] (OC_FX)
+        real(wp), allocatable :: oc_fz(:)     !! occipital-condyle axial force, tension positive [N] (OC_FZ)
+        real(wp), allocatable :: oc_my(:)     !! occipital-condyle moment, flexion positive [N m] (OC_MY)
+    end type criteria_input_t
 
     !> Criteria values, where they occur, and their time histories.
     type :: assessment_t
@@ -35,16 +42,26 @@ module hn_assessment
 
 contains
 
-    !> Assess from samples every dt [s] starting at t0; hist(:, k) is
-    !! criteria_channels(k) (accelerations in g, loads in N and N m).
-    subroutine assess(t0, dt, hist, a)
-        real(wp), intent(in) :: t0, dt
-        real(wp), intent(in) :: hist(:, :)
-        type(assessment_t), intent(out) :: a
+    !> Room for n samples of every input column, zero.
+    pure subroutine criteria_input_allocate(hist, n)
+        type(criteria_input_t), intent(out) :: hist   !! the columns
+        integer, intent(in) :: n                      !! number of samples
+        allocate (hist%head_ax(n), hist%head_ay(n), hist%head_az(n), hist%t1_ax(n), hist%oc_fx(n), &
+                  hist%oc_fz(n), hist%oc_my(n))
+        hist%head_ax = zero; hist%head_ay = zero; hist%head_az = zero; hist%t1_ax = zero
+        hist%oc_fx = zero; hist%oc_fz = zero; hist%oc_my = zero
+    end subroutine criteria_input_allocate
+
+    !> Assess from the first n samples of hist, every dt [s] from t0.
+    subroutine assess(t0, dt, hist, n, a)
+        real(wp), intent(in) :: t0                    !! time of the first sample [s]
+        real(wp), intent(in) :: dt                    !! sampling interval [s]
+        type(criteria_input_t), intent(in) :: hist    !! the sampled input channels
+        integer, intent(in) :: n                      !! number of samples taken
+        type(assessment_t), intent(out) :: a          !! criteria (a%computed false with a%note when impossible)
         real(wp), allocatable :: ax(:), ay(:), az(:), t1x(:)
         type(nij_intercepts_t) :: crit
-        integer :: n, m, k
-        n = size(hist, 1)
+        integer :: m, k
         if (n < 3) then
             a%note = 'not computed: fewer than 3 samples'
             return
@@ -55,18 +72,18 @@ contains
         end if
         a%computed = .true.
         allocate (ax(n), ay(n), az(n), t1x(n), a%head_ar(n), a%nij_t(n, 4), a%nic_t(n), a%fx(n), a%fz(n), a%my(n))
-        call cfc_filter(hist(:, 1), dt, 1000.0_wp, ax)
-        call cfc_filter(hist(:, 2), dt, 1000.0_wp, ay)
-        call cfc_filter(hist(:, 3), dt, 1000.0_wp, az)
+        call cfc_filter(hist%head_ax(1:n), dt, 1000.0_wp, ax)
+        call cfc_filter(hist%head_ay(1:n), dt, 1000.0_wp, ay)
+        call cfc_filter(hist%head_az(1:n), dt, 1000.0_wp, az)
         a%head_ar = sqrt(ax**2 + ay**2 + az**2)
         call hic(a%head_ar, dt, 0.015_wp, a%hic15, a%hic15_t1, a%hic15_t2)
         call hic(a%head_ar, dt, 0.036_wp, a%hic36, a%hic36_t1, a%hic36_t2)
         a%hic15_t1 = a%hic15_t1 + t0; a%hic15_t2 = a%hic15_t2 + t0
         a%hic36_t1 = a%hic36_t1 + t0; a%hic36_t2 = a%hic36_t2 + t0
 
-        call cfc_filter(hist(:, 5), dt, 600.0_wp, a%fx)
-        call cfc_filter(hist(:, 6), dt, 600.0_wp, a%fz)
-        call cfc_filter(hist(:, 7), dt, 600.0_wp, a%my)
+        call cfc_filter(hist%oc_fx(1:n), dt, 600.0_wp, a%fx)
+        call cfc_filter(hist%oc_fz(1:n), dt, 600.0_wp, a%fz)
+        call cfc_filter(hist%oc_my(1:n), dt, 600.0_wp, a%my)
         call nij(a%fz, a%my, crit, a%nij_t(:, 1), a%nij_t(:, 2), a%nij_t(:, 3), a%nij_t(:, 4))
         do k = 1, 4
             m = maxloc(a%nij_t(:, k), dim=1)
@@ -79,8 +96,8 @@ contains
         call peak(a%my, .true., a%flexion, a%flexion_t)
         call peak(a%my, .false., a%extension, a%extension_t)
 
-        call cfc_filter(hist(:, 1)*g_std, dt, 60.0_wp, ax)
-        call cfc_filter(hist(:, 4)*g_std, dt, 60.0_wp, t1x)
+        call cfc_filter(hist%head_ax(1:n)*g_std, dt, 60.0_wp, ax)
+        call cfc_filter(hist%t1_ax(1:n)*g_std, dt, 60.0_wp, t1x)
         call nic(t1x, ax, dt, a%nic_t)
         m = maxloc(a%nic_t, dim=1)
         a%nic_max = a%nic_t(m)

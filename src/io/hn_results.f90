@@ -12,6 +12,7 @@ module hn_results
     use hn_h5, only: h5_file_t
     use hn_dump, only: dump_open
     use hn_assessment, only: assessment_t
+    use hn_results_model, only: write_element_tables
     implicit none
     private
 
@@ -75,6 +76,7 @@ contains
         call me%h5%write_real('/model/joint_in_parent', cs%model%tree%joint_parent, [3, nb])
         call me%h5%write_real('/model/joint_in_body', cs%model%tree%joint_child, [3, nb])
         call me%h5%write_int('/model/prescribed', merge(1, 0, cs%model%prescribed), [n])
+        call write_element_tables(me%h5, cs%model)
         call me%h5%group('/channels')
         do k = 1, ch%n
             call me%h5%series('/channels/'//trim(ch%name(k)), [integer ::])

@@ -1,36 +1,59 @@
-!> Running a case: initial state, posture holding, the integrator taking
-!! its own steps, steps landing on the breakpoints of the input tables (and,
-!! on request, on the switching points of the one-way elements), outputs
-!! interpolated at the sample, print and dump times, the energy audit, and
-!! the checks that stop a diverging run with a message: state not finite,
-!! energy balance lost, a_ij singular, integrator failure.
+!> Running a case as a run object: `start` (listing header, posture holding,
+!! integrator, result file), then `advance_to` each output time (the
+!! integrator's own steps, ending on the breakpoints of the input tables and
+!! on the switching points of the one-way elements when asked, with the
+!! checks that stop a diverging run), `output` there (channels from the
+!! dense output, samples, listing rows, dumps, peaks), and `finish`
+!! (injury assessment, listing tables, energy balance, file status).
+!! `execute` runs all of it. The main program, the sweeps and the
+!! benchmarks use this one object.
 module hn_run
     use hn_kinds, only: wp, zero, one, msglen, i8
     use hn_status, only: stat_ok, stat_not_finite, stat_energy_lost
     use hn_case, only: case_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
-                           energy_t, nenergy
+                           energy_t
     use hn_forces, only: switch_count, switching_functions
     use hn_integrators, only: integrator_t, new_integrator, spectral_radius
-    use hn_channels, only: channel_set_t, channels_define, channels_compute
+    use hn_channels, only: channel_set_t, channels_define, channels_compute, channel_index
     use hn_results, only: results_t
     use hn_listing, only: listing_t
     use hn_dump, only: dump_record
     use hn_breakpoints, only: case_breakpoints
     use hn_tree, only: dof_label
-    use hn_assessment, only: assessment_t, assess, criteria_channels
+    use hn_assessment, only: assessment_t, assess, criteria_input_t, criteria_input_allocate
     use hn_signals, only: signal_received
     use hn_version, only: code_version
     implicit none
     private
 
-    public :: run_case, run_result_t
-
-    real(wp), parameter :: switch_deadband = 1.0e-8_wp   !! |switching function| treated as zero
+    public :: run_state_t, run_result_t
 
     integer, parameter, public :: exit_ok = 0, exit_usage = 1, exit_deck = 2, exit_diverged = 3, &
                                   exit_output = 4, exit_interrupted = 5, &
                                   exit_members_failed = 6
+
+    !> |switching function| below which a one-way element counts as on its
+    !! switch: a coordinate resting on its neutral value (roundoff noise)
+    !! must not switch at every step.
+    real(wp), parameter :: switch_deadband = 1.0e-8_wp
+    !> Output times closer than this fraction of the sampling interval are
+    !! the same time (a sample that is also a print time is one output).
+    real(wp), parameter :: time_match = 1.0e-9_wp
+    !> A complete run whose largest energy-balance residual exceeds this
+    !! fraction of the energy flows is reported as inaccurate.
+    real(wp), parameter :: energy_warn_fraction = 0.01_wp
+    !> A residual beyond this fraction of the energy flows (plus the floor
+    !! below) means the solution grows without a physical cause: the run stops.
+    real(wp), parameter :: energy_fail_fraction = 0.5_wp
+    real(wp), parameter :: energy_fail_floor = 1.0e-3_wp   !! [J] so that a run at rest is not stopped by roundoff
+    !> Event location: steps shorter than this are not searched [s], the
+    !! switching time is located to this width [s] in at most this many
+    !! regula-falsi iterations.
+    real(wp), parameter :: event_min_step = 1.0e-9_wp, event_width = 1.0e-10_wp
+    integer, parameter :: event_max_iter = 40
+    !> The stability diagnosis proposes this fraction of the stable step.
+    real(wp), parameter :: stable_step_margin = 0.8_wp
 
     !> What happened in a run.
     type :: run_result_t
@@ -51,357 +74,524 @@ module hn_run
         type(assessment_t) :: criteria                   !! injury criteria of the run
     end type run_result_t
 
-contains
+    !> Highest and lowest value of every channel and when they occurred.
+    type :: peaks_t
+        real(wp), allocatable :: vmax(:), vmin(:), tmax(:), tmin(:)
+    end type peaks_t
 
-    !> Run the case, writing the listing on unit `lu` and results to
-    !! `h5name` ('' for none). With keep_samples, every channel at every
-    !! sample is also returned in res (benchmarks).
-    subroutine run_case(cs, lu, h5name, res, keep_samples)
-        type(case_t), intent(inout) :: cs
-        integer, intent(in) :: lu
-        character(len=*), intent(in) :: h5name
-        type(run_result_t), intent(out) :: res
-        logical, intent(in), optional :: keep_samples
-        type(model_ode_t) :: sys
+    !> Which channels feed the injury assessment (indices into the channel set).
+    type :: criteria_columns_t
+        integer :: head_ax = 0, head_ay = 0, head_az = 0, t1_ax = 0, oc_fx = 0, oc_fz = 0, oc_my = 0
+    end type criteria_columns_t
+
+    !> A run in progress.
+    type :: run_state_t
+        private
+        type(case_t) :: cs                          !! the case (posture-holding forces filled in at start)
+        type(model_ode_t) :: sys                    !! the model as an ODE system
         class(integrator_t), allocatable :: integ
         type(channel_set_t) :: ch
         type(results_t) :: out
         type(listing_t) :: lst
-        type(energy_t) :: en, en0
-        real(wp), allocatable :: y(:), dydt(:), ygood(:), vmax(:), vmin(:), tmax(:), tmin(:), tb(:)
-        real(wp), allocatable :: sw_old(:), sw_new(:), crit_hist(:, :)
-        integer :: icrit(size(criteria_channels)), k
-        real(wp) :: t, tout, tol, tstop, tgood
-        integer :: stat, nf, ks, kp, kd, ib, nprint_max, nsw, nsample_max, nev_out0
-        integer(i8) :: c0, c1, rate
-        character(len=msglen) :: msg
-        logical :: do_sample, do_print, do_dump, keep, pending_restart
-
-        keep = .false.
-        if (present(keep_samples)) keep = keep_samples
-        call lst%start(lu, cs%model%title, code_version)
-        call lst%echo_deck(cs%deck)
-        call channels_define(cs, ch)
-        call model_ode_init(sys, cs%model)
-        nf = sys%ws%nfree
-        allocate (y(state_size(sys)), dydt(state_size(sys)))
-        call coordinates_to_state(sys%ws, cs%x0, cs%xd0, y)
-        t = cs%t_start
-
-        if (cs%hold_posture) then
-            call sys%rhs(t, y, dydt, stat, msg)
-            if (stat /= 0) then
-                call fail(exit_diverged, 'posture holding: '//trim(msg)); call finish(); return
-            end if
-            sys%model%q_hold(sys%ws%ifree) = -matmul(sys%ws%a(sys%ws%ifree, sys%ws%ifree), dydt(nf + 1:2*nf))
-            cs%model%q_hold = sys%model%q_hold
-        end if
-        call lst%model_summary(cs)
-
-        call new_integrator(cs%integrator, integ, stat)
-        integ%h = cs%h
-        integ%rtol = cs%rtol
-        integ%atol = cs%atol
-        call integ%init(sys, t, y, stat, msg)
-        if (stat /= 0) then
-            call fail(exit_diverged, trim(msg)); call finish(); return
-        end if
-        en0 = energy_terms(sys%model, sys%ws, y(2*nf + 1:))
-        ch%e0 = en0%total
-        ch%head_r0 = sys%ws%kin%r(:, cs%head) - sys%ws%kin%r(:, cs%t1)
-        ch%t1_r0 = sys%ws%kin%r(:, cs%t1)
-        if (len_trim(h5name) > 0) then
-            call out%open(cs, ch, trim(h5name), code_version, stat, msg)
-            if (stat /= 0) then
-                call fail(exit_output, trim(msg)); return
-            end if
-        end if
-        nprint_max = nint((cs%t_end - cs%t_start)/cs%print_dt) + 2
-        allocate (res%times(nprint_max), res%rows(ch%n, nprint_max))
-        if (keep) then
-            nsample_max = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
-            allocate (res%samples_t(nsample_max), res%samples(ch%n, nsample_max))
-        end if
-        allocate (crit_hist(nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2, size(criteria_channels)))
-        do k = 1, size(criteria_channels)
-            icrit(k) = findloc(ch%name, criteria_channels(k), dim=1)
-        end do
-        allocate (vmax(ch%n), vmin(ch%n), tmax(ch%n), tmin(ch%n))
-        vmax = -huge(1.0_wp); vmin = huge(1.0_wp); tmax = t; tmin = t
-
-        tb = [real(wp) ::]
-        if (cs%events /= 'NONE') tb = case_breakpoints(cs)
-        nsw = 0
-        if (cs%events == 'STATE') nsw = switch_count(cs%model)
-        allocate (sw_old(nsw), sw_new(nsw))
-        if (nsw > 0) call switching_functions(sys%model, t, sys%ws%kin, sys%ws%x, sw_old)
-        ib = 1
-        tgood = t
-        ygood = y
-        tol = 1.0e-9_wp*max(cs%sample_dt, 1.0e-6_wp)
-        ks = 0; kp = 0; kd = 1
-        nev_out0 = 0
-        pending_restart = .false.
-        call system_clock(c0, rate)
-        outputs: do
-            tout = min(cs%t_start + ks*cs%sample_dt, cs%t_start + kp*cs%print_dt, cs%t_end)
-            if (kd <= size(cs%dump_times)) tout = min(tout, cs%dump_times(kd))
-            do while (integ%t < tout - tol)
-                do while (ib <= size(tb))
-                    if (tb(ib) > integ%t + tol) exit
-                    ib = ib + 1
-                end do
-                tstop = cs%t_end
-                if (ib <= size(tb)) tstop = min(tstop, tb(ib))
-                ! a restart at a breakpoint or event waits until the next step, so
-                ! that outputs inside the step that reached it can still be
-                ! interpolated from that step
-                if (pending_restart) then
-                    call integ%restart(sys, stat, msg)
-                    pending_restart = .false.
-                end if
-                call integ%step(sys, tstop, stat, msg)
-                if (signal_received() /= 0) then
-                    write (msg, '(a,i0,a,es12.5,a)') 'interrupted by signal ', signal_received(), ' at t = ', &
-                        tgood, ' s'
-                    call fail(exit_interrupted, trim(msg))
-                    exit outputs
-                end if
-                if (stat == 0) call check_state(stat, msg)
-                if (stat /= 0) then
-                    call fail(exit_diverged, 'run stopped: '//trim(msg)//trim(diagnosis()))
-                    exit outputs
-                end if
-                if (nsw > 0) then
-                    call locate_events(stat, msg)
-                    if (stat /= 0) then
-                        call fail(exit_diverged, 'run stopped: '//trim(msg)); exit outputs
-                    end if
-                end if
-                if (ib <= size(tb)) then
-                    if (abs(integ%t - tb(ib)) <= tol) then
-                        ! a kink or jump of an input: start the formulas afresh
-                        pending_restart = .true.
-                        ib = ib + 1
-                    end if
-                end if
-                tgood = integ%t
-                ygood = integ%y
-            end do
-            ! output at tout from the dense output of the last step
-            t = tout
-            call integ%interpolate(t, y)
-            nev_out0 = nev_out0 + 1
-            call sys%rhs(t, y, dydt, stat, msg)
-            if (stat /= 0) then
-                call fail(exit_diverged, 'run stopped: '//trim(msg)); exit outputs
-            end if
-            en = energy_terms(sys%model, sys%ws, y(2*nf + 1:))
-            call channels_compute(cs, sys%ws, t, en, ch)
-            call track_peaks()
-            do_sample = abs(t - (cs%t_start + ks*cs%sample_dt)) <= tol
-            do_print = abs(t - (cs%t_start + kp*cs%print_dt)) <= tol
-            do_dump = .false.
-            if (kd <= size(cs%dump_times)) do_dump = abs(t - cs%dump_times(kd)) <= tol
-            if (do_sample) then
-                call out%sample(t, ch, sys%ws)
-                crit_hist(ks + 1, :) = ch%value(icrit)
-                if (keep) then
-                    res%samples_t(ks + 1) = t
-                    res%samples(:, ks + 1) = ch%value
-                end if
-                ks = ks + 1
-            end if
-            if (do_print) then
-                res%nrows = res%nrows + 1
-                res%times(res%nrows) = t
-                res%rows(:, res%nrows) = ch%value
-                kp = kp + 1
-                call out%flush(ch)
-            end if
-            if (do_dump) then
-                if (out%active) call dump_record(out%h5, sys%model, sys%ws, t, stat, msg)
-                kd = kd + 1
-            end if
-            res%t_reached = t
-            if (t >= cs%t_end - tol) exit outputs
-        end do outputs
-        call system_clock(c1)
-        res%wall = real(c1 - c0, wp)/real(rate, wp)
-        res%nevals_output = nev_out0
-        res%nevals = sys%nevals - nev_out0
-        res%nsteps = integ%nsteps
-        res%nreject = integ%nreject
-        res%njac = integ%njac
-        if (keep) then
-            res%samples_t = res%samples_t(1:ks)
-            res%samples = res%samples(:, 1:ks)
-        end if
-        call assess(cs%t_start, cs%sample_dt, crit_hist(1:ks, :), res%criteria)
-        call finish()
+        type(energy_t) :: en0                       !! energy terms at the start
+        type(run_result_t) :: res
+        type(peaks_t) :: peaks
+        type(criteria_columns_t) :: icol
+        type(criteria_input_t) :: hist              !! assessment inputs at every sample
+        real(wp), allocatable :: tb(:)              !! breakpoints of the input tables
+        real(wp), allocatable :: sw_old(:)          !! switching functions after the last accepted step
+        real(wp), allocatable :: ygood(:)           !! last accepted state ...
+        real(wp) :: tgood = zero                    !! ... and its time
+        real(wp) :: tol = zero                      !! time_match times the sampling interval [s]
+        real(wp) :: tout = zero                     !! the output time being approached [s]
+        integer :: ib = 1                           !! next breakpoint
+        integer :: nsw = 0                          !! number of switching functions
+        integer :: ks = 0, kp = 0, kd = 1           !! samples and listing rows written, next dump
+        integer :: nev_out = 0                      !! evaluations made for outputs
+        logical :: pending_restart = .false.        !! restart the integrator before its next step
+        logical :: keep = .false.                   !! keep every sample in the result (benchmarks, sweeps)
+        logical :: running = .false.
+        integer(i8) :: clock0 = 0_i8
     contains
+        procedure :: execute => run_execute
+        procedure :: start => run_start
+        procedure :: advance_to => run_advance_to
+        procedure :: output => run_output
+        procedure :: locate_events => run_locate_events
+        procedure :: finish => run_finish
+        procedure :: next_output_time => run_next_output_time
+        procedure :: is_running => run_is_running
+        procedure, private :: hold_posture, init_outputs, check_state, diagnosis, fail, track_peaks
+        procedure, private :: record_sample
+    end type run_state_t
 
-        subroutine fail(code, text)
-            integer, intent(in) :: code
-            character(len=*), intent(in) :: text
-            res%exit_code = code
-            res%status = 'incomplete'
-            res%message = text
-        end subroutine fail
+contains
 
-        !> Listing tables, peaks, energy balance and the end-of-run lines; close the file.
-        subroutine finish()
-            character(len=msglen) :: line
-            integer :: st
-            if (allocated(res%times)) then
-                call lst%histories(ch, res%times, res%rows, res%nrows)
-                call lst%peaks(ch, vmax, tmax, vmin, tmin)
-                call lst%criteria(res%criteria)
-                call out%criteria(res%criteria)
-            end if
-            write (line, '(a,es11.4,a,es10.3,a,es10.3,a)') 'ENERGY BALANCE: TOTAL AT START ', ch%e0, &
-                ' J; LARGEST RESIDUAL ', res%energy_residual, ' J AGAINST ENERGY FLOWS OF ', res%energy_scale, ' J'
-            call lst%message(line)
-            if (res%energy_residual > 0.01_wp*res%energy_scale .and. res%exit_code == exit_ok) then
-                write (res%warning, '(a,f6.1,a)') 'WARNING: the energy balance is off by ', &
-                    100*res%energy_residual/max(res%energy_scale, tiny(one)), &
-                    ' % of the energy flows: the results are inaccurate; use a smaller step or tolerance'
-                call lst%message(res%warning)
-            end if
-            write (line, '(a,f9.4,a,i0,a,i0,a,i0,a,i0,a,i0,a,f8.3,a)') 'END OF RUN AT T = ', res%t_reached, &
-                ' S: ', res%nsteps, ' STEPS (', res%nreject, ' REJECTED, ', res%nevents, ' EVENTS), ', &
-                res%nevals, ' DYNAMICS EVALUATIONS + ', res%nevals_output, ' AT OUTPUTS, ', res%wall, ' S WALL TIME'
-            call lst%message(line)
-            if (res%exit_code /= exit_ok) call lst%message('RUN INCOMPLETE: '//trim(res%message))
-            call out%close(ch, trim(res%status), trim(res%message), st, line)
-            if (st /= 0 .and. res%exit_code == exit_ok) call fail(exit_output, trim(line))
-        end subroutine finish
+    !> Run the case from start to end (or to the failure that stops it),
+    !! writing the listing on unit lu and results to h5name ('' for none).
+    !! With keep_samples, every channel at every sample is returned in res.
+    subroutine run_execute(me, cs, lu, h5name, res, keep_samples)
+        class(run_state_t), intent(inout) :: me
+        type(case_t), intent(in) :: cs                !! the case to run
+        integer, intent(in) :: lu                     !! listing unit
+        character(len=*), intent(in) :: h5name        !! result file name ('' for none)
+        type(run_result_t), intent(out) :: res        !! what happened
+        logical, intent(in), optional :: keep_samples !! keep every channel at every sample in res
+        call me%start(cs, lu, h5name, keep_samples)
+        do while (me%is_running())
+            call me%advance_to(me%next_output_time())
+            if (me%is_running()) call me%output()
+        end do
+        call me%finish(res)
+    end subroutine run_execute
 
-        !> The accepted state must be finite and keep the energy balance.
-        subroutine check_state(st, m)
-            integer, intent(out) :: st
-            character(len=msglen), intent(out) :: m
-            type(energy_t) :: e
-            real(wp) :: scale, resid
-            st = stat_ok; m = ''
-            if (.not. all(abs(integ%y) <= huge(1.0_wp))) then
-                st = stat_not_finite
-                write (m, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', integ%t, ' s'
+    !> Listing header and model summary, initial state, posture holding,
+    !! integrator, result file and output schedule.
+    subroutine run_start(me, cs, lu, h5name, keep_samples)
+        class(run_state_t), intent(inout) :: me
+        type(case_t), intent(in) :: cs                !! the case to run
+        integer, intent(in) :: lu                     !! listing unit
+        character(len=*), intent(in) :: h5name        !! result file name ('' for none)
+        logical, intent(in), optional :: keep_samples !! keep every channel at every sample
+        real(wp), allocatable :: y(:)
+        integer :: stat, nf
+        character(len=msglen) :: msg
+        integer(i8) :: rate
+        me%cs = cs
+        me%keep = .false.
+        if (present(keep_samples)) me%keep = keep_samples
+        call me%lst%start(lu, me%cs%model%title, code_version)
+        call me%lst%echo_deck(me%cs%deck)
+        call channels_define(me%cs, me%ch)
+        call model_ode_init(me%sys, me%cs%model)
+        nf = me%sys%ws%nfree
+        allocate (y(state_size(me%sys)))
+        call coordinates_to_state(me%sys%ws, me%cs%x0, me%cs%xd0, y)
+        if (me%cs%hold_posture) then
+            call me%hold_posture(y, stat, msg)
+            if (stat /= stat_ok) then
+                call me%fail(exit_diverged, 'posture holding: '//trim(msg))
                 return
             end if
-            e = energy_terms(sys%model, sys%ws, integ%y(2*nf + 1:))
+        end if
+        call me%lst%model_summary(me%cs)
+        call new_integrator(me%cs%integrator, me%integ, stat)
+        me%integ%h = me%cs%h
+        me%integ%rtol = me%cs%rtol
+        me%integ%atol = me%cs%atol
+        call me%integ%init(me%sys, me%cs%t_start, y, stat, msg)
+        if (stat /= stat_ok) then
+            call me%fail(exit_diverged, trim(msg))
+            return
+        end if
+        me%en0 = energy_terms(me%sys%model, me%sys%ws, y(2*nf + 1:))
+        me%ch%e0 = me%en0%total
+        me%ch%head_r0 = me%sys%ws%kin%r(:, me%cs%head) - me%sys%ws%kin%r(:, me%cs%t1)
+        me%ch%t1_r0 = me%sys%ws%kin%r(:, me%cs%t1)
+        if (len_trim(h5name) > 0) then
+            call me%out%open(me%cs, me%ch, trim(h5name), code_version, stat, msg)
+            if (stat /= stat_ok) then
+                call me%fail(exit_output, trim(msg))
+                return
+            end if
+        end if
+        call me%init_outputs()
+        me%tgood = me%cs%t_start
+        me%ygood = y
+        me%running = .true.
+        call system_clock(me%clock0, rate)
+    end subroutine run_start
+
+    !> Constant generalized forces that hold the start posture: q_hold =
+    !! -a_FF xddot_F at the initial state (then xddot_F = 0 there).
+    subroutine hold_posture(me, y, stat, msg)
+        class(run_state_t), intent(inout) :: me
+        real(wp), intent(in) :: y(:)
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: msg
+        real(wp) :: dydt(size(y))
+        integer :: nf
+        nf = me%sys%ws%nfree
+        call me%sys%rhs(me%cs%t_start, y, dydt, stat, msg)
+        if (stat /= stat_ok) return
+        associate (ws => me%sys%ws)
+            me%sys%model%q_hold(ws%ifree) = -matmul(ws%a(ws%ifree, ws%ifree), dydt(nf + 1:2*nf))
+        end associate
+        me%cs%model%q_hold = me%sys%model%q_hold
+    end subroutine hold_posture
+
+    !> Output schedule, listing rows, sample store, peaks, breakpoints and
+    !! switching functions.
+    subroutine init_outputs(me)
+        class(run_state_t), intent(inout) :: me
+        integer :: nprint, nsample
+        associate (cs => me%cs)
+            nprint = nint((cs%t_end - cs%t_start)/cs%print_dt) + 2
+            nsample = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
+            allocate (me%res%times(nprint), me%res%rows(me%ch%n, nprint))
+            if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample))
+            call criteria_input_allocate(me%hist, nsample)
+            me%icol = criteria_columns_t(channel_index(me%ch, 'HEAD_AX'), channel_index(me%ch, 'HEAD_AY'), &
+                                         channel_index(me%ch, 'HEAD_AZ'), channel_index(me%ch, 'T1_AX'), &
+                                         channel_index(me%ch, 'OC_FX'), channel_index(me%ch, 'OC_FZ'), &
+                                         channel_index(me%ch, 'OC_MY'))
+            allocate (me%peaks%vmax(me%ch%n), me%peaks%vmin(me%ch%n), me%peaks%tmax(me%ch%n), &
+                      me%peaks%tmin(me%ch%n))
+            me%peaks%vmax = -huge(one); me%peaks%vmin = huge(one)
+            me%peaks%tmax = cs%t_start; me%peaks%tmin = cs%t_start
+            me%tb = [real(wp) ::]
+            if (cs%events /= 'NONE') me%tb = case_breakpoints(cs)
+            me%nsw = 0
+            if (cs%events == 'STATE') me%nsw = switch_count(cs%model)
+            allocate (me%sw_old(me%nsw))
+            if (me%nsw > 0) call switching_functions(me%sys%model, cs%t_start, me%sys%ws%kin, me%sys%ws%x, me%sw_old)
+            me%ib = 1
+            me%tol = time_match*max(cs%sample_dt, 1.0e-6_wp)
+            me%ks = 0; me%kp = 0; me%kd = 1
+        end associate
+    end subroutine init_outputs
+
+    !> The next output time: the earliest of the next sample, listing row,
+    !! dump time and the end time.
+    real(wp) function run_next_output_time(me) result(tout)
+        class(run_state_t), intent(in) :: me
+        associate (cs => me%cs)
+            tout = min(cs%t_start + me%ks*cs%sample_dt, cs%t_start + me%kp*cs%print_dt, cs%t_end)
+            if (me%kd <= size(cs%dump_times)) tout = min(tout, cs%dump_times(me%kd))
+        end associate
+    end function run_next_output_time
+
+    !> True while the run has not reached its end time or stopped.
+    logical function run_is_running(me)
+        class(run_state_t), intent(in) :: me
+        run_is_running = me%running
+    end function run_is_running
+
+    !> Integrate until the integrator has passed tout (its dense output then
+    !! covers tout), with steps ending on the input breakpoints, events
+    !! located, and the checks that stop the run on a signal, a non-finite
+    !! state, a lost energy balance or an integrator failure.
+    subroutine run_advance_to(me, tout)
+        class(run_state_t), intent(inout) :: me
+        real(wp), intent(in) :: tout                  !! the output time to reach [s]
+        real(wp) :: tstop
+        integer :: stat
+        character(len=msglen) :: msg
+        me%tout = tout
+        do while (me%integ%t < tout - me%tol .and. me%running)
+            do while (me%ib <= size(me%tb))
+                if (me%tb(me%ib) > me%integ%t + me%tol) exit
+                me%ib = me%ib + 1
+            end do
+            tstop = me%cs%t_end
+            if (me%ib <= size(me%tb)) tstop = min(tstop, me%tb(me%ib))
+            ! a restart at a breakpoint or event waits until the next step, so
+            ! that outputs inside the step that reached it can still be
+            ! interpolated from that step
+            if (me%pending_restart) then
+                call me%integ%restart(me%sys, stat, msg)
+                me%pending_restart = .false.
+            end if
+            call me%integ%step(me%sys, tstop, stat, msg)
+            if (signal_received() /= 0) then
+                write (msg, '(a,i0,a,es12.5,a)') 'interrupted by signal ', signal_received(), ' at t = ', &
+                    me%tgood, ' s'
+                call me%fail(exit_interrupted, trim(msg))
+                return
+            end if
+            if (stat == stat_ok) call me%check_state(stat, msg)
+            if (stat /= stat_ok) then
+                call me%fail(exit_diverged, 'run stopped: '//trim(msg)//me%diagnosis())
+                return
+            end if
+            if (me%nsw > 0) then
+                call me%locate_events(stat, msg)
+                if (stat /= stat_ok) then
+                    call me%fail(exit_diverged, 'run stopped: '//trim(msg))
+                    return
+                end if
+            end if
+            if (me%ib <= size(me%tb)) then
+                if (abs(me%integ%t - me%tb(me%ib)) <= me%tol) then
+                    ! a kink or jump of an input: start the formulas afresh
+                    me%pending_restart = .true.
+                    me%ib = me%ib + 1
+                end if
+            end if
+            me%tgood = me%integ%t
+            me%ygood = me%integ%y
+        end do
+    end subroutine run_advance_to
+
+    !> The outputs at the current output time, from the dense output of the
+    !! last step: channels, peaks, a sample, a listing row and a dump as due.
+    subroutine run_output(me)
+        class(run_state_t), intent(inout) :: me
+        real(wp) :: t, y(size(me%ygood)), dydt(size(me%ygood))
+        type(energy_t) :: en
+        integer :: stat, nf
+        character(len=msglen) :: msg
+        associate (cs => me%cs, ws => me%sys%ws)
+            nf = ws%nfree
+            t = me%tout
+            call me%integ%interpolate(t, y)
+            me%nev_out = me%nev_out + 1
+            call me%sys%rhs(t, y, dydt, stat, msg)
+            if (stat /= stat_ok) then
+                call me%fail(exit_diverged, 'run stopped: '//trim(msg))
+                return
+            end if
+            en = energy_terms(me%sys%model, ws, y(2*nf + 1:))
+            call channels_compute(cs, ws, t, en, me%ch)
+            call me%track_peaks(t)
+            if (abs(t - (cs%t_start + me%ks*cs%sample_dt)) <= me%tol) call me%record_sample(t)
+            if (abs(t - (cs%t_start + me%kp*cs%print_dt)) <= me%tol) then
+                me%res%nrows = me%res%nrows + 1
+                me%res%times(me%res%nrows) = t
+                me%res%rows(:, me%res%nrows) = me%ch%value
+                me%kp = me%kp + 1
+                call me%out%flush(me%ch)
+            end if
+            if (me%kd <= size(cs%dump_times)) then
+                if (abs(t - cs%dump_times(me%kd)) <= me%tol) then
+                    if (me%out%active) call dump_record(me%out%h5, me%sys%model, ws, t, stat, msg)
+                    me%kd = me%kd + 1
+                end if
+            end if
+            me%res%t_reached = t
+            if (t >= cs%t_end - me%tol) me%running = .false.
+        end associate
+    end subroutine run_output
+
+    !> One sample: the result file, the assessment inputs and, when kept,
+    !! the in-memory copy.
+    subroutine record_sample(me, t)
+        class(run_state_t), intent(inout) :: me
+        real(wp), intent(in) :: t
+        integer :: k
+        call me%out%sample(t, me%ch, me%sys%ws)
+        me%ks = me%ks + 1
+        k = me%ks
+        associate (v => me%ch%value, c => me%icol)
+            me%hist%head_ax(k) = v(c%head_ax); me%hist%head_ay(k) = v(c%head_ay)
+            me%hist%head_az(k) = v(c%head_az); me%hist%t1_ax(k) = v(c%t1_ax)
+            me%hist%oc_fx(k) = v(c%oc_fx); me%hist%oc_fz(k) = v(c%oc_fz); me%hist%oc_my(k) = v(c%oc_my)
+        end associate
+        if (me%keep) then
+            me%res%samples_t(k) = t
+            me%res%samples(:, k) = me%ch%value
+        end if
+    end subroutine record_sample
+
+    !> Sign changes of the switching functions in the last step: locate the
+    !! first one (Illinois regula falsi on the dense output), redo the step
+    !! up to it and restart there.
+    subroutine run_locate_events(me, stat, msg)
+        class(run_state_t), intent(inout) :: me
+        integer, intent(out) :: stat                  !! stat_ok, or the failure of an evaluation or step
+        character(len=msglen), intent(out) :: msg     !! why it failed
+        real(wp) :: ta, tb, tc, ga, gb, gc, t0, side
+        real(wp), dimension(size(me%ygood)) :: y0, yc, fc
+        real(wp) :: sw_new(me%nsw)
+        integer :: k, kev, it
+        stat = stat_ok; msg = ''
+        associate (integ => me%integ, sys => me%sys)
+            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, sw_new)
+            kev = 0
+            do k = 1, me%nsw
+                if (sign(one, me%sw_old(k)) /= sign(one, sw_new(k)) .and. abs(me%sw_old(k)) > switch_deadband &
+                    .and. abs(sw_new(k)) > switch_deadband) then
+                    kev = k
+                    exit
+                end if
+            end do
+            if (kev == 0 .or. integ%t - integ%told < event_min_step) then
+                me%sw_old = sw_new
+                return
+            end if
+            side = sign(one, sw_new(kev))
+            ta = integ%told; tb = integ%t; ga = me%sw_old(kev); gb = sw_new(kev)
+            t0 = integ%told; y0 = integ%yold
+            tc = tb
+            do it = 1, event_max_iter
+                tc = tb - gb*(tb - ta)/(gb - ga)
+                call integ%interpolate(tc, yc)
+                call sys%rhs(tc, yc, fc, stat, msg)
+                if (stat /= stat_ok) return
+                call switching_functions(sys%model, tc, sys%ws%kin, sys%ws%x, sw_new)
+                gc = sw_new(kev)
+                if (abs(tb - ta) < event_width) exit
+                if (sign(one, gc) == sign(one, gb)) then
+                    tb = tc; gb = gc; ga = 0.5_wp*ga
+                else
+                    ta = tb; ga = gb; tb = tc; gb = gc
+                end if
+            end do
+            if (tc - t0 < event_width .or. tb - tc < zero) then
+                me%sw_old = sw_new          ! no room to land before it: take the step as it is
+                return
+            end if
+            ! redo the step from its start to the switching time; restart there
+            ! before the next step
+            call integ%init(sys, t0, y0, stat, msg)
+            if (stat /= stat_ok) return
+            if (me%tout > t0 .and. me%tout < tc) then
+                ! keep the pending output time on a step end so it can still be interpolated
+                call integ%advance(sys, me%tout, yc, me%tout, stat, msg)
+                if (stat /= stat_ok) return
+            end if
+            call integ%advance(sys, tc, yc, tc, stat, msg)
+            if (stat /= stat_ok) return
+            me%pending_restart = .true.
+            me%res%nevents = me%res%nevents + 1
+            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, me%sw_old)
+            me%sw_old(kev) = side*max(abs(me%sw_old(kev)), tiny(one))   ! this switch has happened
+        end associate
+    end subroutine run_locate_events
+
+    !> The accepted state must be finite and keep the energy balance.
+    subroutine check_state(me, stat, msg)
+        class(run_state_t), intent(inout) :: me
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: msg
+        type(energy_t) :: e
+        real(wp) :: scale, resid
+        integer :: nf
+        stat = stat_ok; msg = ''
+        nf = me%sys%ws%nfree
+        associate (y => me%integ%y, en0 => me%en0, res => me%res)
+            if (.not. all(abs(y) <= huge(1.0_wp))) then
+                stat = stat_not_finite
+                write (msg, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', me%integ%t, ' s'
+                return
+            end if
+            e = energy_terms(me%sys%model, me%sys%ws, y(2*nf + 1:))
             ! the scale is the energy of the deformation-level motion: the kinetic
             ! energy relative to the root's translation and the element, gravity
             ! and applied energies (not the work of driving the whole model along)
             scale = e%kinetic_rel + abs(e%gravity - en0%gravity) + abs(e%elastic) + abs(e%hold - en0%hold) + &
                     abs(e%dissipated) + abs(e%muscle) + abs(e%applied)
             res%energy_scale = max(res%energy_scale, scale)
-            resid = abs(e%total - ch%e0)
+            resid = abs(e%total - me%ch%e0)
             res%energy_residual = max(res%energy_residual, resid)
-            if (resid > 0.5_wp*res%energy_scale + 1.0e-3_wp) then
-                st = stat_energy_lost
-                write (m, '(a,es12.5,a,es10.3,a,es10.3,a)') 'the energy balance was lost at t = ', integ%t, &
+            if (resid > energy_fail_fraction*res%energy_scale + energy_fail_floor) then
+                stat = stat_energy_lost
+                write (msg, '(a,es12.5,a,es10.3,a,es10.3,a)') 'the energy balance was lost at t = ', me%integ%t, &
                     ' s (residual ', resid, ' J against energy flows of ', res%energy_scale, &
                     ' J): the solution is growing without a physical cause'
             end if
-        end subroutine check_state
+        end associate
+    end subroutine check_state
 
-        !> For a fixed-step method: the likely cause of the failure and a step
-        !! that would be stable, from the spectral radius at the last good state.
-        function diagnosis() result(s)
-            character(len=:), allocatable :: s
-            real(wp) :: rho, limit
-            integer :: lead, st
-            character(len=msglen) :: m
-            character(len=400) :: buf
-            s = ''
-            limit = integ%stability_limit()
-            if (limit >= huge(1.0_wp)) return
-            call spectral_radius(sys, tgood, ygood, rho, lead, st, m)
-            if (st /= 0 .or. rho <= zero) return
+    !> For a fixed-step method: the likely cause of a failure and a step that
+    !! would be stable, from the spectral radius at the last good state.
+    function diagnosis(me) result(s)
+        class(run_state_t), intent(inout) :: me
+        character(len=:), allocatable :: s
+        real(wp) :: rho, limit
+        integer :: lead, st, nf
+        character(len=msglen) :: m
+        character(len=400) :: buf
+        s = ''
+        limit = me%integ%stability_limit()
+        if (limit >= huge(1.0_wp)) return
+        call spectral_radius(me%sys, me%tgood, me%ygood, rho, lead, st, m)
+        if (st /= stat_ok .or. rho <= zero) return
+        nf = me%sys%ws%nfree
+        associate (cs => me%cs)
             write (buf, '(3a,es9.2,a,es10.3,a,a,a,f7.2,a,f5.2,a,es9.2,a)') '. Likely cause: ', &
                 trim(cs%integrator), ' with step ', cs%h, ' s is at or beyond its stability limit: the fastest '// &
-                'mode has |lambda| = ', rho, ' 1/s, mostly in ', trim(dof_label(cs%model%tree, &
-                sys%ws%ifree(1 + mod(lead - 1, nf)))), ' (h |lambda| = ', cs%h*rho, ' at the last good state; limit ', limit, &
-                '); use a step below ', 0.8_wp*limit/rho, ' s, an error-controlled method (DOPRI5, ADAMS) or ROS2'
-            s = trim(buf)
-        end function diagnosis
+                'mode has |lambda| = ', rho, ' 1/s, mostly in ', &
+                trim(dof_label(cs%model%tree, me%sys%ws%ifree(1 + mod(lead - 1, nf)))), &
+                ' (h |lambda| = ', cs%h*rho, ' at the last good state; limit ', limit, &
+                '); use a step below ', stable_step_margin*limit/rho, &
+                ' s, an error-controlled method (DOPRI5, ADAMS) or ROS2'
+        end associate
+        s = trim(buf)
+    end function diagnosis
 
-        !> Sign changes of the switching functions in the last step: locate
-        !! the first one, redo the step up to it and restart there.
-        subroutine locate_events(st, m)
-            integer, intent(out) :: st
-            character(len=msglen), intent(out) :: m
-            real(wp) :: ta, tb_, tc, ga, gb, gc, t0, y0(size(y)), yc(size(y)), fc(size(y)), side
-            integer :: k, kev, it
-            st = 0; m = ''
-            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, sw_new)
-            kev = 0
-            ! a sign change counts only between values clear of a dead band, so
-            ! that a coordinate resting on its neutral value (roundoff noise)
-            ! does not switch at every step
-            do k = 1, nsw
-                if (sign(one, sw_old(k)) /= sign(one, sw_new(k)) .and. abs(sw_old(k)) > switch_deadband .and. &
-                    abs(sw_new(k)) > switch_deadband) then
-                    kev = k
-                    exit
-                end if
-            end do
-            if (kev == 0 .or. integ%t - integ%told < 1.0e-9_wp) then
-                sw_old = sw_new
-                return
-            end if
-            ! Illinois regula falsi on the dense output for the first switch
-            side = sign(one, sw_new(kev))
-            ta = integ%told; tb_ = integ%t; ga = sw_old(kev); gb = sw_new(kev)
-            t0 = integ%told; y0 = integ%yold
-            tc = tb_
-            do it = 1, 40
-                tc = tb_ - gb*(tb_ - ta)/(gb - ga)
-                call integ%interpolate(tc, yc)
-                call sys%rhs(tc, yc, fc, st, m)
-                if (st /= 0) return
-                call switching_functions(sys%model, tc, sys%ws%kin, sys%ws%x, sw_new)
-                gc = sw_new(kev)
-                if (abs(tb_ - ta) < 1.0e-10_wp) exit
-                if (sign(one, gc) == sign(one, gb)) then
-                    tb_ = tc; gb = gc; ga = 0.5_wp*ga
-                else
-                    ta = tb_; ga = gb; tb_ = tc; gb = gc
-                end if
-            end do
-            if (tc - t0 < 1.0e-10_wp .or. tb_ - tc < 0.0_wp) then
-                sw_old = sw_new          ! no room to land before it: take the step as it is
-                return
-            end if
-            ! redo the step from its start to the switching time; restart there
-            ! before the next step
-            call integ%init(sys, t0, y0, st, m)
-            if (st /= 0) return
-            if (tout > t0 .and. tout < tc) then
-                ! keep the pending output time on a step end so it can still be interpolated
-                call integ%advance(sys, tout, yc, tout, st, m)
-                if (st /= 0) return
-            end if
-            call integ%advance(sys, tc, yc, tc, st, m)
-            if (st /= 0) return
-            pending_restart = .true.
-            res%nevents = res%nevents + 1
-            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, sw_old)
-            sw_old(kev) = side*max(abs(sw_old(kev)), tiny(one))   ! this switch has happened
-        end subroutine locate_events
+    !> Mark the run stopped with an exit code and message.
+    subroutine fail(me, code, text)
+        class(run_state_t), intent(inout) :: me
+        integer, intent(in) :: code
+        character(len=*), intent(in) :: text
+        me%res%exit_code = code
+        me%res%status = 'incomplete'
+        me%res%message = text
+        me%running = .false.
+    end subroutine fail
 
-        subroutine track_peaks()
-            integer :: k
-            do k = 1, ch%n
-                if (ch%value(k) > vmax(k)) then
-                    vmax(k) = ch%value(k); tmax(k) = t
-                end if
-                if (ch%value(k) < vmin(k)) then
-                    vmin(k) = ch%value(k); tmin(k) = t
-                end if
-            end do
-        end subroutine track_peaks
-    end subroutine run_case
+    subroutine track_peaks(me, t)
+        class(run_state_t), intent(inout) :: me
+        real(wp), intent(in) :: t
+        integer :: k
+        do k = 1, me%ch%n
+            if (me%ch%value(k) > me%peaks%vmax(k)) then
+                me%peaks%vmax(k) = me%ch%value(k); me%peaks%tmax(k) = t
+            end if
+            if (me%ch%value(k) < me%peaks%vmin(k)) then
+                me%peaks%vmin(k) = me%ch%value(k); me%peaks%tmin(k) = t
+            end if
+        end do
+    end subroutine track_peaks
+
+    !> Injury assessment, listing tables, peaks, energy balance and the
+    !! end-of-run lines; close the result file with its status. res is the
+    !! run's result.
+    subroutine run_finish(me, res)
+        class(run_state_t), intent(inout) :: me
+        type(run_result_t), intent(out) :: res         !! what happened
+        character(len=msglen) :: line
+        integer :: st
+        integer(i8) :: c1, rate
+        call system_clock(c1, rate)
+        if (me%clock0 > 0) me%res%wall = real(c1 - me%clock0, wp)/real(rate, wp)
+        me%res%nevals_output = me%nev_out
+        me%res%nevals = me%sys%nevals - me%nev_out
+        if (allocated(me%integ)) then
+            me%res%nsteps = me%integ%nsteps
+            me%res%nreject = me%integ%nreject
+            me%res%njac = me%integ%njac
+        end if
+        if (me%keep .and. allocated(me%res%samples_t)) then
+            me%res%samples_t = me%res%samples_t(1:me%ks)
+            me%res%samples = me%res%samples(:, 1:me%ks)
+        end if
+        if (allocated(me%res%times)) then
+            call assess(me%cs%t_start, me%cs%sample_dt, me%hist, me%ks, me%res%criteria)
+            call me%lst%histories(me%ch, me%res%times, me%res%rows, me%res%nrows)
+            call me%lst%peaks(me%ch, me%peaks%vmax, me%peaks%tmax, me%peaks%vmin, me%peaks%tmin)
+            call me%lst%criteria(me%res%criteria)
+            call me%out%criteria(me%res%criteria)
+        end if
+        call end_of_run_lines(me)
+        call me%out%close(me%ch, trim(me%res%status), trim(me%res%message), st, line)
+        if (st /= stat_ok .and. me%res%exit_code == exit_ok) call me%fail(exit_output, trim(line))
+        me%running = .false.
+        res = me%res
+    end subroutine run_finish
+
+    !> The energy balance, an accuracy warning, the counts and the status
+    !! in the listing.
+    subroutine end_of_run_lines(me)
+        type(run_state_t), intent(inout) :: me
+        character(len=msglen) :: line
+        associate (res => me%res)
+            write (line, '(a,es11.4,a,es10.3,a,es10.3,a)') 'ENERGY BALANCE: TOTAL AT START ', me%ch%e0, &
+                ' J; LARGEST RESIDUAL ', res%energy_residual, ' J AGAINST ENERGY FLOWS OF ', res%energy_scale, ' J'
+            call me%lst%message(line)
+            if (res%energy_residual > energy_warn_fraction*res%energy_scale .and. res%exit_code == exit_ok) then
+                write (res%warning, '(a,f6.1,a)') 'WARNING: the energy balance is off by ', &
+                    100*res%energy_residual/max(res%energy_scale, tiny(one)), &
+                    ' % of the energy flows: the results are inaccurate; use a smaller step or tolerance'
+                call me%lst%message(res%warning)
+            end if
+            write (line, '(a,f9.4,a,i0,a,i0,a,i0,a,i0,a,i0,a,f8.3,a)') 'END OF RUN AT T = ', res%t_reached, &
+                ' S: ', res%nsteps, ' STEPS (', res%nreject, ' REJECTED, ', res%nevents, ' EVENTS), ', &
+                res%nevals, ' DYNAMICS EVALUATIONS + ', res%nevals_output, ' AT OUTPUTS, ', res%wall, ' S WALL TIME'
+            call me%lst%message(line)
+            if (res%exit_code /= exit_ok) call me%lst%message('RUN INCOMPLETE: '//trim(res%message))
+        end associate
+    end subroutine end_of_run_lines
 
 end module hn_run

@@ -12,7 +12,7 @@ module hn_sweep
     use hn_tree, only: tree_build
     use hn_model, only: model_set_neutral, family_name, family_count, fam_discs, fam_ligaments, fam_muscles, &
                         fam_limits, fam_springs
-    use hn_run, only: run_case, run_result_t, exit_deck, exit_ok
+    use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
     use hn_random, only: rng_t
@@ -560,6 +560,7 @@ contains
         type(member_record_t), intent(out) :: rec
         type(case_t) :: cs
         type(run_result_t) :: res
+        type(run_state_t) :: run
         integer :: stat, lu, ios
         character(len=msglen) :: msg
         call sweep_member_case(sw, v, cs, stat, msg)
@@ -574,7 +575,7 @@ contains
             rec%message = 'cannot open /dev/null for the discarded listing'
             return
         end if
-        call run_case(cs, lu, '', res, keep_samples=.true.)
+        call run%execute(cs, lu, '', res, keep_samples=.true.)
         close (lu)
         rec%status = res%exit_code
         rec%t_reached = res%t_reached

@@ -7,7 +7,7 @@ module hn_test_models
     use hn_random, only: rng_t
     use hn_case, only: case_t
     use hn_deck, only: read_case
-    use hn_run, only: run_case, run_result_t, exit_deck
+    use hn_run, only: run_state_t, run_result_t, exit_deck
     use hn_channels, only: channel_set_t, channels_define
     implicit none
     private
@@ -107,6 +107,7 @@ contains
         type(run_result_t), intent(out) :: res
         type(channel_set_t), intent(out) :: ch
         type(case_t) :: cs
+        type(run_state_t) :: run
         character(len=msglen) :: msg
         integer :: u, stat
         call read_deck_lines(scratch, [character(len=max(len(lines), len(control))) :: lines, control], cs, stat, msg)
@@ -117,7 +118,7 @@ contains
         end if
         call channels_define(cs, ch)
         open (newunit=u, file='/dev/null', action='write')
-        call run_case(cs, u, '', res, keep_samples=.true.)
+        call run%execute(cs, u, '', res, keep_samples=.true.)
         close (u)
     end subroutine run_lines
 

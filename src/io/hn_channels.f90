@@ -1,0 +1,315 @@
+!> Output channels of a run: named scalar time histories computed from the
+!! state of the last dynamics evaluation -- head kinematics, T1 motion,
+!! occipital-condyle loads, joint rotations, element forces and the energy
+!! balance.
+!!
+!! Every channel is one descriptor (name, unit, listing group, and how it is
+!! computed: a quantity code with an item and a component); the fixed
+!! channels are one table below, the per-body and per-element channels are
+!! made by one loop each. Adding a channel of an existing quantity is one
+!! line; a new quantity is one line in the table plus one case in
+!! `channel_value`. Other code finds channels by name (`channel_index`).
+!!
+!! Occipital-condyle (OC) loads are those the head exerts on the neck at the
+!! head's joint point, in head axes, from the head's Newton-Euler balance:
+!! tension (Fz) and flexion (My) positive.
+module hn_channels
+    use hn_kinds, only: wp, zero, g_std, deg
+    use hn_case, only: case_t
+    use hn_dynamics, only: dyn_workspace_t, energy_t
+    use hn_kinematics, only: body_accelerations
+    use hn_applied, only: applied_vector, applied_couple
+    use hn_rotation, only: cross
+    use hn_model, only: fam_discs, fam_ligaments, fam_muscles, fam_limits
+    implicit none
+    private
+
+    public :: channel_t, channel_set_t, channels_define, channels_compute, channel_index
+
+    integer, parameter, public :: chname_len = 24   !! longest channel name
+    integer, parameter :: units_len = 12, group_len = 16
+
+    ! what a channel computes (item and component say which body, element or axis)
+    integer, parameter :: q_head_acc = 1      !! head mass-centre acceleration, global axis `comp` [g]
+    integer, parameter :: q_head_acc_res = 2  !! head resultant acceleration [g]
+    integer, parameter :: q_head_acc_loc = 3  !! head acceleration in head axis `comp` [g]
+    integer, parameter :: q_head_alpha = 4    !! head angular acceleration, global axis `comp` [rad/s^2]
+    integer, parameter :: q_head_omega = 5    !! head angular velocity, global axis `comp` [rad/s]
+    integer, parameter :: q_head_pitch = 6    !! head sagittal rotation from its rotation matrix [deg]
+    integer, parameter :: q_head_disp = 7     !! head mass centre relative to T1's translation, axis `comp` [mm]
+    integer, parameter :: q_t1_acc = 8        !! T1 mass-centre acceleration, global axis `comp` [g]
+    integer, parameter :: q_t1_pitch = 9      !! T1 sagittal rotation [deg]
+    integer, parameter :: q_t1_disp = 10      !! T1 displacement from its start, global axis `comp` [mm]
+    integer, parameter :: q_oc_force = 11     !! head-on-neck force at the OC, head axis `comp` [N]
+    integer, parameter :: q_oc_moment = 12    !! head-on-neck moment at the OC, head axis `comp` [N m]
+    integer, parameter :: q_joint_rot = 13    !! Bryant angle `comp` (4..6) of body `item` [deg]
+    integer, parameter :: q_disc = 14         !! resultant `comp` of disc `item` (1 shear x, 3 axial, 5 moment y)
+    integer, parameter :: q_ligament = 15     !! tension of ligament `item` [N]
+    integer, parameter :: q_muscle = 16       !! tension of muscle `item` [N]
+    integer, parameter :: q_limit = 17        !! generalized force of joint-limit damper `item` [N or N m]
+    integer, parameter :: q_energy = 18       !! energy term `comp` (e_* below) [J]
+
+    integer, parameter :: e_kinetic = 1, e_gravity = 2, e_elastic = 3, e_hold = 4, e_dissip = 5, &
+                          e_muscle = 6, e_applied = 7, e_prescribed = 8, e_balance = 9
+
+    !> One channel: its name, unit, listing group and how it is computed.
+    type :: channel_t
+        character(len=chname_len) :: name = ''
+        character(len=units_len) :: units = ''
+        character(len=group_len) :: group = ''
+        integer :: quantity = 0   !! a q_* code
+        integer :: item = 0       !! body or element number, where the quantity needs one
+        integer :: comp = 0       !! axis, resultant or term number, where the quantity needs one
+    end type channel_t
+
+    !> The channels of a run and their current values.
+    type :: channel_set_t
+        integer :: n = 0
+        type(channel_t), allocatable :: list(:)
+        character(len=chname_len), allocatable :: name(:)   !! list%name, for lookups and writers
+        character(len=units_len), allocatable :: units(:)   !! list%units
+        character(len=group_len), allocatable :: group(:)   !! list%group
+        real(wp), allocatable :: value(:)
+        real(wp) :: head_r0(3) = zero      !! head mass centre relative to T1's origin at the start [m]
+        real(wp) :: t1_r0(3) = zero        !! T1's mass centre at the start [m]
+        real(wp) :: e0 = zero              !! total energy at the start [J]
+    end type channel_set_t
+
+    !> The fixed channels, in listing order.
+    type(channel_t), parameter :: fixed_channels(*) = [ &
+        channel_t('HEAD_AX', 'g', 'HEAD', q_head_acc, 0, 1), &
+        channel_t('HEAD_AZ', 'g', 'HEAD', q_head_acc, 0, 3), &
+        channel_t('HEAD_AR', 'g', 'HEAD', q_head_acc_res, 0, 0), &
+        channel_t('HEAD_ALPHY', 'rad/s^2', 'HEAD', q_head_alpha, 0, 2), &
+        channel_t('HEAD_OMEGY', 'rad/s', 'HEAD', q_head_omega, 0, 2), &
+        channel_t('HEAD_THETY', 'deg', 'HEAD', q_head_pitch, 0, 0), &
+        channel_t('HEAD_DX', 'mm', 'HEAD', q_head_disp, 0, 1), &
+        channel_t('HEAD_DZ', 'mm', 'HEAD', q_head_disp, 0, 3), &
+        channel_t('HEAD_AY', 'g', 'HEAD 3D', q_head_acc, 0, 2), &
+        channel_t('HEAD_AXL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 1), &
+        channel_t('HEAD_AYL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 2), &
+        channel_t('HEAD_AZL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 3), &
+        channel_t('HEAD_ALPHX', 'rad/s^2', 'HEAD 3D', q_head_alpha, 0, 1), &
+        channel_t('HEAD_ALPHZ', 'rad/s^2', 'HEAD 3D', q_head_alpha, 0, 3), &
+        channel_t('HEAD_OMEGX', 'rad/s', 'HEAD 3D', q_head_omega, 0, 1), &
+        channel_t('HEAD_OMEGZ', 'rad/s', 'HEAD 3D', q_head_omega, 0, 3), &
+        channel_t('HEAD_DY', 'mm', 'HEAD 3D', q_head_disp, 0, 2), &
+        channel_t('T1_AX', 'g', 'T1', q_t1_acc, 0, 1), &
+        channel_t('T1_AZ', 'g', 'T1', q_t1_acc, 0, 3), &
+        channel_t('T1_THETY', 'deg', 'T1', q_t1_pitch, 0, 0), &
+        channel_t('T1_DX', 'mm', 'T1', q_t1_disp, 0, 1), &
+        channel_t('OC_FX', 'N', 'OC LOADS', q_oc_force, 0, 1), &
+        channel_t('OC_FY', 'N', 'OC LOADS', q_oc_force, 0, 2), &
+        channel_t('OC_FZ', 'N', 'OC LOADS', q_oc_force, 0, 3), &
+        channel_t('OC_MX', 'N m', 'OC LOADS', q_oc_moment, 0, 1), &
+        channel_t('OC_MY', 'N m', 'OC LOADS', q_oc_moment, 0, 2), &
+        channel_t('OC_MZ', 'N m', 'OC LOADS', q_oc_moment, 0, 3)]
+
+    !> The energy channels, last in the list.
+    type(channel_t), parameter :: energy_channels(*) = [ &
+        channel_t('E_KINETIC', 'J', 'ENERGY', q_energy, 0, e_kinetic), &
+        channel_t('E_GRAVITY', 'J', 'ENERGY', q_energy, 0, e_gravity), &
+        channel_t('E_ELASTIC', 'J', 'ENERGY', q_energy, 0, e_elastic), &
+        channel_t('E_HOLD', 'J', 'ENERGY', q_energy, 0, e_hold), &
+        channel_t('E_DISSIP', 'J', 'ENERGY', q_energy, 0, e_dissip), &
+        channel_t('E_MUSCLE', 'J', 'ENERGY', q_energy, 0, e_muscle), &
+        channel_t('W_APPLIED', 'J', 'ENERGY', q_energy, 0, e_applied), &
+        channel_t('W_PRESCR', 'J', 'ENERGY', q_energy, 0, e_prescribed), &
+        channel_t('E_BALANCE', 'J', 'ENERGY', q_energy, 0, e_balance)]
+
+    character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
+
+    !> Head and T1 quantities shared by several channels at one instant.
+    type :: head_state_t
+        real(wp) :: s(3, 3) = zero         !! head rotation matrix (head axes -> R)
+        real(wp) :: acc(3) = zero          !! head mass-centre acceleration [m/s^2]
+        real(wp) :: alpha(3) = zero        !! head angular acceleration [rad/s^2]
+        real(wp) :: rel(3) = zero          !! head mass centre relative to T1's translation [m]
+        real(wp) :: t1_acc(3) = zero       !! T1 mass-centre acceleration [m/s^2]
+        real(wp) :: oc_force(3) = zero     !! head on neck at the OC, head axes [N]
+        real(wp) :: oc_moment(3) = zero    !! head on neck at the OC, head axes [N m]
+    end type head_state_t
+
+contains
+
+    !> The channel list of a case.
+    subroutine channels_define(cs, ch)
+        type(case_t), intent(in) :: cs          !! the case (its model's bodies and elements)
+        type(channel_set_t), intent(out) :: ch  !! the channels, values zero
+        type(channel_t), allocatable :: c(:)
+        integer :: k, e, m, n
+        associate (model => cs%model, tree => cs%model%tree)
+            n = size(fixed_channels) + 3*(tree%nbody - 1) + 3*size(model%discs) + size(model%ligaments) + &
+                size(model%muscles) + size(model%limits) + size(energy_channels)
+            allocate (c(n))
+            n = size(fixed_channels)
+            c(1:n) = fixed_channels
+            do m = 4, 6
+                do k = 1, tree%nbody
+                    if (tree%parent(k) == 0) cycle
+                    call add(channel_t(trim(tree%name(k))//'_'//coord_names(m), 'deg', 'JOINTS '//coord_names(m), &
+                                       q_joint_rot, k, m))
+                end do
+            end do
+            do e = 1, size(model%discs)
+                call add(channel_t(trim(model%discs(e)%name)//'_P', 'N', 'DISC AXIAL', q_disc, e, 3))
+            end do
+            do e = 1, size(model%discs)
+                call add(channel_t(trim(model%discs(e)%name)//'_VX', 'N', 'DISC SHEAR X', q_disc, e, 1))
+            end do
+            do e = 1, size(model%discs)
+                call add(channel_t(trim(model%discs(e)%name)//'_MY', 'N m', 'DISC MOMENT Y', q_disc, e, 5))
+            end do
+            do e = 1, size(model%ligaments)
+                call add(channel_t(model%ligaments(e)%name, 'N', 'LIGAMENTS', q_ligament, e, 0))
+            end do
+            do e = 1, size(model%muscles)
+                call add(channel_t(model%muscles(e)%name, 'N', 'MUSCLES', q_muscle, e, 0))
+            end do
+            do e = 1, size(model%limits)
+                k = model%limits(e)%body
+                m = model%limits(e)%local
+                call add(channel_t('L_'//trim(tree%name(k))//'_'//coord_names(m), merge('N  ', 'N m', m <= 3), &
+                                   'JOINT LIMITS', q_limit, e, m))
+            end do
+        end associate
+        c(n + 1:) = energy_channels
+        ch%n = size(c)
+        ch%list = c
+        ch%name = c%name
+        ch%units = c%units
+        ch%group = c%group
+        allocate (ch%value(ch%n))
+        ch%value = zero
+    contains
+        subroutine add(one)
+            type(channel_t), intent(in) :: one
+            n = n + 1
+            c(n) = one
+        end subroutine add
+    end subroutine channels_define
+
+    !> Index of the channel called `name` in the set, 0 when there is none.
+    pure integer function channel_index(ch, name) result(k)
+        type(channel_set_t), intent(in) :: ch   !! the channel set
+        character(len=*), intent(in) :: name    !! a channel name
+        k = findloc(ch%name, name, dim=1)
+    end function channel_index
+
+    !> Channel values at time t from the workspace of the evaluation at t
+    !! (kinematics, accelerations, element outputs) and the energy terms.
+    subroutine channels_compute(cs, ws, t, en, ch)
+        type(case_t), intent(in) :: cs               !! the case
+        type(dyn_workspace_t), intent(in) :: ws      !! workspace of the evaluation at t
+        real(wp), intent(in) :: t                    !! time [s]
+        type(energy_t), intent(in) :: en             !! energy terms at t
+        type(channel_set_t), intent(inout) :: ch     !! values updated
+        type(head_state_t) :: hs
+        integer :: k
+        hs = head_state(cs, ws, t, ch%head_r0)
+        do k = 1, ch%n
+            ch%value(k) = channel_value(ch%list(k), cs, ws, hs, en, ch)
+        end do
+    end subroutine channels_compute
+
+    !> The value of one channel.
+    pure real(wp) function channel_value(c, cs, ws, hs, en, ch) result(v)
+        type(channel_t), intent(in) :: c
+        type(case_t), intent(in) :: cs
+        type(dyn_workspace_t), intent(in) :: ws
+        type(head_state_t), intent(in) :: hs
+        type(energy_t), intent(in) :: en
+        type(channel_set_t), intent(in) :: ch
+        real(wp) :: sl(3)
+        integer :: j
+        associate (model => cs%model, h => cs%head, t1 => cs%t1)
+            select case (c%quantity)
+            case (q_head_acc); v = hs%acc(c%comp)/g_std
+            case (q_head_acc_res); v = norm2(hs%acc)/g_std
+            case (q_head_acc_loc)
+                sl = matmul(transpose(hs%s), hs%acc)/g_std
+                v = sl(c%comp)
+            case (q_head_alpha); v = hs%alpha(c%comp)
+            case (q_head_omega); v = ws%kin%omega(c%comp, h)
+            case (q_head_pitch); v = atan2(hs%s(1, 3), hs%s(3, 3))/deg
+            case (q_head_disp); v = 1000*hs%rel(c%comp)
+            case (q_t1_acc); v = hs%t1_acc(c%comp)/g_std
+            case (q_t1_pitch); v = atan2(ws%kin%s(1, 3, t1), ws%kin%s(3, 3, t1))/deg
+            case (q_t1_disp); v = 1000*(ws%kin%r(c%comp, t1) - ch%t1_r0(c%comp))
+            case (q_oc_force); v = hs%oc_force(c%comp)
+            case (q_oc_moment); v = hs%oc_moment(c%comp)
+            case (q_joint_rot)
+                j = model%tree%dof_index(c%comp, c%item)
+                if (j > 0) then
+                    v = ws%x(j)/deg
+                else
+                    v = model%tree%q_ref(c%comp, c%item)/deg
+                end if
+            case (q_disc); v = merge(ws%eo%disc(c%comp, c%item), zero, model%family_on(fam_discs))
+            case (q_ligament); v = merge(ws%eo%ligament(1, c%item), zero, model%family_on(fam_ligaments))
+            case (q_muscle); v = merge(ws%eo%muscle(1, c%item), zero, model%family_on(fam_muscles))
+            case (q_limit); v = merge(ws%eo%limit(c%item), zero, model%family_on(fam_limits))
+            case (q_energy); v = energy_value(en, c%comp, ch%e0)
+            case default; v = zero
+            end select
+        end associate
+    end function channel_value
+
+    !> Energy term `which` (e_* codes); the balance relative to the start.
+    pure real(wp) function energy_value(en, which, e0) result(v)
+        type(energy_t), intent(in) :: en
+        integer, intent(in) :: which
+        real(wp), intent(in) :: e0
+        select case (which)
+        case (e_kinetic); v = en%kinetic
+        case (e_gravity); v = en%gravity
+        case (e_elastic); v = en%elastic
+        case (e_hold); v = en%hold
+        case (e_dissip); v = en%dissipated
+        case (e_muscle); v = en%muscle
+        case (e_applied); v = en%applied
+        case (e_prescribed); v = en%prescribed
+        case default; v = en%total - e0
+        end select
+    end function energy_value
+
+    !> Head and T1 accelerations and the occipital-condyle loads: the neck's
+    !! load on the head from the head's Newton-Euler balance (gravity and the
+    !! applied loads on the head are the other external loads).
+    pure function head_state(cs, ws, t, head_r0) result(hs)
+        type(case_t), intent(in) :: cs
+        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: t, head_r0(3)
+        type(head_state_t) :: hs
+        real(wp) :: acc(3, cs%model%tree%nbody), alpha(3, cs%model%tree%nbody)
+        real(wp) :: fext(3), mext(3), f(3), mo(3), rgo(3), iw(3), v(3)
+        integer :: h, e
+        h = cs%head
+        call body_accelerations(cs%model%tree, ws%kin, ws%xdd, acc, alpha)
+        hs%s = ws%kin%s(:, :, h)
+        hs%acc = acc(:, h)
+        hs%alpha = alpha(:, h)
+        hs%t1_acc = acc(:, cs%t1)
+        hs%rel = ws%kin%r(:, h) - ws%kin%r(:, cs%t1) - head_r0
+        fext = cs%model%tree%mass(h)*cs%model%gravity
+        mext = zero
+        rgo = ws%kin%joint(:, h) - ws%kin%r(:, h)       ! mass centre -> OC
+        do e = 1, size(cs%model%applied)
+            if (cs%model%applied(e)%body /= h) cycle
+            v = applied_vector(cs%model%applied(e), ws%kin, t)
+            if (cs%model%applied(e)%kind == applied_couple) then
+                mext = mext + v
+            else
+                fext = fext + v
+                mext = mext + cross(matmul(hs%s, cs%model%applied(e)%point), v)
+            end if
+        end do
+        f = cs%model%tree%mass(h)*hs%acc - fext              ! neck on head
+        iw = matmul(ws%kin%inertia_r(:, :, h), ws%kin%omega(:, h))
+        ! moments about the mass centre: I alpha + w x I w = M_neck(OC) + rgo x f + mext
+        mo = matmul(ws%kin%inertia_r(:, :, h), hs%alpha) + cross(ws%kin%omega(:, h), iw) - cross(rgo, f) - mext
+        hs%oc_force = -matmul(transpose(hs%s), f)            ! head on neck, head axes
+        hs%oc_moment = -matmul(transpose(hs%s), mo)
+    end function head_state
+
+end module hn_channels
