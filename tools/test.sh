@@ -7,6 +7,8 @@
 #      pointer (skipped with --no-checking-build),
 #   3. every whole-program check test/scripts/*.sh, with HHNECK set to the
 #      debug build's executable.
+# The test programs of a build run $TEST_JOBS at a time (default: the
+# number of cores); each one's output is shown whole when all are done.
 # Each test program and script ends its output with "N passed, N failed";
 # the last line is the total over all of them. Exit code 1 on any failure.
 #   tools/test.sh NAME [FILTER]   only the test program NAME (a suite
@@ -24,6 +26,8 @@ case "${1:-}" in
     "") ;;
     *) echo "usage: tools/test.sh [--no-checking-build | NAME [FILTER]]" >&2; exit 1 ;;
 esac
+TEST_JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
+times=build/test_times    # seconds per test program in the last run
 
 # fpm's debug profile, without its -fcoarray=single: with it gfortran 12
 # writes test module files that it cannot read back once they use pFUnit
@@ -32,8 +36,10 @@ CHECK_FLAGS="-g -O0 -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -Wa
 
 # pFUnit: built once per machine (a few minutes), then the test/unit/*.pf
 # suites turned into Fortran with their driver programs
+start=$(date +%s)
 ./tools/pfunit.sh ensure || exit 1
 ./tools/pfunit.sh generate || exit 1
+echo "== pFUnit ready ($(($(date +%s) - start)) s)"
 PF_INC=$(./tools/pfunit.sh include)
 PF_LINK=$(./tools/pfunit.sh link)
 
@@ -44,8 +50,9 @@ if [ -n "$only" ]; then
     exec fpm test "$only" --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK"
 fi
 
-log=$(mktemp)
-trap 'rm -f "$log" "$log.rc"' EXIT
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+log=$work/log
 failed_steps=0
 
 # step TITLE COMMAND...: run the command, its output to the terminal and
@@ -53,15 +60,55 @@ failed_steps=0
 step() {
     echo "== $1"
     shift
-    { "$@" 2>&1; echo $? > "$log.rc"; } | tee -a "$log"
-    [ "$(cat "$log.rc")" -eq 0 ] || failed_steps=$((failed_steps + 1))
+    t0=$(date +%s)
+    { "$@" 2>&1; echo $? > "$work/rc"; } | tee -a "$log"
+    [ "$(cat "$work/rc")" -eq 0 ] || failed_steps=$((failed_steps + 1))
+    echo "   ($(($(date +%s) - t0)) s)"
 }
 
-step "fpm test (debug build: $DEBUG_FLAGS)" \
-    fpm test --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK"
+# run_tests FLAGS: build every test program with FLAGS, run them
+# TEST_JOBS at a time, then show each one's output. A program that stops
+# without its closing line is reported as one failed check.
+run_tests() {
+    fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner true || return 1
+    # the slowest first (their times from the last run, else these), so
+    # that no long program starts last
+    fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | grep '/test/' |
+        awk -v known="$times" 'BEGIN {
+                n = split("test_regression test_cases test_free_bodies test_stability test_stiffened test_scene", slow)
+                for (i = 1; i <= n; i++) t[slow[i]] = 100 - i
+                while ((getline line < known) > 0) { split(line, f, " "); t[f[2]] = f[1] }
+            }
+            { name = $0; sub(".*/", "", name); print (name in t ? t[name] : 0), $0 }' |
+        sort -rn | cut -d' ' -f2- > "$work/exes"
+    out=$work/out
+    rm -rf "$out"
+    mkdir -p "$out"
+    # shellcheck disable=SC2016
+    xargs -P "$TEST_JOBS" -n 1 sh -c \
+        'n=$(basename "$1"); t=$(date +%s); "$1" > "$0/$n.out" 2>&1; echo $? > "$0/$n.rc";
+         echo "$(($(date +%s) - t)) $n" > "$0/$n.time"; echo "   $n done ($(($(date +%s) - t)) s)"' \
+        "$out" < "$work/exes"
+    cat "$out"/*.time > "$times" 2>/dev/null
+    status=0
+    while read -r exe; do
+        n=$(basename "$exe")
+        echo "-- $n"
+        cat "$out/$n.out"
+        if [ "$(cat "$out/$n.rc")" -ne 0 ]; then
+            status=1
+            if ! grep -q '^[0-9][0-9]* passed, [0-9][0-9]* failed$' "$out/$n.out"; then
+                echo "FAIL  $n stopped before its closing line (exit code $(cat "$out/$n.rc"))"
+                echo "0 passed, 1 failed"
+            fi
+        fi
+    done < "$work/exes"
+    return $status
+}
+
+step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS"
 if [ "$checking" = yes ]; then
-    step "fpm test (checking build: $CHECK_FLAGS)" \
-        fpm test --flag "$CHECK_FLAGS $PF_INC" --link-flag "$PF_LINK"
+    step "test programs, checking build ($CHECK_FLAGS)" run_tests "$CHECK_FLAGS"
 fi
 
 # the whole-program checks run the debug build's executable
@@ -71,13 +118,14 @@ for script in test/scripts/*.sh; do
     step "$script" sh "$script"
 done
 
-passed=$(sed -n 's/^\([0-9][0-9]*\) passed, [0-9][0-9]* failed$/\1/p' "$log" | awk '{s += $1} END {print s + 0}')
-failed=$(sed -n 's/^[0-9][0-9]* passed, \([0-9][0-9]*\) failed$/\1/p' "$log" | awk '{s += $1} END {print s + 0}')
-programs=$(grep -c '^[0-9][0-9]* passed, [0-9][0-9]* failed$' "$log")
+summary='^[0-9][0-9]* passed, [0-9][0-9]* failed$'
+passed=$(grep "$summary" "$log" | awk '{s += $1} END {print s + 0}')
+failed=$(grep "$summary" "$log" | awk '{s += $3} END {print s + 0}')
+programs=$(grep -c "$summary" "$log")
 if [ "$failed_steps" -gt 0 ] && [ "$failed" -eq 0 ]; then
-    # a test program that stopped before its closing line
+    # a build that failed
     echo "FAIL  $failed_steps step(s) ended with an error before reporting a failed check (see above)"
     failed=$failed_steps
 fi
-echo "== total over $programs test programs and scripts: $passed passed, $failed failed"
+echo "== total over $programs test programs and scripts: $passed passed, $failed failed ($(($(date +%s) - start)) s)"
 [ "$failed" -eq 0 ]
