@@ -1,80 +1,102 @@
-!> hhneck: run one case deck read from standard input.
+!> hhneck: run one case deck, given by name or on standard input.
 !!
-!!   fpm run < input/case6-2.inp
-!!   fpm run -- --h5 out.h5 < input/nbdl15g.inp
-!!
-!!   fpm run -- --sweep --h5 sweep.h5 < input/sweep_nbdl_oat.inp
+!!   hhneck input/case6-2.inp              (or: hhneck < input/case6-2.inp)
+!!   hhneck --h5 out.h5 input/nbdl15g.inp
+!!   hhneck --sweep --h5 sweep.h5 input/sweep_nbdl_oat.inp
 !!
 !! The listing goes to standard output, diagnostics to standard error.
-!! Exit codes are listed in docs/errors.md.
+!! `hhneck --help` lists the options; exit codes are in docs/errors.md.
 program hhneck
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use hn_kinds, only: msglen, wp, i8
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
+    use hn_deck_reader, only: parse_real, stdin_path
     use hn_version, only: code_version
     use hn_run, only: run_state_t, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
-                      exit_members_failed
+                      exit_members_failed, exit_interrupted
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member
     use hn_sweep_report, only: sweep_finish
-    use hn_signals, only: catch_signals
+    use hn_signals, only: catch_signals, defer_signals
+    use hn_progress, only: progress_off, progress_auto, progress_on
+    use hn_posix, only: is_terminal, stdin_kind, kind_char_device, exit_now
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
     type(run_state_t) :: run
-    character(len=path_len) :: h5name, arg
+    character(len=path_len) :: h5name, arg, deck, source
+    character(len=path_len), allocatable :: search(:)
     character(len=msglen) :: msg
     logical :: h5_given, no_h5, check_only, sweep
-    integer :: i, stat, nargs
-    real(wp) :: sample, rtol
+    integer :: i, stat, nargs, progress, max_steps
+    real(wp) :: sample, rtol, max_wall
 
+    ! until the deck is read there is nothing to close: a signal ends the program at once
+    call catch_signals(exit_interrupted)
     h5_given = .false.; no_h5 = .false.; check_only = .false.; sweep = .false.
     sample = -1.0_wp
     rtol = -1.0_wp
+    max_wall = -1.0_wp
+    max_steps = -1
+    progress = progress_auto
     h5name = ''
+    deck = ''
+    allocate (search(0))
     nargs = command_argument_count()
     i = 1
     do while (i <= nargs)
         call get_command_argument(i, arg)
         select case (arg)
         case ('--h5')
-            if (i == nargs) call usage('--h5 needs a file name')
-            i = i + 1
-            call get_command_argument(i, h5name)
-            h5_given = .true.
+            call h5name_argument()
         case ('--no-h5')
             no_h5 = .true.
         case ('--rtol')
-            if (i == nargs) call usage('--rtol needs a tolerance')
-            i = i + 1
-            call get_command_argument(i, arg)
-            read (arg, *, iostat=stat) rtol
-            if (stat /= 0 .or. .not. (rtol >= 1.0e-14_wp .and. rtol <= 0.1_wp)) &
-                call usage('--rtol needs a tolerance in [1E-14, 0.1], found "'//trim(arg)//'"')
+            rtol = real_argument('--rtol needs a tolerance in [1E-14, 0.1]', 1.0e-14_wp, 0.1_wp)
         case ('--sample')
-            if (i == nargs) call usage('--sample needs an interval in seconds')
+            sample = real_argument('--sample needs a positive interval in seconds below 1E4', 1.0e-9_wp, 1.0e4_wp)
+        case ('--max-wall')
+            max_wall = real_argument('--max-wall needs a wall time in seconds in [1E-3, 1E7]', 1.0e-3_wp, 1.0e7_wp)
+        case ('--max-steps')
+            max_steps = nint(real_argument('--max-steps needs a whole number of steps in [1, 2E9]', 1.0_wp, 2.0e9_wp))
+        case ('--progress')
+            progress = progress_on
+        case ('--no-progress')
+            progress = progress_off
+        case ('-I', '--include-path')
+            if (i == nargs) call usage(trim(arg)//' needs a directory')
             i = i + 1
             call get_command_argument(i, arg)
-            read (arg, *, iostat=stat) sample
-            if (stat /= 0 .or. .not. (sample > 0.0_wp .and. sample < 1.0e4_wp)) &
-                call usage('--sample needs a positive interval in seconds, found "'//trim(arg)//'"')
+            search = [character(len=path_len) :: search, arg]
         case ('--check')
             check_only = .true.
         case ('--sweep')
             sweep = .true.
         case ('--version')
             write (output_unit, '(a)') 'hhneck '//code_version
-            stop
+            stop 0, quiet=.true.
         case ('--help', '-h')
-            call usage('')
+            call help()
         case default
-            call usage('unknown option "'//trim(arg)//'"')
+            if (arg(1:1) == '-' .and. len_trim(arg) > 1) call usage('unknown option "'//trim(arg)//'"')
+            if (len_trim(deck) > 0) call usage('only one deck may be given; found "'//trim(deck)//'" and "'// &
+                                               trim(arg)//'"')
+            deck = arg
         end select
         i = i + 1
     end do
+    call environment_path()
+    if (len_trim(deck) == 0 .or. deck == '-') then
+        if (is_terminal(0) .and. stdin_kind() == kind_char_device) &
+            call usage('no deck: give a deck file (hhneck DECK) or redirect standard input (hhneck < DECK)')
+        deck = stdin_path
+        source = 'stdin'
+    else
+        source = deck
+    end if
 
     if (sweep) call run_sweep()
-    call read_case('/dev/stdin', 'stdin', cs, stat, msg)
+    call read_case(trim(deck), trim(source), cs, stat, msg, search)
     if (stat /= 0) then
         write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
         stop exit_deck, quiet=.true.
@@ -84,7 +106,7 @@ program hhneck
     end do
     if (check_only) then
         write (error_unit, '(a)') 'hhneck: deck is valid: '//trim(cs%model%title)
-        stop
+        stop 0, quiet=.true.
     end if
     if (sample > 0.0_wp) then
         if ((cs%t_end - cs%t_start)/sample > 1.0e7_wp) call usage('--sample gives more than 1E7 samples for this run')
@@ -94,41 +116,50 @@ program hhneck
         cs%rtol = rtol
         cs%atol = rtol*1.0e-3_wp
     end if
+    if (max_wall > 0.0_wp) cs%wall_limit = max_wall
+    if (max_steps > 0) cs%step_limit = max_steps
+    cs%progress = progress
     if (.not. h5_given) h5name = cs%h5file
     if (no_h5) h5name = ''
-    call catch_signals()
+    ! from here on a signal stops the run at its next step, files closed and marked
+    call defer_signals()
     call run%execute(cs, output_unit, trim(h5name), res)
     if (res%exit_code /= exit_ok) then
         write (error_unit, '(a)') 'hhneck: '//trim(res%message)
-        if (len_trim(h5name) > 0) write (error_unit, '(a)') 'hhneck: results up to t = '// &
-            trim(real_text(res%t_reached))//' s kept in '//trim(h5name)//' (marked incomplete)'
-        stop res%exit_code, quiet=.true.
+        if (len_trim(res%file_note) > 0) write (error_unit, '(a)') 'hhneck: '//trim(res%file_note)
+        ! skip the HDF5 library's exit handler: after a write failure (a full
+        ! disk) it would try again to flush a file that is already given up
+        flush (output_unit)
+        flush (error_unit)
+        call exit_now(res%exit_code)
     end if
+    if (len_trim(res%file_note) > 0) write (error_unit, '(a)') 'hhneck: '//trim(res%file_note)
     if (len_trim(res%warning) > 0) write (error_unit, '(a)') 'hhneck: '//trim(res%warning)
     write (error_unit, '(a,f8.3,a,i0,a)') 'hhneck: done in ', res%wall, ' s wall time, ', res%nevals, &
         ' dynamics evaluations'
 
 contains
 
-    !> A parameter sweep read from standard input, its members run one
-    !! after the other (the MPI driver is `fpm run --example sweep_mpi`).
+    !> A parameter sweep read from the deck, its members run one after the
+    !! other (the MPI driver is `fpm run --example sweep_mpi`).
     subroutine run_sweep()
         type(sweep_t) :: sw
         type(member_record_t), allocatable :: recs(:)
         real(wp), allocatable :: v(:, :)
         integer(i8) :: c0, c1, rate
         integer :: r
-        call read_sweep('/dev/stdin', 'stdin', sw, stat, msg)
+        call read_sweep(trim(deck), trim(source), sw, stat, msg)
         if (stat /= 0) then
             write (error_unit, '(a)') 'hhneck: sweep deck error: '//trim(msg)
             stop exit_deck, quiet=.true.
         end if
         if (check_only) then
             write (error_unit, '(a)') 'hhneck: sweep deck is valid: '//trim(sw%title)
-            stop
+            stop 0, quiet=.true.
         end if
         if (.not. h5_given) h5name = sw%h5file
         if (no_h5) h5name = ''
+        call defer_signals()
         v = sweep_design(sw)
         allocate (recs(size(v, 2)))
         call system_clock(c0, rate)
@@ -150,23 +181,97 @@ contains
             stop exit_members_failed, quiet=.true.
         end if
         write (error_unit, '(a,i0,a)') 'hhneck: sweep finished; all ', size(recs), ' member runs complete'
-        stop
+        stop 0, quiet=.true.
     end subroutine run_sweep
+
+    subroutine h5name_argument()
+        if (i == nargs) call usage('--h5 needs a file name')
+        i = i + 1
+        call get_command_argument(i, h5name)
+        if (len_trim(h5name) == 0) call usage('--h5 needs a file name')
+        h5_given = .true.
+    end subroutine h5name_argument
+
+    !> The next argument as a real number in [lo, hi] (checked before conversion).
+    real(wp) function real_argument(problem, lo, hi) result(v)
+        character(len=*), intent(in) :: problem
+        real(wp), intent(in) :: lo, hi
+        logical :: ok
+        if (i == nargs) call usage(problem)
+        i = i + 1
+        call get_command_argument(i, arg)
+        ok = len_trim(arg) <= 40
+        if (ok) call parse_real(trim(arg), v, ok)
+        if (.not. ok) call usage(problem//', found "'//trim(arg)//'"')
+        if (.not. (v >= lo .and. v <= hi)) call usage(problem//', found "'//trim(arg)//'"')
+    end function real_argument
+
+    !> Directories of HHNECK_PATH (colon separated) after those given with -I.
+    subroutine environment_path()
+        character(len=4096) :: env
+        integer :: n, st, a, b
+        call get_environment_variable('HHNECK_PATH', env, n, st)
+        if (st /= 0 .or. n == 0) return
+        a = 1
+        do while (a <= n)
+            b = index(env(a:n), ':')
+            if (b == 0) then
+                b = n + 1
+            else
+                b = a + b - 1
+            end if
+            if (b > a) search = [character(len=path_len) :: search, env(a:b - 1)]
+            a = b + 1
+        end do
+    end subroutine environment_path
 
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
-        if (len(problem) > 0) write (error_unit, '(a)') 'hhneck: '//problem
-        write (error_unit, '(a)') 'usage: hhneck [--sweep] [--h5 FILE | --no-h5] [--sample SECONDS] [--rtol TOL] '// &
-            '[--check] [--version] < DECK'
-        if (len(problem) > 0) stop exit_usage, quiet=.true.
-        stop
+        write (error_unit, '(a)') 'hhneck: '//problem
+        write (error_unit, '(a)') 'usage: hhneck [OPTIONS] [DECK]     (or: hhneck [OPTIONS] < DECK; '// &
+            'hhneck --help for the options)'
+        stop exit_usage, quiet=.true.
     end subroutine usage
 
-    function real_text(v) result(s)
-        real(wp), intent(in) :: v
-        character(len=24) :: s
-        write (s, '(f12.5)') v
-        s = adjustl(s)
-    end function real_text
+    subroutine help()
+        write (output_unit, '(a)') &
+            'usage: hhneck [OPTIONS] [DECK]', &
+            '       hhneck [OPTIONS] < DECK', &
+            '', &
+            'Runs the case deck DECK (a file, or standard input when DECK is absent or -): the', &
+            '54-DOF head/neck model of Huston, Huston & Harlow (1978). The listing goes to standard', &
+            'output, messages to standard error, results to the HDF5 file the deck names (H5FILE).', &
+            'Deck format: docs/deck-format.md; result file: docs/output-format.md.', &
+            '', &
+            'options:', &
+            '  --h5 FILE          write the HDF5 results to FILE (instead of the H5FILE card);', &
+            '                     a missing directory is created, an older FILE is replaced', &
+            '  --no-h5            write no HDF5 file', &
+            '  --sample SECONDS   HDF5 sampling interval (instead of the OUTPUT card)', &
+            '  --rtol TOL         relative tolerance of the error-controlled integrators', &
+            '                     (instead of CONTROL F5; the absolute tolerance becomes TOL/1000)', &
+            '  --check            read and check the deck (warnings included), do not run', &
+            '  --sweep            the deck is a parameter-sweep deck (docs/sweeps.md)', &
+            '  -I DIR, --include-path DIR', &
+            '                     look for INCLUDE files in DIR too (repeatable); after the', &
+            '                     including file''s directory and the working directory, and', &
+            '                     before the directories of the environment variable HHNECK_PATH', &
+            '                     (colon separated), e.g. the project directory of the shipped decks', &
+            '  --progress         show progress on standard error (simulated and wall time, step,', &
+            '                     time to go); by default shown only on a terminal, for long runs', &
+            '  --no-progress      never show progress', &
+            '  --max-wall SECONDS stop the run after this wall time (exit 3, files kept, marked', &
+            '                     incomplete, with the likely cause); also the RUNLIMIT card', &
+            '  --max-steps N      stop the run after N integration steps (exit 3, likewise)', &
+            '  --version          print the version', &
+            '  -h, --help         print this help', &
+            '', &
+            'exit codes (docs/errors.md):', &
+            '  0  run complete           3  run stopped early (divergence, a run limit); files kept', &
+            '  1  bad command line       4  the result file could not be written', &
+            '  2  deck error (located)   5  interrupted by SIGINT or SIGTERM; files kept', &
+            '                            6  a sweep finished but some member runs failed'
+        stop 0, quiet=.true.
+    end subroutine help
 
 end program hhneck

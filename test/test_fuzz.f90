@@ -4,16 +4,22 @@
 !! duplicated cards, truncated files, huge, zero and negative values where
 !! a positive one is required, unknown cards, references to bodies that do
 !! not exist, loops in the tree, non-positive-definite inertia, tabs,
-!! non-ASCII bytes, overlong lines, empty input. Every one must be refused
-!! with a message that names the line and columns, or the card, body or
-!! element concerned, and nothing may crash. CR LF line ends are the one
-!! mutation a deck survives: such a deck must read exactly as the original.
+!! non-ASCII bytes, overlong lines, empty input, numbers beyond the double
+!! range, devices, FIFOs and directories as INCLUDE targets, tables beyond
+!! their point limit, a deck beyond the line limit, every coordinate locked.
+!! Every one must be refused with a message that names the line and columns,
+!! or the card, body or element concerned, and nothing may crash (in the
+!! checking build too, which traps floating-point overflow). CR LF line
+!! ends are one mutation a deck survives: such a deck must read exactly as
+!! the original; degenerate masses and inertias are the other: accepted,
+!! with a warning naming the body.
 program test_fuzz
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
     use hn_deck, only: read_case
     use hn_testing, only: test_suite_t
     use hn_test_models, only: rng_t
+    use hn_posix, only: remove_file
     implicit none
 
     type :: line_t
@@ -25,19 +31,22 @@ program test_fuzz
     character(len=20), parameter :: decks(5) = [character(len=20) :: 'case6-1', 'case6-2', 'case6-5', 'nbdl15g', &
                                                 'hybrid3_flexion']
     character(len=*), parameter :: scratch = 'test_fuzz_scratch.inp'
-    integer :: nrefused, ntotal, nbad, ncrlf, ncrlf_ok, k, nper(20)
+    integer :: nrefused, ntotal, nbad, ncrlf, ncrlf_ok, k, nper(26), nwarn, nwarn_ok
     character(len=400) :: first_bad
-    character(len=24), parameter :: kinds(20) = [character(len=24) :: 'shifted card', 'letters in a number', &
+    character(len=24), parameter :: kinds(26) = [character(len=24) :: 'shifted card', 'letters in a number', &
         'NaN or Inf text', 'missing card', 'duplicated card', 'truncated file', 'huge value', 'negative value', &
         'zero value', 'unknown card', 'unknown body', 'loop in the tree', 'non-PD inertia', 'tab character', &
-        'non-ASCII byte', 'overlong line', 'empty input', 'orphan continuation', 'bad name', 'limits reversed']
+        'non-ASCII byte', 'overlong line', 'empty input', 'orphan continuation', 'bad name', 'limits reversed', &
+        'beyond double range', 'device/FIFO/dir INCLUDE', 'table beyond limit', 'deck beyond line limit', &
+        'degenerate mass', 'no free coordinate']
 
-    nrefused = 0; ntotal = 0; nbad = 0; ncrlf = 0; ncrlf_ok = 0; nper = 0
+    nrefused = 0; ntotal = 0; nbad = 0; ncrlf = 0; ncrlf_ok = 0; nper = 0; nwarn = 0; nwarn_ok = 0
     first_bad = ''
     do k = 1, size(decks)
         call fuzz_deck('input/'//trim(decks(k))//'.inp')
     end do
     call check_mutant([line_t ::], 17)          ! empty input
+    call huge_deck()
     call report()
     call suite%finish()
 
@@ -142,6 +151,10 @@ contains
         type(line_t) :: l
         character(len=10), parameter :: letters(4) = [character(len=10) :: 'ABC', '1.0X', '1,5', '2..0']
         character(len=10), parameter :: nans(4) = [character(len=10) :: 'NaN', 'Inf', '-Infinity', 'nan']
+        character(len=10), parameter :: beyond(4) = [character(len=10) :: '1.0E+400', '1.0D+999', '-1.0E+309', &
+                                                     '1.0E-400']
+        character(len=40), parameter :: specials(4) = [character(len=40) :: '/dev/zero', '/dev/urandom', 'input', &
+                                                       'test_fuzz_fifo']
         d = expanded(path)
         do rep = 1, 6
             ! 1 shift a main card right by 1 to 3 columns
@@ -183,7 +196,31 @@ contains
             ! 6 truncated right after a card that needs continuation cards
             i = card_with_continuation(d)
             call check_mutant(d(1:i), 6)
+            ! 21 a number beyond the double range (refused before conversion)
+            call numeric_field(d, i, f)
+            call check_mutant(replaced(d, i, with_field(d(i), f, beyond(pick(4)))), 21)
         end do
+        ! 22 INCLUDE of something that never ends or is not a file, after the TITLE
+        idx = lines_with_key(d, 'TITLE   ')
+        do j = 1, size(specials)
+            if (.not. special_exists(specials(j))) cycle
+            call check_mutant([d(1:idx(1)), line_t('INCLUDE   '//trim(specials(j))), d(idx(1) + 1:)], 22)
+        end do
+        ! 23 a table beyond its point limit
+        idx = lines_with_key(d, 'TABLE   ')
+        do j = 1, min(size(idx), 2)
+            call check_mutant(replaced(d, idx(j), with_field(d(idx(j)), 2, '100001')), 23)
+            call check_mutant(replaced(d, idx(j), with_field(d(idx(j)), 2, '999999999')), 23)
+        end do
+        ! 25 degenerate but valid masses and inertias: accepted with a warning
+        idx = lines_with_key(d, 'BODY    ')
+        do j = 1, size(idx)
+            call check_warned(replaced(d, idx(j), with_field(with_field(with_field(with_field(d(idx(j)), 3, &
+                              '1.0E-6'), 4, '1.0E-12'), 5, '1.0E-12'), 6, '1.0E-12')), &
+                              'body '//trim(adjustl(field(d(idx(j)), 1)))//': mass')
+        end do
+        ! 26 every coordinate locked
+        call check_mutant([d, line_t('LOCK      ALL       TX        TY        TZ        RX        RY        RZ')], 26)
         ! 4 missing cards: TITLE, CONTROL, every BODY
         idx = lines_with_key(d, 'TITLE   ')
         call check_mutant([d(1:idx(1) - 1), d(idx(1) + 1:)], 4)
@@ -228,6 +265,45 @@ contains
         ! CR LF line ends: the same deck
         call check_crlf(d)
     end subroutine fuzz_deck
+
+    !> A deck beyond the line limit: refused at the line, not read to the end.
+    subroutine huge_deck()
+        type(line_t), allocatable :: lines(:)
+        integer :: k
+        allocate (lines(1000002))
+        lines(1) = line_t('TITLE     HUGE')
+        do k = 2, size(lines)
+            lines(k) = line_t('*')
+        end do
+        call check_mutant(lines, 24)
+    end subroutine huge_deck
+
+    !> /dev/zero and the like when this machine has them; a FIFO made here.
+    logical function special_exists(path) result(ok)
+        character(len=*), intent(in) :: path
+        integer :: st
+        inquire (file=trim(path), exist=ok)
+        if (ok .or. trim(path) /= 'test_fuzz_fifo') return
+        call execute_command_line('mkfifo test_fuzz_fifo 2> /dev/null', exitstat=st)
+        inquire (file=trim(path), exist=ok)
+    end function special_exists
+
+    !> A valid but degenerate deck: accepted, with a warning that contains `needle`.
+    subroutine check_warned(lines, needle)
+        type(line_t), intent(in) :: lines(:)
+        character(len=*), intent(in) :: needle
+        type(case_t) :: cs
+        integer :: stat
+        character(len=msglen) :: msg
+        call write_deck(lines, .false.)
+        call read_case(scratch, 'stdin', cs, stat, msg)
+        nwarn = nwarn + 1
+        nper(25) = nper(25) + 1
+        if (stat == 0) then
+            if (any(index(cs%warnings, needle) > 0)) nwarn_ok = nwarn_ok + 1
+        end if
+        if (stat /= 0 .and. len_trim(first_bad) == 0) first_bad = 'degenerate mass refused: '//trim(msg)
+    end subroutine check_warned
 
     subroutine duplicate(d, k)
         type(line_t), intent(in) :: d(:)
@@ -337,7 +413,8 @@ contains
         nper(kind) = nper(kind) + 1
         named = (index(msg, ' line ') > 0 .and. index(msg, 'column') > 0) .or. index(msg, 'body ') > 0 .or. &
                 index(msg, 'the deck has no ') > 0 .or. index(msg, 'the deck is empty') > 0 .or. &
-                (index(msg, ' line ') > 0 .and. index(msg, ' card') > 0)
+                (index(msg, ' line ') > 0 .and. index(msg, ' card') > 0) .or. &
+                (index(msg, ' line ') > 0 .and. index(msg, 'the limit on a deck') > 0)
         if (stat /= 0 .and. named) then
             nrefused = nrefused + 1
         else
@@ -370,6 +447,7 @@ contains
         character(len=200) :: d
         open (newunit=u, file=scratch, status='old')
         close (u, status='delete')
+        call remove_file('test_fuzz_fifo', k)          ! a FIFO: unlinked, never opened
         do k = 1, size(kinds)
             write (*, '(a,a24,i5)') '      ', kinds(k), nper(k)
         end do
@@ -379,6 +457,9 @@ contains
                          trim(d)//' '//trim(first_bad))
         write (d, '(i0,a,i0)') ncrlf_ok, ' of ', ncrlf
         call suite%check(ncrlf_ok == ncrlf, 'CR LF line ends: every deck reads as with LF line ends', d)
+        write (d, '(i0,a,i0)') nwarn_ok, ' of ', nwarn
+        call suite%check(nwarn_ok == nwarn .and. nwarn > 0, 'degenerate masses and inertias: accepted, '// &
+                         'with a warning naming the body', d)
     end subroutine report
 
 end program test_fuzz

@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Opens a result file with h5py and checks the documented layout
-(docs/output-format.md): status, time, channels, bodies, coordinates."""
+(docs/output-format.md): status, time, channels, bodies, coordinates, a
+text `units` attribute (read as str) on every dataset of /time, /channels,
+/bodies, /coordinates, /model and /injury, and the labelled injury criteria.
+    check_results.py FILE"""
 import sys
 import h5py
 import numpy as np
@@ -14,11 +17,36 @@ def check(cond, what):
         sys.exit(1)
     ok += 1
 nt = f["time"].shape[0]
-check(f.attrs["status"] in (b"complete", "complete"), "status attribute is 'complete'")
+check(f.attrs["status"] == "complete", "status attribute is the text 'complete' (a str)")
 check(nt > 1 and np.all(np.diff(f["time"][:]) > 0), "time increases (%d samples)" % nt)
 check(all(f["channels"][k].shape == (nt,) for k in f["channels"]), "every channel has one value per sample")
 nb = f["model/mass"].shape[0]
 check(f["bodies/position"].shape == (nt, nb, 3), "bodies/position (nt, nb, 3) in h5py order")
 check(f["bodies/rotation"].shape == (nt, nb, 3, 3), "bodies/rotation (nt, nb, 3, 3) in h5py order")
 check(np.all(np.isfinite(f["coordinates/x"][:])), "coordinates finite")
+missing = []
+def needs_units(name, obj):
+    if isinstance(obj, h5py.Dataset) and obj.dtype.kind in "fiu":
+        u = obj.attrs.get("units")
+        if not isinstance(u, str) or not u:
+            missing.append(name)
+for group in ("time", "channels", "bodies", "coordinates", "model", "injury"):
+    if isinstance(f[group], h5py.Dataset):
+        needs_units(group, f[group])
+    else:
+        f[group].visititems(lambda n, o, g=group: needs_units(g + "/" + n, o))
+check(not missing, "a text 'units' attribute on every numeric dataset (%s)" % (", ".join(missing[:5]) or "none missing"))
+inj = f["injury"]
+if "note" in inj.attrs:
+    check(isinstance(inj.attrs["note"], str), "injury criteria not computed: " + inj.attrs["note"])
+else:
+    modes = inj["nij"].attrs["modes"].split()
+    check(modes == ["NTE", "NTF", "NCE", "NCF"] and inj["nij/value"].shape == (4,),
+          "Nij labelled by mode: " + ", ".join("%s %.3g" % (m, v) for m, v in zip(modes, inj["nij/value"][:])))
+    hic = inj["hic15/value"][()]
+    t1, t2 = inj["hic15/t_start"][()], inj["hic15/t_end"][()]
+    check(hic >= 0 and 0 <= t2 - t1 <= 0.015 + 1e-9 and inj["hic15/t_start"].attrs["units"] == "s",
+          "HIC15 %.3g over a labelled window of %.3g ms" % (hic, 1000 * (t2 - t1)))
+lines = [s.decode().rstrip() for s in f["deck/text"][:]]
+check(len(lines) > 0 and lines[0].startswith("TITLE"), "the deck is stored as /deck/text (%d cards)" % len(lines))
 print("%d passed, 0 failed" % ok)

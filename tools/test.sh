@@ -6,7 +6,8 @@
 #      division by zero and overflow and checks every array bound and
 #      pointer (skipped with --no-checking-build),
 #   3. every whole-program check test/scripts/*.sh, with HHNECK set to the
-#      debug build's executable.
+#      debug build's executable (and to the checking build's too for a
+#      script with a line "# builds: debug checking").
 # The test programs of a build run $TEST_JOBS at a time (default: the
 # number of cores); each one's output is shown whole when all are done.
 # Each test program and script ends its output with "N passed, N failed";
@@ -111,11 +112,20 @@ if [ "$checking" = yes ]; then
     step "test programs, checking build ($CHECK_FLAGS)" run_tests "$CHECK_FLAGS"
 fi
 
-# the whole-program checks run the debug build's executable
-HHNECK=$(fpm run --flag "$DEBUG_FLAGS $PF_INC" --runner echo 2>/dev/null | tail -n 1)
-export HHNECK
+# the whole-program checks run the debug build's executable; a script
+# with a line "# builds: debug checking" runs on both builds' executables
 for script in test/scripts/*.sh; do
-    step "$script" sh "$script"
+    builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1)
+    for build in ${builds:-debug}; do
+        case $build in
+            debug) flags=$DEBUG_FLAGS ;;
+            checking) [ "$checking" = yes ] || continue; flags=$CHECK_FLAGS ;;
+            *) echo "$script: unknown build '$build'" >&2; continue ;;
+        esac
+        HHNECK=$(fpm run --flag "$flags $PF_INC" --runner echo 2>/dev/null | tail -n 1)
+        export HHNECK
+        step "$script ($build build)" sh "$script"
+    done
 done
 
 summary='^[0-9][0-9]* passed, [0-9][0-9]* failed$'

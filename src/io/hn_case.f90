@@ -15,6 +15,7 @@ module hn_case
         character(len=80) :: text = ''
         character(len=:), allocatable :: source  !! 'stdin' or the included file
         integer :: line = 0                      !! line number in that source
+        integer :: via = 0                       !! which INCLUDE brought it in (0: the deck itself)
     end type deck_line_t
 
     !> Everything needed to run and report one case.
@@ -33,6 +34,9 @@ module hn_case
         integer :: head = 0                         !! body reported as the head
         integer :: t1 = 0                           !! body reported as T1 (NIC, relative motion)
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
+        real(wp) :: wall_limit = zero               !! RUNLIMIT: stop after this wall time [s] (0 = none)
+        integer :: step_limit = 0                   !! RUNLIMIT: stop after this many steps (0 = none)
+        integer :: progress = 0                     !! progress on stderr: 0 off, 1 on a terminal, 2 always (hn_progress)
         real(wp), allocatable :: dump_times(:)      !! times of the cross-checking dump
         type(deck_line_t), allocatable :: deck(:)   !! the cards as read
         character(len=100), allocatable :: scene(:)  !! what the scene cards did (listing summary)

@@ -5,7 +5,7 @@
 module hn_deck
     use hn_kinds, only: wp, zero, one, deg, msglen
     use hn_case, only: case_t, deck_line_t
-    use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
+    use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
     use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
@@ -29,6 +29,8 @@ module hn_deck
     character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
     real(wp), parameter :: big_length = 10.0_wp     !! largest coordinate of a point [m]
     real(wp), parameter :: big_modulus = 1.0e13_wp  !! largest modulus or stiffness accepted
+    integer, parameter :: max_table_points = 100000 !! points of one TABLE
+    real(wp), parameter :: tiny_value = 1.0e-30_wp  !! a table whose values are all below this is zero in effect
 
     !> One card with its continuation cards: deck lines first .. first+ncont.
     type :: card_t
@@ -51,21 +53,25 @@ module hn_deck
         character(len=10) :: name = ''
         type(table_t) :: tab
         integer :: line = 0
+        character(len=160) :: warning = ''   !! a scale that makes the table zero in effect
     end type named_table_t
 
 contains
 
     !> Read the deck in file `path` ('/dev/stdin' for standard input, named
-    !! `source` in messages) into `cs`.
-    subroutine read_case(path, source, cs, stat, errmsg)
+    !! `source` in messages) into `cs`. INCLUDE files are looked for next to
+    !! the including file, in the working directory, then in `include_path`.
+    subroutine read_case(path, source, cs, stat, errmsg, include_path)
         character(len=*), intent(in) :: path    !! file to read
         character(len=*), intent(in) :: source  !! its name in messages
         type(case_t), intent(out) :: cs
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
+        character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE files
         type(deck_reader_t) :: rd
         rd%top = source
-        call read_card_images(rd, path, source, 0)
+        if (present(include_path)) rd%search = include_path
+        call read_card_images(rd, path, source)
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the deck is empty (no cards); expected a TITLE card first')
         call interpret(rd, cs)
@@ -99,6 +105,7 @@ contains
         type(named_table_t), allocatable :: tabs(:)
         character(len=10), allocatable :: bnames(:)
         type(body_map_t) :: bmap
+        integer :: k
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
             call group_cards(rd, cards)
@@ -112,11 +119,55 @@ contains
         if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, bmap, tabs)
         if (.not. rd%failed()) call report_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call stiffen_cards(rd, cards, cs)
+        if (.not. rd%failed()) call runlimit_card(rd, cards, cs)
+        if (.not. rd%failed()) call check_unknowns(rd, cards, cs)
         if (.not. rd%failed()) then
             call model_set_neutral(cs%model)
             call plausibility_warnings(cs%model, cs%warnings)
+            do k = 1, size(tabs)
+                if (len_trim(tabs(k)%warning) > 0) cs%warnings = [character(len=160) :: cs%warnings, tabs(k)%warning]
+            end do
         end if
     end subroutine interpret
+
+    !> RUNLIMIT wall steps: stop the run (exit 3, files kept and marked
+    !! incomplete) after this wall time [s] or this many steps; blank: no limit.
+    subroutine runlimit_card(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        integer :: ic
+        ic = single(rd, cards, 'RUNLIMIT', .false.)
+        if (ic == 0 .or. rd%failed()) return
+        call rd%real(cards(ic)%first, 1, 'wall-time limit', 's', cs%wall_limit, 1.0e-3_wp, 1.0e7_wp, default=zero)
+        call rd%int(cards(ic)%first, 2, 'step limit', cs%step_limit, 1, huge(1), default=0)
+        if (.not. rd%failed() .and. cs%wall_limit <= zero .and. cs%step_limit == 0) &
+            call rd%fail(rd%where(cards(ic)%first)//', columns 11-30 (RUNLIMIT card): found no limit; '// &
+                         'expected a wall time [s] in F1, a step count in F2, or both')
+    end subroutine runlimit_card
+
+    !> A run needs at least one free coordinate: one that is neither locked
+    !! nor prescribed (both builds refuse the same decks, before anything runs).
+    subroutine check_unknowns(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(in) :: cs
+        integer :: k, last
+        if (cs%model%tree%ndof - count(cs%model%prescribed) > 0) return
+        last = 0
+        do k = 1, size(cards)
+            if (any(cards(k)%key == [character(len=8) :: 'LOCK', 'PRESCRIB', 'SCENE', 'MERGE'])) last = k
+        end do
+        if (last == 0) then
+            call rd%fail(rd%top//': the model has no free coordinate; expected at least one coordinate '// &
+                         'that is neither locked nor prescribed')
+        else
+            call rd%fail(rd%where(cards(last)%first)//' ('//trim(cards(last)%key)//' card): with this card '// &
+                         'the model has no free coordinate left ('//trim(int_str(cs%model%tree%ndof))// &
+                         ' active, all prescribed; '//trim(int_str(6*cs%model%tree%nbody - cs%model%tree%ndof))// &
+                         ' locked); expected at least one coordinate that is neither locked nor prescribed')
+        end if
+    end subroutine check_unknowns
 
     !> Number of continuation cards a card type takes (-1: computed, TABLE).
     pure integer function continuations(key) result(n)
@@ -134,10 +185,10 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(29) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(30) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
-            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE']
+            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'RUNLIMIT']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -170,8 +221,8 @@ contains
             if (need < 0) then
                 s = rd%raw(i, 2)
                 read (s, *, iostat=ios) npts
-                if (ios /= 0 .or. npts < 1) then
-                    call rd%int(i, 2, 'number of points', npts, 1, 100000)
+                if (ios /= 0 .or. npts < 1 .or. npts > max_table_points) then
+                    call rd%int(i, 2, 'number of points', npts, 1, max_table_points)
                     if (.not. rd%failed()) call rd%fail(rd%where(i)//': bad TABLE point count')
                     return
                 end if
@@ -348,7 +399,7 @@ contains
         type(body_map_t), intent(out) :: bmap
         character(len=10), allocatable :: pnames(:)
         integer, allocatable :: bline(:)
-        integer :: nb, k, kb, i, f, p, m, stat
+        integer :: nb, k, kb, i, f, p, m, stat, bad
         character(len=msglen) :: msg
         real(wp) :: v
         logical, allocatable :: joint_given(:)
@@ -370,9 +421,15 @@ contains
             bline(kb) = i
             call rd%name(i, 1, 'body name', bnames(kb))
             if (rd%failed()) return
-            if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL' .or. bnames(kb) == 'ALL') then
+            if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL') then
                 call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
-                             trim(bnames(kb))//'", which names the inertial frame; expected another name')
+                             trim(bnames(kb))//'", which names the inertial frame (R, alias INERTIAL); '// &
+                             'expected another name')
+                return
+            end if
+            if (bnames(kb) == 'ALL') then
+                call rd%fail(rd%context(i, 1, 'body name')//': found "ALL", a reserved word (LOCK ALL '// &
+                             'means every body); expected another name')
                 return
             end if
             if (len_trim(bnames(kb)) > name_len) then
@@ -408,11 +465,8 @@ contains
                 cs%model%tree%parent(kb) = p
             end if
         end do
-        if (count(cs%model%tree%parent == 0) /= 1) then
-            call rd%fail(rd%top//': '//trim(int_str(count(cs%model%tree%parent == 0)))//' bodies have parent R; '// &
-                         'expected exactly one root body (the tree hangs from one body)')
-            return
-        end if
+        call check_roots(rd, cs%model%tree%parent, bnames, bline)
+        if (rd%failed()) return
 
         do k = 1, size(cards)
             i = cards(k)%first
@@ -453,9 +507,9 @@ contains
             if (rd%failed()) return
         end do
 
-        call tree_build(cs%model%tree, stat, msg)
+        call tree_build(cs%model%tree, stat, msg, bad)
         if (stat /= 0) then
-            call rd%fail(rd%top//' (BODY cards): '//trim(msg))
+            call rd%fail(body_place(bad)//': '//trim(msg))
             return
         end if
         allocate (bmap%new(nb), bmap%shift(3, nb), bmap%merged_by(nb))
@@ -466,12 +520,84 @@ contains
         if (rd%failed()) return
         call tree_build(cs%model%tree, stat, msg)
         if (stat /= 0) then
-            call rd%fail(rd%top//' (MERGE cards): '//trim(msg))
+            call rd%fail(rd%where(cards(findloc(cards%key, 'MERGE', dim=1, back=.true.))%first)// &
+                         ' (MERGE cards): '//trim(msg))
             return
         end if
         tree = cs%model%tree       ! model_init takes the tree by value (its model argument is intent(out))
         call model_init(cs%model, tree)
+    contains
+        !> The BODY card of body kb (and its BODYPI card, if any) in messages.
+        function body_place(kbad) result(s)
+            integer, intent(in) :: kbad
+            character(len=:), allocatable :: s
+            integer :: kk
+            if (kbad < 1 .or. kbad > nb) then
+                s = rd%top//' (BODY cards)'
+                return
+            end if
+            s = rd%where(bline(kbad))//' (BODY card '//trim(bnames(kbad))
+            do kk = 1, size(cards)
+                if (cards(kk)%key /= 'BODYPI') cycle
+                if (upper(rd%raw(cards(kk)%first, 1)) == bnames(kbad)) &
+                    s = s//'; its BODYPI card is at '//rd%where(cards(kk)%first)
+            end do
+            s = s//')'
+        end function body_place
     end subroutine body_cards
+
+    !> Exactly one body hangs from R, and following parents from any body
+    !! reaches it: errors name the BODY cards concerned.
+    subroutine check_roots(rd, parent, bnames, bline)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: parent(:), bline(:)
+        character(len=10), intent(in) :: bnames(:)
+        integer :: nroot, k, p, steps, r1
+        character(len=:), allocatable :: loop
+        nroot = count(parent == 0)
+        if (nroot > 1) then
+            r1 = findloc(parent, 0, dim=1)
+            k = findloc(parent(r1 + 1:), 0, dim=1) + r1
+            call rd%fail(rd%context(bline(k), 2, 'parent body')//': body '//trim(bnames(k))// &
+                         ' has parent R, and so has body '//trim(bnames(r1))//' ('//rd%where(bline(r1))//'); '// &
+                         trim(int_str(nroot))//' bodies have parent R; expected exactly one root body '// &
+                         '(the tree hangs from one body)')
+            return
+        end if
+        ! a body whose chain of parents does not reach R within nb steps lies on or hangs from a loop
+        do k = 1, size(parent)
+            p = k
+            steps = 0
+            do while (p /= 0 .and. steps <= size(parent))
+                p = parent(p)
+                steps = steps + 1
+            end do
+            if (p == 0) cycle
+            ! walk on until a body repeats: that body is on the loop
+            p = k
+            do steps = 1, size(parent)
+                p = parent(p)
+            end do
+            loop = trim(bnames(p))
+            r1 = parent(p)
+            do while (r1 /= p)
+                loop = loop//' -> '//trim(bnames(r1))
+                r1 = parent(r1)
+            end do
+            loop = loop//' -> '//trim(bnames(p))
+            if (nroot == 0) then
+                call rd%fail(rd%context(bline(p), 2, 'parent body')//': 0 bodies have parent R; body '// &
+                             trim(bnames(p))//' lies on a loop of parents ('//loop//'); expected an open tree '// &
+                             'hanging from one body with parent R')
+            else
+                call rd%fail(rd%context(bline(p), 2, 'parent body')//': body '//trim(bnames(p))// &
+                             ' lies on a loop of parents ('//loop//'); expected an open tree hanging from one '// &
+                             'body with parent R')
+            end if
+            return
+        end do
+        if (nroot == 0) call rd%fail(rd%top//': no BODY card has parent R; expected exactly one root body')
+    end subroutine check_roots
 
     !> SCENE SAGITTAL and MERGE survivor absorbed...: reduce the model to what
     !! the scene needs; notes for the listing.
@@ -583,6 +709,7 @@ contains
         type(card_t), intent(in) :: cards(:)
         type(named_table_t), allocatable, intent(out) :: tabs(:)
         integer :: k, nt, i, npts, j, c, f, stat, bad
+        character(len=12) :: v1, v2
         real(wp) :: tscale, yscale
         real(wp), allocatable :: t(:), y(:)
         nt = count(cards%key == 'TABLE')
@@ -600,7 +727,7 @@ contains
                              trim(tabs(nt)%name)//'" is defined twice; expected a new name')
                 return
             end if
-            call rd%int(i, 2, 'number of points', npts, 1, 100000)
+            call rd%int(i, 2, 'number of points', npts, 1, max_table_points)
             call rd%real(i, 3, 'time scale', 's per unit', tscale, 1.0e-9_wp, 1.0e3_wp, default=one)
             call rd%real(i, 4, 'value scale', 'per unit', yscale, -1.0e9_wp, 1.0e9_wp, default=one)
             if (rd%failed()) return
@@ -621,6 +748,13 @@ contains
                     return
                 end if
             end do
+            if (maxval(abs(y)) > zero .and. maxval(abs(y))*abs(yscale) < tiny_value) then
+                write (v1, '(es11.2e3)') yscale
+                write (v2, '(es11.2e3)') maxval(abs(y))*abs(yscale)
+                tabs(nt)%warning = 'table '//trim(tabs(nt)%name)//': value scale '//trim(adjustl(v1))// &
+                                   ' makes its largest value '//trim(adjustl(v2))//', zero in effect; check F4 at '// &
+                                   rd%where(i)
+            end if
             call table_set(tabs(nt)%tab, t*tscale, y*yscale, stat, bad)
             if (bad > 0) then
                 c = i + 1 + (bad - 1)/3
@@ -806,7 +940,7 @@ contains
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
-        integer :: k, i, f, kb, m, j, fam, ninternal, nlimdrop
+        integer :: k, i, f, kb, m, j, fam, ninternal, nlimdrop, nel(5)
         character(len=10) :: s
         character(len=100) :: note
         type(disc_t) :: d
@@ -818,6 +952,12 @@ contains
 
         ninternal = 0
         nlimdrop = 0
+        ! room for every element card, trimmed at the end (appending one by one is quadratic)
+        deallocate (cs%model%discs, cs%model%ligaments, cs%model%muscles, cs%model%springs, cs%model%limits)
+        allocate (cs%model%discs(count(cards%key == 'DISC')), cs%model%ligaments(count(cards%key == 'LIGAMENT')), &
+                  cs%model%muscles(count(cards%key == 'MUSCLE')), cs%model%springs(count(cards%key == 'SPRING')), &
+                  cs%model%limits(count(cards%key == 'LIMIT')))
+        nel = 0
         do k = 1, size(cards)
             i = cards(k)%first
             select case (cards(k)%key)
@@ -845,7 +985,7 @@ contains
                 if (rd%failed()) return
                 call map_ends(d%body_a, d%pa, d%body_b, d%pb)
                 if (d%body_a == d%body_b) cycle
-                cs%model%discs = [cs%model%discs, d]
+                nel(1) = nel(1) + 1; cs%model%discs(nel(1)) = d
             case ('LIGAMENT')
                 g = ligament_t()
                 call rd%name(i, 1, 'ligament name', g%name)
@@ -860,7 +1000,7 @@ contains
                 if (rd%failed()) return
                 call map_ends(g%body_a, g%point_a, g%body_b, g%point_b)
                 if (g%body_a == g%body_b) cycle
-                cs%model%ligaments = [cs%model%ligaments, g]
+                nel(2) = nel(2) + 1; cs%model%ligaments(nel(2)) = g
             case ('MUSCLE')
                 mu = muscle_t()
                 call rd%name(i, 1, 'muscle name', mu%name)
@@ -878,7 +1018,7 @@ contains
                 if (rd%failed()) return
                 call map_ends(mu%body_a, mu%point_a, mu%body_b, mu%point_b)
                 if (mu%body_a == mu%body_b) cycle
-                cs%model%muscles = [cs%model%muscles, mu]
+                nel(3) = nel(3) + 1; cs%model%muscles(nel(3)) = mu
             case ('SPRING')
                 sp = spring_t()
                 call rd%name(i, 1, 'spring name', s)
@@ -892,7 +1032,7 @@ contains
                 if (rd%failed()) return
                 call map_ends(sp%body_a, sp%point_a, sp%body_b, sp%point_b)
                 if (sp%body_a == sp%body_b) cycle
-                cs%model%springs = [cs%model%springs, sp]
+                nel(4) = nel(4) + 1; cs%model%springs(nel(4)) = sp
             case ('LIMIT')
                 lim = joint_limit_t()
                 if (bmap%merged_by(body_ref(rd, i, 1, 'body', bnames, .false.)) > 0) then
@@ -920,7 +1060,8 @@ contains
                 lim%xmin = lim%xmin*unit_factor(m)
                 lim%xmax = lim%xmax*unit_factor(m)
                 lim%xneutral = lim%xneutral*unit_factor(m)
-                if (.not. rd%failed()) cs%model%limits = [cs%model%limits, lim]
+                if (rd%failed()) return
+                nel(5) = nel(5) + 1; cs%model%limits(nel(5)) = lim
             case ('FAMILY')
                 call rd%name(i, 1, 'element family', s)
                 if (rd%failed()) return
@@ -944,6 +1085,11 @@ contains
             end select
             if (rd%failed()) return
         end do
+        cs%model%discs = cs%model%discs(1:nel(1))
+        cs%model%ligaments = cs%model%ligaments(1:nel(2))
+        cs%model%muscles = cs%model%muscles(1:nel(3))
+        cs%model%springs = cs%model%springs(1:nel(4))
+        cs%model%limits = cs%model%limits(1:nel(5))
         if (ninternal > 0) then
             write (note, '(i0,a)') ninternal, ' ELEMENTS DROPPED: BOTH ENDS ON ONE MERGED BODY'
             call add_scene_note(cs, note)
@@ -978,8 +1124,11 @@ contains
         type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
         type(applied_load_t) :: al
-        integer :: k, i, f, it
+        integer :: k, i, f, it, nal
         character(len=10) :: s
+        deallocate (cs%model%applied)
+        allocate (cs%model%applied(count(cards%key == 'FORCE' .or. cards%key == 'COUPLE')))
+        nal = 0
         do k = 1, size(cards)
             if (cards(k)%key /= 'FORCE' .and. cards(k)%key /= 'COUPLE') cycle
             i = cards(k)%first
@@ -1015,8 +1164,9 @@ contains
             if (rd%failed()) return
             al%point = al%point + bmap%shift(:, al%body)
             al%body = bmap%new(al%body)
-            cs%model%applied = [cs%model%applied, al]
+            nal = nal + 1; cs%model%applied(nal) = al
         end do
+        cs%model%applied = cs%model%applied(1:nal)
     end subroutine load_cards
 
     !> STIFFEN factor [family]: multiply element stiffnesses (disc d1, d2 and

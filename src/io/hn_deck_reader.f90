@@ -8,17 +8,40 @@
 !! A card whose columns 1-10 are blank continues the card above it.
 !! '*' in column 1 marks a comment; blank lines are ignored. CR LF line ends
 !! read as LF line ends; a carriage return anywhere else is an error.
+!!
+!! Input is bounded: only regular files are read as INCLUDE targets, and
+!! standard input only when it is a regular file or a pipe (a device or a
+!! directory never ends or cannot be read); the deck as a whole has at most
+!! max_deck_bytes bytes, max_deck_lines lines and max_card_images card
+!! images. An INCLUDE path is looked for relative to the including file,
+!! then the working directory, then each directory of the include path.
 module hn_deck_reader
+    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_double, c_null_char, c_null_ptr
     use hn_kinds, only: wp, msglen, i8
     use hn_status, only: stat_bad_input
     use hn_case, only: deck_line_t, path_len
+    use hn_posix, only: file_kind, stdin_kind, kind_name, kind_missing, kind_regular, kind_fifo, kind_socket, &
+                        parent_directory, is_absolute, join_path, read_stdin_block
     implicit none
     private
 
-    public :: deck_reader_t, read_card_images, field_columns, int_str, upper
+    public :: deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
+
+    interface
+        function c_strtod(str, endptr) bind(C, name='strtod') result(v)
+            import :: c_char, c_ptr, c_double
+            character(kind=c_char), intent(in) :: str(*)
+            type(c_ptr), value :: endptr
+            real(c_double) :: v
+        end function c_strtod
+    end interface
 
     integer, parameter, public :: nfields = 7
     integer, parameter :: max_include_depth = 4
+    integer(i8), parameter, public :: max_deck_bytes = 64_i8*1024*1024   !! all files of a deck together
+    integer, parameter, public :: max_deck_lines = 1000000               !! lines read, comments included
+    integer, parameter, public :: max_card_images = 500000               !! card images kept
+    character(len=*), parameter, public :: stdin_path = '/dev/stdin'    !! path that means standard input
 
     !> The card images of a deck and the first error met while reading them.
     type :: deck_reader_t
@@ -27,6 +50,11 @@ module hn_deck_reader
         character(len=:), allocatable :: top   !! name of the deck itself in messages
         integer :: stat = 0
         character(len=msglen) :: errmsg = ''
+        character(len=path_len), allocatable :: search(:)  !! include path: directories searched for INCLUDE files
+        character(len=msglen), allocatable :: vias(:)      !! " (included from ...)" of each INCLUDE read
+        integer :: nvias = 0
+        integer(i8) :: nbytes = 0     !! bytes read so far (all files)
+        integer :: nphysical = 0      !! lines read so far (all files, comments included)
     contains
         procedure :: failed => reader_failed
         procedure :: fail => reader_fail
@@ -65,14 +93,16 @@ contains
         me%errmsg = msg
     end subroutine reader_fail
 
-    !> "stdin line 12" for deck line i.
+    !> "stdin line 12" for deck line i; a line of an included file adds
+    !! where it was included: "a.inp line 3 (included from stdin line 12)".
     function reader_where(me, i) result(s)
         class(deck_reader_t), intent(in) :: me
         integer, intent(in) :: i
         character(len=:), allocatable :: s
-        character(len=16) :: num
-        write (num, '(i0)') me%lines(i)%line
-        s = me%lines(i)%source//' line '//trim(num)
+        s = me%lines(i)%source//' line '//trim(int_str(me%lines(i)%line))
+        if (allocated(me%vias) .and. me%lines(i)%via > 0) then
+            if (me%lines(i)%via <= me%nvias) s = s//trim(me%vias(me%lines(i)%via))
+        end if
     end function reader_where
 
     !> Card name of line i (columns 1-8, upper case).
@@ -100,18 +130,30 @@ contains
     end function reader_is_blank
 
     !> Context of an error in field f of line i: "stdin line 4, columns
-    !! 31-40 (BODY card, field F3 'mass')".
+    !! 31-40 (BODY card, field F3 'mass')"; on a continuation card "(TABLE
+    !! card continuation 3, field F1 'time')".
     function context(me, i, f, what) result(s)
         class(deck_reader_t), intent(in) :: me
         integer, intent(in) :: i, f
         character(len=*), intent(in) :: what
         character(len=:), allocatable :: s
         character(len=40) :: cols
-        integer :: c1, c2
+        integer :: c1, c2, j
         call field_columns(f, c1, c2)
         write (cols, '(a,i0,a,i0)') 'columns ', c1, '-', c2
-        s = me%where(i)//', '//trim(cols)//' ('//trim(me%key(i))//' card, field F'// &
-            achar(48 + f)//' '''//what//''')'
+        if (len_trim(me%key(i)) > 0) then
+            s = me%where(i)//', '//trim(cols)//' ('//trim(me%key(i))//' card, field F'// &
+                achar(48 + f)//' '''//what//''')'
+        else
+            ! a continuation card: name the card it continues
+            j = i
+            do while (j > 1)
+                if (len_trim(me%lines(j)%text(1:10)) > 0) exit
+                j = j - 1
+            end do
+            s = me%where(i)//', '//trim(cols)//' ('//trim(me%key(j))//' card continuation '// &
+                trim(int_str(i - j))//', field F'//achar(48 + f)//' '''//what//''')'
+        end if
     end function context
 
     !> Real number from field f of line i, in [lo, hi]; a blank field takes
@@ -125,6 +167,7 @@ contains
         real(wp), intent(in), optional :: default
         character(len=10) :: s
         character(len=60) :: range
+        character(len=10) :: why
         logical :: ok
         v = 0.0_wp
         if (me%failed()) return
@@ -138,10 +181,19 @@ contains
             end if
             return
         end if
-        call parse_real(s, v, ok)
+        call parse_real(s, v, ok, why)
         if (.not. ok) then
-            call me%fail(context(me, i, f, what)//': found "'//trim(s)//'"; expected a real number ['// &
-                         units//'] such as 1.5, -2 or 3.0E-4')
+            select case (trim(why))
+            case ('overflow')
+                call me%fail(context(me, i, f, what)//': found "'//trim(s)//'", beyond the range of double '// &
+                             'precision (about 1.8E+308); expected a real number ['//units//'] of a usable size')
+            case ('underflow')
+                call me%fail(context(me, i, f, what)//': found "'//trim(s)//'", too small for double precision '// &
+                             '(it would become zero); expected 0 or a real number ['//units//'] of a usable size')
+            case default
+                call me%fail(context(me, i, f, what)//': found "'//trim(s)//'"; expected a real number ['// &
+                             units//'] such as 1.5, -2 or 3.0E-4')
+            end select
             return
         end if
         if (.not. (v >= lo .and. v <= hi)) then
@@ -225,35 +277,49 @@ contains
     end function reader_text
 
     !> Strict real syntax: [sign] digits [. digits] | [sign] . digits, then an
-    !! optional exponent (E or D) [sign] digits. Rejects NaN, Inf, commas.
-    subroutine parse_real(s, v, ok)
-        character(len=*), intent(in) :: s
-        real(wp), intent(out) :: v
-        logical, intent(out) :: ok
+    !! optional exponent (E or D) [sign] digits. Rejects NaN, Inf, commas,
+    !! and numbers beyond the double range (overflow, or a non-zero number
+    !! that would become zero) before converting, so that no conversion can
+    !! raise a floating-point exception. `why` says what was wrong.
+    subroutine parse_real(s, v, ok, why)
+        character(len=*), intent(in) :: s     !! text of the number
+        real(wp), intent(out) :: v            !! its value
+        logical, intent(out) :: ok            !! the text is a representable real number
+        character(len=*), intent(out), optional :: why  !! '' when ok; 'syntax', 'overflow' or 'underflow'
         character(len=len(s)) :: t
-        integer :: k, n, nd, ios
+        integer :: k, n, nd, ios, first_nz, point, expo, e10, ke, j
         logical :: seen_dot
-        t = upper(trim(s))
+        character(len=40) :: mant
+        real(wp) :: m
+        t = upper(adjustl(s))
         n = len_trim(t)
         ok = .false.
         v = 0.0_wp
+        if (present(why)) why = 'syntax'
+        if (n == 0) return
         k = 1
         if (index('+-', t(k:k)) > 0) k = k + 1
         nd = 0; seen_dot = .false.
+        first_nz = 0; point = 0
         do while (k <= n)
             if (index('0123456789', t(k:k)) > 0) then
                 nd = nd + 1
+                if (first_nz == 0 .and. t(k:k) /= '0') first_nz = nd
             else if (t(k:k) == '.' .and. .not. seen_dot) then
                 seen_dot = .true.
+                point = nd          ! digits before the point
             else
                 exit
             end if
             k = k + 1
         end do
         if (nd == 0) return
+        if (.not. seen_dot) point = nd
+        expo = 0
         if (k <= n) then
             if (t(k:k) /= 'E' .and. t(k:k) /= 'D') return
             t(k:k) = 'E'
+            ke = k + 1
             k = k + 1
             if (k <= n) then
                 if (index('+-', t(k:k)) > 0) k = k + 1
@@ -263,10 +329,64 @@ contains
                 if (index('0123456789', t(k:k)) == 0) return
                 k = k + 1
             end do
+            ! the exponent's digits, saturated (the field bounds their number, not their value)
+            do j = ke, n
+                if (index('+-', t(j:j)) > 0) cycle
+                expo = min(10*expo + (iachar(t(j:j)) - 48), 99999)
+            end do
+            if (t(ke:ke) == '-') expo = -expo
         end if
-        read (t(1:n), *, iostat=ios) v
-        if (ios /= 0) return
+        if (first_nz > 0) then
+            ! decimal exponent of the leading significant digit
+            e10 = expo + point - first_nz
+            if (e10 > 308) then
+                if (present(why)) why = 'overflow'
+                return
+            end if
+            if (e10 < -324) then
+                if (present(why)) why = 'underflow'
+                return
+            end if
+            if (e10 == 308) then
+                ! compare the significant digits with those of huge(1.0_wp) = 1.7976931348623157E308
+                mant = significand(t(1:n), first_nz)
+                read (mant, *, iostat=ios) m
+                if (ios /= 0 .or. m >= 1.7976931348623157_wp) then
+                    if (present(why)) why = 'overflow'
+                    return
+                end if
+            end if
+        end if
+        ! syntax and range are checked: C's strtod converts (it is about 20
+        ! times faster than a list-directed read, which matters for big decks)
+        v = c_strtod(t(1:n)//c_null_char, c_null_ptr)
+        if (first_nz > 0 .and. v == 0.0_wp) then
+            if (present(why)) why = 'underflow'
+            return
+        end if
         ok = abs(v) <= huge(v)
+        if (ok .and. present(why)) why = ''
+    contains
+        !> The significant digits as d.ddd (at most 30 of them).
+        function significand(txt, nz) result(ms)
+            character(len=*), intent(in) :: txt
+            integer, intent(in) :: nz
+            character(len=40) :: ms
+            integer :: j, c, np
+            ms = ''
+            c = 0
+            np = 0
+            do j = 1, len(txt)
+                if (txt(j:j) == 'E') exit
+                if (index('0123456789', txt(j:j)) == 0) cycle
+                c = c + 1
+                if (c < nz) cycle
+                np = np + 1
+                if (np > 30) exit
+                ms = trim(ms)//txt(j:j)
+                if (np == 1) ms = trim(ms)//'.'
+            end do
+        end function significand
     end subroutine parse_real
 
     !> Upper-case copy of a string.
@@ -281,67 +401,150 @@ contains
         end do
     end function upper
 
-    !> Whole contents of a file (or /dev/stdin) as bytes; stat /= 0 with a
-    !! message when it cannot be opened or read.
-    subroutine read_bytes(path, bytes, stat, errmsg)
+    !> Whole contents of a regular file, or of standard input when `path` is
+    !! stdin_path, as bytes; at most `budget` bytes. stat /= 0 with a message
+    !! (what the file is, and why it is not read) otherwise.
+    subroutine read_bytes(path, budget, bytes, stat, errmsg)
         character(len=*), intent(in) :: path
+        integer(i8), intent(in) :: budget
         character(len=:), allocatable, intent(out) :: bytes
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        integer :: u, n, cap
+        integer :: u, kind
         integer(i8) :: sz
-        character(len=1) :: c
-        character(len=:), allocatable :: tmp
         errmsg = ''
+        stat = 1
+        if (path == stdin_path) then
+            kind = stdin_kind()
+            if (kind == kind_fifo .or. kind == kind_socket) then
+                call read_pipe(budget, bytes, stat, errmsg)
+                return
+            end if
+            if (kind /= kind_regular) then
+                errmsg = 'standard input is '//kind_name(kind)//', which '//trim(why_not(kind))// &
+                         '; expected a deck file (hhneck DECK or hhneck < DECK)'
+                return
+            end if
+        else
+            kind = file_kind(path)
+            if (kind == kind_missing) then
+                errmsg = 'file not found'
+                return
+            end if
+            if (kind /= kind_regular) then
+                errmsg = 'it is '//kind_name(kind)//', which '//trim(why_not(kind))//'; expected a regular deck file'
+                return
+            end if
+        end if
         open (newunit=u, file=path, access='stream', form='unformatted', action='read', status='old', &
               iostat=stat, iomsg=errmsg)
         if (stat /= 0) return
         inquire (unit=u, size=sz)
-        if (sz > 0) then
+        if (sz > budget) then
+            stat = 1
+            write (errmsg, '(a,i0,a,i0,a)') 'it has ', sz, ' bytes, more than the ', budget, &
+                ' bytes left of the limit on a deck (docs/errors.md)'
+        else if (sz > 0) then
             allocate (character(len=int(sz)) :: bytes)
             read (u, iostat=stat, iomsg=errmsg) bytes
         else
-            ! a pipe: size unknown, read byte by byte
-            cap = 65536
-            allocate (character(len=cap) :: bytes)
-            n = 0
-            do
-                read (u, iostat=stat) c
-                if (stat /= 0) exit
-                n = n + 1
-                if (n > cap) then
-                    tmp = bytes
-                    cap = 2*cap
-                    deallocate (bytes)
-                    allocate (character(len=cap) :: bytes)
-                    bytes(1:n - 1) = tmp(1:n - 1)
-                end if
-                bytes(n:n) = c
-            end do
-            bytes = bytes(1:n)
-            if (is_iostat_end(stat)) stat = 0
+            bytes = ''
         end if
         close (u)
     end subroutine read_bytes
 
-    !> Read all card images of file `path` (named `source` in messages),
-    !! expanding INCLUDE cards and checking every line: at most 80 columns,
-    !! printable ASCII, no tab; CR LF line ends read as LF, a carriage
-    !! return anywhere else is an error.
-    recursive subroutine read_card_images(me, path, source, depth)
+    !> Why a file of this kind is not read as a deck.
+    pure function why_not(kind) result(s)
+        integer, intent(in) :: kind
+        character(len=60) :: s
+        select case (kind)
+        case (kind_missing); s = 'is closed'
+        case (kind_fifo); s = 'may never end or block for a writer'
+        case (kind_regular); s = 'can be read'
+        case default
+            s = 'cannot be read as text or never ends'
+            if (kind == 2) s = 'cannot be read as text'
+        end select
+    end function why_not
+
+    !> Standard input from a pipe, in blocks, up to `budget` bytes.
+    subroutine read_pipe(budget, bytes, stat, errmsg)
+        integer(i8), intent(in) :: budget
+        character(len=:), allocatable, intent(out) :: bytes
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        character(len=:), allocatable :: tmp
+        integer(i8) :: n, got
+        integer, parameter :: blk = 1048576
+        allocate (character(len=blk) :: bytes)
+        n = 0
+        stat = 0
+        errmsg = ''
+        do
+            if (n + blk > len(bytes, kind=i8)) then
+                allocate (character(len=int(min(2*len(bytes, kind=i8), budget + blk))) :: tmp)
+                tmp(1:n) = bytes(1:n)
+                call move_alloc(tmp, bytes)
+            end if
+            call read_stdin_block(bytes(n + 1:n + blk), got)
+            if (got < 0) then
+                stat = 1
+                errmsg = 'standard input could not be read'
+                return
+            end if
+            if (got == 0) exit
+            n = n + got
+            if (n > budget) then
+                stat = 1
+                write (errmsg, '(a,i0,a)') 'standard input goes on beyond ', budget, &
+                    ' bytes, the limit on a deck (docs/errors.md); expected a deck that ends'
+                return
+            end if
+        end do
+        bytes = bytes(1:n)
+    end subroutine read_pipe
+
+    !> Read all card images of file `path` (stdin_path for standard input,
+    !! named `source` in messages), expanding INCLUDE cards.
+    subroutine read_card_images(me, path, source, depth)
         class(deck_reader_t), intent(inout) :: me
         character(len=*), intent(in) :: path, source
-        integer, intent(in) :: depth
-        character(len=:), allocatable :: bytes, line
-        character(len=path_len) :: incpath
+        integer, intent(in), optional :: depth   !! unused (kept for callers that pass 0)
+        character(len=:), allocatable :: bytes
         character(len=msglen) :: iomsg
-        integer :: ios, lineno, k, c, p0, p1, n
-        logical :: exists
-
-        call read_bytes(path, bytes, ios, iomsg)
+        integer :: ios
+        call read_bytes(path, max_deck_bytes - me%nbytes, bytes, ios, iomsg)
         if (ios /= 0) then
-            call me%fail(source//': cannot be read ('//trim(iomsg)//')')
+            if (path == stdin_path) then
+                call me%fail(trim(iomsg))
+            else
+                call me%fail(source//': cannot be read: '//trim(iomsg))
+            end if
             return
+        end if
+        me%nbytes = me%nbytes + len(bytes, kind=i8)
+        call scan_lines(me, bytes, path, source, 0, '')
+        if (present(depth)) continue
+    end subroutine read_card_images
+
+    !> The lines of one file (its bytes read): checked, INCLUDE cards
+    !! expanded, card images kept. Every line must have at most 80 columns,
+    !! printable ASCII, no tab; CR LF line ends read as LF, a carriage return
+    !! anywhere else is an error. `via` (" (included from ...)") is added to
+    !! the place of every error in this file.
+    recursive subroutine scan_lines(me, bytes, path, source, depth, via)
+        class(deck_reader_t), intent(inout) :: me
+        character(len=*), intent(in) :: bytes, path, source, via
+        integer, intent(in) :: depth
+        character(len=:), allocatable :: line, incfile, incbytes
+        character(len=path_len) :: incname
+        character(len=msglen) :: iomsg
+        integer :: ios, lineno, k, c, p0, p1, n, ivia
+
+        ivia = 0
+        if (len(via) > 0) then
+            call add_via(me, via)
+            ivia = me%nvias
         end if
         lineno = 0
         p0 = 1
@@ -356,64 +559,146 @@ contains
             line = bytes(p0:p1 - 1)
             p0 = p1 + 1
             lineno = lineno + 1
+            me%nphysical = me%nphysical + 1
+            if (me%nphysical > max_deck_lines) then
+                call me%fail(at(lineno)//': the deck has more than '//trim(int_str(max_deck_lines))// &
+                             ' lines (comments included), the limit on a deck (docs/errors.md)')
+                return
+            end if
             n = len(line)
             if (n > 0) then
                 if (line(n:n) == achar(13)) n = n - 1      ! CR LF
             end if
             do k = 1, n
                 c = iachar(line(k:k))
+                if (c >= 32 .and. c <= 126) cycle
                 if (c == 9) then
-                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(int_str(k))// &
+                    call me%fail(at(lineno)//', column '//trim(int_str(k))// &
                                  ': found a tab character; card images use spaces so that columns are exact')
-                    return
                 else if (c == 13) then
-                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(int_str(k))// &
+                    call me%fail(at(lineno)//', column '//trim(int_str(k))// &
                                  ': found a carriage return inside the card; expected plain text')
-                    return
-                else if (c < 32 .or. c > 126) then
-                    call me%fail(source//' line '//trim(int_str(lineno))//', column '//trim(int_str(k))// &
+                else
+                    call me%fail(at(lineno)//', column '//trim(int_str(k))// &
                                  ': found a non-printable or non-ASCII character; expected plain ASCII text')
-                    return
                 end if
+                return
             end do
             if (len_trim(line(1:n)) > 80) then
-                call me%fail(source//' line '//trim(int_str(lineno))//', columns 81-'// &
-                             trim(int_str(len_trim(line(1:n))))// &
+                call me%fail(at(lineno)//', columns 81-'//trim(int_str(len_trim(line(1:n))))// &
                              ': found text beyond column 80; card images have 80 columns')
                 return
             end if
             if (len_trim(line(1:n)) == 0) cycle
             if (line(1:1) == '*') cycle
             if (upper(line(1:min(n, 8))) == 'INCLUDE') then
-                incpath = ''
-                if (n >= 11) incpath = adjustl(line(11:n))
-                if (len_trim(incpath) == 0) then
-                    call me%fail(source//' line '//trim(int_str(lineno))// &
-                                 ', columns 11-80 (INCLUDE card): found no file name; expected the path of a deck file')
+                incname = ''
+                if (n >= 11) incname = adjustl(line(11:n))
+                if (len_trim(incname) == 0) then
+                    call me%fail(at(lineno)//', columns 11-80 (INCLUDE card): found no file name; '// &
+                                 'expected the path of a deck file')
                     return
                 end if
                 if (depth >= max_include_depth) then
-                    call me%fail(source//' line '//trim(int_str(lineno))// &
-                                 ' (INCLUDE card): includes nested too deeply (more than 4 levels; a loop?)')
+                    call me%fail(at(lineno)//' (INCLUDE card): includes nested too deeply (more than 4 levels; a loop?)')
                     return
                 end if
-                inquire (file=trim(incpath), exist=exists)
-                if (.not. exists) then
-                    call me%fail(source//' line '//trim(int_str(lineno))//', columns 11-80 (INCLUDE card): file "'// &
-                                 trim(incpath)//'" not found (paths are relative to the working directory)')
+                call resolve_include(me, trim(incname), path, incfile, iomsg)
+                if (len(incfile) > 0) then
+                    call read_bytes(incfile, max_deck_bytes - me%nbytes, incbytes, ios, iomsg)
+                    if (ios /= 0) iomsg = '"'//trim(incname)//'" cannot be read: '//iomsg
+                end if
+                if (len(incfile) == 0 .or. ios /= 0) then
+                    call me%fail(at(lineno)//', columns 11-80 (INCLUDE card): '//trim(iomsg))
                     return
                 end if
-                call read_card_images(me, trim(incpath), trim(incpath), depth + 1)
+                me%nbytes = me%nbytes + len(incbytes, kind=i8)
+                call scan_lines(me, incbytes, incfile, incfile, depth + 1, &
+                                ' (included from '//source//' line '//trim(int_str(lineno))//via//')')
                 cycle
             end if
-            call append_line(me, line(1:n), source, lineno)
+            if (me%nlines >= max_card_images) then
+                call me%fail(at(lineno)//': the deck has more than '//trim(int_str(max_card_images))// &
+                             ' card images, the limit on a deck (docs/errors.md)')
+                return
+            end if
+            call append_line(me, line(1:n), source, lineno, ivia)
         end do
-    end subroutine read_card_images
+    contains
+        !> "source line N" with where this file was included.
+        function at(ln) result(s)
+            integer, intent(in) :: ln
+            character(len=:), allocatable :: s
+            s = source//' line '//trim(int_str(ln))//via
+        end function at
+    end subroutine scan_lines
 
-    subroutine append_line(me, text, source, lineno)
+    !> The file an INCLUDE card names: an absolute path as it is; a relative
+    !! one looked for next to the including file, then in the working
+    !! directory, then in each directory of the include path. `found` is ''
+    !! with a message when there is no such regular file.
+    subroutine resolve_include(me, name, including, found, errmsg)
+        class(deck_reader_t), intent(in) :: me
+        character(len=*), intent(in) :: name, including
+        character(len=:), allocatable, intent(out) :: found
+        character(len=*), intent(out) :: errmsg
+        character(len=:), allocatable :: tried
+        integer :: k, kind
+        found = ''
+        errmsg = ''
+        tried = ''
+        if (is_absolute(name)) then
+            call try(name)
+        else
+            if (including /= stdin_path .and. len(parent_directory(including)) > 0) &
+                call try(join_path(parent_directory(including), name))
+            if (len(found) == 0 .and. len_trim(errmsg) == 0) call try(name)
+            if (allocated(me%search)) then
+                do k = 1, size(me%search)
+                    if (len(found) > 0 .or. len_trim(errmsg) > 0) exit
+                    if (len_trim(me%search(k)) > 0) call try(join_path(me%search(k), name))
+                end do
+            end if
+        end if
+        if (len(found) == 0 .and. len_trim(errmsg) == 0) &
+            errmsg = 'file "'//name//'" not found (looked for '//tried//'; an installed hhneck finds '// &
+                     'shipped decks through -I DIR or HHNECK_PATH)'
+    contains
+        subroutine try(p)
+            character(len=*), intent(in) :: p
+            if (len(found) > 0 .or. len_trim(errmsg) > 0) return
+            if (index(', '//tried//', ', ', '//p//', ') > 0) return     ! the same place twice
+            if (len(tried) > 0) tried = tried//', '
+            tried = tried//p
+            kind = file_kind(p)
+            if (kind == kind_regular) then
+                found = p
+            else if (kind /= kind_missing) then
+                errmsg = '"'//p//'" is '//kind_name(kind)//', which '//trim(why_not(kind))// &
+                         '; expected a regular deck file'
+            end if
+        end subroutine try
+    end subroutine resolve_include
+
+    !> Remember the " (included from ...)" of an INCLUDE read.
+    subroutine add_via(me, via)
+        class(deck_reader_t), intent(inout) :: me
+        character(len=*), intent(in) :: via
+        character(len=msglen), allocatable :: tmp(:)
+        if (.not. allocated(me%vias)) allocate (me%vias(8))
+        if (me%nvias == size(me%vias)) then
+            allocate (tmp(2*size(me%vias)))
+            tmp(1:me%nvias) = me%vias(1:me%nvias)
+            call move_alloc(tmp, me%vias)
+        end if
+        me%nvias = me%nvias + 1
+        me%vias(me%nvias) = via
+    end subroutine add_via
+
+    subroutine append_line(me, text, source, lineno, via)
         class(deck_reader_t), intent(inout) :: me
         character(len=*), intent(in) :: text, source
-        integer, intent(in) :: lineno
+        integer, intent(in) :: lineno, via
         type(deck_line_t), allocatable :: tmp(:)
         if (.not. allocated(me%lines)) allocate (me%lines(64))
         if (me%nlines == size(me%lines)) then
@@ -425,6 +710,7 @@ contains
         me%lines(me%nlines)%text = text
         me%lines(me%nlines)%source = source
         me%lines(me%nlines)%line = lineno
+        me%lines(me%nlines)%via = via
     end subroutine append_line
 
     pure function int_str(i) result(s)

@@ -19,37 +19,50 @@ module hn_dump
 
 contains
 
-    !> Create group /dump with the constant body tables and empty series.
-    subroutine dump_open(h5, model)
+    !> Create group /dump with the constant body tables and empty series,
+    !! units on each; `nrec` records are expected (the chunk size).
+    subroutine dump_open(h5, model, nrec)
         type(h5_file_t), intent(inout) :: h5
-        type(model_t), intent(in) :: model
-        integer :: nb, n, j
+        type(model_t), intent(in) :: model     !! the model (body tables, coordinates)
+        integer, intent(in), optional :: nrec  !! number of dump times
+        integer :: nb, n, j, nr
         character(len=:), allocatable :: labels
         nb = model%tree%nbody
         n = model%tree%ndof
+        nr = 8
+        if (present(nrec)) nr = max(1, nrec)
         call h5%group('/dump')
         call h5%write_real('/dump/mass', model%tree%mass, [nb])
+        call h5%attr_string('/dump/mass', 'units', 'kg')
         call h5%write_real('/dump/inertia', model%tree%inertia, [3, 3, nb])
-        call h5%attr_string('/dump/inertia', 'units', 'kg m^2, centroidal, body frame')
+        call h5%attr_string('/dump/inertia', 'units', 'kg m^2')
+        call h5%attr_string('/dump/inertia', 'description', 'centroidal inertia matrix in body axes')
         labels = ''
         do j = 1, n
             labels = labels//trim(dof_label(model%tree, j))//' '
         end do
         call h5%attr_string('/dump', 'coordinates', trim(labels))
-        call h5%series('/dump/time', [integer ::])
-        call h5%series('/dump/rotation', [3, 3, nb])
-        call h5%series('/dump/position', [3, nb])
-        call h5%series('/dump/velocity', [3, nb])
-        call h5%series('/dump/acceleration', [3, nb])
-        call h5%series('/dump/angular_velocity', [3, nb])
-        call h5%series('/dump/angular_acceleration', [3, nb])
-        call h5%series('/dump/force', [3, nb])
-        call h5%series('/dump/moment', [3, nb])
-        call h5%series('/dump/x', [n])
-        call h5%series('/dump/xd', [n])
-        call h5%series('/dump/xdd', [n])
-        call h5%series('/dump/f', [n])
-        call h5%series('/dump/a', [n, n])
+        call series('time', [integer ::], 's')
+        call series('rotation', [3, 3, nb], '1')
+        call series('position', [3, nb], 'm')
+        call series('velocity', [3, nb], 'm/s')
+        call series('acceleration', [3, nb], 'm/s^2')
+        call series('angular_velocity', [3, nb], 'rad/s')
+        call series('angular_acceleration', [3, nb], 'rad/s^2')
+        call series('force', [3, nb], 'N')
+        call series('moment', [3, nb], 'N m')
+        call series('x', [n], 'm or rad (by coordinate)')
+        call series('xd', [n], 'm/s or rad/s (by coordinate)')
+        call series('xdd', [n], 'm/s^2 or rad/s^2 (by coordinate)')
+        call series('f', [n], 'N or N m (by coordinate)')
+        call series('a', [n, n], 'kg, kg m or kg m^2 (by coordinate pair)')
+    contains
+        subroutine series(name, dims, units)
+            character(len=*), intent(in) :: name, units
+            integer, intent(in) :: dims(:)
+            call h5%series('/dump/'//name, dims, nr)
+            call h5%attr_string('/dump/'//name, 'units', units)
+        end subroutine series
     end subroutine dump_open
 
     !> Append one record from the workspace of the dynamics evaluation at t.

@@ -10,6 +10,7 @@ module hn_listing
     use hn_model, only: family_name, nfamilies, family_count
     use hn_linsolve, only: solver_name
     use hn_assessment, only: assessment_t
+    use hn_history, only: history_t
     implicit none
     private
 
@@ -33,7 +34,8 @@ module hn_listing
         procedure :: need => listing_need
         procedure :: echo_deck => listing_echo_deck
         procedure :: model_summary => listing_model_summary
-        procedure :: histories => listing_histories
+        procedure :: listing_histories, listing_histories_store
+        generic :: histories => listing_histories, listing_histories_store
         procedure :: peaks => listing_peaks
         procedure :: message => listing_message
         procedure :: criteria => listing_criteria
@@ -217,12 +219,51 @@ contains
         end if
     end function num
 
+    !> Time-history tables from a history store whose rows are (t, channel values).
+    subroutine listing_histories_store(me, ch, store)
+        class(listing_t), intent(inout) :: me
+        type(channel_set_t), intent(in) :: ch   !! channel names, units, groups
+        type(history_t), intent(in) :: store    !! rows of 1 + ch%n values
+        call tables(me, ch, store%n, row_of)
+    contains
+        subroutine row_of(r, t, v)
+            integer, intent(in) :: r
+            real(wp), intent(out) :: t, v(:)
+            real(wp) :: row(store%m)
+            call store%get(r, row)
+            t = row(1)
+            v = row(2:)
+        end subroutine row_of
+    end subroutine listing_histories_store
+
     !> Time-history tables: one per channel group, at most 9 channels wide.
     subroutine listing_histories(me, ch, times, rows, nrows)
         class(listing_t), intent(inout) :: me
+        type(channel_set_t), intent(in) :: ch   !! channel names, units, groups
+        real(wp), intent(in) :: times(:), rows(:, :)   !! print times [s], channel values
+        integer, intent(in) :: nrows            !! rows to print
+        call tables(me, ch, nrows, row_of)
+    contains
+        subroutine row_of(r, t, v)
+            integer, intent(in) :: r
+            real(wp), intent(out) :: t, v(:)
+            t = times(r)
+            v = rows(:, r)
+        end subroutine row_of
+    end subroutine listing_histories
+
+    subroutine tables(me, ch, nrows, row_of)
+        class(listing_t), intent(inout) :: me
         type(channel_set_t), intent(in) :: ch
-        real(wp), intent(in) :: times(:), rows(:, :)
         integer, intent(in) :: nrows
+        interface
+            subroutine row_of(r, t, v)
+                import :: wp
+                integer, intent(in) :: r
+                real(wp), intent(out) :: t, v(:)
+            end subroutine row_of
+        end interface
+        real(wp) :: t, v(ch%n)
         integer :: c0, c1, k, r, line_len
         character(len=16) :: grp
         character(len=200) :: s, h1, h2
@@ -254,15 +295,16 @@ contains
                     call me%put(h1(1:line_len))
                     call me%put(h2(1:line_len))
                 end if
-                write (s, '(f9.2)') 1000*times(r)
+                call row_of(r, t, v)
+                write (s, '(f9.2)') 1000*t
                 do k = c0, c1
-                    s = s(1:9 + 12*(k - c0))//' '//num(rows(k, r))
+                    s = s(1:9 + 12*(k - c0))//' '//num(v(k))
                 end do
                 call me%put(s(1:line_len))
             end do
             c0 = c1 + 1
         end do
-    end subroutine listing_histories
+    end subroutine tables
 
     !> Summary of peaks of every channel (from the full sampled histories).
     subroutine listing_peaks(me, ch, vmax, tmax, vmin, tmin)

@@ -1,10 +1,18 @@
-!> The HDF5 result file of a run: model tables, every channel at the
-!! sampling interval, body positions and orientations, coordinates, and run
-!! status. Samples are buffered and written in blocks, and the file is
-!! flushed at every block, so a stopped run keeps what it has computed.
-!! Layout in docs/output-format.md.
+!> The HDF5 result file of a run: the deck, model tables, every channel at
+!! the sampling interval, body positions and orientations, coordinates, the
+!! injury criteria and the run status, with units on every dataset. Layout
+!! in docs/output-format.md.
+!!
+!! Samples are buffered and written a block (one chunk of every series) at a
+!! time; the file is flushed to disk when a block is written and at most
+!! every few seconds of wall time at the print times, so a run killed
+!! outright loses little, and a run stopped with a message keeps everything.
+!! The file says `status = incomplete` from the moment it is created until
+!! the run closes it; a write failure (a full disk) stops the writing and
+!! the partial file is removed with a message (hn_h5).
 module hn_results
-    use hn_kinds, only: wp, zero, msglen
+    use hn_kinds, only: wp, zero, msglen, i8
+    use hn_status, only: stat_ok
     use hn_case, only: case_t
     use hn_channels, only: channel_set_t
     use hn_dynamics, only: dyn_workspace_t
@@ -12,19 +20,23 @@ module hn_results
     use hn_h5, only: h5_file_t
     use hn_dump, only: dump_open
     use hn_assessment, only: assessment_t
+    use hn_posix, only: file_kind, kind_regular
     use hn_results_model, only: write_element_tables
     implicit none
     private
 
     public :: results_t
 
-    integer, parameter :: block = 200
+    integer, parameter :: block = 1024              !! samples per written block (and chunk)
+    real(wp), parameter :: flush_wall = 2.0_wp      !! at most this long between flushes at print times [s]
 
     !> Result file and its sample buffers.
     type :: results_t
         type(h5_file_t) :: h5
         logical :: active = .false.
         integer :: nbuf = 0, nwritten = 0
+        real(wp) :: t_last = zero                   !! time of the last sample taken
+        integer(i8) :: flushed_at = 0               !! clock count of the last flush
         real(wp), allocatable :: time(:), chan(:, :), pos(:, :, :), rot(:, :, :, :), x(:, :), xd(:, :)
     contains
         procedure :: open => results_open
@@ -32,76 +44,185 @@ module hn_results
         procedure :: flush => results_flush
         procedure :: close => results_close
         procedure :: criteria => results_criteria
+        procedure :: failed => results_failed
+        procedure :: error => results_error
     end type results_t
 
 contains
 
-    !> Create the file and write the model tables.
-    subroutine results_open(me, cs, ch, fname, code_version, stat, errmsg)
+    !> Create the file and write the deck and model tables. `note` says what
+    !! was done to files already there (an older result removed, a missing
+    !! directory created).
+    subroutine results_open(me, cs, ch, fname, code_version, stat, errmsg, note)
         class(results_t), intent(inout) :: me
-        type(case_t), intent(in) :: cs
-        type(channel_set_t), intent(in) :: ch
-        character(len=*), intent(in) :: fname, code_version
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
-        integer :: nb, n, k, j
-        character(len=:), allocatable :: deck, names
+        type(case_t), intent(in) :: cs                 !! the case (deck, model, times)
+        type(channel_set_t), intent(in) :: ch          !! channel names and units
+        character(len=*), intent(in) :: fname, code_version  !! file name, program version
+        integer, intent(out) :: stat                   !! stat_ok or stat_io
+        character(len=msglen), intent(out) :: errmsg   !! the reason on failure
+        character(len=msglen), intent(out), optional :: note  !! what was done to files already there
+        integer :: nb, n, k, nexp
+        integer(i8) :: rate
         call me%h5%create(fname, stat, errmsg)
+        if (present(note)) note = me%h5%note
         if (stat /= 0) return
         me%active = .true.
         nb = cs%model%tree%nbody
         n = cs%model%tree%ndof
-        deck = ''
-        do k = 1, size(cs%deck)
-            deck = deck//cs%deck(k)%text//new_line('a')
+        associate (h => me%h5)
+            call h%attr_string('/', 'code', 'HHNECK '//code_version)
+            call h%attr_string('/', 'title', trim(cs%model%title))
+            call h%attr_string('/', 'status', 'incomplete')
+            call h%attr_string('/', 'message', 'the run has not closed this file: it is running, or was killed')
+            call write_deck(h, cs)
+            call write_model(h, cs)
+            call h%group('/channels')
+            nexp = max(1, min(block, nint((cs%t_end - cs%t_start)/cs%sample_dt) + 1))
+            do k = 1, ch%n
+                call h%series('/channels/'//trim(ch%name(k)), [integer ::], nexp)
+                call h%attr_string('/channels/'//trim(ch%name(k)), 'units', trim(ch%units(k)))
+            end do
+            call h%series('/time', [integer ::], nexp)
+            call h%attr_string('/time', 'units', 's')
+            call h%group('/bodies')
+            call h%series('/bodies/position', [3, nb], nexp)
+            call h%attr_string('/bodies/position', 'units', 'm')
+            call h%attr_string('/bodies/position', 'description', 'mass-centre position of each body in R; '// &
+                               'h5py shape (time, body, xyz)')
+            call h%series('/bodies/rotation', [3, 3, nb], nexp)
+            call h%attr_string('/bodies/rotation', 'units', '1')
+            call h%attr_string('/bodies/rotation', 'description', 'body-to-R rotation matrix S of each body; '// &
+                               'h5py [t, k, j, i] is S_ij of body k')
+            call h%group('/coordinates')
+            call h%series('/coordinates/x', [n], nexp)
+            call h%attr_string('/coordinates/x', 'units', 'm for translations (tx, ty, tz), rad for rotations '// &
+                               '(rx, ry, rz); per column in column_units')
+            call h%attr_string('/coordinates/x', 'column_units', coord_units(cs, ''))
+            call h%attr_string('/coordinates/x', 'columns', coord_labels(cs))
+            call h%series('/coordinates/xd', [n], nexp)
+            call h%attr_string('/coordinates/xd', 'units', 'm/s for translations, rad/s for rotations; '// &
+                               'per column in column_units')
+            call h%attr_string('/coordinates/xd', 'column_units', coord_units(cs, '/s'))
+            call h%attr_string('/coordinates/xd', 'columns', coord_labels(cs))
+            if (size(cs%dump_times) > 0) call dump_open(h, cs%model, size(cs%dump_times))
+            call h%flush()
+            stat = h%stat
+            errmsg = h%errmsg
+            ! a file that could not be set up is removed with its lock (the message says so)
+            if (stat /= stat_ok) call h%close(.false., stat, errmsg)
+        end associate
+        if (stat /= stat_ok) then
+            me%active = .false.
+            return
+        end if
+        allocate (me%time(block), me%chan(block, ch%n), me%pos(3, nb, block), me%rot(3, 3, nb, block))
+        allocate (me%x(n, block), me%xd(n, block))
+        me%nbuf = 0
+        call system_clock(me%flushed_at, rate)
+    end subroutine results_open
+
+    !> The deck as read: /deck/text (one 80-column card image per element),
+    !! /deck/source and /deck/line (where each came from).
+    subroutine write_deck(h, cs)
+        type(h5_file_t), intent(inout) :: h
+        type(case_t), intent(in) :: cs
+        character(len=80), allocatable :: text(:)
+        character(len=:), allocatable :: sources(:)
+        integer, allocatable :: lines(:)
+        integer :: k, n, lmax
+        n = size(cs%deck)
+        lmax = 1
+        do k = 1, n
+            lmax = max(lmax, len(cs%deck(k)%source))
         end do
-        call me%h5%attr_string('/', 'code', 'HHNECK '//code_version)
-        call me%h5%attr_string('/', 'title', trim(cs%model%title))
-        call me%h5%attr_string('/', 'deck', deck)
-        call me%h5%attr_string('/', 'status', 'running')
-        call me%h5%group('/model')
+        allocate (text(n), lines(n))
+        allocate (character(len=lmax) :: sources(n))
+        do k = 1, n
+            text(k) = cs%deck(k)%text
+            sources(k) = cs%deck(k)%source
+            lines(k) = cs%deck(k)%line
+        end do
+        call h%group('/deck')
+        call h%attr_string('/deck', 'description', 'the card images as read (comments omitted, INCLUDE files '// &
+                           'expanded), where each came from, and its line there')
+        call h%write_strings('/deck/text', text)
+        call h%write_strings('/deck/source', sources)
+        call h%write_int('/deck/line', lines, [n])
+        call h%attr_string('/deck/line', 'units', '1')
+    end subroutine write_deck
+
+    !> /model: names, tree and inertia tables, with units.
+    subroutine write_model(h, cs)
+        type(h5_file_t), intent(inout) :: h
+        type(case_t), intent(in) :: cs
+        character(len=:), allocatable :: names
+        integer :: k, nb, n
+        nb = cs%model%tree%nbody
+        n = cs%model%tree%ndof
+        call h%group('/model')
         names = ''
         do k = 1, nb
             names = names//trim(cs%model%tree%name(k))//' '
         end do
-        call me%h5%attr_string('/model', 'bodies', trim(names))
-        names = ''
-        do j = 1, n
-            names = names//trim(dof_label(cs%model%tree, j))//' '
+        call h%attr_string('/model', 'bodies', trim(names))
+        call h%attr_string('/model', 'coordinates', coord_labels(cs))
+        call h%write_int('/model/parent', cs%model%tree%parent, [nb])
+        call h%attr_string('/model/parent', 'units', '1')
+        call h%attr_string('/model/parent', 'description', 'parent body number, 1-based (0 = the inertial frame R)')
+        call h%write_real('/model/mass', cs%model%tree%mass, [nb])
+        call h%attr_string('/model/mass', 'units', 'kg')
+        call h%write_real('/model/inertia', cs%model%tree%inertia, [3, 3, nb])
+        call h%attr_string('/model/inertia', 'units', 'kg m^2')
+        call h%attr_string('/model/inertia', 'description', 'centroidal inertia matrix in body axes')
+        call h%write_real('/model/joint_in_parent', cs%model%tree%joint_parent, [3, nb])
+        call h%attr_string('/model/joint_in_parent', 'units', 'm')
+        call h%attr_string('/model/joint_in_parent', 'description', 'joint point in the parent frame, from '// &
+                           'the parent''s mass centre (root: a point of R)')
+        call h%write_real('/model/joint_in_body', cs%model%tree%joint_child, [3, nb])
+        call h%attr_string('/model/joint_in_body', 'units', 'm')
+        call h%attr_string('/model/joint_in_body', 'description', 'the joint point in the body frame, from '// &
+                           'its own mass centre')
+        call h%write_int('/model/prescribed', merge(1, 0, cs%model%prescribed), [n])
+        call h%attr_string('/model/prescribed', 'units', '1')
+        call h%attr_string('/model/prescribed', 'description', '1 where the coordinate is prescribed, 0 where free')
+        call write_element_tables(h, cs%model)
+    end subroutine write_model
+
+    !> Labels of the active coordinates, e.g. "T1.tx T1.ty ...".
+    function coord_labels(cs) result(s)
+        type(case_t), intent(in) :: cs
+        character(len=:), allocatable :: s
+        integer :: j
+        s = ''
+        do j = 1, cs%model%tree%ndof
+            s = s//trim(dof_label(cs%model%tree, j))//' '
         end do
-        call me%h5%attr_string('/model', 'coordinates', trim(names))
-        call me%h5%write_int('/model/parent', cs%model%tree%parent, [nb])
-        call me%h5%write_real('/model/mass', cs%model%tree%mass, [nb])
-        call me%h5%write_real('/model/inertia', cs%model%tree%inertia, [3, 3, nb])
-        call me%h5%write_real('/model/joint_in_parent', cs%model%tree%joint_parent, [3, nb])
-        call me%h5%write_real('/model/joint_in_body', cs%model%tree%joint_child, [3, nb])
-        call me%h5%write_int('/model/prescribed', merge(1, 0, cs%model%prescribed), [n])
-        call write_element_tables(me%h5, cs%model)
-        call me%h5%group('/channels')
-        do k = 1, ch%n
-            call me%h5%series('/channels/'//trim(ch%name(k)), [integer ::])
-            call me%h5%attr_string('/channels/'//trim(ch%name(k)), 'units', trim(ch%units(k)))
+        s = trim(s)
+    end function coord_labels
+
+    !> Unit of each active coordinate ("m" or "rad", then `suffix`), space separated.
+    function coord_units(cs, suffix) result(s)
+        type(case_t), intent(in) :: cs
+        character(len=*), intent(in) :: suffix
+        character(len=:), allocatable :: s
+        integer :: j
+        s = ''
+        do j = 1, cs%model%tree%ndof
+            if (cs%model%tree%dof_local(j) <= 3) then
+                s = s//'m'//suffix//' '
+            else
+                s = s//'rad'//suffix//' '
+            end if
         end do
-        call me%h5%series('/time', [integer ::])
-        call me%h5%attr_string('/time', 'units', 's')
-        call me%h5%group('/bodies')
-        call me%h5%series('/bodies/position', [3, nb])
-        call me%h5%series('/bodies/rotation', [3, 3, nb])
-        call me%h5%group('/coordinates')
-        call me%h5%series('/coordinates/x', [n])
-        call me%h5%series('/coordinates/xd', [n])
-        if (size(cs%dump_times) > 0) call dump_open(me%h5, cs%model)
-        allocate (me%time(block), me%chan(block, ch%n), me%pos(3, nb, block), me%rot(3, 3, nb, block))
-        allocate (me%x(n, block), me%xd(n, block))
-        me%nbuf = 0
-    end subroutine results_open
+        s = trim(s)
+    end function coord_units
 
     !> Buffer one sample; writes a block when the buffer is full.
     subroutine results_sample(me, t, ch, ws)
         class(results_t), intent(inout) :: me
-        real(wp), intent(in) :: t
-        type(channel_set_t), intent(in) :: ch
-        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: t                    !! sample time [s]
+        type(channel_set_t), intent(in) :: ch        !! channel values at t
+        type(dyn_workspace_t), intent(in) :: ws      !! kinematics and coordinates at t
         if (.not. me%active) return
         me%nbuf = me%nbuf + 1
         me%time(me%nbuf) = t
@@ -110,15 +231,29 @@ contains
         me%rot(:, :, :, me%nbuf) = ws%kin%s
         me%x(:, me%nbuf) = ws%x
         me%xd(:, me%nbuf) = ws%xd
-        if (me%nbuf == block) call me%flush(ch)
+        me%t_last = t
+        if (me%nbuf == block) call write_block(me, ch, .true.)
     end subroutine results_sample
 
-    !> Write the buffered samples and flush the file.
+    !> At a print time: write the buffered samples and flush the file when
+    !! the last flush is more than a few seconds of wall time ago.
     subroutine results_flush(me, ch)
         class(results_t), intent(inout) :: me
-        type(channel_set_t), intent(in) :: ch
-        integer :: k, nb
+        type(channel_set_t), intent(in) :: ch        !! channel names
+        integer(i8) :: now, rate
         if (.not. me%active) return
+        call system_clock(now, rate)
+        if (real(now - me%flushed_at, wp) < flush_wall*real(rate, wp)) return
+        call write_block(me, ch, .true.)
+    end subroutine results_flush
+
+    !> Write the buffered samples (and flush the file to disk).
+    subroutine write_block(me, ch, to_disk)
+        class(results_t), intent(inout) :: me
+        type(channel_set_t), intent(in) :: ch
+        logical, intent(in) :: to_disk
+        integer :: k, nb
+        integer(i8) :: rate
         nb = me%nbuf
         if (nb > 0) then
             call me%h5%append('/time', me%time, nb)
@@ -132,59 +267,140 @@ contains
             me%nwritten = me%nwritten + nb
             me%nbuf = 0
         end if
-        call me%h5%flush()
-    end subroutine results_flush
+        if (to_disk) then
+            call me%h5%flush()
+            call system_clock(me%flushed_at, rate)
+        end if
+    end subroutine write_block
+
+    !> True once a write has failed (the run should stop: exit 4).
+    logical function results_failed(me)
+        class(results_t), intent(in) :: me
+        results_failed = me%active .and. me%h5%failed()
+    end function results_failed
+
+    !> The message of the first write failure.
+    function results_error(me) result(s)
+        class(results_t), intent(in) :: me
+        character(len=:), allocatable :: s
+        s = trim(me%h5%errmsg)
+    end function results_error
 
     !> Write what is left, the status ('complete' or 'incomplete') and
-    !! message, close, and give the file its final name. Only a run that
-    !! dies without reaching this point leaves the temporary file.
-    subroutine results_close(me, ch, status, message, stat, errmsg)
+    !! message, close, and give the file its final name. `note` says where
+    !! the results are when the run is incomplete, or that the partial file
+    !! was removed after a write failure ('' when there is nothing to say).
+    subroutine results_close(me, ch, status, message, stat, errmsg, note)
         class(results_t), intent(inout) :: me
-        type(channel_set_t), intent(in) :: ch
-        character(len=*), intent(in) :: status, message
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(channel_set_t), intent(in) :: ch        !! channel names
+        character(len=*), intent(in) :: status, message   !! 'complete'/'incomplete', why it stopped
+        integer, intent(out) :: stat                 !! stat_ok or stat_io
+        character(len=msglen), intent(out) :: errmsg !! the reason on failure
+        character(len=msglen), intent(out), optional :: note  !! where the results are
+        character(len=40) :: tt
         stat = 0; errmsg = ''
+        if (present(note)) note = ''
         if (.not. me%active) return
-        call me%flush(ch)
+        call write_block(me, ch, .false.)
         call me%h5%attr_string('/', 'status', status)
         call me%h5%attr_string('/', 'message', message)
         call me%h5%close(.true., stat, errmsg)
         me%active = .false.
+        if (.not. present(note)) return
+        if (stat == stat_ok .and. status /= 'complete' .and. file_kind(me%h5%final_name) == kind_regular) then
+            write (tt, '(f12.5)') me%t_last
+            write (note, '(5a,i0,a)') 'results up to t = ', trim(adjustl(tt)), ' s kept in ', me%h5%final_name, &
+                ' (marked incomplete, ', me%nwritten, trim(merge(' sample) ', ' samples)', me%nwritten == 1))
+        end if
     end subroutine results_close
 
-    !> Group /injury: criteria values as attributes, their time histories
+    !> Group /injury: each criterion's value and where it occurs, labelled
+    !! and with units (docs/output-format.md); the filtered time histories
     !! (same time base as /time) as datasets.
     subroutine results_criteria(me, a)
         class(results_t), intent(inout) :: me
-        type(assessment_t), intent(in) :: a
+        type(assessment_t), intent(in) :: a      !! the run's injury assessment
         integer :: n
         real(wp), allocatable :: modes(:, :)
         if (.not. me%active) return
-        call me%h5%group('/injury')
-        if (.not. a%computed) then
-            call me%h5%attr_string('/injury', 'note', trim(a%note))
-            return
-        end if
-        n = size(a%head_ar)
-        call me%h5%attr_real('/injury', 'hic15', [a%hic15, a%hic15_t1, a%hic15_t2])
-        call me%h5%attr_real('/injury', 'hic36', [a%hic36, a%hic36_t1, a%hic36_t2])
-        call me%h5%attr_real('/injury', 'nij_max', a%nij_max)
-        call me%h5%attr_real('/injury', 'nij_time', a%nij_time)
-        call me%h5%attr_real('/injury', 'nic', [a%nic_max, a%nic_time])
-        call me%h5%attr_real('/injury', 'tension', [a%tension, a%tension_t])
-        call me%h5%attr_real('/injury', 'compression', [a%compression, a%compression_t])
-        call me%h5%attr_real('/injury', 'shear', [a%shear, a%shear_t])
-        call me%h5%attr_real('/injury', 'flexion_moment', [a%flexion, a%flexion_t])
-        call me%h5%attr_real('/injury', 'extension_moment', [a%extension, a%extension_t])
-        call me%h5%write_real('/injury/head_ar_cfc1000', a%head_ar, [n])
-        modes = transpose(a%nij_t)          ! (4, n): h5py reads (n, 4), time first
-        call me%h5%write_real('/injury/nij', modes, [4, n])
-        call me%h5%attr_string('/injury/nij', 'columns', 'NTE NTF NCE NCF')
-        call me%h5%write_real('/injury/nic', a%nic_t, [n])
-        call me%h5%write_real('/injury/oc_fx_cfc600', a%fx, [n])
-        call me%h5%write_real('/injury/oc_fz_cfc600', a%fz, [n])
-        call me%h5%write_real('/injury/oc_my_cfc600', a%my, [n])
+        associate (h => me%h5)
+            call h%group('/injury')
+            if (.not. a%computed) then
+                call h%attr_string('/injury', 'note', trim(a%note))
+                return
+            end if
+            call h%attr_string('/injury', 'description', 'injury criteria of the head and upper neck; each '// &
+                               'group holds a value and where or when it occurs; histories share /time')
+            call window(h, 'hic15', 'HIC over the worst window of at most 15 ms, head resultant acceleration '// &
+                        'CFC 1000', a%hic15, a%hic15_t1, a%hic15_t2)
+            call window(h, 'hic36', 'HIC over the worst window of at most 36 ms', a%hic36, a%hic36_t1, a%hic36_t2)
+            call h%group('/injury/nij')
+            call scalar(h, '/injury/nij/value', a%nij_max, '1', 'peak Nij in each mode, in the order of modes')
+            call scalar(h, '/injury/nij/time', a%nij_time, 's', 'time of each peak')
+            call h%attr_string('/injury/nij', 'modes', 'NTE NTF NCE NCF')
+            call h%attr_string('/injury/nij', 'description', 'Nij at the occipital condyle (CFC 600): tension-'// &
+                               'extension, tension-flexion, compression-extension, compression-flexion')
+            call peak(h, 'nic', 'peak NIC (T1 and head x-accelerations, CFC 60)', a%nic_max, a%nic_time, 'm^2/s^2')
+            call peak(h, 'tension', 'highest OC_FZ (tension positive), CFC 600', a%tension, a%tension_t, 'N')
+            call peak(h, 'compression', 'lowest OC_FZ (compression negative), CFC 600', a%compression, &
+                      a%compression_t, 'N')
+            call peak(h, 'shear', 'highest |OC_FX|, CFC 600', a%shear, a%shear_t, 'N')
+            call peak(h, 'flexion_moment', 'highest OC_MY (flexion positive), CFC 600', a%flexion, a%flexion_t, &
+                      'N m')
+            call peak(h, 'extension_moment', 'lowest OC_MY (extension negative), CFC 600', a%extension, &
+                      a%extension_t, 'N m')
+            n = size(a%head_ar)
+            call h%group('/injury/history')
+            call h%attr_string('/injury/history', 'description', 'filtered time histories at the times of /time')
+            call series(h, 'head_ar_cfc1000', a%head_ar, [n], 'g', 'head resultant acceleration, CFC 1000')
+            modes = transpose(a%nij_t)          ! (4, n): h5py reads (n, 4), time first
+            call series(h, 'nij', modes, [4, n], '1', 'Nij modes NTE NTF NCE NCF; h5py shape (time, mode)')
+            call series(h, 'nic', a%nic_t, [n], 'm^2/s^2', 'NIC')
+            call series(h, 'oc_fx_cfc600', a%fx, [n], 'N', 'OC_FX, CFC 600')
+            call series(h, 'oc_fz_cfc600', a%fz, [n], 'N', 'OC_FZ, CFC 600')
+            call series(h, 'oc_my_cfc600', a%my, [n], 'N m', 'OC_MY, CFC 600')
+        end associate
+    contains
+        subroutine scalar(h, path, v, units, description)
+            type(h5_file_t), intent(inout) :: h
+            character(len=*), intent(in) :: path, units, description
+            real(wp), intent(in) :: v(:)
+            if (size(v) == 1) then
+                call h%write_real(path, v, [integer ::])
+            else
+                call h%write_real(path, v, [size(v)])
+            end if
+            call h%attr_string(path, 'units', units)
+            call h%attr_string(path, 'description', description)
+        end subroutine scalar
+        subroutine window(h, name, description, v, t1, t2)
+            type(h5_file_t), intent(inout) :: h
+            character(len=*), intent(in) :: name, description
+            real(wp), intent(in) :: v, t1, t2
+            call h%group('/injury/'//name)
+            call h%attr_string('/injury/'//name, 'description', description)
+            call scalar(h, '/injury/'//name//'/value', [v], '1', description)
+            call scalar(h, '/injury/'//name//'/t_start', [t1], 's', 'start of the window')
+            call scalar(h, '/injury/'//name//'/t_end', [t2], 's', 'end of the window')
+        end subroutine window
+        subroutine peak(h, name, description, v, t, units)
+            type(h5_file_t), intent(inout) :: h
+            character(len=*), intent(in) :: name, description, units
+            real(wp), intent(in) :: v, t
+            call h%group('/injury/'//name)
+            call h%attr_string('/injury/'//name, 'description', description)
+            call scalar(h, '/injury/'//name//'/value', [v], units, description)
+            call scalar(h, '/injury/'//name//'/time', [t], 's', 'time of the peak')
+        end subroutine peak
+        subroutine series(h, name, v, dims, units, description)
+            type(h5_file_t), intent(inout) :: h
+            character(len=*), intent(in) :: name, units, description
+            real(wp), intent(in) :: v(*)
+            integer, intent(in) :: dims(:)
+            call h%write_real('/injury/history/'//name, v, dims)
+            call h%attr_string('/injury/history/'//name, 'units', units)
+            call h%attr_string('/injury/history/'//name, 'description', description)
+        end subroutine series
     end subroutine results_criteria
 
 end module hn_results

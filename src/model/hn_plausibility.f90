@@ -1,4 +1,5 @@
-!> Physical plausibility of a valid deck: warnings, not errors. Inertia
+!> Physical plausibility of a valid deck: warnings, not errors. Masses and
+!! principal inertias far below the vertebral range (runs that crawl), inertia
 !! that violates the triangle inequality of principal moments, attachment
 !! points far outside their body, and element stiffness two orders of
 !! magnitude or more away from the reference model's (reference/parameters.md).
@@ -18,6 +19,8 @@ module hn_plausibility
     real(wp), parameter :: ref_muscle_m2 = 400.0_wp       !! N s/m
     real(wp), parameter :: ref_limit_c1 = 100.0_wp        !! N m s/rad per rad
     real(wp), parameter :: factor = 100.0_wp              !! "orders of magnitude"
+    real(wp), parameter :: light_mass = 0.01_wp           !! kg: ~40x below the lightest vertebra (0.376 kg)
+    real(wp), parameter :: small_inertia = 1.0e-6_wp      !! kg m^2: ~300x below the smallest vertebral moment
 
 contains
 
@@ -28,10 +31,22 @@ contains
         integer :: k, e
         real(wp) :: ev(3), reach
         character(len=160) :: w
+        character(len=300) :: wl
         allocate (warnings(0))
         associate (t => model%tree)
             do k = 1, t%nbody
+                if (t%mass(k) < light_mass) then
+                    write (wl, '(3a,es9.2,a)') 'body ', trim(t%name(k)), ': mass', t%mass(k), &
+                        ' kg, far below the vertebrae''s 0.376-0.526 kg: needs tiny steps, the run may crawl'// &
+                        ' (check units)'
+                    call add(wl)
+                end if
                 ev = eigenvalues3(t%inertia(:, :, k))
+                if (ev(1) < small_inertia) then
+                    write (wl, '(3a,es9.2,a)') 'body ', trim(t%name(k)), ': smallest principal inertia', ev(1), &
+                        ' kg m2, far below the vertebrae''s 2.96E-04-7.96E-04: the run may crawl (check units)'
+                    call add(wl)
+                end if
                 if (ev(3) > (ev(1) + ev(2))*(1 + 1.0e-9_wp)) then
                     write (w, '(3a,3es10.3,a)') 'body ', trim(t%name(k)), ': principal moments', ev, &
                         ' kg m2 violate the triangle inequality (the largest exceeds the sum of the others)'

@@ -23,6 +23,8 @@ module hn_run
     use hn_tree, only: dof_label
     use hn_assessment, only: assessment_t, assess, criteria_input_t, criteria_input_allocate
     use hn_signals, only: signal_received
+    use hn_progress, only: progress_t, limit_diagnosis
+    use hn_history, only: history_t
     use hn_version, only: code_version
     implicit none
     private
@@ -61,6 +63,7 @@ module hn_run
         character(len=12) :: status = 'complete'
         character(len=msglen) :: message = ''
         character(len=msglen) :: warning = ''   !! a complete run whose results are doubtful
+        character(len=msglen) :: file_note = '' !! what happened to result files (removed, created, kept in)
         real(wp) :: t_reached = zero
         integer :: nevals = 0            !! dynamics evaluations of the integrator
         integer :: nevals_output = 0     !! evaluations at output times
@@ -68,8 +71,7 @@ module hn_run
         real(wp) :: wall = zero          !! wall-clock time of the run loop [s]
         real(wp) :: energy_residual = zero   !! largest |energy balance residual| [J]
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
-        real(wp), allocatable :: times(:), rows(:, :)   !! the listing rows
-        integer :: nrows = 0
+        integer :: nrows = 0                             !! rows of the listing's time histories
         real(wp), allocatable :: samples_t(:), samples(:, :)  !! (optional) every channel at every sample
         type(assessment_t) :: criteria                   !! injury criteria of the run
     end type run_result_t
@@ -97,7 +99,9 @@ module hn_run
         type(run_result_t) :: res
         type(peaks_t) :: peaks
         type(criteria_columns_t) :: icol
-        type(criteria_input_t) :: hist              !! assessment inputs at every sample
+        type(history_t) :: rows                     !! listing rows (t, every channel), memory bounded
+        type(history_t) :: crit                     !! assessment inputs at every sample, memory bounded
+        type(progress_t) :: prog                    !! progress display and run limits
         real(wp), allocatable :: tb(:)              !! breakpoints of the input tables
         real(wp), allocatable :: sw_old(:)          !! switching functions after the last accepted step
         real(wp), allocatable :: ygood(:)           !! last accepted state ...
@@ -189,7 +193,7 @@ contains
         me%ch%head_r0 = me%sys%ws%kin%r(:, me%cs%head) - me%sys%ws%kin%r(:, me%cs%t1)
         me%ch%t1_r0 = me%sys%ws%kin%r(:, me%cs%t1)
         if (len_trim(h5name) > 0) then
-            call me%out%open(me%cs, me%ch, trim(h5name), code_version, stat, msg)
+            call me%out%open(me%cs, me%ch, trim(h5name), code_version, stat, msg, me%res%file_note)
             if (stat /= stat_ok) then
                 call me%fail(exit_output, trim(msg))
                 return
@@ -200,6 +204,7 @@ contains
         me%ygood = y
         me%running = .true.
         call system_clock(me%clock0, rate)
+        call me%prog%start(me%cs%t_start, me%cs%t_end, me%cs%progress, me%cs%wall_limit, me%cs%step_limit)
     end subroutine run_start
 
     !> Constant generalized forces that hold the start posture: q_hold =
@@ -224,13 +229,12 @@ contains
     !! switching functions.
     subroutine init_outputs(me)
         class(run_state_t), intent(inout) :: me
-        integer :: nprint, nsample
+        integer :: nsample
         associate (cs => me%cs)
-            nprint = nint((cs%t_end - cs%t_start)/cs%print_dt) + 2
             nsample = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
-            allocate (me%res%times(nprint), me%res%rows(me%ch%n, nprint))
+            call me%rows%init(1 + me%ch%n)
             if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample))
-            call criteria_input_allocate(me%hist, nsample)
+            call me%crit%init(7)
             me%icol = criteria_columns_t(channel_index(me%ch, 'HEAD_AX'), channel_index(me%ch, 'HEAD_AY'), &
                                          channel_index(me%ch, 'HEAD_AZ'), channel_index(me%ch, 'T1_AX'), &
                                          channel_index(me%ch, 'OC_FX'), channel_index(me%ch, 'OC_FZ'), &
@@ -320,6 +324,12 @@ contains
             end if
             me%tgood = me%integ%t
             me%ygood = me%integ%y
+            call me%prog%update(me%integ%t, me%integ%t - me%integ%told, me%integ%nsteps, stat, msg)
+            if (stat /= stat_ok) then
+                call me%fail(exit_diverged, 'run stopped: '//trim(msg)// &
+                             limit_diagnosis(me%sys, me%tgood, me%ygood, me%integ%t - me%integ%told, me%cs%integrator))
+                return
+            end if
         end do
     end subroutine run_advance_to
 
@@ -347,8 +357,7 @@ contains
             if (abs(t - (cs%t_start + me%ks*cs%sample_dt)) <= me%tol) call me%record_sample(t)
             if (abs(t - (cs%t_start + me%kp*cs%print_dt)) <= me%tol) then
                 me%res%nrows = me%res%nrows + 1
-                me%res%times(me%res%nrows) = t
-                me%res%rows(:, me%res%nrows) = me%ch%value
+                call me%rows%add([t, me%ch%value])
                 me%kp = me%kp + 1
                 call me%out%flush(me%ch)
             end if
@@ -370,12 +379,12 @@ contains
         real(wp), intent(in) :: t
         integer :: k
         call me%out%sample(t, me%ch, me%sys%ws)
+        if (me%out%failed()) call me%fail(exit_output, me%out%error())
         me%ks = me%ks + 1
         k = me%ks
         associate (v => me%ch%value, c => me%icol)
-            me%hist%head_ax(k) = v(c%head_ax); me%hist%head_ay(k) = v(c%head_ay)
-            me%hist%head_az(k) = v(c%head_az); me%hist%t1_ax(k) = v(c%t1_ax)
-            me%hist%oc_fx(k) = v(c%oc_fx); me%hist%oc_fz(k) = v(c%oc_fz); me%hist%oc_my(k) = v(c%oc_my)
+            call me%crit%add([v(c%head_ax), v(c%head_ay), v(c%head_az), v(c%t1_ax), v(c%oc_fx), v(c%oc_fz), &
+                              v(c%oc_my)])
         end associate
         if (me%keep) then
             me%res%samples_t(k) = t
@@ -541,9 +550,11 @@ contains
     subroutine run_finish(me, res)
         class(run_state_t), intent(inout) :: me
         type(run_result_t), intent(out) :: res         !! what happened
-        character(len=msglen) :: line
+        character(len=msglen) :: line, note
         integer :: st
         integer(i8) :: c1, rate
+        type(criteria_input_t) :: hist
+        call me%prog%finish()
         call system_clock(c1, rate)
         if (me%clock0 > 0) me%res%wall = real(c1 - me%clock0, wp)/real(rate, wp)
         me%res%nevals_output = me%nev_out
@@ -557,16 +568,27 @@ contains
             me%res%samples_t = me%res%samples_t(1:me%ks)
             me%res%samples = me%res%samples(:, 1:me%ks)
         end if
-        if (allocated(me%res%times)) then
-            call assess(me%cs%t_start, me%cs%sample_dt, me%hist, me%ks, me%res%criteria)
-            call me%lst%histories(me%ch, me%res%times, me%res%rows, me%res%nrows)
+        if (me%rows%m > 0) then
+            call criteria_input_allocate(hist, me%crit%n)
+            hist%head_ax = me%crit%column(1); hist%head_ay = me%crit%column(2); hist%head_az = me%crit%column(3)
+            hist%t1_ax = me%crit%column(4); hist%oc_fx = me%crit%column(5); hist%oc_fz = me%crit%column(6)
+            hist%oc_my = me%crit%column(7)
+            call me%crit%clear()
+            call assess(me%cs%t_start, me%cs%sample_dt, hist, me%ks, me%res%criteria)
+            call me%lst%histories(me%ch, me%rows)
+            call me%rows%clear()
             call me%lst%peaks(me%ch, me%peaks%vmax, me%peaks%tmax, me%peaks%vmin, me%peaks%tmin)
             call me%lst%criteria(me%res%criteria)
             call me%out%criteria(me%res%criteria)
         end if
         call end_of_run_lines(me)
-        call me%out%close(me%ch, trim(me%res%status), trim(me%res%message), st, line)
-        if (st /= stat_ok .and. me%res%exit_code == exit_ok) call me%fail(exit_output, trim(line))
+        call me%out%close(me%ch, trim(me%res%status), trim(me%res%message), st, line, note)
+        if (st /= stat_ok) call me%fail(exit_output, trim(line))
+        if (len_trim(note) > 0 .and. len_trim(me%res%file_note) > 0) then
+            me%res%file_note = trim(me%res%file_note)//'; '//note
+        else if (len_trim(note) > 0) then
+            me%res%file_note = note
+        end if
         me%running = .false.
         res = me%res
     end subroutine run_finish

@@ -1,0 +1,214 @@
+!> Progress of a long run on standard error, and the limits that stop a run
+!! that cannot finish in reasonable time.
+!!
+!! Progress (simulated time, wall time, step size, estimated time to
+!! finish) is shown when asked, or when standard error is a terminal and the
+!! run has taken more than a few seconds: on a terminal one line rewritten in
+!! place, otherwise a line every few seconds. A wall-time or step-count
+!! limit (RUNLIMIT card, --max-wall, --max-steps) makes `update` return a
+!! non-zero stat with a message; limit_diagnosis then says whether the step
+!! is held down by stiffness, and what to do.
+!!
+!! The run loop needs three lines: start before it, update after every
+!! step, finish after it.
+module hn_progress
+    use, intrinsic :: iso_fortran_env, only: error_unit
+    use hn_kinds, only: wp, zero, msglen, i8
+    use hn_status, only: stat_ok, stat_step_failed
+    use hn_posix, only: is_terminal
+    use hn_dynamics, only: model_ode_t
+    use hn_integrators, only: spectral_radius
+    use hn_tree, only: dof_label
+    implicit none
+    private
+
+    public :: progress_t, limit_diagnosis
+
+    integer, parameter, public :: progress_off = 0, progress_auto = 1, progress_on = 2
+
+    real(wp), parameter :: first_after = 2.0_wp     !! automatic progress only for runs longer than this [s wall]
+    real(wp), parameter :: tty_every = 0.5_wp       !! terminal refresh [s wall]
+    real(wp), parameter :: log_every = 5.0_wp       !! one line this often when not a terminal [s wall]
+
+    !> Progress display and run limits of one run.
+    type :: progress_t
+        integer :: mode = progress_off
+        logical :: tty = .false.
+        real(wp) :: wall_limit = zero    !! [s], 0 = none
+        integer :: step_limit = 0        !! 0 = none
+        real(wp) :: t0 = zero, t_end = zero
+        integer(i8) :: c0 = 0, rate = 1, shown = 0
+        logical :: printed = .false.
+    contains
+        procedure :: start => progress_start
+        procedure :: update => progress_update
+        procedure :: finish => progress_finish
+    end type progress_t
+
+contains
+
+    !> Start the clock. mode: progress_off, progress_auto (shown on a
+    !! terminal once the run takes a while) or progress_on (always).
+    subroutine progress_start(me, t0, t_end, mode, wall_limit, step_limit)
+        class(progress_t), intent(inout) :: me
+        real(wp), intent(in) :: t0, t_end         !! simulated start and end [s]
+        integer, intent(in) :: mode               !! progress_off, progress_auto or progress_on
+        real(wp), intent(in) :: wall_limit        !! stop after this wall time [s] (0: none)
+        integer, intent(in) :: step_limit         !! stop after this many steps (0: none)
+        me%mode = mode
+        me%tty = is_terminal(2)
+        if (mode == progress_auto .and. .not. me%tty) me%mode = progress_off
+        me%t0 = t0
+        me%t_end = t_end
+        me%wall_limit = wall_limit
+        me%step_limit = step_limit
+        me%printed = .false.
+        call system_clock(me%c0, me%rate)
+        me%shown = me%c0
+    end subroutine progress_start
+
+    !> After a step: show progress when due; stat /= 0 with a message when
+    !! a limit is reached (the run should stop, exit 3).
+    subroutine progress_update(me, t, h, nsteps, stat, errmsg)
+        class(progress_t), intent(inout) :: me
+        real(wp), intent(in) :: t            !! simulated time reached [s]
+        real(wp), intent(in) :: h            !! size of the last step [s]
+        integer, intent(in) :: nsteps        !! steps taken so far
+        integer, intent(out) :: stat         !! stat_ok, or stat_step_failed when a limit is reached
+        character(len=msglen), intent(out) :: errmsg  !! which limit, where the run stands
+        integer(i8) :: now
+        real(wp) :: wall, since
+        stat = stat_ok
+        errmsg = ''
+        if (me%mode == progress_off .and. me%wall_limit <= zero .and. me%step_limit <= 0) return
+        call system_clock(now)
+        wall = real(now - me%c0, wp)/real(me%rate, wp)
+        if (me%step_limit > 0 .and. nsteps >= me%step_limit) then
+            stat = stat_step_failed
+            write (errmsg, '(a,i0,a,a)') 'the step limit of ', me%step_limit, ' steps (RUNLIMIT card or '// &
+                '--max-steps) was reached', where_now()
+        else if (me%wall_limit > zero .and. wall >= me%wall_limit) then
+            stat = stat_step_failed
+            errmsg = 'the wall-time limit of '//seconds(me%wall_limit)//' s (RUNLIMIT card or '// &
+                     '--max-wall) was reached'//where_now()
+        end if
+        if (me%mode == progress_off) return
+        since = real(now - me%shown, wp)/real(me%rate, wp)
+        if (me%tty) then
+            if (wall < first_after .or. since < tty_every) return
+        else
+            if (since < log_every) return
+        end if
+        me%shown = now
+        if (me%tty) then
+            write (error_unit, '(a)', advance='no') achar(13)//line()//'   '
+        else
+            write (error_unit, '(a)') line()
+        end if
+        flush (error_unit)
+        me%printed = .true.
+    contains
+        function line() result(s)
+            character(len=:), allocatable :: s
+            character(len=200) :: buf
+            real(wp) :: frac
+            frac = (t - me%t0)/max(me%t_end - me%t0, tiny(1.0_wp))
+            write (buf, '(a,f10.5,a,f10.5,a,f5.1,a,f9.1,a,es9.2,a)') 'hhneck: t =', t, ' s of', me%t_end, ' s (', &
+                100*frac, ' %), ', wall, ' s wall, step', h, ' s, '
+            if (frac > 1.0e-6_wp) then
+                s = trim(buf)//' about '//trim(duration(wall*(1 - frac)/frac))//' to go'
+            else
+                s = trim(buf)//' time to go not yet known'
+            end if
+        end function line
+        function where_now() result(s)
+            character(len=:), allocatable :: s
+            s = ' at t = '//num(t, '(es11.4)')//' s of '//num(me%t_end, '(g0.4)')//' s, after '// &
+                num(wall, '(f0.1)')//' s wall and '//num(real(nsteps, wp), '(i0)')//' steps (last step '// &
+                num(h, '(es9.2)')//' s)'
+        end function where_now
+        function seconds(x) result(s)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: s
+            if (abs(x - nint(x)) < 1.0e-9_wp*max(1.0_wp, abs(x))) then
+                s = num(x, '(i0)')
+            else
+                s = num(x, '(g0.4)')
+            end if
+        end function seconds
+        function num(x, fmt) result(s)
+            real(wp), intent(in) :: x
+            character(len=*), intent(in) :: fmt
+            character(len=:), allocatable :: s
+            character(len=30) :: buf
+            if (fmt == '(i0)') then
+                write (buf, fmt) nint(x, i8)
+            else
+                write (buf, fmt) x
+            end if
+            s = trim(adjustl(buf))
+            if (s(1:1) == '.') s = '0'//s
+        end function num
+    end subroutine progress_update
+
+    !> End the progress line (on a terminal).
+    subroutine progress_finish(me)
+        class(progress_t), intent(inout) :: me
+        if (me%printed .and. me%tty) then
+            write (error_unit, '(a)') ''
+            flush (error_unit)
+        end if
+        me%printed = .false.
+    end subroutine progress_finish
+
+    !> "12 s", "3.5 min", "2.1 h", "4.0 days".
+    function duration(s) result(txt)
+        real(wp), intent(in) :: s
+        character(len=:), allocatable :: txt
+        character(len=20) :: buf
+        if (s < 120.0_wp) then
+            write (buf, '(i0,a)') nint(s), ' s'
+        else if (s < 7200.0_wp) then
+            write (buf, '(f6.1,a)') s/60, ' min'
+        else if (s < 172800.0_wp) then
+            write (buf, '(f6.1,a)') s/3600, ' h'
+        else
+            write (buf, '(es9.2,a)') s/86400, ' days'
+        end if
+        txt = trim(adjustl(buf))
+    end function duration
+
+    !> Why a run that hit a limit is slow: the fastest mode of the Jacobian
+    !! at the last good state against the step size. When h |lambda| is of
+    !! order one, the step is held down by stability (a stiff model): an
+    !! implicit method or a softer model helps; otherwise by accuracy.
+    function limit_diagnosis(sys, t, y, h, integrator) result(s)
+        type(model_ode_t), intent(inout) :: sys   !! the model's ODE system
+        real(wp), intent(in) :: t, y(:)           !! last good state
+        real(wp), intent(in) :: h                 !! last step size [s]
+        character(len=*), intent(in) :: integrator  !! method name (CONTROL F4)
+        character(len=:), allocatable :: s
+        real(wp) :: rho
+        integer :: lead, st, nf
+        character(len=msglen) :: m
+        character(len=400) :: buf
+        s = ''
+        call spectral_radius(sys, t, y, rho, lead, st, m)
+        if (st /= 0 .or. .not. (rho > zero)) return
+        nf = sys%ws%nfree
+        write (buf, '(a,es9.2,3a,es9.2,a)') '. The fastest mode has |lambda| =', rho, ' 1/s, mostly in ', &
+            trim(dof_label(sys%model%tree, sys%ws%ifree(1 + mod(lead - 1, nf)))), ' (h |lambda| =', h*rho, ')'
+        s = trim(buf)
+        if (h*rho > 0.3_wp .and. trim(integrator) /= 'ROS2') then
+            s = s//': the step is held down by stiffness, not accuracy. Remedy: the linearly implicit ROS2 '// &
+                '(CONTROL F4), or a softer element on that coordinate (STIFFEN or its card)'
+        else if (h*rho > 0.3_wp) then
+            s = s//': the model is stiff. Remedy: a looser tolerance (--rtol), or a softer element on '// &
+                'that coordinate (STIFFEN or its card)'
+        else
+            s = s//': the step is limited by accuracy, not stability. Remedy: a looser tolerance (--rtol), '// &
+                'or fewer discontinuities in the inputs'
+        end if
+    end function limit_diagnosis
+
+end module hn_progress
