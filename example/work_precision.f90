@@ -11,6 +11,7 @@
 program work_precision
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
+    use bench_decks, only: copy_with_stiffen, delete_file
     use hn_deck, only: read_case
     use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
@@ -56,7 +57,8 @@ contains
                   (config_t('ABM4', 4.0e-4_wp*hs/2**k, 0.0_wp), k=0, 5), &
                   (config_t('DOPRI5', 1.0e-4_wp, 10.0_wp**(-k)), k=3, 9), &
                   (config_t('ADAMS', 1.0e-4_wp, 10.0_wp**(-k)), k=3, 9), &
-                  (config_t('ROS2', 1.0e-4_wp, 10.0_wp**(-k)), k=2, 5)]
+                  (config_t('ROS2', 1.0e-4_wp, 10.0_wp**(-k)), k=2, 5), &
+                  (config_t('ROS34PW2', 1.0e-4_wp, 10.0_wp**(-k)), k=2, 6)]
 
         call one_run(deck, t_end, stiffen, config_t('DOPRI5', 1.0e-5_wp, 1.0e-11_wp), res, ith, iom)
         th_ref = res%samples(ith, :)
@@ -109,10 +111,9 @@ contains
             character(len=msglen) :: msg
             character(len=*), parameter :: tmp = 'work_precision_deck.inp'
             if (stiffen) then
-                call copy_with_stiffen(deck, tmp)
+                call copy_with_stiffen(deck, tmp, 100.0_wp)
                 call read_case(tmp, tmp, cs, stat, msg)
-                open (newunit=lu, file=tmp, status='old')
-                close (lu, status='delete')
+                call delete_file(tmp)
             else
                 call read_case(deck, deck, cs, stat, msg)
             end if
@@ -133,22 +134,5 @@ contains
             end block
             close (lu)
         end subroutine one_run
-
-    !> A copy of a deck with every element stiffness x100 (STIFFEN card).
-    subroutine copy_with_stiffen(src, dst)
-        character(len=*), intent(in) :: src, dst
-        character(len=256) :: line
-        integer :: a, b, ios
-        open (newunit=a, file=src, status='old', action='read')
-        open (newunit=b, file=dst, status='replace', action='write')
-        do
-            read (a, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            write (b, '(a)') trim(line)
-        end do
-        write (b, '(a)') 'STIFFEN   100.0'
-        close (a)
-        close (b)
-    end subroutine copy_with_stiffen
 
 end program work_precision

@@ -18,7 +18,7 @@ cases = []
 for r in rows:
     if r["case"] not in cases:
         cases.append(r["case"])
-style = {"RK4": "o-", "ABM4": "s-", "DOPRI5": "^-", "ADAMS": "v-", "ROS2": "D-"}
+style = {"RK4": "o-", "ABM4": "s-", "DOPRI5": "^-", "ADAMS": "v-", "ROS2": "D-", "ROS34PW2": "*-"}
 fig, axes = plt.subplots(2, len(cases), figsize=(5 * len(cases), 8), squeeze=False)
 for j, case in enumerate(cases):
     lines = defaultdict(list)

@@ -46,7 +46,7 @@ contains
                 span = (j - i)*dt
                 avg = (c(j) - c(i))/span
                 if (avg <= zero) cycle
-                h = span*avg**2.5_wp
+                h = span*avg*avg*sqrt(avg)          ! avg**2.5 without a call of pow
                 if (h > value) then
                     value = h; t1 = (i - 1)*dt; t2 = (j - 1)*dt
                 end if

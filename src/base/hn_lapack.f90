@@ -4,17 +4,9 @@ module hn_lapack
     implicit none
     private
 
-    public :: dposv, dpotrf, dpocon, dlansy, dgetrf, dgetrs
+    public :: dpotrf, dpocon, dlansy, dgetrf, dgetrs
 
     interface
-        !> Solve A X = B for symmetric positive definite A (Cholesky).
-        pure subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
-            import :: wp
-            character, intent(in) :: uplo
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-            integer, intent(out) :: info
-        end subroutine dposv
         !> Cholesky factorization of a symmetric positive definite matrix.
         pure subroutine dpotrf(uplo, n, a, lda, info)
             import :: wp
@@ -23,7 +15,6 @@ module hn_lapack
             real(wp), intent(inout) :: a(lda, *)
             integer, intent(out) :: info
         end subroutine dpotrf
-        !> Solve with a Cholesky factor from dpotrf.
         !> Reciprocal 1-norm condition estimate from a Cholesky factor.
         pure subroutine dpocon(uplo, n, a, lda, anorm, rcond, work, iwork, info)
             import :: wp

@@ -9,18 +9,21 @@ module hn_dynamics
     use hn_kinds, only: wp, zero, msglen, deg
     use hn_status, only: stat_ok, stat_gimbal
     use hn_model, only: model_t
-    use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities, kinetic_energy
+    use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities, body_kinematics, kinetic_energy
     use hn_loads, only: body_loads_t, loads_allocate
     use hn_kane, only: a_ij, f_i
+    use hn_recursive, only: composite_rigid_body, f_recursive, inertia_times, articulated_body_solve
+    use hn_jacobian, only: generalized_tangent
     use hn_forces, only: compute_loads, element_output_t, element_output_allocate
-    use hn_linsolve, only: linear_solve
+    use hn_linsolve, only: linear_solve, solver_gauss, solver_articulated
     use hn_motion, only: motion_eval
     use hn_tree, only: dof_label
     use hn_ode, only: ode_system_t
     implicit none
     private
 
-    public :: dyn_workspace_t, dynamics_setup, dynamics_evaluate, model_ode_t, model_ode_init
+    public :: dyn_workspace_t, dynamics_setup, dynamics_evaluate, dynamics_outputs, inertia_forces_free
+    public :: model_ode_t, model_ode_init
     public :: state_to_coordinates, coordinates_to_state, nenergy, state_size, energy_terms, energy_t
 
     integer, parameter :: nenergy = 4   !! energy-audit quadratures appended to the state
@@ -30,12 +33,14 @@ module hn_dynamics
     type :: dyn_workspace_t
         integer :: ndof = 0, nfree = 0, npres = 0
         integer, allocatable :: ifree(:), ipres(:)  !! free and prescribed coordinate numbers
+        integer :: free_offset = -1                 !! ifree = free_offset + (1..nfree) when contiguous, else -1
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
         type(element_output_t) :: eo                 !! element forces of the last evaluation
         real(wp), allocatable :: x(:), xd(:), xdd(:) !! all active coordinates, rates, accelerations
         real(wp), allocatable :: a(:, :), f(:)       !! a_ij and f_i of all active coordinates
         real(wp), allocatable :: aff(:, :), bf(:)    !! the free partition and its right-hand side
+        real(wp), allocatable :: lambda(:)           !! constraint forces of the prescribed coordinates
         real(wp) :: p_prescribed = zero              !! power of the prescribed motions [W]
         integer, allocatable :: gimbal_bodies(:)     !! bodies whose first and third Bryant angles are both free
     end type dyn_workspace_t
@@ -56,6 +61,7 @@ module hn_dynamics
         type(dyn_workspace_t) :: ws
     contains
         procedure :: rhs => model_rhs
+        procedure :: second_order_tangent => model_tangent
     end type model_ode_t
 
 contains
@@ -78,12 +84,15 @@ contains
                 i1 = i1 + 1; ws%ifree(i1) = j
             end if
         end do
+        if (ws%nfree > 0) then
+            if (ws%ifree(ws%nfree) - ws%ifree(1) + 1 == ws%nfree) ws%free_offset = ws%ifree(1) - 1
+        end if
         call kinematics_allocate(model%tree, ws%kin)
         call loads_allocate(ws%loads, model%tree%nbody, n)
         call element_output_allocate(model, ws%eo)
         allocate (ws%x(n), ws%xd(n), ws%xdd(n), ws%a(n, n), ws%f(n))
-        allocate (ws%aff(ws%nfree, ws%nfree), ws%bf(ws%nfree))
-        ws%x = zero; ws%xd = zero; ws%xdd = zero
+        allocate (ws%aff(ws%nfree, ws%nfree), ws%bf(ws%nfree), ws%lambda(n))
+        ws%x = zero; ws%xd = zero; ws%xdd = zero; ws%a = zero; ws%f = zero; ws%lambda = zero
         ws%gimbal_bodies = pack([(j, j=1, model%tree%nbody)], [(free_rotation(j, 4) .and. free_rotation(j, 6), &
                                                                  j=1, model%tree%nbody)])
     contains
@@ -121,8 +130,13 @@ contains
         y(ws%nfree + 1:2*ws%nfree) = xd(ws%ifree)
     end subroutine coordinates_to_state
 
-    !> Accelerations of the free coordinates at (t, xf, xdf); the full
-    !! kinematics, loads, a_ij, f_i and xddot stay in ws for output.
+    !> Accelerations of the free coordinates at (t, xf, xdf); the
+    !! kinematics, loads, element outputs and xddot stay in ws for output.
+    !! By model%solver: GAUSS, the paper's path (partial velocities, a_ij by
+    !! eq 17, f_i by eq 18, Gaussian elimination); CHOLESKY, the same
+    !! equations by the composite-rigid-body and recursive Newton-Euler
+    !! forms and a Cholesky solve (a_ij and f_i in ws as well); ABA,
+    !! the O(n) articulated-body algorithm (ws%a, ws%f not formed).
     pure subroutine dynamics_evaluate(model, ws, t, xf, xdf, xddf, stat, errmsg)
         type(model_t), intent(in) :: model
         type(dyn_workspace_t), intent(inout) :: ws
@@ -130,38 +144,42 @@ contains
         real(wp), intent(out) :: xddf(:)
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: errmsg
-        integer :: i, k, j
-        real(wp) :: cb, beta
+        integer :: i, j, k
 
         call state_to_coordinates(model, ws, t, xf, xdf)
-        ! the Bryant sequence is singular at cos(beta) = 0 when the first and
-        ! third angles are both unknowns: stop there rather than integrate a
-        ! nearly singular a_ij
-        do i = 1, size(ws%gimbal_bodies)
-            k = ws%gimbal_bodies(i)
-            j = model%tree%dof_index(5, k)
-            if (j > 0) then
-                beta = ws%x(j)
-            else
-                beta = model%tree%q_ref(5, k)
-            end if
-            cb = cos(beta)
-            if (abs(cb) < cos_singular) then
-                stat = stat_gimbal
-                write (errmsg, '(a,es12.5,3a,f8.3,a)') 't = ', t, ' s: Bryant-angle singularity: body ', &
-                    trim(model%tree%name(k)), ' has RY = ', beta/deg, &
-                    ' deg (90 deg is singular: its RX and RZ axes coincide); lock or prescribe RX or RZ, or '// &
-                    'choose body axes that keep RY away from 90 deg'
+        call gimbal_check(model, ws, t, stat, errmsg)
+        if (stat /= stat_ok) then
+            xddf = zero
+            return
+        end if
+        select case (model%solver)
+        case (solver_gauss)
+            call partial_velocities(model%tree, ws%x, ws%xd, ws%kin)
+            call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
+            call a_ij(model%tree, ws%kin, ws%a)
+            call f_i(model%tree, ws%kin, ws%loads, ws%f)
+        case (solver_articulated)
+            call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
+            call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
+            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k)
+            if (stat /= stat_ok) then
+                write (errmsg, '(a,es12.5,3a)') 't = ', t, ' s: the joint of body ', trim(model%tree%name(max(k, 1))), &
+                    ' has dependent axes (articulated inertia singular)'
                 xddf = zero
                 return
             end if
-        end do
-        call partial_velocities(model%tree, ws%x, ws%xd, ws%kin)
-        call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
-        call a_ij(model%tree, ws%kin, ws%a)
-        call f_i(model%tree, ws%kin, ws%loads, ws%f)
+            xddf = ws%xdd(ws%ifree)
+            ws%p_prescribed = dot_product(ws%lambda(ws%ipres), ws%xd(ws%ipres))
+            errmsg = ''
+            return
+        case default
+            call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
+            call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
+            call composite_rigid_body(model%tree, ws%kin, ws%a)
+            call f_recursive(model%tree, ws%kin, ws%loads, ws%f)
+        end select
 
-        ws%aff = ws%a(ws%ifree, ws%ifree)
+        call free_block(ws, ws%a, ws%aff)
         ws%bf = ws%f(ws%ifree)
         do i = 1, ws%npres
             ws%bf = ws%bf - ws%a(ws%ifree, ws%ipres(i))*ws%xdd(ws%ipres(i))
@@ -182,9 +200,98 @@ contains
         ws%p_prescribed = zero
         do i = 1, ws%npres
             j = ws%ipres(i)
-            ws%p_prescribed = ws%p_prescribed + (dot_product(ws%a(j, :), ws%xdd) - ws%f(j))*ws%xd(j)
+            ws%lambda(j) = dot_product(ws%a(j, :), ws%xdd) - ws%f(j)
+            ws%p_prescribed = ws%p_prescribed + ws%lambda(j)*ws%xd(j)
         end do
     end subroutine dynamics_evaluate
+
+    !> The free-free block of an (n, n) matrix (a slice when the free
+    !! coordinates are contiguous, as when a root body is prescribed).
+    pure subroutine free_block(ws, a, aff)
+        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: a(:, :)
+        real(wp), intent(out) :: aff(:, :)
+        integer :: f0, nf
+        f0 = ws%free_offset
+        nf = ws%nfree
+        if (f0 >= 0) then
+            aff = a(f0 + 1:f0 + nf, f0 + 1:f0 + nf)
+        else
+            aff = a(ws%ifree, ws%ifree)
+        end if
+    end subroutine free_block
+
+    !> The Bryant sequence is singular at cos(beta) = 0 when the first and
+    !! third angles are both unknowns: stop there rather than integrate a
+    !! nearly singular a_ij.
+    pure subroutine gimbal_check(model, ws, t, stat, errmsg)
+        type(model_t), intent(in) :: model
+        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: t
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        integer :: i, j, k
+        real(wp) :: beta
+        stat = stat_ok
+        errmsg = ''
+        do i = 1, size(ws%gimbal_bodies)
+            k = ws%gimbal_bodies(i)
+            j = model%tree%dof_index(5, k)
+            if (j > 0) then
+                beta = ws%x(j)
+            else
+                beta = model%tree%q_ref(5, k)
+            end if
+            if (abs(cos(beta)) < cos_singular) then
+                stat = stat_gimbal
+                write (errmsg, '(a,es12.5,3a,f8.3,a)') 't = ', t, ' s: Bryant-angle singularity: body ', &
+                    trim(model%tree%name(k)), ' has RY = ', beta/deg, &
+                    ' deg (90 deg is singular: its RX and RZ axes coincide); lock or prescribe RX or RZ, or '// &
+                    'choose body axes that keep RY away from 90 deg'
+                return
+            end if
+        end do
+    end subroutine gimbal_check
+
+    !> The lean evaluation for outputs at (t, xf, xdf): fill the workspace
+    !! as dynamics_evaluate would -- coordinates, kinematics, element loads
+    !! and outputs, xddot -- without forming a_ij. The free accelerations
+    !! are either given (xddf, for instance the derivative of the
+    !! integrator's dense output) or solved by the articulated-body
+    !! algorithm on the kinematics and loads just computed (exact, O(n)).
+    !! Body accelerations then follow from body_accelerations(tree,
+    !! ws%kin, ws%xdd, ...). ws%a, ws%f and p_prescribed are left as they are.
+    pure subroutine dynamics_outputs(model, ws, t, xf, xdf, stat, xddf)
+        type(model_t), intent(in) :: model
+        type(dyn_workspace_t), intent(inout) :: ws
+        real(wp), intent(in) :: t, xf(:), xdf(:)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_singular from the solve
+        real(wp), intent(in), optional :: xddf(:)      !! free accelerations at t (else solved)
+        integer :: k
+        call state_to_coordinates(model, ws, t, xf, xdf)
+        call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
+        call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
+        stat = stat_ok
+        if (present(xddf)) then
+            ws%xdd(ws%ifree) = xddf
+        else
+            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k)
+        end if
+    end subroutine dynamics_outputs
+
+    !> Generalized inertia forces a_FF xddot_F of the free coordinates for
+    !! given free accelerations (prescribed ones zero), with the kinematics
+    !! of the last evaluation in ws; O(n), on every solver path.
+    pure function inertia_forces_free(model, ws, xddf) result(q)
+        type(model_t), intent(in) :: model
+        type(dyn_workspace_t), intent(in) :: ws
+        real(wp), intent(in) :: xddf(:)
+        real(wp) :: q(size(xddf)), v(ws%ndof), av(ws%ndof)
+        v = zero
+        v(ws%ifree) = xddf
+        av = inertia_times(model%tree, ws%kin, v)
+        q = av(ws%ifree)
+    end function inertia_forces_free
 
     !> Energy terms from the workspace of the evaluation at a state and the
     !! state's four energy-audit integrals equad.
@@ -219,14 +326,44 @@ contains
         n = 2*sys%ws%nfree + nenergy
     end function state_size
 
-    !> Wrap a model as an ODE system.
+    !> Wrap a model as an ODE system: y = (x_F, xdot_F, E), second-order
+    !! structure of size nfree; the structured tangent (model_tangent) is
+    !! offered unless model%jacobian is 'FD'.
     subroutine model_ode_init(sys, model)
         type(model_ode_t), intent(out) :: sys
         type(model_t), intent(in) :: model
         sys%model = model
         sys%nquad = nenergy
         call dynamics_setup(sys%model, sys%ws)
+        sys%nsecond = sys%ws%nfree
+        sys%has_tangent = model%jacobian /= 'FD'
     end subroutine model_ode_init
+
+    !> Mass a_FF, stiffness K_FF and damping C_FF of the free coordinates at
+    !! (t, y): a_ij by the composite-rigid-body recursion, K and C of the
+    !! elements (hn_jacobian). The structured Jacobian of the stiff methods.
+    subroutine model_tangent(me, t, y, mass, stiffness, damping, stat, errmsg)
+        class(model_ode_t), intent(inout) :: me
+        real(wp), intent(in) :: t
+        real(wp), intent(in) :: y(:)
+        real(wp), intent(out) :: mass(:, :), stiffness(:, :), damping(:, :)
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        real(wp) :: kgen(me%ws%ndof, me%ws%ndof), cgen(me%ws%ndof, me%ws%ndof)
+        integer :: nf
+        nf = me%ws%nfree
+        stat = stat_ok
+        errmsg = ''
+        associate (model => me%model, ws => me%ws)
+            call state_to_coordinates(model, ws, t, y(1:nf), y(nf + 1:2*nf))
+            call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
+            call composite_rigid_body(model%tree, ws%kin, ws%a)
+            call generalized_tangent(model, ws%kin, t, ws%x, ws%xd, kgen, cgen)
+            call free_block(ws, ws%a, mass)
+            call free_block(ws, kgen, stiffness)
+            call free_block(ws, cgen, damping)
+        end associate
+    end subroutine model_tangent
 
     !> y = (x_F, xdot_F, E) -> y' = (xdot_F, xddot_F, energy-audit powers).
     subroutine model_rhs(me, t, y, dydt, stat, errmsg)

@@ -12,6 +12,10 @@ module hn_kane
 
     public :: a_ij, generalized_active_forces, f_i, equivalent_body_loads
 
+    !> |det| of a body's three Bryant axes below which they are taken as
+    !! dependent (cos(beta) = 0: the gimbal singularity).
+    real(wp), parameter :: axes_det_min = 1.0e-12_wp
+
 contains
 
     !> Generalized mass matrix (eq 17):
@@ -137,7 +141,7 @@ contains
                 adj(:, 2) = cross(u(:, 3), u(:, 1))
                 adj(:, 3) = cross(u(:, 1), u(:, 2))
                 det = dot_product(u(:, 1), adj(:, 1))
-                if (abs(det) < 1.0e-12_wp) then
+                if (abs(det) < axes_det_min) then
                     stat = stat_gimbal
                     bad_body = k
                     cycle

@@ -13,7 +13,7 @@ module hn_kinematics
     implicit none
     private
 
-    public :: kinematics_t, kinematics_allocate, partial_velocities
+    public :: kinematics_t, kinematics_allocate, partial_velocities, body_kinematics
     public :: body_accelerations, kinetic_energy, linear_momentum, angular_momentum
     public :: body_coordinates
 
@@ -33,6 +33,9 @@ module hn_kinematics
         real(wp), allocatable :: vd(:, :, :)       !! (3,n,nb) d/dt v_pjk
         real(wp), allocatable :: a0(:, :)          !! (3,nb) sum_q (dv_pq/dt) xdot_q [m/s^2]
         real(wp), allocatable :: alpha0(:, :)      !! (3,nb) sum_q (domega_pq/dt) xdot_q [rad/s^2]
+        real(wp) :: origin(3) = zero               !! reference point of the joint columns: the root's joint point [m]
+        real(wp), allocatable :: sj(:, :)          !! (6,n) joint motion column of each coordinate: angular
+                                                   !! velocity and velocity of the body point at `origin` per unit rate
     end type kinematics_t
 
 contains
@@ -49,7 +52,8 @@ contains
         allocate (kin%s(3, 3, nb), kin%r(3, nb), kin%v(3, nb), kin%omega(3, nb), kin%joint(3, nb))
         allocate (kin%inertia_r(3, 3, nb), kin%axes(3, 6, nb))
         allocate (kin%w(3, n, nb), kin%vp(3, n, nb), kin%wd(3, n, nb), kin%vd(3, n, nb))
-        allocate (kin%a0(3, nb), kin%alpha0(3, nb))
+        allocate (kin%a0(3, nb), kin%alpha0(3, nb), kin%sj(6, n))
+        kin%sj = zero
         kin%w = zero; kin%vp = zero; kin%wd = zero; kin%vd = zero
         kin%axes = zero
     end subroutine kinematics_allocate
@@ -72,125 +76,164 @@ contains
         end do
     end subroutine body_coordinates
 
-    !> Recursive kinematics (eqs 15-16 and their derivatives): for each body,
-    !! parents first, the transformation matrix, mass-centre position and
-    !! velocity, angular velocity, the partial velocities v_pjk and partial
-    !! angular velocities omega_pjk, their time derivatives, and the
-    !! velocity-dependent accelerations a0 = (dv_pq/dt) xdot_q and
-    !! alpha0 = (domega_pq/dt) xdot_q.
+    !> Body-level kinematics of the whole tree, parents first, without the
+    !! partial-velocity arrays (the fast evaluation paths): transformation
+    !! matrices, joint points, mass-centre positions and velocities, angular
+    !! velocities, centroidal inertias in R, the velocity-dependent
+    !! accelerations a0 and alpha0 (by the recursion of the accelerations
+    !! with xddot = 0), and the joint motion columns sj about kin%origin.
+    pure subroutine body_kinematics(tree, x, xd, kin)
+        type(body_tree_t), intent(in) :: tree
+        real(wp), intent(in) :: x(:)     !! active coordinates
+        real(wp), intent(in) :: xd(:)    !! their time derivatives
+        type(kinematics_t), intent(inout) :: kin
+        integer :: ik
+        do ik = 1, tree%nbody
+            call body_step(tree, tree%order(ik), x, xd, kin)
+        end do
+    end subroutine body_kinematics
+
+    !> One body of the recursion of body_kinematics (its parent done).
+    pure subroutine body_step(tree, k, x, xd, kin)
+        type(body_tree_t), intent(in) :: tree
+        integer, intent(in) :: k
+        real(wp), intent(in) :: x(:), xd(:)
+        type(kinematics_t), intent(inout) :: kin
+        integer :: p, m, j
+        real(wp) :: q(6), qd(6), sp(3, 3), omp(3), rp(3), vpar(3), a0p(3), al0p(3), ub(3, 3), u(3, 3)
+        real(wp) :: e(3), rho(3), vt(3), ie(3, 3), ud(3, 3)
+        p = tree%parent(k)
+        call body_coordinates(tree, k, x, xd, q, qd)
+        if (p == 0) then
+            sp = zero; sp(1, 1) = 1.0_wp; sp(2, 2) = 1.0_wp; sp(3, 3) = 1.0_wp
+            omp = zero; rp = zero; vpar = zero; a0p = zero; al0p = zero
+        else
+            sp = kin%s(:, :, p); omp = kin%omega(:, p)
+            rp = kin%r(:, p); vpar = kin%v(:, p); a0p = kin%a0(:, p); al0p = kin%alpha0(:, p)
+        end if
+        ! orientation, joint point and mass centre
+        kin%s(:, :, k) = matmul(sp, bryant_matrix(q(4:6)))
+        ub = bryant_axes(q(4:6))
+        u = matmul(sp, ub)
+        kin%axes(:, 1:3, k) = sp
+        kin%axes(:, 4:6, k) = u
+        kin%joint(:, k) = rp + matmul(sp, tree%joint_parent(:, k) + q(1:3))
+        if (k == tree%order(1)) kin%origin = kin%joint(:, k)
+        e = matmul(kin%s(:, :, k), tree%joint_child(:, k))   ! mass centre -> joint point
+        kin%r(:, k) = kin%joint(:, k) - e
+        rho = kin%joint(:, k) - rp
+        ie = matmul(kin%s(:, :, k), matmul(tree%inertia(:, :, k), transpose(kin%s(:, :, k))))
+        kin%inertia_r(:, :, k) = half*(ie + transpose(ie))
+        ! velocities: joint point moves with the parent plus the translations
+        kin%omega(:, k) = omp + u(:, 1)*qd(4) + u(:, 2)*qd(5) + u(:, 3)*qd(6)
+        vt = matmul(sp, qd(1:3))
+        kin%v(:, k) = vpar + cross(omp, rho) + vt + cross(kin%omega(:, k), -e)
+        ! velocity-dependent accelerations (xddot = 0): d/dt of the above
+        ud(:, 1) = cross(omp, u(:, 1))
+        ud(:, 2) = cross(omp + u(:, 1)*qd(4), u(:, 2))
+        ud(:, 3) = cross(omp + u(:, 1)*qd(4) + u(:, 2)*qd(5), u(:, 3))
+        kin%alpha0(:, k) = al0p + ud(:, 1)*qd(4) + ud(:, 2)*qd(5) + ud(:, 3)*qd(6)
+        kin%a0(:, k) = a0p + cross(al0p, rho) + cross(omp, cross(omp, rho)) + 2.0_wp*cross(omp, vt) &
+                       + cross(kin%alpha0(:, k), -e) + cross(kin%omega(:, k), cross(kin%omega(:, k), -e))
+        ! joint motion columns about the origin: (angular; linear at the origin)
+        do m = 1, 6
+            j = tree%dof_index(m, k)
+            if (j == 0) cycle
+            if (m <= 3) then
+                kin%sj(1:3, j) = zero
+                kin%sj(4:6, j) = sp(:, m)
+            else
+                kin%sj(1:3, j) = u(:, m - 3)
+                kin%sj(4:6, j) = cross(kin%joint(:, k) - kin%origin, u(:, m - 3))
+            end if
+        end do
+    end subroutine body_step
+
+    !> Recursive kinematics of the paper (eqs 15-16 and their derivatives):
+    !! the body-level quantities of body_kinematics, and for each body,
+    !! parents first, the partial velocities v_pjk and partial angular
+    !! velocities omega_pjk and their time derivatives, inherited from the
+    !! parent plus the body's own coordinates. (The faithful path; a0 and
+    !! alpha0 equal sum_q (dv_pq/dt) xdot_q and sum_q (domega_pq/dt) xdot_q.)
     pure subroutine partial_velocities(tree, x, xd, kin)
         type(body_tree_t), intent(in) :: tree
         real(wp), intent(in) :: x(:)     !! active coordinates
         real(wp), intent(in) :: xd(:)    !! their time derivatives
         type(kinematics_t), intent(inout) :: kin
         integer :: ik, k, p, jj, j, m, jm
-        real(wp) :: q(6), qd(6), sp(3, 3), omp(3), rp(3), vpar(3), ub(3, 3), u(3, 3), ud(3, 3)
-        real(wp) :: e(3), d(3), dv(3), wrel(3), ea(3), ie(3, 3)
+        real(wp) :: q(6), qd(6), sp(3, 3), omp(3), u(3, 3), ud(3, 3), e(3), d(3), dv(3), ea(3)
 
         do ik = 1, tree%nbody
             k = tree%order(ik)
             p = tree%parent(k)
+            call body_step(tree, k, x, xd, kin)
             call body_coordinates(tree, k, x, xd, q, qd)
+            sp = kin%axes(:, 1:3, k)
+            u = kin%axes(:, 4:6, k)
+            e = kin%joint(:, k) - kin%r(:, k)
             if (p == 0) then
-                sp = zero; sp(1, 1) = 1.0_wp; sp(2, 2) = 1.0_wp; sp(3, 3) = 1.0_wp
-                omp = zero; rp = zero; vpar = zero
+                omp = zero; d = kin%r(:, k); dv = kin%v(:, k)
             else
-                sp = kin%s(:, :, p); omp = kin%omega(:, p)
-                rp = kin%r(:, p); vpar = kin%v(:, p)
+                omp = kin%omega(:, p); d = kin%r(:, k) - kin%r(:, p); dv = kin%v(:, k) - kin%v(:, p)
             end if
-
-            ! orientation, joint point and mass centre
-            kin%s(:, :, k) = matmul(sp, bryant_matrix(q(4:6)))
-            ub = bryant_axes(q(4:6))
-            u = matmul(sp, ub)
-            kin%axes(:, 1:3, k) = sp
-            kin%axes(:, 4:6, k) = u
-            kin%joint(:, k) = rp + matmul(sp, tree%joint_parent(:, k) + q(1:3))
-            e = matmul(kin%s(:, :, k), tree%joint_child(:, k))   ! mass centre -> joint point
-            kin%r(:, k) = kin%joint(:, k) - e
-            d = kin%r(:, k) - rp
-            wrel = u(:, 1)*qd(4) + u(:, 2)*qd(5) + u(:, 3)*qd(6)
-            kin%omega(:, k) = omp + wrel
-            ie = matmul(kin%s(:, :, k), matmul(tree%inertia(:, :, k), transpose(kin%s(:, :, k))))
-            kin%inertia_r(:, :, k) = half*(ie + transpose(ie))
-
-            ! partial (angular) velocities: inherited from the parent ...
-            kin%v(:, k) = zero
+            ! partial (angular) velocities and their derivatives: inherited from the parent ...
             if (p /= 0) then
                 do jj = 1, tree%chain_len(p)
                     j = tree%chain(jj, p)
                     kin%w(:, j, k) = kin%w(:, j, p)
                     kin%vp(:, j, k) = kin%vp(:, j, p) + cross(kin%w(:, j, p), d)
+                    kin%wd(:, j, k) = kin%wd(:, j, p)
+                    kin%vd(:, j, k) = kin%vd(:, j, p) + cross(kin%wd(:, j, p), d) + cross(kin%w(:, j, p), dv)
                 end do
             end if
             ! ... and the body's own coordinates
+            ud(:, 1) = cross(omp, u(:, 1))
+            ud(:, 2) = cross(omp + u(:, 1)*qd(4), u(:, 2))
+            ud(:, 3) = cross(omp + u(:, 1)*qd(4) + u(:, 2)*qd(5), u(:, 3))
+            ea = cross(kin%omega(:, k), -e)
             do m = 1, 6
                 j = tree%dof_index(m, k)
                 if (j == 0) cycle
                 if (m <= 3) then
                     kin%w(:, j, k) = zero
                     kin%vp(:, j, k) = sp(:, m)
-                else
-                    kin%w(:, j, k) = u(:, m - 3)
-                    kin%vp(:, j, k) = cross(u(:, m - 3), -e)
-                end if
-            end do
-            do jj = 1, tree%chain_len(k)
-                j = tree%chain(jj, k)
-                kin%v(:, k) = kin%v(:, k) + kin%vp(:, j, k)*xd(j)
-            end do
-
-            ! time derivatives of the partials
-            dv = kin%v(:, k) - vpar
-            if (p /= 0) then
-                do jj = 1, tree%chain_len(p)
-                    j = tree%chain(jj, p)
-                    kin%wd(:, j, k) = kin%wd(:, j, p)
-                    kin%vd(:, j, k) = kin%vd(:, j, p) + cross(kin%wd(:, j, p), d) + cross(kin%w(:, j, p), dv)
-                end do
-            end if
-            ud(:, 1) = cross(omp, u(:, 1))
-            ud(:, 2) = cross(omp + u(:, 1)*qd(4), u(:, 2))
-            ud(:, 3) = cross(omp + u(:, 1)*qd(4) + u(:, 2)*qd(5), u(:, 3))
-            ea = cross(kin%omega(:, k), -e)        ! d/dt of (mass centre -> ... ) -e
-            do m = 1, 6
-                j = tree%dof_index(m, k)
-                if (j == 0) cycle
-                if (m <= 3) then
                     kin%wd(:, j, k) = zero
                     kin%vd(:, j, k) = cross(omp, sp(:, m))
                 else
                     jm = m - 3
+                    kin%w(:, j, k) = u(:, jm)
+                    kin%vp(:, j, k) = cross(u(:, jm), -e)
                     kin%wd(:, j, k) = ud(:, jm)
                     kin%vd(:, j, k) = cross(ud(:, jm), -e) + cross(u(:, jm), ea)
                 end if
-            end do
-            kin%a0(:, k) = zero
-            kin%alpha0(:, k) = zero
-            do jj = 1, tree%chain_len(k)
-                j = tree%chain(jj, k)
-                kin%a0(:, k) = kin%a0(:, k) + kin%vd(:, j, k)*xd(j)
-                kin%alpha0(:, k) = kin%alpha0(:, k) + kin%wd(:, j, k)*xd(j)
             end do
         end do
     end subroutine partial_velocities
 
     !> Mass-centre and angular accelerations of every body for given xddot:
-    !! a_p = a0_p + v_pj xddot_j, alpha_p = alpha0_p + omega_pj xddot_j.
+    !! a_p = a0_p + v_pj xddot_j, alpha_p = alpha0_p + omega_pj xddot_j,
+    !! summed recursively as the spatial acceleration sj xddot of each
+    !! body's chain (no partial-velocity arrays needed).
     pure subroutine body_accelerations(tree, kin, xdd, acc, alpha)
         type(body_tree_t), intent(in) :: tree
         type(kinematics_t), intent(in) :: kin
         real(wp), intent(in) :: xdd(:)
         real(wp), intent(out) :: acc(:, :), alpha(:, :)
-        integer :: k, jj, j
-        do k = 1, tree%nbody
-            acc(:, k) = kin%a0(:, k)
-            alpha(:, k) = kin%alpha0(:, k)
-            do jj = 1, tree%chain_len(k)
-                j = tree%chain(jj, k)
-                acc(:, k) = acc(:, k) + kin%vp(:, j, k)*xdd(j)
-                alpha(:, k) = alpha(:, k) + kin%w(:, j, k)*xdd(j)
+        real(wp) :: sa(6, tree%nbody)
+        integer :: ik, k, m, j
+        do ik = 1, tree%nbody
+            k = tree%order(ik)
+            if (tree%parent(k) == 0) then
+                sa(:, k) = zero
+            else
+                sa(:, k) = sa(:, tree%parent(k))
+            end if
+            do m = 1, 6
+                j = tree%dof_index(m, k)
+                if (j > 0) sa(:, k) = sa(:, k) + kin%sj(:, j)*xdd(j)
             end do
+            alpha(:, k) = kin%alpha0(:, k) + sa(1:3, k)
+            acc(:, k) = kin%a0(:, k) + sa(4:6, k) + cross(sa(1:3, k), kin%r(:, k) - kin%origin)
         end do
     end subroutine body_accelerations
 

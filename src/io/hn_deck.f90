@@ -14,7 +14,8 @@ module hn_deck
     use hn_line_elements, only: ligament_t, muscle_t, spring_t
     use hn_joint_limits, only: joint_limit_t
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
-    use hn_linsolve, only: solver_gauss, solver_cholesky
+    use hn_linsolve, only: solver_cholesky, solver_names, solver_code
+    use hn_integrators, only: integrator_names
     use hn_rotation, only: norm3
     use hn_scene, only: merge_bodies, lock_sagittal
     use hn_plausibility, only: plausibility_warnings
@@ -22,9 +23,6 @@ module hn_deck
     private
 
     public :: read_case, read_case_lines, integrator_names
-
-    character(len=8), parameter :: integrator_names(5) = [character(len=8) :: 'RK4', 'ABM4', 'ADAMS', &
-                                                           'DOPRI5', 'ROS2']
 
     character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
     real(wp), parameter :: big_length = 10.0_wp     !! largest coordinate of a point [m]
@@ -329,16 +327,30 @@ contains
         call rd%real(i, 6, 'absolute tolerance', '-', cs%atol, 1.0e-16_wp, 1.0_wp, default=1.0e-8_wp)
         if (rd%failed()) return
 
+        ! SOLVER: how a_ij xddot = f is solved (default CHOLESKY: a_ij and f_i by
+        ! the recursive forms) and the Jacobian of the stiff integrators
+        ! (default STRUCT: from the elements' tangent; FD: differences)
+        cs%model%solver = solver_cholesky
         ic = single(rd, cards, 'SOLVER', .false.)
         if (ic > 0) then
-            call rd%name(cards(ic)%first, 1, 'method', s)
-            select case (s)
-            case ('GAUSS'); cs%model%solver = solver_gauss
-            case ('CHOLESKY'); cs%model%solver = solver_cholesky
-            case default
-                if (.not. rd%failed()) call rd%fail(rd%context(cards(ic)%first, 1, 'method')//': found "'// &
-                                                    trim(s)//'"; expected GAUSS or CHOLESKY')
-            end select
+            i = cards(ic)%first
+            call rd%name(i, 1, 'method', s)
+            if (rd%failed()) return
+            cs%model%solver = solver_code(trim(s))
+            if (cs%model%solver == 0) then
+                call rd%fail(rd%context(i, 1, 'method')//': found "'//trim(s)//'"; expected one of '// &
+                             join(solver_names))
+                return
+            end if
+            if (len_trim(rd%raw(i, 2)) > 0) then
+                call rd%name(i, 2, 'Jacobian', s)
+                if (rd%failed()) return
+                if (s /= 'STRUCT' .and. s /= 'FD') then
+                    call rd%fail(rd%context(i, 2, 'Jacobian')//': found "'//trim(s)//'"; expected STRUCT or FD')
+                    return
+                end if
+                cs%model%jacobian = s(1:8)
+            end if
         end if
         ic = single(rd, cards, 'GRAVITY', .false.)
         if (ic > 0) then

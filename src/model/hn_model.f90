@@ -39,6 +39,7 @@ module hn_model
         real(wp), allocatable :: q_hold(:)             !! (n) constant generalized forces (posture holding)
         logical :: family_on(nfamilies) = .true.       !! element families switched on
         integer :: solver = solver_gauss               !! solver of a_ij xddot = f
+        character(len=8) :: jacobian = 'STRUCT'        !! Jacobian of the stiff integrators: STRUCT (from the elements) or FD
     end type model_t
 
 contains

@@ -12,7 +12,7 @@ module hn_run
     use hn_status, only: stat_ok, stat_not_finite, stat_energy_lost
     use hn_case, only: case_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
-                           energy_t
+                           energy_t, dynamics_outputs, inertia_forces_free
     use hn_forces, only: switch_count, switching_functions
     use hn_integrators, only: integrator_t, new_integrator, spectral_radius
     use hn_channels, only: channel_set_t, channels_define, channels_compute, channel_index
@@ -68,6 +68,7 @@ module hn_run
         integer :: nevals = 0            !! dynamics evaluations of the integrator
         integer :: nevals_output = 0     !! evaluations at output times
         integer :: nsteps = 0, nreject = 0, nevents = 0, njac = 0
+        integer :: nfact = 0             !! factorizations of the iteration matrix (implicit methods)
         real(wp) :: wall = zero          !! wall-clock time of the run loop [s]
         real(wp) :: energy_residual = zero   !! largest |energy balance residual| [J]
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
@@ -180,9 +181,8 @@ contains
         end if
         call me%lst%model_summary(me%cs)
         call new_integrator(me%cs%integrator, me%integ, stat)
-        me%integ%h = me%cs%h
-        me%integ%rtol = me%cs%rtol
-        me%integ%atol = me%cs%atol
+        call me%integ%set_step(me%cs%h)
+        call me%integ%set_tolerances(me%cs%rtol, me%cs%atol)
         call me%integ%init(me%sys, me%cs%t_start, y, stat, msg)
         if (stat /= stat_ok) then
             call me%fail(exit_diverged, trim(msg))
@@ -220,7 +220,7 @@ contains
         call me%sys%rhs(me%cs%t_start, y, dydt, stat, msg)
         if (stat /= stat_ok) return
         associate (ws => me%sys%ws)
-            me%sys%model%q_hold(ws%ifree) = -matmul(ws%a(ws%ifree, ws%ifree), dydt(nf + 1:2*nf))
+            me%sys%model%q_hold(ws%ifree) = -inertia_forces_free(me%sys%model, ws, dydt(nf + 1:2*nf))
         end associate
         me%cs%model%q_hold = me%sys%model%q_hold
     end subroutine hold_posture
@@ -282,9 +282,9 @@ contains
         integer :: stat
         character(len=msglen) :: msg
         me%tout = tout
-        do while (me%integ%t < tout - me%tol .and. me%running)
+        do while (me%integ%current_time() < tout - me%tol .and. me%running)
             do while (me%ib <= size(me%tb))
-                if (me%tb(me%ib) > me%integ%t + me%tol) exit
+                if (me%tb(me%ib) > me%integ%current_time() + me%tol) exit
                 me%ib = me%ib + 1
             end do
             tstop = me%cs%t_end
@@ -316,18 +316,19 @@ contains
                 end if
             end if
             if (me%ib <= size(me%tb)) then
-                if (abs(me%integ%t - me%tb(me%ib)) <= me%tol) then
+                if (abs(me%integ%current_time() - me%tb(me%ib)) <= me%tol) then
                     ! a kink or jump of an input: start the formulas afresh
                     me%pending_restart = .true.
                     me%ib = me%ib + 1
                 end if
             end if
-            me%tgood = me%integ%t
-            me%ygood = me%integ%y
-            call me%prog%update(me%integ%t, me%integ%t - me%integ%told, me%integ%nsteps, stat, msg)
+            me%tgood = me%integ%current_time()
+            me%ygood = me%integ%current_state()
+            call me%prog%update(me%tgood, me%tgood - me%integ%previous_time(), me%integ%steps(), stat, msg)
             if (stat /= stat_ok) then
                 call me%fail(exit_diverged, 'run stopped: '//trim(msg)// &
-                             limit_diagnosis(me%sys, me%tgood, me%ygood, me%integ%t - me%integ%told, me%cs%integrator))
+                             limit_diagnosis(me%sys, me%tgood, me%ygood, me%tgood - me%integ%previous_time(), &
+                                             me%cs%integrator))
                 return
             end if
         end do
@@ -344,12 +345,23 @@ contains
         associate (cs => me%cs, ws => me%sys%ws)
             nf = ws%nfree
             t = me%tout
+            ! kinematics, element loads and xddot (articulated-body solve, no
+            ! a_ij) at the interpolated state; a dump needs a full evaluation
             call me%integ%interpolate(t, y)
-            me%nev_out = me%nev_out + 1
-            call me%sys%rhs(t, y, dydt, stat, msg)
+            call dynamics_outputs(me%sys%model, ws, t, y(1:nf), y(nf + 1:2*nf), stat)
             if (stat /= stat_ok) then
-                call me%fail(exit_diverged, 'run stopped: '//trim(msg))
+                call me%fail(exit_diverged, 'run stopped: singular joint at an output time')
                 return
+            end if
+            if (me%kd <= size(cs%dump_times)) then
+                if (abs(t - cs%dump_times(me%kd)) <= me%tol) then
+                    me%nev_out = me%nev_out + 1
+                    call me%sys%rhs(t, y, dydt, stat, msg)
+                    if (stat /= stat_ok) then
+                        call me%fail(exit_diverged, 'run stopped: '//trim(msg))
+                        return
+                    end if
+                end if
             end if
             en = energy_terms(me%sys%model, ws, y(2*nf + 1:))
             call channels_compute(cs, ws, t, en, me%ch)
@@ -405,7 +417,7 @@ contains
         integer :: k, kev, it
         stat = stat_ok; msg = ''
         associate (integ => me%integ, sys => me%sys)
-            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, sw_new)
+            call switching_functions(sys%model, integ%current_time(), sys%ws%kin, sys%ws%x, sw_new)
             kev = 0
             do k = 1, me%nsw
                 if (sign(one, me%sw_old(k)) /= sign(one, sw_new(k)) .and. abs(me%sw_old(k)) > switch_deadband &
@@ -414,13 +426,13 @@ contains
                     exit
                 end if
             end do
-            if (kev == 0 .or. integ%t - integ%told < event_min_step) then
+            if (kev == 0 .or. integ%current_time() - integ%previous_time() < event_min_step) then
                 me%sw_old = sw_new
                 return
             end if
             side = sign(one, sw_new(kev))
-            ta = integ%told; tb = integ%t; ga = me%sw_old(kev); gb = sw_new(kev)
-            t0 = integ%told; y0 = integ%yold
+            ta = integ%previous_time(); tb = integ%current_time(); ga = me%sw_old(kev); gb = sw_new(kev)
+            t0 = integ%previous_time(); y0 = integ%previous_state()
             tc = tb
             do it = 1, event_max_iter
                 tc = tb - gb*(tb - ta)/(gb - ga)
@@ -453,7 +465,7 @@ contains
             if (stat /= stat_ok) return
             me%pending_restart = .true.
             me%res%nevents = me%res%nevents + 1
-            call switching_functions(sys%model, integ%t, sys%ws%kin, sys%ws%x, me%sw_old)
+            call switching_functions(sys%model, integ%current_time(), sys%ws%kin, sys%ws%x, me%sw_old)
             me%sw_old(kev) = side*max(abs(me%sw_old(kev)), tiny(one))   ! this switch has happened
         end associate
     end subroutine run_locate_events
@@ -465,13 +477,15 @@ contains
         character(len=msglen), intent(out) :: msg
         type(energy_t) :: e
         real(wp) :: scale, resid
+        real(wp), allocatable :: y(:)
         integer :: nf
         stat = stat_ok; msg = ''
         nf = me%sys%ws%nfree
-        associate (y => me%integ%y, en0 => me%en0, res => me%res)
+        y = me%integ%current_state()
+        associate (en0 => me%en0, res => me%res)
             if (.not. all(abs(y) <= huge(1.0_wp))) then
                 stat = stat_not_finite
-                write (msg, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', me%integ%t, ' s'
+                write (msg, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', me%integ%current_time(), ' s'
                 return
             end if
             e = energy_terms(me%sys%model, me%sys%ws, y(2*nf + 1:))
@@ -485,7 +499,8 @@ contains
             res%energy_residual = max(res%energy_residual, resid)
             if (resid > energy_fail_fraction*res%energy_scale + energy_fail_floor) then
                 stat = stat_energy_lost
-                write (msg, '(a,es12.5,a,es10.3,a,es10.3,a)') 'the energy balance was lost at t = ', me%integ%t, &
+                write (msg, '(a,es12.5,a,es10.3,a,es10.3,a)') 'the energy balance was lost at t = ', &
+                    me%integ%current_time(), &
                     ' s (residual ', resid, ' J against energy flows of ', res%energy_scale, &
                     ' J): the solution is growing without a physical cause'
             end if
@@ -560,9 +575,10 @@ contains
         me%res%nevals_output = me%nev_out
         me%res%nevals = me%sys%nevals - me%nev_out
         if (allocated(me%integ)) then
-            me%res%nsteps = me%integ%nsteps
-            me%res%nreject = me%integ%nreject
-            me%res%njac = me%integ%njac
+            me%res%nsteps = me%integ%steps()
+            me%res%nreject = me%integ%rejected()
+            me%res%njac = me%integ%jacobians()
+            me%res%nfact = me%integ%factorizations()
         end if
         if (me%keep .and. allocated(me%res%samples_t)) then
             me%res%samples_t = me%res%samples_t(1:me%ks)
