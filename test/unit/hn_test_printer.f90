@@ -83,8 +83,6 @@ contains
     subroutine printer_silent(this, testName)
         class(line_printer_t), intent(inout) :: this
         character(len=*), intent(in) :: testName   !! the test's full name
-        associate (unused => this, unused_name => testName)
-        end associate
     end subroutine printer_silent
 
     !> No summary here: the driver prints `N passed, N failed`.
@@ -92,8 +90,6 @@ contains
         class(line_printer_t), intent(in) :: this
         class(AbstractTestResult), intent(in) :: result  !! the whole run's result
         real, intent(in) :: elapsed_time                 !! seconds
-        associate (unused => this, unused_result => result, unused_time => elapsed_time)
-        end associate
     end subroutine printer_summary
 
 end module hn_test_printer
