@@ -21,8 +21,8 @@ check(f.attrs["status"] == "complete", "status attribute is the text 'complete' 
 check(nt > 1 and np.all(np.diff(f["time"][:]) > 0), "time increases (%d samples)" % nt)
 check(all(f["channels"][k].shape == (nt,) for k in f["channels"]), "every channel has one value per sample")
 nb = f["model/mass"].shape[0]
-check(f["bodies/position"].shape == (nt, nb, 3) and f["bodies/rotation"].shape == (nt, nb, 3, 3),
-      "bodies/position (nt, nb, 3) and bodies/rotation (nt, nb, 3, 3) in h5py order")
+check(f["bodies/position"].shape == (nt, nb, 3), "bodies/position (nt, nb, 3) in h5py order")
+check(f["bodies/rotation"].shape == (nt, nb, 3, 3), "bodies/rotation (nt, nb, 3, 3) in h5py order")
 check(np.all(np.isfinite(f["coordinates/x"][:])), "coordinates finite")
 missing = []
 def needs_units(name, obj):

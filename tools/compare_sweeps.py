@@ -46,10 +46,11 @@ def main(argv):
         status = b["runs/status"][()]
         msgs = b["runs/message"][()]
         failed = np.flatnonzero(status != 0)
-        check(len(failed) == expect_failed and all(len(msgs[i].strip()) > 0 for i in failed)
-              and np.all(b["runs/outputs"][()][failed] == 0.0) and np.all(np.isfinite(b["runs/outputs"][()])),
-              f"{expect_failed} failed member(s) recorded with exit code and message, outputs zero, no NaN",
+        check(len(failed) == expect_failed, f"{expect_failed} failed member(s) recorded with their exit code",
               "; ".join(f"run {i + 1}: exit {status[i]}" for i in failed))
+        check(all(len(msgs[i].strip()) > 0 for i in failed), "every failed member has a message")
+        check(bool(np.all(b["runs/outputs"][()][failed] == 0.0)), "outputs of the failed members are zero")
+        check(bool(np.all(np.isfinite(b["runs/outputs"][()]))), "every output finite (no NaN)")
     print(f"{passes} passed, {failures} failed")
     return 1 if failures else 0
 

@@ -1,112 +1,141 @@
 #!/bin/sh
-# The whole test suite: every test program (the pFUnit suites of test/unit
-# and the program tests of test/) in the debug build, then again in a checking
-# build that traps invalid operations, division by zero
-# and overflow and checks every array bound and pointer, then a look at a
-# result file with h5py. Each test program ends with "N passed, N failed".
-set -eu
+# The whole test suite (docs/testing.md):
+#   1. every test program -- the pFUnit suites of test/unit/*.pf and the
+#      program tests test/*.f90 -- in a debug build,
+#   2. the same again in a checking build that traps invalid operations,
+#      division by zero and overflow and checks every array bound and
+#      pointer (skipped with --no-checking-build),
+#   3. every whole-program check test/scripts/*.sh, with HHNECK set to the
+#      debug build's executable (and to the checking build's too for a
+#      script with a line "# builds: debug checking").
+# The test programs of a build run $TEST_JOBS at a time (default: the
+# number of cores); each one's output is shown whole when all are done.
+# Each test program and script ends its output with "N passed, N failed";
+# the last line is the total over all of them. Exit code 1 on any failure.
+#   tools/test.sh NAME [FILTER]   only the test program NAME (a suite
+#                                 test/unit/NAME.pf or test/NAME.f90) in the
+#                                 debug build; with FILTER only its tests whose
+#                                 name contains FILTER
+set -u
 cd "$(dirname "$0")/.."
+
+checking=yes
+only=
+case "${1:-}" in
+    --no-checking-build) checking=no ;;
+    test_*) only=$1 ;;
+    "") ;;
+    *) echo "usage: tools/test.sh [--no-checking-build | NAME [FILTER]]" >&2; exit 1 ;;
+esac
+TEST_JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
+times=build/test_times    # seconds per test program in the last run
 
 # fpm's debug profile, without its -fcoarray=single: with it gfortran 12
 # writes test module files that it cannot read back once they use pFUnit
 DEBUG_FLAGS="-Wall -Wextra -Wimplicit-interface -fPIC -fmax-errors=1 -g -fcheck=bounds -fcheck=array-temps -fbacktrace"
 CHECK_FLAGS="-g -O0 -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -Wall -Wno-unused-dummy-argument -Wno-maybe-uninitialized"
 
-# pFUnit: built once per machine, then the test/unit/*.pf suites turned into
-# Fortran with their driver programs
-./tools/pfunit.sh ensure
-./tools/pfunit.sh generate
+# pFUnit: built once per machine (a few minutes), then the test/unit/*.pf
+# suites turned into Fortran with their driver programs
+start=$(date +%s)
+./tools/pfunit.sh ensure || exit 1
+./tools/pfunit.sh generate || exit 1
+echo "== pFUnit ready ($(($(date +%s) - start)) s)"
 PF_INC=$(./tools/pfunit.sh include)
 PF_LINK=$(./tools/pfunit.sh link)
 
-echo "== fpm test (debug build: $DEBUG_FLAGS)"
-fpm test --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK"
-echo "== fpm test (checking build: $CHECK_FLAGS)"
-fpm test --flag "$CHECK_FLAGS $PF_INC" --link-flag "$PF_LINK"
-echo "== robustness: full disk, files in the way, concurrent runs, signals, endless and huge inputs (debug, checking)"
-HHNECK=$(fpm run --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | tail -n 1) sh test/scripts/robustness.sh
-HHNECK=$(fpm run --flag "$CHECK_FLAGS $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | tail -n 1) sh test/scripts/robustness.sh
-echo "== HDF5 results readable by h5py"
-tmp=$(mktemp -d)
-fpm run -- --h5 "$tmp/case6-2.h5" < input/case6-2.inp > "$tmp/listing.txt"
-python3 tools/check_results.py "$tmp/case6-2.h5"
-echo "== animations and the ParaView sidecar (docs/animation.md)"
-sh test/scripts/animate.sh
-echo "== a bad deck: exit code 2, located message on stderr, no result file"
-sed 's/^CONTROL   0.1  /CONTROL   -0.1 /' input/case6-2.inp > "$tmp/bad.inp"
-set +e
-fpm run -- --h5 "$tmp/bad.h5" < "$tmp/bad.inp" > "$tmp/bad.out" 2> "$tmp/bad.err"
-rc=$?
-set -e
-grep -q "stdin line 10, columns 11-20 (CONTROL card, field F1 'end time')" "$tmp/bad.err"
-[ "$rc" -eq 2 ] && [ ! -e "$tmp/bad.h5" ] && [ ! -e "$tmp/bad.h5.part" ] && ! grep -q "deck error" "$tmp/bad.out"
-echo "PASS  exit code 2, message names line 10 columns 11-20, nothing written"
-echo "== a diverging run: exit code 3, listing and HDF5 kept up to the last good step, marked incomplete"
-exe=$(fpm run --runner echo 2>/dev/null | tail -n 1)
-sed 's/^CONTROL   0.1       5.0E-5    0.001     ADAMS     1.0E-4    1.0E-7/CONTROL   0.1       2.0E-4    0.001     RK4/' \
-    input/case6-2.inp > "$tmp/diverge.inp"
-set +e
-"$exe" --h5 "$tmp/diverge.h5" < "$tmp/diverge.inp" > "$tmp/diverge.out" 2> "$tmp/diverge.err"
-rc=$?
-set -e
-[ "$rc" -eq 3 ] && grep -q "RUN INCOMPLETE" "$tmp/diverge.out" && grep -q "stability limit" "$tmp/diverge.err"
-python3 tools/check_incomplete.py "$tmp/diverge.h5" 0.1
+if [ -n "$only" ]; then
+    if [ $# -ge 2 ]; then
+        exec fpm test "$only" --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK" -- "$2"
+    fi
+    exec fpm test "$only" --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK"
+fi
 
-echo "== a run stopped by SIGTERM: exit code 5, a valid result file marked incomplete"
-sed 's/^CONTROL .*/CONTROL   0.25      1.0E-5    0.005     RK4/' \
-    input/nbdl15g.inp > "$tmp/long.inp"
-set +e
-"$exe" --h5 "$tmp/term.h5" < "$tmp/long.inp" > "$tmp/term.out" 2> "$tmp/term.err" &
-pid=$!
-sleep 2
-kill -TERM "$pid"
-wait "$pid"
-rc=$?
-set -e
-[ "$rc" -eq 5 ] && grep -q "interrupted by signal 15" "$tmp/term.err" && [ ! -e "$tmp/term.h5.part" ]
-python3 tools/check_incomplete.py "$tmp/term.h5" 0.25
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+log=$work/log
+failed_steps=0
 
-echo "== a run killed outright (SIGKILL): no file under the result name"
-set +e
-"$exe" --h5 "$tmp/kill.h5" < "$tmp/long.inp" > /dev/null 2>&1 &
-pid=$!
-sleep 2
-kill -KILL "$pid"
-wait "$pid"
-set -e
-[ ! -e "$tmp/kill.h5" ]
-echo "PASS  no kill.h5 after SIGKILL (the partial file stays under kill.h5.part)"
-echo "== listings of the regression decks against reference/outputs"
-HHNECK="$exe" sh test/scripts/listing_references.sh
-echo "== a parameter sweep over MPI: 2 ranks give exactly the serial results; diverging members are reported"
-# the same compiler wrapper and flags for the serial main program and the MPI
-# driver, so that the member runs are the same machine code
-MPI_BUILD="--profile release --flag -DHHNECK_MPI"
-FPM_FC=mpifort fpm build $MPI_BUILD > "$tmp/mpi_build.log" 2>&1 || { cat "$tmp/mpi_build.log"; exit 1; }
-hh=$(FPM_FC=mpifort fpm run $MPI_BUILD --runner echo 2>/dev/null | tail -n 1)
-sm=$(FPM_FC=mpifort fpm run $MPI_BUILD --example sweep_mpi --runner echo 2>/dev/null | tail -n 1)
-sed 's/^CONTROL .*/CONTROL   0.05      5.0E-5    0.005     RK4/' input/nbdl15g.inp > "$tmp/base.inp"
-echo 'SCALE     RK4STABLE DISCS     VISCOUS   0.2' >> "$tmp/base.inp"   # RK4 at 50 us stable again
-cat > "$tmp/sweep.inp" <<EOF
-TITLE     TEST SWEEP: LATIN HYPERCUBE WITH DIVERGING MEMBERS
-BASE      $tmp/base.inp
-DESIGN    LHS       12        7
-PARAM     DISC_E    FAMILY    DISCS     E         0.5       1500.0    LOG
-PARAM     MUSC_K    FAMILY    MUSCLES   M1        0.5       2.0
-PARAM     HEAD_M    FIELD3    BODY      HEAD      3.0       4.5
-EOF
-set +e
-"$hh" --sweep --h5 "$tmp/serial.h5" < "$tmp/sweep.inp" > "$tmp/serial.txt" 2> "$tmp/serial.err"
-rc_serial=$?
-mpirun --allow-run-as-root --oversubscribe -np 2 "$sm" "$tmp/sweep.inp" --h5 "$tmp/mpi.h5" \
-    > "$tmp/mpi.txt" 2> "$tmp/mpi.err"
-rc_mpi=$?
-set -e
-nfail=$(grep -c "FAILED (below)" "$tmp/serial.txt" || true)
-[ "$rc_serial" -eq 6 ] && [ "$rc_mpi" -eq 6 ] && [ "$nfail" -ge 1 ] && [ "$nfail" -lt 12 ] || {
-    echo "FAIL  sweep exit codes serial $rc_serial, MPI $rc_mpi (expected 6), $nfail failed members"
-    tail -n 5 "$tmp/serial.err" "$tmp/mpi.err"; exit 1; }
-echo "PASS  serial and 2-rank sweeps finish with exit code 6 and list $nfail failed member(s)"
-python3 tools/compare_sweeps.py "$tmp/serial.h5" "$tmp/mpi.h5" --expect-failed "$nfail"
-rm -rf "$tmp"
-echo "== all tests passed"
+# step TITLE COMMAND...: run the command, its output to the terminal and
+# to the log; count it when it ends non-zero
+step() {
+    echo "== $1"
+    shift
+    t0=$(date +%s)
+    { "$@" 2>&1; echo $? > "$work/rc"; } | tee -a "$log"
+    [ "$(cat "$work/rc")" -eq 0 ] || failed_steps=$((failed_steps + 1))
+    echo "   ($(($(date +%s) - t0)) s)"
+}
+
+# run_tests FLAGS: build every test program with FLAGS, run them
+# TEST_JOBS at a time, then show each one's output. A program that stops
+# without its closing line is reported as one failed check.
+run_tests() {
+    fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner true || return 1
+    # the slowest first (their times from the last run, else these), so
+    # that no long program starts last
+    fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | grep '/test/' |
+        awk -v known="$times" 'BEGIN {
+                n = split("test_regression test_cases test_free_bodies test_stability test_stiffened test_scene", slow)
+                for (i = 1; i <= n; i++) t[slow[i]] = 100 - i
+                while ((getline line < known) > 0) { split(line, f, " "); t[f[2]] = f[1] }
+            }
+            { name = $0; sub(".*/", "", name); print (name in t ? t[name] : 0), $0 }' |
+        sort -rn | cut -d' ' -f2- > "$work/exes"
+    out=$work/out
+    rm -rf "$out"
+    mkdir -p "$out"
+    # shellcheck disable=SC2016
+    xargs -P "$TEST_JOBS" -n 1 sh -c \
+        'n=$(basename "$1"); t=$(date +%s); "$1" > "$0/$n.out" 2>&1; echo $? > "$0/$n.rc";
+         echo "$(($(date +%s) - t)) $n" > "$0/$n.time"; echo "   $n done ($(($(date +%s) - t)) s)"' \
+        "$out" < "$work/exes"
+    cat "$out"/*.time > "$times" 2>/dev/null
+    status=0
+    while read -r exe; do
+        n=$(basename "$exe")
+        echo "-- $n"
+        cat "$out/$n.out"
+        if [ "$(cat "$out/$n.rc")" -ne 0 ]; then
+            status=1
+            if ! grep -q '^[0-9][0-9]* passed, [0-9][0-9]* failed$' "$out/$n.out"; then
+                echo "FAIL  $n stopped before its closing line (exit code $(cat "$out/$n.rc"))"
+                echo "0 passed, 1 failed"
+            fi
+        fi
+    done < "$work/exes"
+    return $status
+}
+
+step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS"
+if [ "$checking" = yes ]; then
+    step "test programs, checking build ($CHECK_FLAGS)" run_tests "$CHECK_FLAGS"
+fi
+
+# the whole-program checks run the debug build's executable; a script
+# with a line "# builds: debug checking" runs on both builds' executables
+for script in test/scripts/*.sh; do
+    builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1)
+    for build in ${builds:-debug}; do
+        case $build in
+            debug) flags=$DEBUG_FLAGS ;;
+            checking) [ "$checking" = yes ] || continue; flags=$CHECK_FLAGS ;;
+            *) echo "$script: unknown build '$build'" >&2; continue ;;
+        esac
+        HHNECK=$(fpm run --flag "$flags $PF_INC" --runner echo 2>/dev/null | tail -n 1)
+        export HHNECK
+        step "$script ($build build)" sh "$script"
+    done
+done
+
+summary='^[0-9][0-9]* passed, [0-9][0-9]* failed$'
+passed=$(grep "$summary" "$log" | awk '{s += $1} END {print s + 0}')
+failed=$(grep "$summary" "$log" | awk '{s += $3} END {print s + 0}')
+programs=$(grep -c "$summary" "$log")
+if [ "$failed_steps" -gt 0 ] && [ "$failed" -eq 0 ]; then
+    # a build that failed
+    echo "FAIL  $failed_steps step(s) ended with an error before reporting a failed check (see above)"
+    failed=$failed_steps
+fi
+echo "== total over $programs test programs and scripts: $passed passed, $failed failed ($(($(date +%s) - start)) s)"
+[ "$failed" -eq 0 ]
