@@ -26,9 +26,10 @@ module hn_jacobian
     use hn_kinematics, only: kinematics_t
     use hn_tree, only: body_tree_t
     use hn_discs, only: disc_deformation, disc_resultants, inv_left_jacobian
-    use hn_line_elements, only: line_geometry_t, line_geometry, ligament_tension, muscle_tension, spring_tension
-    use hn_joint_limits, only: limit_force
-    use hn_tables, only: table_value
+    use hn_line_elements, only: line_attach_t, line_geometry_t, line_geometry, ligament_tension, muscle_tension, &
+                                spring_tension
+    use hn_joint_limits, only: limit_force, range_moment
+    use hn_forces, only: muscle_activation
     implicit none
     private
 
@@ -71,13 +72,15 @@ contains
             do e = 1, size(model%limits)
                 call add_limit(model, e, x, xd, kgen, cgen)
             end do
+            do e = 1, size(model%ranges)
+                call add_range(model, e, x, kgen)
+            end do
         end if
     end subroutine generalized_tangent
 
     ! ---------------------------------------------------------------------
     ! Coupling to the line-element types: the only place that knows the
-    ! families (ligament_t, muscle_t, spring_t). With one line_attach_t for
-    ! all line elements these two procedures become one-liners.
+    ! families (ligament_t, muscle_t, spring_t, each a line_attach_t).
     ! ---------------------------------------------------------------------
 
     !> Attachments of line element e of a family: bodies and points (body frames).
@@ -86,20 +89,13 @@ contains
         integer, intent(in) :: fam, e
         integer, intent(out) :: ka, kb
         real(wp), intent(out) :: ca(3), cb(3)
+        type(line_attach_t) :: a
         select case (fam)
-        case (fam_ligaments)
-            associate (l => model%ligaments(e))
-                ka = l%body_a; kb = l%body_b; ca = l%point_a; cb = l%point_b
-            end associate
-        case (fam_muscles)
-            associate (m => model%muscles(e))
-                ka = m%body_a; kb = m%body_b; ca = m%point_a; cb = m%point_b
-            end associate
-        case default
-            associate (s => model%springs(e))
-                ka = s%body_a; kb = s%body_b; ca = s%point_a; cb = s%point_b
-            end associate
+        case (fam_ligaments); a = model%ligaments(e)%line_attach_t
+        case (fam_muscles); a = model%muscles(e)%line_attach_t
+        case default; a = model%springs(e)%line_attach_t
         end select
+        ka = a%body_a; kb = a%body_b; ca = a%point_a; cb = a%point_b
     end subroutine line_attachment
 
     !> The scalar tension law of line element e at time t, length L and rate L'.
@@ -112,8 +108,7 @@ contains
         case (fam_ligaments)
             ten = ligament_tension(model%ligaments(e), length)
         case (fam_muscles)
-            act = zero
-            if (model%muscles(e)%activation > 0) act = table_value(model%tables(model%muscles(e)%activation), t)
+            act = muscle_activation(model, e, t)
             ten = muscle_tension(model%muscles(e), length, rate, act)
         case default
             ten = spring_tension(model%springs(e), length, rate)
@@ -216,6 +211,21 @@ contains
             cgen(j, j) = cgen(j, j) - (limit_force(lim, x(j), xd(j) + dv) - limit_force(lim, x(j), xd(j) - dv))/(2*dv)
         end associate
     end subroutine add_limit
+
+    !> Range-of-motion stop (elastic beyond the range): K_jj -= dQ/dx.
+    pure subroutine add_range(model, e, x, kgen)
+        type(model_t), intent(in) :: model
+        integer, intent(in) :: e
+        real(wp), intent(in) :: x(:)
+        real(wp), intent(inout) :: kgen(:, :)
+        real(wp) :: dx
+        integer :: j
+        associate (r => model%ranges(e))
+            j = r%dof
+            dx = max(fd_rel*abs(x(j)), fd_abs_length)
+            kgen(j, j) = kgen(j, j) - (range_moment(r, x(j) + dx) - range_moment(r, x(j) - dx))/(2*dx)
+        end associate
+    end subroutine add_range
 
     !> Coordinates on the tree path between bodies ka and kb (0 = R): those
     !! in exactly one of the two chains, with sign +1 for kb's, -1 for ka's.

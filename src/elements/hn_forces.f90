@@ -19,7 +19,8 @@ module hn_forces
     implicit none
     private
 
-    public :: element_output_t, element_output_allocate, compute_loads, switch_count, switching_functions
+    public :: element_output_t, element_output_allocate, compute_loads, switch_count, switching_functions, &
+              muscle_activation
 
     !> What each element does at the current instant.
     type :: element_output_t
@@ -132,17 +133,26 @@ contains
         real(wp), intent(in) :: t            !! time [s]
         real(wp) :: act(size(model%muscles))
         integer :: e
-        act = zero
         do e = 1, size(model%muscles)
-            associate (m => model%muscles(e))
-                if (m%law == muscle_hill) then
-                    if (m%history > 0) act(e) = activation_value(model%activations(m%history), t)
-                else if (m%activation > 0) then
-                    act(e) = table_value(model%tables(m%activation), t)
-                end if
-            end associate
+            act(e) = muscle_activation(model, e, t)
         end do
     end function muscle_activations
+
+    !> Activation a(t) of muscle e: its activation history (Hill-type law)
+    !! or table (eq 11); zero without either.
+    pure real(wp) function muscle_activation(model, e, t) result(act)
+        type(model_t), intent(in) :: model   !! the model
+        integer, intent(in) :: e             !! muscle number
+        real(wp), intent(in) :: t            !! time [s]
+        act = zero
+        associate (m => model%muscles(e))
+            if (m%law == muscle_hill) then
+                if (m%history > 0) act = activation_value(model%activations(m%history), t)
+            else if (m%activation > 0) then
+                act = table_value(model%tables(m%activation), t)
+            end if
+        end associate
+    end function muscle_activation
 
     !> Number of switching functions of the one-way elements.
     pure integer function switch_count(model) result(n)
