@@ -161,12 +161,21 @@ MUSCLES = [
     ("LCOL", lambda s: at("T1", 0.012, s * 0.008, 0.0), lambda s: at("C2", 0.010, s * 0.006, 0.0), 1.1, 0.05),
     ("LCAP", lambda s: at("C5", 0.012, s * 0.012, 0.0), lambda s: at("HEAD", 0.015, s * 0.010, 0.005, OC), 1.0, 0.05),
 ]
+# Muscles that run along the vertebral column (deep and intermediate posterior
+# layers, prevertebral muscles) follow it through a via point on every vertebra
+# they pass, where the straight neutral line crosses that vertebra's mass-centre
+# height (so the path is straight in the neutral posture); the superficial SCM
+# and trapezius, slung from the shoulder girdle, run straight (A; docs/deck-format.md VIA).
+VIA_MUSCLES = ("SPLC", "SSC", "LCOL", "LCAP")
 SIGMA_MAX = 0.5e6     # maximum isometric stress, Pa (FITTED scale: FAMILY MUSCLES F0; reference/parameters.md)
 MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
 ACT = dict(u0=0.16196, u1=0.377179, delay=0.051279, rise=0.020, tau_act=0.015, tau_deact=0.050)
+# short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
+# McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
+SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
@@ -284,9 +293,12 @@ w("* relations, passive element, damping along the line; docs/deck-format.md),")
 w("* six groups per side, origins and insertions A (simplified anatomy).")
 w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (FITTED scale); PCSA, optimal fibre" % (SIGMA_MAX / 1e6))
 w("* length A; damping %.2f s/m x F0 (A). The paper's passive muscle (eq 11) stays" % MUSCLE_DAMPING)
-w("* available as the MUSCLE card.")
+w("* available as the MUSCLE card. Muscles along the column (%s)" % ", ".join(VIA_MUSCLES))
+w("* follow it through a via point on each vertebra they pass, on their neutral")
+w("* line (A).")
 w("*         name      body a    body b    F0 (N)    lopt (m)  history   damping")
 w("*         point on a x y z (m)          point on b x y z (m)          rest len")
+w("*         muscle    body      via point x y z (m)")
 for (mname, org, ins, pcsa, lopt) in MUSCLES:
     f0 = pcsa * 1e-4 * SIGMA_MAX
     for s, side in ((1, "L"), (-1, "R")):
@@ -294,13 +306,20 @@ for (mname, org, ins, pcsa, lopt) in MUSCLES:
         bb, pb = ins(s)
         w(card("HILL", mname + side, ba, bb, round(f0, 2), lopt, "NECK", round(MUSCLE_DAMPING * f0, 3)))
         w(cont(*[round(v, 6) for v in rel(pa, ba)], *[round(v, 6) for v in rel(pb, bb)]))
+        if mname in VIA_MUSCLES:
+            for vb in names[names.index(ba) + 1:names.index(bb)]:
+                f = (centre[vb][2] - pa[2]) / (pb[2] - pa[2])
+                pv = tuple(pa[i] + f * (pb[i] - pa[i]) for i in range(3))
+                w(card("VIA", mname + side, vb, *[round(v, 6) for v in rel(pv, vb)]))
 w("* Activation history of all muscles: bracing level u0, reflex level u1 FITTED,")
 w("* onset blank = sled pulse onset (prescribed T1 acceleration first above 1 g),")
-w("* reflex delay FITTED, rise time A; time constants Thelen 2003.")
+w("* reflex delay FITTED, rise time A; time constants Thelen 2003; short-range")
+w("* stiffness of the active fibres k = q F / L0, q %.0f (Bergmark 1989, Cholewicki" % SRS_Q)
+w("* & McGill 1996: 10-40), over a stretch of %.0f %% of lopt (A)." % (100 * SRS_RANGE))
 w("*         name      u0        u1        onset (s) delay (s) rise (s)")
-w("*         tau act   tau deact")
+w("*         tau act   tau deact q (SRS)   range")
 w(card("ACTIVATE", "NECK", ACT["u0"], ACT["u1"], None, ACT["delay"], ACT["rise"]))
-w(cont(ACT["tau_act"], ACT["tau_deact"]))
+w(cont(ACT["tau_act"], ACT["tau_deact"], SRS_Q, SRS_RANGE))
 w("*")
 w("* JOINT LIMITS (eqs 12-13): one-way dampers on the three rotations of every")
 w("* joint; ranges S3 split per joint (A); C0 %.2f, C1 %.0f N m s/rad per rad (A)" % (LIMIT_C0, LIMIT_C1))

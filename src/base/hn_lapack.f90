@@ -4,7 +4,7 @@ module hn_lapack
     implicit none
     private
 
-    public :: dpotrf, dpocon, dlansy, dgetrf, dgetrs
+    public :: dpotrf, dpocon, dlansy, dgetrf, dgetrs, dgeev
 
     interface
         !> Cholesky factorization of a symmetric positive definite matrix.
@@ -50,5 +50,15 @@ module hn_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgetrs
+        !> Eigenvalues and, optionally, left and right eigenvectors of a
+        !! general real matrix (lwork = -1: workspace query into work(1)).
+        pure subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+            import :: wp
+            character, intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+            integer, intent(out) :: info
+        end subroutine dgeev
     end interface
 end module hn_lapack

@@ -82,6 +82,7 @@ contains
         real(wp) :: sl(3, 3), su(3, 3), plo(3), pup(3)
         d%ra = rot_y(d%tilt)
         call plates(d, kin, sl, su, plo, pup)
+        sl = matmul(sl, d%ra)                  ! the lower plate frame L = S_a ra, as disc_deformation uses
         d%rb = matmul(transpose(su), sl)
         d%d0 = matmul(transpose(sl), pup - plo)
         d%k = disc_stiffness(d)

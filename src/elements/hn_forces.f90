@@ -9,7 +9,7 @@ module hn_forces
     use hn_loads, only: body_loads_t, loads_clear
     use hn_line_elements, only: line_geometry_t, line_geometries, apply_line_tensions, spring_tension, &
                                 spring_energy, ligament_tension, muscle_tension, ligament_energy, &
-                                muscle_law_value, muscle_hill
+                                muscle_law_value, muscle_hill, muscle_geometries, apply_muscle_tensions
     use hn_discs, only: apply_disc
     use hn_joint_limits, only: limit_force, range_moment, range_energy
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
@@ -82,11 +82,11 @@ contains
             eo%u_elastic = eo%u_elastic + sum(ligament_energy(model%ligaments, gl%length))
         end if
         if (model%family_on(fam_muscles)) then
-            call line_geometries(kin, model%muscles, gm)
+            call muscle_geometries(kin, model%muscles, gm)
             eo%muscle(3, :) = muscle_activations(model, t)
             eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, eo%muscle(3, :))
             eo%muscle(2, :) = gm%length
-            call apply_line_tensions(loads, kin, model%muscles, gm, eo%muscle(1, :))
+            call apply_muscle_tensions(loads, kin, model%muscles, gm, eo%muscle(1, :))
             eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
         end if
         if (model%family_on(fam_limits)) then
@@ -186,7 +186,7 @@ contains
             if (model%family_on(fam_limits)) sw(i) = x(model%limits(e)%dof) - model%limits(e)%xneutral
         end do
         if (model%family_on(fam_muscles)) then
-            call line_geometries(kin, model%muscles, gm)
+            call muscle_geometries(kin, model%muscles, gm)
             act = muscle_activations(model, t)
             sw(i + 1:i + size(model%muscles)) = muscle_law_value(model%muscles, gm%length, gm%rate, act)
         end if

@@ -3,7 +3,13 @@
 !! `line_attach_t` (name, bodies, points, free length), and the procedures
 !! over it (geometry, loads, neutral lengths); each kind adds its law:
 !! linear spring-dampers, ligaments (tension only, F = l1 d + l2 d^n, eq 10)
-!! and muscles (tension only, F = m1 d + m2 d', eq 11).
+!! and muscles (tension only, F = m1 d + m2 d', eq 11, or Hill-type).
+!!
+!! A muscle may run through via points fixed on the bodies it passes (the
+!! vertebrae along its course), as real neck muscles follow the spine
+!! instead of bowstringing across it: its length is that of the polyline
+!! origin - via points - insertion, and its tension acts along every
+!! segment, pulling each point towards its neighbours on the path.
 module hn_line_elements
     use hn_kinds, only: wp, zero, one
     use hn_rotation, only: cross, norm3
@@ -16,9 +22,10 @@ module hn_line_elements
     public :: line_attach_t, line_geometry_t, line_geometry, line_geometries, apply_line_tension, &
               apply_line_tensions, attachment_point, set_neutral_lengths
     public :: spring_t, spring_tension, spring_energy, ligament_t, ligament_tension, ligament_energy
-    public :: muscle_t, muscle_tension, muscle_law_value
+    public :: muscle_t, muscle_tension, muscle_law_value, muscle_geometries, apply_muscle_tensions, muscle_path_points
 
     integer, parameter, public :: muscle_passive = 1, muscle_hill = 2   !! muscle laws: eq 11, Hill-type
+    integer, parameter, public :: max_via = 8   !! via points of one muscle path
 
     !> Where a line element is attached: the part every kind shares.
     type :: line_attach_t
@@ -62,6 +69,9 @@ module hn_line_elements
         integer :: activation = 0         !! eq 11: model table of a(t); 0 = passive
         type(hill_t) :: hill              !! Hill-type law parameters
         integer :: history = 0            !! Hill: model activation history; 0 = none (a = 0)
+        integer :: nvia = 0               !! via points between the two ends, in path order
+        integer :: via_body(max_via) = 0  !! their bodies (0 = inertial frame)
+        real(wp) :: via_point(3, max_via) = zero   !! their positions in the body frames, from the mass centre [m]
     end type muscle_t
 
 contains
@@ -89,6 +99,11 @@ contains
     end function ligament_energy
 
     !> Muscle tension (tension only) at length L, rate L' and activation a.
+    !! L is the length of the muscle's path; the structured Jacobian
+    !! (core/hn_jacobian) passes the distance between the two ends, which
+    !! is the path length wherever the via points lie on the straight line
+    !! between the ends (the model deck's neutral posture) and an
+    !! approximation of it elsewhere.
     elemental real(wp) function muscle_tension(m, length, rate, act) result(t)
         type(muscle_t), intent(in) :: m      !! the muscle
         real(wp), intent(in) :: length       !! current length [m]
@@ -201,16 +216,109 @@ contains
     end subroutine apply_line_tensions
 
     !> Free lengths not given explicitly (negative) become the lengths in
-    !! the configuration of `kin` (the neutral one).
+    !! the configuration of `kin` (the neutral one); a muscle's is the
+    !! length of its path through its via points.
     pure subroutine set_neutral_lengths(kin, at)
         type(kinematics_t), intent(in) :: kin        !! kinematics in the neutral configuration
         class(line_attach_t), intent(inout) :: at(:) !! the elements (any kind)
         type(line_geometry_t) :: g(size(at))
         integer :: e
-        call line_geometries(kin, at, g)
+        select type (at)
+        type is (muscle_t)
+            call muscle_geometries(kin, at, g)
+        class default
+            call line_geometries(kin, at, g)
+        end select
         do e = 1, size(at)
             if (at(e)%length0 < zero) at(e)%length0 = g(e)%length
         end do
+        select type (at)
+        type is (muscle_t)
+            at%hill%l0 = at%length0      ! the rest length of the short-range stiffness k = q F / L0
+        end select
     end subroutine set_neutral_lengths
+
+    !> The points of a muscle's path in order (origin, via points,
+    !! insertion): their bodies and body-frame positions.
+    pure subroutine muscle_path_points(m, bodies, points, npt)
+        type(muscle_t), intent(in) :: m                !! the muscle
+        integer, intent(out) :: bodies(max_via + 2)    !! bodies of the points (0 = inertial frame)
+        real(wp), intent(out) :: points(3, max_via + 2) !! body-frame positions from the mass centre [m]
+        integer, intent(out) :: npt                    !! number of points, nvia + 2
+        npt = m%nvia + 2
+        bodies = 0
+        points = zero
+        bodies(1) = m%body_a
+        points(:, 1) = m%point_a
+        bodies(2:npt - 1) = m%via_body(1:m%nvia)
+        points(:, 2:npt - 1) = m%via_point(:, 1:m%nvia)
+        bodies(npt) = m%body_b
+        points(:, npt) = m%point_b
+    end subroutine muscle_path_points
+
+    !> Geometry of a muscle's path: length and lengthening rate summed over
+    !! its segments; pa, pb the two ends; unit the direction of the first
+    !! segment.
+    pure subroutine muscle_geometry(kin, m, g)
+        type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
+        type(muscle_t), intent(in) :: m        !! the muscle
+        type(line_geometry_t), intent(out) :: g
+        type(line_geometry_t) :: s
+        integer :: bodies(max_via + 2), npt, k
+        real(wp) :: points(3, max_via + 2)
+        if (m%nvia == 0) then
+            call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
+            return
+        end if
+        call muscle_path_points(m, bodies, points, npt)
+        do k = 1, npt - 1
+            call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), s)
+            if (k == 1) then
+                g%pa = s%pa
+                g%unit = s%unit
+            end if
+            g%length = g%length + s%length
+            g%rate = g%rate + s%rate
+            g%pb = s%pb
+        end do
+    end subroutine muscle_geometry
+
+    !> Path geometry of every muscle of a list.
+    pure subroutine muscle_geometries(kin, muscles, g)
+        type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
+        type(muscle_t), intent(in) :: muscles(:)     !! the muscles
+        type(line_geometry_t), intent(out) :: g(:)   !! (size(muscles)) their path geometry
+        integer :: e
+        do e = 1, size(muscles)
+            call muscle_geometry(kin, muscles(e), g(e))
+        end do
+    end subroutine muscle_geometries
+
+    !> Apply the muscles' tensions along their paths: on every segment the
+    !! tension pulls its two points together (at a via point the two
+    !! segments' pulls add up).
+    pure subroutine apply_muscle_tensions(loads, kin, muscles, g, tension)
+        type(body_loads_t), intent(inout) :: loads
+        type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
+        type(muscle_t), intent(in) :: muscles(:)     !! the muscles
+        type(line_geometry_t), intent(in) :: g(:)    !! their path geometry (muscle_geometries)
+        real(wp), intent(in) :: tension(:)           !! their tensions [N]
+        type(line_geometry_t) :: s
+        integer :: e, k, bodies(max_via + 2), npt
+        real(wp) :: points(3, max_via + 2)
+        do e = 1, size(muscles)
+            associate (m => muscles(e))
+                if (m%nvia == 0) then
+                    call apply_line_tension(loads, kin, m%body_a, m%body_b, g(e), tension(e))
+                    cycle
+                end if
+                call muscle_path_points(m, bodies, points, npt)
+                do k = 1, npt - 1
+                    call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), s)
+                    call apply_line_tension(loads, kin, bodies(k), bodies(k + 1), s, tension(e))
+                end do
+            end associate
+        end do
+    end subroutine apply_muscle_tensions
 
 end module hn_line_elements

@@ -14,6 +14,19 @@
 !!            with twice the concentric slope and saturates at flen.
 !! c L' is the damping element acting along the line.
 !!
+!! Short-range (intrinsic) stiffness of the active fibres, beyond Hill's
+!! law: the attached cross-bridges make an active muscle resist a small
+!! stretch with a stiffness proportional to its force, k = q F / L
+!! (Bergmark 1989; Cholewicki & McGill 1996), F the active isometric force
+!! F0 a fL(l), L the muscle's rest length L0. It holds over a short range
+!! only, a stretch of about r lopt, beyond which the bridges detach and the
+!! force-length and force-velocity relations take over:
+!!   F_srs = k r lopt tanh(d/(r lopt)),   d = L - L0
+!! (slope k at the rest length, bounded by k r lopt). It adds the stiffness
+!! the force-length curve lacks at lopt (its slope is zero there), which
+!! an activated neck needs to stand: without it the compression of the
+!! bracing muscles buckles the column.
+!!
 !! Activation: excitation u(t) = u0 until t1 = onset + delay, then a ramp to
 !! u1 over the rise time, then u1; da/dt = (u - a)/tau with a(t <= t1) = u0.
 !! The history is monotone, so one time constant holds throughout (tau_act
@@ -37,6 +50,9 @@ module hn_muscle
         real(wp) :: eps0 = 0.6_wp    !! passive strain at F0
         real(wp) :: af = 0.25_wp     !! Hill's a/F0
         real(wp) :: flen = 1.4_wp    !! eccentric force limit [F0]
+        real(wp) :: srs_q = zero     !! short-range stiffness k = q F / L0 (0: none)
+        real(wp) :: srs_range = 0.01_wp   !! stretch over which it holds [lopt]
+        real(wp) :: l0 = zero        !! rest length L0 of the muscle [m] (set with the neutral lengths)
     end type hill_t
 
     !> An activation history: bracing level, reflex onset, rise, time constant.
@@ -49,6 +65,8 @@ module hn_muscle
         real(wp) :: rise = zero      !! rise time of the excitation [s]
         real(wp) :: tau_act = 0.015_wp    !! activation time constant [s]
         real(wp) :: tau_deact = 0.05_wp   !! deactivation time constant [s]
+        real(wp) :: srs_q = zero          !! short-range stiffness q of the muscles it drives (hill_t)
+        real(wp) :: srs_range = 0.01_wp   !! its range [lopt]
     end type activation_t
 
 contains
@@ -86,17 +104,22 @@ contains
         end if
     end function hill_fv
 
-    !> Unclipped Hill force F0 [a fL fV + fPE] + c L' at stretch d = L - L0,
-    !! lengthening rate L' and activation a (negative only when the damper
-    !! pushes harder than the fibres pull).
+    !> Unclipped Hill force F0 [a fL fV + fPE] + c L' + F_srs at stretch
+    !! d = L - L0, lengthening rate L' and activation a (negative only when
+    !! the damper pushes harder than the fibres pull).
     elemental real(wp) function hill_force(h, d, rate, act) result(f)
         type(hill_t), intent(in) :: h      !! the muscle
         real(wp), intent(in) :: d          !! stretch from the neutral length [m]
         real(wp), intent(in) :: rate       !! lengthening rate [m/s]
         real(wp), intent(in) :: act        !! activation in [0, 1]
-        real(wp) :: l
+        real(wp) :: l, fa, r
         l = one + d/h%lopt
-        f = h%f0*(act*hill_fl(h, l)*hill_fv(h, rate/(h%vmax*h%lopt)) + hill_fpe(h, l)) + h%damping*rate
+        fa = h%f0*act*hill_fl(h, l)
+        f = fa*hill_fv(h, rate/(h%vmax*h%lopt)) + h%f0*hill_fpe(h, l) + h%damping*rate
+        if (h%srs_q > zero .and. h%l0 > zero) then
+            r = h%srs_range*h%lopt
+            f = f + h%srs_q*fa/h%l0*r*tanh(d/r)
+        end if
     end function hill_force
 
     !> Excitation u(t): u0, a linear ramp to u1 over the rise time from

@@ -11,7 +11,7 @@ module hn_deck
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic, motion_eval
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
-    use hn_line_elements, only: line_attach_t, ligament_t, muscle_t, spring_t, muscle_hill
+    use hn_line_elements, only: line_attach_t, ligament_t, muscle_t, spring_t, muscle_hill, max_via
     use hn_muscle, only: activation_t
     use hn_joint_limits, only: joint_limit_t, joint_range_t
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
@@ -184,11 +184,11 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(34) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(35) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
             'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM', 'SCALE', &
-            'RUNLIMIT']
+            'RUNLIMIT', 'VIA']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -1007,6 +1007,10 @@ contains
                 call rd%real(i, 4, 'maximum isometric force F0', 'N', mu%hill%f0, zero, 1.0e5_wp)
                 call rd%real(i, 5, 'optimal fibre length', 'm', mu%hill%lopt, 1.0e-3_wp, one)
                 if (.not. rd%is_blank(i, 6)) mu%history = history_ref(rd, i, 6, cs%model%activations)
+                if (mu%history > 0) then
+                    mu%hill%srs_q = cs%model%activations(mu%history)%srs_q
+                    mu%hill%srs_range = cs%model%activations(mu%history)%srs_range
+                end if
                 call rd%real(i, 7, 'damping', 'N s/m', mu%hill%damping, zero, 1.0e5_wp, default=zero)
                 if (keep .and. .not. rd%failed()) call append(3)
             case ('SPRING')
@@ -1036,6 +1040,10 @@ contains
             write (note, '(i0,a)') nlimdrop, ' JOINT-LIMIT DAMPERS DROPPED: ON LOCKED OR MERGED COORDINATES'
             call add_scene_note(cs, note)
         end if
+        do k = 1, size(cards)
+            if (cards(k)%key == 'VIA') call via_card(rd, cards, cards(k)%first, cs, bnames, bmap)
+            if (rd%failed()) return
+        end do
         do k = 1, size(cards)
             if (cards(k)%key == 'SCALE') call scale_card(rd, cards(k)%first, cs)
             if (rd%failed()) return
@@ -1085,6 +1093,58 @@ contains
         end subroutine line_card
     end subroutine element_cards
 
+    !> VIA muscle body x y z: the next via point of a muscle's path (MUSCLE or
+    !! HILL card of that name), in order from body a to body b, moved onto
+    !! a merged body as the muscle's ends are; a VIA card of a muscle the
+    !! scene dropped is dropped with it.
+    subroutine via_card(rd, cards, i, cs, bnames, bmap)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        integer, intent(in) :: i
+        type(case_t), intent(inout) :: cs
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        character(len=10) :: nm, other
+        real(wp) :: p(3)
+        integer :: e, kb, f, k
+        logical :: defined
+        call rd%name(i, 1, 'muscle name', nm)
+        kb = body_ref(rd, i, 2, 'body', bnames, .true.)
+        do f = 1, 3
+            call rd%real(i, 2 + f, 'via point', 'm', p(f), -big_length, big_length)
+        end do
+        if (rd%failed()) return
+        do e = size(cs%model%muscles), 1, -1       ! (a loop: no temporary of the name component)
+            if (cs%model%muscles(e)%name == nm) exit
+        end do
+        if (e == 0) then
+            defined = .false.
+            do k = 1, size(cards)
+                if (cards(k)%key /= 'MUSCLE' .and. cards(k)%key /= 'HILL') cycle
+                call rd%name(cards(k)%first, 1, 'muscle name', other)
+                defined = defined .or. other == nm
+            end do
+            if (.not. defined) call rd%fail(rd%context(i, 1, 'muscle name')//': found "'//trim(nm)// &
+                                            '"; expected the name of a MUSCLE or HILL card')
+            return
+        end if
+        associate (m => cs%model%muscles(e))
+            if (m%nvia == max_via) then
+                call rd%fail(rd%context(i, 1, 'muscle name')//': muscle "'//trim(nm)//'" has '// &
+                             trim(int_str(max_via))//' via points already; expected at most '// &
+                             trim(int_str(max_via))//' VIA cards per muscle')
+                return
+            end if
+            if (kb > 0) then
+                p = p + bmap%shift(:, kb)
+                kb = bmap%new(kb)
+            end if
+            m%nvia = m%nvia + 1
+            m%via_body(m%nvia) = kb
+            m%via_point(:, m%nvia) = p
+        end associate
+    end subroutine via_card
+
     !> ACTIVATE cards: the activation histories of Hill-type muscles. A blank
     !! onset is the sled pulse onset: the first time the prescribed
     !! translational acceleration of the root body exceeds 1 g (never, when
@@ -1118,6 +1178,9 @@ contains
             call rd%real(i + 1, 1, 'activation time constant', 's', ah%tau_act, 1.0e-4_wp, 10.0_wp, default=0.015_wp)
             call rd%real(i + 1, 2, 'deactivation time constant', 's', ah%tau_deact, 1.0e-4_wp, 10.0_wp, &
                          default=0.05_wp)
+            call rd%real(i + 1, 3, 'short-range stiffness q', '-', ah%srs_q, zero, 1.0e3_wp, default=zero)
+            call rd%real(i + 1, 4, 'short-range stiffness range', 'lopt', ah%srs_range, 1.0e-4_wp, one, &
+                         default=0.01_wp)
             if (rd%failed()) return
             cs%model%activations = [cs%model%activations, ah]
         end do

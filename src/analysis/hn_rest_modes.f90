@@ -1,0 +1,125 @@
+!> Small-motion stability of a model at rest: the Jacobian of the
+!! equations of motion y' = g(t, y), y = (x_F, xdot_F), at a state of
+!! rest, by central differences of whole dynamics evaluations (so it holds
+!! every term: the elements' tangents, their geometric stiffness, gravity
+!! and the posture-holding forces), and its eigenvalues (LAPACK dgeev).
+!! The rest state is stable when every eigenvalue has a negative real part.
+module hn_rest_modes
+    use hn_kinds, only: wp, zero, msglen
+    use hn_status, only: stat_ok, stat_singular
+    use hn_model, only: model_t
+    use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, inertia_forces_free, state_size
+    use hn_lapack, only: dgeev
+    implicit none
+    private
+
+    public :: rest_mode_t, rest_jacobian, rest_modes
+
+    !> One eigenvalue of the rest state and where its mode lives.
+    type :: rest_mode_t
+        real(wp) :: re = zero, im = zero   !! eigenvalue [1/s]
+        integer :: dominant = 0           !! free coordinate (model numbering) with the largest displacement
+    end type rest_mode_t
+
+    !> Relative step of the central differences, and the smallest absolute
+    !! step [m, rad, m/s, rad/s].
+    real(wp), parameter :: fd_rel = 1.0e-7_wp, fd_abs = 1.0e-7_wp
+
+contains
+
+    !> Jacobian J = dg/dy (2 nf x 2 nf) of the model at time t and state
+    !! (x, xd) of all active coordinates, by central differences. With
+    !! `hold`, the posture-holding forces are first set so that the free
+    !! accelerations vanish at that state (HOLD POSTURE, as a run does).
+    subroutine rest_jacobian(model, t, x, xd, hold, jac, ifree, stat, errmsg)
+        type(model_t), intent(in) :: model
+        real(wp), intent(in) :: t                       !! time [s]
+        real(wp), intent(in) :: x(:), xd(:)             !! all active coordinates and rates
+        logical, intent(in) :: hold                     !! hold the posture at (x, xd)
+        real(wp), allocatable, intent(out) :: jac(:, :) !! (2 nf, 2 nf)
+        integer, allocatable, intent(out) :: ifree(:)   !! model numbers of the free coordinates
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        type(model_ode_t) :: sys
+        real(wp), allocatable :: y(:), yp(:), gp(:), gm(:)
+        real(wp) :: h
+        integer :: nf, j
+        call model_ode_init(sys, model)
+        nf = sys%ws%nfree
+        ifree = sys%ws%ifree
+        allocate (y(state_size(sys)), gp(state_size(sys)), gm(state_size(sys)), jac(2*nf, 2*nf))
+        call coordinates_to_state(sys%ws, x, xd, y)
+        if (hold) then
+            call sys%rhs(t, y, gp, stat, errmsg)
+            if (stat /= stat_ok) return
+            sys%model%q_hold(sys%ws%ifree) = sys%model%q_hold(sys%ws%ifree) - &
+                                             inertia_forces_free(sys%model, sys%ws, gp(nf + 1:2*nf))
+        end if
+        yp = y
+        do j = 1, 2*nf
+            h = max(fd_rel*abs(y(j)), fd_abs)
+            yp(j) = y(j) + h
+            call sys%rhs(t, yp, gp, stat, errmsg)
+            if (stat /= stat_ok) return
+            yp(j) = y(j) - h
+            call sys%rhs(t, yp, gm, stat, errmsg)
+            if (stat /= stat_ok) return
+            yp(j) = y(j)
+            jac(:, j) = (gp(1:2*nf) - gm(1:2*nf))/(2*h)
+        end do
+        stat = stat_ok
+        errmsg = ''
+    end subroutine rest_jacobian
+
+    !> Eigenvalues of the Jacobian of rest_jacobian, sorted by decreasing
+    !! real part, each with the free coordinate that dominates its mode.
+    subroutine rest_modes(model, t, x, xd, hold, modes, stat, errmsg)
+        type(model_t), intent(in) :: model
+        real(wp), intent(in) :: t                       !! time [s]
+        real(wp), intent(in) :: x(:), xd(:)             !! all active coordinates and rates
+        logical, intent(in) :: hold                     !! hold the posture at (x, xd)
+        type(rest_mode_t), allocatable, intent(out) :: modes(:)
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: errmsg
+        real(wp), allocatable :: jac(:, :), wr(:), wi(:), vr(:, :), work(:), mag(:)
+        real(wp) :: vl(1, 1), wq(1)
+        integer, allocatable :: ifree(:)
+        integer :: n, nf, info, k, i
+        call rest_jacobian(model, t, x, xd, hold, jac, ifree, stat, errmsg)
+        if (stat /= stat_ok) return
+        n = size(jac, 1)
+        nf = n/2
+        allocate (wr(n), wi(n), vr(n, n), modes(n), mag(nf))
+        call dgeev('N', 'V', n, jac, n, wr, wi, vl, 1, vr, n, wq, -1, info)
+        allocate (work(max(1, int(wq(1)))))
+        call dgeev('N', 'V', n, jac, n, wr, wi, vl, 1, vr, n, work, size(work), info)
+        if (info /= 0) then
+            stat = stat_singular
+            write (errmsg, '(a,i0)') 'dgeev did not converge: info = ', info
+            return
+        end if
+        k = 1
+        do while (k <= n)
+            ! a complex pair is stored as columns k (real part) and k+1 (imaginary part)
+            if (wi(k) /= zero .and. k < n) then
+                mag = abs(vr(1:nf, k)) + abs(vr(1:nf, k + 1))
+                modes(k) = rest_mode_t(wr(k), wi(k), ifree(maxloc(mag, dim=1)))
+                modes(k + 1) = rest_mode_t(wr(k + 1), wi(k + 1), ifree(maxloc(mag, dim=1)))
+                k = k + 2
+            else
+                mag = abs(vr(1:nf, k))
+                modes(k) = rest_mode_t(wr(k), wi(k), ifree(maxloc(mag, dim=1)))
+                k = k + 1
+            end if
+        end do
+        do i = 2, n                    ! insertion sort by decreasing real part
+            k = i
+            do while (k > 1)
+                if (modes(k - 1)%re >= modes(k)%re) exit
+                modes([k - 1, k]) = modes([k, k - 1])
+                k = k - 1
+            end do
+        end do
+    end subroutine rest_modes
+
+end module hn_rest_modes
