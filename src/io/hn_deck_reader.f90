@@ -19,13 +19,23 @@ module hn_deck_reader
     use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_double, c_null_char, c_null_ptr
     use hn_kinds, only: wp, msglen, i8
     use hn_status, only: stat_bad_input
-    use hn_case, only: deck_line_t, path_len
     use hn_posix, only: file_kind, stdin_kind, kind_name, kind_missing, kind_regular, kind_fifo, kind_socket, &
                         parent_directory, is_absolute, join_path, read_stdin_block
     implicit none
     private
 
-    public :: deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
+    public :: deck_line_t, deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
+    public :: field_text, field_value, locate_field, read_data_file
+
+    integer, parameter, public :: path_len = 256   !! longest file path
+
+    !> One card image as read, with where it came from.
+    type :: deck_line_t
+        character(len=80) :: text = ''
+        character(len=:), allocatable :: source  !! 'stdin' or the included file
+        integer :: line = 0                      !! line number in that source
+        integer :: via = 0                       !! which INCLUDE brought it in (0: the deck itself)
+    end type deck_line_t
 
     interface
         function c_strtod(str, endptr) bind(C, name='strtod') result(v)
@@ -67,6 +77,7 @@ module hn_deck_reader
         procedure :: text => reader_text
         procedure :: where => reader_where
         procedure :: context
+        procedure :: read_data_file
     end type deck_reader_t
 
 contains
@@ -712,6 +723,89 @@ contains
         me%lines(me%nlines)%line = lineno
         me%lines(me%nlines)%via = via
     end subroutine append_line
+
+    !> The most precise text of v that fits a 10-column field.
+    pure function field_text(v) result(s)
+        real(wp), intent(in) :: v   !! the value
+        character(len=10) :: s
+        character(len=24) :: buf
+        integer :: d, ios
+        do d = 9, 1, -1
+            write (buf, '(es24.'//achar(48 + d)//'e0)', iostat=ios) v
+            if (ios /= 0) cycle
+            buf = adjustl(buf)
+            if (len_trim(buf) <= 10) exit
+        end do
+        s = buf(1:10)
+    end function field_text
+
+    !> v as it reads back from its field text.
+    pure real(wp) function field_value(v) result(x)
+        real(wp), intent(in) :: v   !! the value
+        character(len=10) :: s
+        integer :: ios
+        s = field_text(v)
+        read (s, *, iostat=ios) x
+        if (ios /= 0) x = v
+    end function field_value
+
+    !> The card `key` whose field F1 holds `name` (any such card when name
+    !! is blank) among `lines`: how many there are, and for exactly one the
+    !! line holding field number `field` counted across the card and its
+    !! continuation cards (F8 is F1 of the first continuation card), with
+    !! that field's columns. line = 0 when the card has no continuation card
+    !! for the field.
+    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2)
+        type(deck_line_t), intent(in) :: lines(:)  !! card images
+        character(len=*), intent(in) :: key        !! card name (columns 1-8)
+        character(len=*), intent(in) :: name       !! name in field F1, or blank
+        integer, intent(in) :: field               !! field number across the card, 1..3*nfields
+        integer, intent(out) :: nfound             !! number of matching cards
+        integer, intent(out) :: line               !! index in lines of the field's card image (0: none)
+        integer, intent(out) :: c1, c2             !! the field's columns
+        integer :: i, k
+        nfound = 0
+        k = 0
+        line = 0
+        call field_columns(1 + mod(field - 1, nfields), c1, c2)
+        do i = 1, size(lines)
+            if (upper(lines(i)%text(1:8)) /= upper(key)) cycle
+            if (len_trim(name) > 0) then
+                if (upper(adjustl(lines(i)%text(11:20))) /= upper(name)) cycle
+            end if
+            nfound = nfound + 1
+            k = i
+        end do
+        if (nfound /= 1) return
+        line = k + (field - 1)/nfields
+        if (line > size(lines)) then
+            line = 0
+        else if (line /= k .and. len_trim(lines(line)%text(1:10)) /= 0) then
+            line = 0
+        end if
+    end subroutine locate_field
+
+    !> A data file named on card image i (a TABLE's CSV file): looked for as
+    !! INCLUDE files are (next to the file holding the card, the working
+    !! directory, the include path) and read whole; only regular files, at
+    !! most max_deck_bytes. stat /= 0 with a message otherwise.
+    subroutine read_data_file(me, i, name, path, bytes, stat, errmsg)
+        class(deck_reader_t), intent(in) :: me
+        integer, intent(in) :: i                             !! card image naming the file
+        character(len=*), intent(in) :: name                 !! the file name as written
+        character(len=:), allocatable, intent(out) :: path   !! where it was found
+        character(len=:), allocatable, intent(out) :: bytes  !! its contents
+        integer, intent(out) :: stat                         !! stat_ok or stat_bad_input
+        character(len=*), intent(out) :: errmsg              !! why it could not be read
+        call resolve_include(me, name, me%lines(i)%source, path, errmsg)
+        stat = stat_bad_input
+        if (len(path) == 0) return
+        call read_bytes(path, max_deck_bytes, bytes, stat, errmsg)
+        if (stat /= 0) then
+            errmsg = '"'//path//'": '//trim(errmsg)
+            stat = stat_bad_input
+        end if
+    end subroutine read_data_file
 
     pure function int_str(i) result(s)
         integer, intent(in) :: i

@@ -192,6 +192,14 @@ contains
                     call me%put('     '//trim(cs%scene(k)))
                 end do
             end if
+            if (allocated(cs%changes)) then
+                if (size(cs%changes) > 0) then
+                    call me%put('   CHANGES FOR THIS RUN (CHANGE CARDS):')
+                    do k = 1, size(cs%changes)
+                        call me%put('     '//trim(cs%changes(k)))
+                    end do
+                end if
+            end if
             if (cs%hold_posture) call me%put('   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE)')
             call me%put('')
             write (s, '(a,a,a,es10.3,a,es10.3,a,es10.3,a,es9.2,a,es9.2)') '   INTEGRATOR ', trim(cs%integrator), &

@@ -149,6 +149,13 @@ contains
         call h%write_strings('/deck/source', sources)
         call h%write_int('/deck/line', lines, [n])
         call h%attr_string('/deck/line', 'units', '1')
+        if (allocated(cs%changes)) then
+            if (size(cs%changes) > 0) then
+                call h%write_strings('/deck/changes', cs%changes)
+                call h%attr_string('/deck/changes', 'description', 'what the CHANGE cards changed for this run '// &
+                                   '(old and new values, the card)')
+            end if
+        end if
     end subroutine write_deck
 
     !> /model: names, tree and inertia tables, with units.

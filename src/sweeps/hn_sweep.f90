@@ -7,7 +7,8 @@
 module hn_sweep
     use hn_kinds, only: wp, zero, one, msglen
     use hn_case, only: case_t, deck_line_t, path_len
-    use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper
+    use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper, field_text, &
+                              field_value, locate_field
     use hn_deck, only: read_case_lines
     use hn_tree, only: tree_build
     use hn_model, only: model_set_neutral, family_name, family_count, family_items, scale_family
@@ -314,33 +315,18 @@ contains
                 call rd%fail(rd%context(p%card_line, 4, 'item')//': found "'//trim(p%item)// &
                              '"; expected MASS or INERTIA')
         case (par_field)
-            nfound = 0
-            do i = 1, size(sw%base_lines)
-                if (upper(sw%base_lines(i)%text(1:8)) /= p%target(1:8)) cycle
-                if (len_trim(p%item) > 0) then
-                    if (upper(adjustl(sw%base_lines(i)%text(11:20))) /= p%item) cycle
-                end if
-                nfound = nfound + 1
-                k = i
-            end do
+            call locate_field(sw%base_lines, p%target, p%item, p%field, nfound, p%line, c1, c2)
             if (nfound /= 1) then
                 call rd%fail(at//': found '//trim(int_str(nfound))//' '//trim(p%target)//' cards'// &
                              trim(merge(' named '//p%item, repeat(' ', 17), len_trim(p%item) > 0))// &
                              ' in the base deck; expected exactly one')
                 return
             end if
-            p%line = k + (p%field - 1)/nfields
-            if (p%line > size(sw%base_lines)) then
+            if (p%line == 0) then
                 call rd%fail(at//': the '//trim(p%target)//' card has no continuation card for field '// &
                              trim(int_str(p%field)))
                 return
             end if
-            if (p%line /= k .and. len_trim(sw%base_lines(p%line)%text(1:10)) /= 0) then
-                call rd%fail(at//': the '//trim(p%target)//' card has no continuation card for field '// &
-                             trim(int_str(p%field)))
-                return
-            end if
-            call field_columns(1 + mod(p%field - 1, nfields), c1, c2)
             read (sw%base_lines(p%line)%text(c1:c2), *, iostat=ios) p%nominal
             if (ios /= 0 .or. len_trim(sw%base_lines(p%line)%text(c1:c2)) == 0) then
                 call rd%fail(at//': '//sw%base_lines(p%line)%source//' line '// &
@@ -611,30 +597,5 @@ contains
         character(len=*), intent(in) :: name
         k = findloc(ch%name, name, dim=1)
     end function channel
-
-    !> The most precise text of v that fits a 10-column field.
-    pure function field_text(v) result(s)
-        real(wp), intent(in) :: v
-        character(len=10) :: s
-        character(len=24) :: buf
-        integer :: d, ios
-        do d = 9, 1, -1
-            write (buf, '(es24.'//achar(48 + d)//'e0)', iostat=ios) v
-            if (ios /= 0) cycle
-            buf = adjustl(buf)
-            if (len_trim(buf) <= 10) exit
-        end do
-        s = buf(1:10)
-    end function field_text
-
-    !> v as it reads back from its field text.
-    pure real(wp) function field_value(v) result(x)
-        real(wp), intent(in) :: v
-        character(len=10) :: s
-        integer :: ios
-        s = field_text(v)
-        read (s, *, iostat=ios) x
-        if (ios /= 0) x = v
-    end function field_value
 
 end module hn_sweep
