@@ -19,9 +19,12 @@ module hn_changes
     implicit none
     private
 
-    public :: change_t, read_changes, apply_field_changes, apply_model_changes
+    public :: change_t, read_changes, apply_field_changes, apply_model_changes, read_param_kind
 
-    integer, parameter :: kind_family = 1, kind_body = 2, kind_field = 3
+    !> Parameter kinds, shared with the sweeps' PARAM cards.
+    integer, parameter, public :: kind_family = 1   !! a property of every element of a family
+    integer, parameter, public :: kind_body = 2     !! a body's mass or inertia
+    integer, parameter, public :: kind_field = 3    !! a numeric field of a card
     integer, parameter :: note_len = 160
 
     !> One CHANGE card.
@@ -44,30 +47,14 @@ contains
         integer, intent(in) :: first(:)                   !! card images of the CHANGE cards
         type(change_t), allocatable, intent(out) :: changes(:)  !! the changes, in deck order
         character(len=10) :: s
-        integer :: k, i, ios
+        integer :: k, i
         allocate (changes(size(first)))
         do k = 1, size(first)
             i = first(k)
             changes(k)%line = i
             call rd%name(i, 1, 'change name', changes(k)%name)
-            call rd%name(i, 2, 'kind', s)
+            call read_param_kind(rd, i, 2, changes(k)%kind, changes(k)%field)
             if (rd%failed()) return
-            if (s == 'FAMILY') then
-                changes(k)%kind = kind_family
-            else if (s == 'BODY') then
-                changes(k)%kind = kind_body
-            else if (s(1:5) == 'FIELD') then
-                changes(k)%kind = kind_field
-                read (s(6:), *, iostat=ios) changes(k)%field
-                if (ios /= 0 .or. changes(k)%field < 1 .or. changes(k)%field > 3*nfields) then
-                    call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FIELDn with n the '// &
-                                 'field number 1 to 21 (8 to 14 on the first continuation card)')
-                    return
-                end if
-            else
-                call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FAMILY, BODY or FIELDn')
-                return
-            end if
             call rd%name(i, 3, 'target', changes(k)%target)
             call rd%name(i, 4, 'item', changes(k)%item, optional_blank=changes(k)%kind == kind_field)
             call rd%name(i, 5, 'how', s)
@@ -90,6 +77,34 @@ contains
             end if
         end do
     end subroutine read_changes
+
+    !> The parameter kind in field f of card image i: FAMILY, BODY or FIELDn
+    !! (n the field number across the card, 1 to 3*nfields).
+    subroutine read_param_kind(rd, i, f, kind, field)
+        type(deck_reader_t), intent(inout) :: rd   !! the deck (errors located there)
+        integer, intent(in) :: i, f                !! card image and field
+        integer, intent(out) :: kind               !! kind_family, kind_body or kind_field (0 on error)
+        integer, intent(out) :: field              !! n of FIELDn (0 for the other kinds)
+        character(len=10) :: s
+        integer :: ios
+        kind = 0
+        field = 0
+        call rd%name(i, f, 'kind', s)
+        if (rd%failed()) return
+        if (s == 'FAMILY') then
+            kind = kind_family
+        else if (s == 'BODY') then
+            kind = kind_body
+        else if (s(1:5) == 'FIELD') then
+            kind = kind_field
+            read (s(6:), *, iostat=ios) field
+            if (ios /= 0 .or. field < 1 .or. field > 3*nfields) &
+                call rd%fail(rd%context(i, f, 'kind')//': found "'//trim(s)//'"; expected FIELDn with n the '// &
+                             'field number 1 to 21 (8 to 14 on the first continuation card)')
+        else
+            call rd%fail(rd%context(i, f, 'kind')//': found "'//trim(s)//'"; expected FAMILY, BODY or FIELDn')
+        end if
+    end subroutine read_param_kind
 
     !> Rewrite the fields that FIELD changes name, in rd's card images (the
     !! deck kept for the listing and the result file is not touched).

@@ -6,7 +6,7 @@
 module hn_csv
     use hn_kinds, only: wp
     use hn_status, only: stat_ok, stat_bad_input
-    use hn_deck_reader, only: parse_real, int_str
+    use hn_deck_reader, only: parse_real, int_str, next_line
     implicit none
     private
 
@@ -22,7 +22,7 @@ contains
         real(wp), allocatable, intent(out) :: t(:), y(:)     !! times and values, in file order
         integer, intent(out) :: stat                         !! stat_ok or stat_bad_input
         character(len=:), allocatable, intent(out) :: errmsg !! the line at fault and why
-        integer :: p, q, lineno, n, nitems
+        integer :: p, lineno, n, nitems
         character(len=:), allocatable :: line
         character(len=64) :: items(3)
         real(wp) :: a, b
@@ -35,14 +35,7 @@ contains
         first_data = .true.
         p = 1
         do while (p <= len(text))
-            q = index(text(p:), achar(10))
-            if (q == 0) then
-                q = len(text) + 1
-            else
-                q = p + q - 1
-            end if
-            line = text(p:q - 1)
-            p = q + 1
+            call next_line(text, p, line)
             lineno = lineno + 1
             if (len(line) > 0) then
                 if (line(len(line):len(line)) == achar(13)) line = line(1:len(line) - 1)

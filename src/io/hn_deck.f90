@@ -448,29 +448,8 @@ contains
             kb = kb + 1
             i = cards(k)%first
             bline(kb) = i
-            call rd%name(i, 1, 'body name', bnames(kb))
+            call body_name(rd, i, bnames(1:kb - 1), bnames(kb))
             if (rd%failed()) return
-            if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL') then
-                call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
-                             trim(bnames(kb))//'", which names the inertial frame (R, alias INERTIAL); '// &
-                             'expected another name')
-                return
-            end if
-            if (bnames(kb) == 'ALL') then
-                call rd%fail(rd%context(i, 1, 'body name')//': found "ALL", a reserved word (LOCK ALL '// &
-                             'means every body); expected another name')
-                return
-            end if
-            if (len_trim(bnames(kb)) > name_len) then
-                call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
-                             trim(bnames(kb))//'"; expected at most 12 characters')
-                return
-            end if
-            if (any(bnames(1:kb - 1) == bnames(kb))) then
-                call rd%fail(rd%context(i, 1, 'body name')//': body "'// &
-                             trim(bnames(kb))//'" is defined twice; expected a new name')
-                return
-            end if
             call rd%name(i, 2, 'parent body', pnames(kb))
             call rd%real(i, 3, 'mass', 'kg', cs%model%tree%mass(kb), 1.0e-6_wp, 1.0e4_wp)
             cs%model%tree%inertia(:, :, kb) = zero
@@ -574,6 +553,29 @@ contains
             s = s//')'
         end function body_place
     end subroutine body_cards
+
+    !> The name of a new body on BODY card image i: not a name of the
+    !! inertial frame, not reserved, not too long, not a name already used.
+    subroutine body_name(rd, i, earlier, name)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i                      !! the BODY card image
+        character(len=10), intent(in) :: earlier(:)   !! the bodies defined before it
+        character(len=10), intent(out) :: name        !! its name
+        call rd%name(i, 1, 'body name', name)
+        if (rd%failed()) return
+        if (name == 'R' .or. name == 'INERTIAL') then
+            call rd%fail(rd%context(i, 1, 'body name')//': found "'//trim(name)//'", which names the '// &
+                         'inertial frame (R, alias INERTIAL); expected another name')
+        else if (name == 'ALL') then
+            call rd%fail(rd%context(i, 1, 'body name')//': found "ALL", a reserved word (LOCK ALL '// &
+                         'means every body); expected another name')
+        else if (len_trim(name) > name_len) then
+            call rd%fail(rd%context(i, 1, 'body name')//': found "'//trim(name)//'"; expected at most 12 characters')
+        else if (any(earlier == name)) then
+            call rd%fail(rd%context(i, 1, 'body name')//': body "'//trim(name)// &
+                         '" is defined twice; expected a new name')
+        end if
+    end subroutine body_name
 
     !> Exactly one body hangs from R, and following parents from any body
     !! reaches it: errors name the BODY cards concerned.

@@ -25,7 +25,7 @@ module hn_deck_reader
     private
 
     public :: deck_line_t, deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
-    public :: field_text, field_value, locate_field, read_data_file
+    public :: field_text, field_value, locate_field, read_data_file, next_line
 
     integer, parameter, public :: path_len = 256   !! longest file path
 
@@ -550,7 +550,7 @@ contains
         character(len=:), allocatable :: line, incfile, incbytes
         character(len=path_len) :: incname
         character(len=msglen) :: iomsg
-        integer :: ios, lineno, k, c, p0, p1, n, ivia
+        integer :: ios, lineno, k, c, p0, n, ivia
 
         ivia = 0
         if (len(via) > 0) then
@@ -561,14 +561,7 @@ contains
         p0 = 1
         do while (p0 <= len(bytes))
             if (me%failed()) return
-            p1 = index(bytes(p0:), achar(10))
-            if (p1 == 0) then
-                p1 = len(bytes) + 1
-            else
-                p1 = p0 + p1 - 1
-            end if
-            line = bytes(p0:p1 - 1)
-            p0 = p1 + 1
+            call next_line(bytes, p0, line)
             lineno = lineno + 1
             me%nphysical = me%nphysical + 1
             if (me%nphysical > max_deck_lines) then
@@ -723,6 +716,23 @@ contains
         me%lines(me%nlines)%line = lineno
         me%lines(me%nlines)%via = via
     end subroutine append_line
+
+    !> The line of `text` that starts at position p, without its line feed;
+    !! p moves to the start of the next line (beyond len(text) after the last).
+    pure subroutine next_line(text, p, line)
+        character(len=*), intent(in) :: text                 !! text of lines ended by LF
+        integer, intent(inout) :: p                          !! start of the line; then of the next one
+        character(len=:), allocatable, intent(out) :: line   !! the line
+        integer :: q
+        q = index(text(p:), achar(10))
+        if (q == 0) then
+            q = len(text) + 1
+        else
+            q = p + q - 1
+        end if
+        line = text(p:q - 1)
+        p = q + 1
+    end subroutine next_line
 
     !> The most precise text of v that fits a 10-column field.
     pure function field_text(v) result(s)

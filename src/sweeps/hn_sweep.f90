@@ -10,6 +10,7 @@ module hn_sweep
     use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper, field_text, &
                               field_value, locate_field
     use hn_deck, only: read_case_lines
+    use hn_changes, only: read_param_kind, kind_family, kind_body, kind_field
     use hn_tree, only: tree_build
     use hn_model, only: model_set_neutral, family_name, family_count, family_items, scale_family
     use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
@@ -24,7 +25,7 @@ module hn_sweep
               run_member, field_text
     public :: output_names, output_units, nout
 
-    integer, parameter, public :: par_family = 1, par_body = 2, par_field = 3
+    integer, parameter, public :: par_family = kind_family, par_body = kind_body, par_field = kind_field
     integer, parameter, public :: design_factorial = 1, design_lhs = 2, design_oat = 3
     character(len=9), parameter, public :: design_name(3) = [character(len=9) :: 'FACTORIAL', 'LHS', 'OAT']
     integer, parameter :: max_params = 50, max_runs = 100000
@@ -233,24 +234,8 @@ contains
                 call rd%fail(rd%context(i, 1, 'parameter name')//': found "'//trim(p%name)// &
                              '" a second time; expected a new name')
         end do
-        call rd%name(i, 2, 'kind', s)
+        call read_param_kind(rd, i, 2, p%kind, p%field)
         if (rd%failed()) return
-        if (s == 'FAMILY') then
-            p%kind = par_family
-        else if (s == 'BODY') then
-            p%kind = par_body
-        else if (s(1:5) == 'FIELD') then
-            p%kind = par_field
-            read (s(6:), *, iostat=ios) p%field
-            if (ios /= 0 .or. p%field < 1 .or. p%field > 3*nfields) then
-                call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FIELDn with n the '// &
-                             'field number 1 to 21 (8 to 14 on the first continuation card)')
-                return
-            end if
-        else
-            call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FAMILY, BODY or FIELDn')
-            return
-        end if
         call rd%name(i, 3, 'target', p%target)
         call rd%name(i, 4, 'item', p%item, optional_blank=p%kind == par_field)
         if (sw%design == design_oat .and. rd%is_blank(i, 5) .and. rd%is_blank(i, 6)) then
