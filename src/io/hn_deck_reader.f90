@@ -604,7 +604,8 @@ contains
                     return
                 end if
                 if (depth >= max_include_depth) then
-                    call me%fail(at(lineno)//' (INCLUDE card): includes nested too deeply (more than 4 levels; a loop?)')
+                    call me%fail(at(lineno)//' (INCLUDE card): includes nested too deeply (more than '// &
+                                 trim(int_str(max_include_depth))//' levels; a loop?)')
                     return
                 end if
                 call resolve_include(me, trim(incname), path, incfile, iomsg)
