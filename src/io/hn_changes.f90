@@ -82,7 +82,8 @@ contains
     !! (n the field number across the card, 1 to 3*nfields).
     subroutine read_param_kind(rd, i, f, kind, field)
         type(deck_reader_t), intent(inout) :: rd   !! the deck (errors located there)
-        integer, intent(in) :: i, f                !! card image and field
+        integer, intent(in) :: i                   !! card image
+        integer, intent(in) :: f                   !! field number on it (1..nfields)
         integer, intent(out) :: kind               !! kind_family, kind_body or kind_field (0 on error)
         integer, intent(out) :: field              !! n of FIELDn (0 for the other kinds)
         character(len=10) :: s

@@ -19,7 +19,8 @@ contains
     !! naming the line and what was found.
     subroutine read_two_columns(text, t, y, stat, errmsg)
         character(len=*), intent(in) :: text                 !! the file's contents
-        real(wp), allocatable, intent(out) :: t(:), y(:)     !! times and values, in file order
+        real(wp), allocatable, intent(out) :: t(:)           !! first column (times), in file order
+        real(wp), allocatable, intent(out) :: y(:)           !! second column (values), in file order
         integer, intent(out) :: stat                         !! stat_ok or stat_bad_input
         character(len=:), allocatable, intent(out) :: errmsg !! the line at fault and why
         integer :: p, lineno, n, nitems

@@ -63,11 +63,11 @@ contains
     !! `source` in messages) into `cs`. INCLUDE files are looked for next to
     !! the including file, in the working directory, then in `include_path`.
     subroutine read_case(path, source, cs, stat, errmsg, include_path)
-        character(len=*), intent(in) :: path    !! file to read
-        character(len=*), intent(in) :: source  !! its name in messages
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        character(len=*), intent(in) :: path                       !! file to read
+        character(len=*), intent(in) :: source                     !! its name in messages
+        type(case_t), intent(out) :: cs                            !! the run case (model and run control)
+        integer, intent(out) :: stat                               !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg               !! the first error, located in the deck
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE files
         type(deck_reader_t) :: rd
         rd%top = source
@@ -83,11 +83,11 @@ contains
     !> Interpret card images already read (INCLUDE expanded), as kept in
     !! `case_t%deck`: a deck edited in memory, e.g. one member of a sweep.
     subroutine read_case_lines(lines, source, cs, stat, errmsg)
-        type(deck_line_t), intent(in) :: lines(:)
-        character(len=*), intent(in) :: source  !! name of the deck in messages
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(deck_line_t), intent(in) :: lines(:)      !! card images, INCLUDE cards expanded
+        character(len=*), intent(in) :: source         !! name of the deck in messages
+        type(case_t), intent(out) :: cs                !! the run case (model and run control)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg   !! the first error, located in the deck
         type(deck_reader_t) :: rd
         rd%top = source
         rd%lines = lines

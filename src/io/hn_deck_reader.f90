@@ -84,8 +84,9 @@ contains
 
     !> First and last column of field f (1..7).
     pure subroutine field_columns(f, c1, c2)
-        integer, intent(in) :: f
-        integer, intent(out) :: c1, c2
+        integer, intent(in) :: f     !! field number, 1..nfields (F1..F7)
+        integer, intent(out) :: c1   !! its first column (11 for F1)
+        integer, intent(out) :: c2   !! its last column (c1 + 9)
         c1 = 1 + 10*f
         c2 = c1 + 9
     end subroutine field_columns
@@ -98,7 +99,7 @@ contains
     !> Record the first error only.
     subroutine reader_fail(me, msg)
         class(deck_reader_t), intent(inout) :: me
-        character(len=*), intent(in) :: msg
+        character(len=*), intent(in) :: msg   !! the whole message (context, found, expected)
         if (me%stat /= 0) return
         me%stat = stat_bad_input
         me%errmsg = msg
@@ -108,7 +109,7 @@ contains
     !! where it was included: "a.inp line 3 (included from stdin line 12)".
     function reader_where(me, i) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i
+        integer, intent(in) :: i   !! card image number
         character(len=:), allocatable :: s
         s = me%lines(i)%source//' line '//trim(int_str(me%lines(i)%line))
         if (allocated(me%vias) .and. me%lines(i)%via > 0) then
@@ -119,7 +120,7 @@ contains
     !> Card name of line i (columns 1-8, upper case).
     function reader_key(me, i) result(k)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i
+        integer, intent(in) :: i   !! card image number
         character(len=8) :: k
         k = upper(me%lines(i)%text(1:8))
     end function reader_key
@@ -127,7 +128,8 @@ contains
     !> Raw text of field f of line i, adjusted left.
     function reader_raw(me, i, f) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, f
+        integer, intent(in) :: i   !! card image number
+        integer, intent(in) :: f   !! field number, 1..nfields
         character(len=10) :: s
         integer :: c1, c2
         call field_columns(f, c1, c2)
@@ -136,7 +138,8 @@ contains
 
     logical function reader_is_blank(me, i, f)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, f
+        integer, intent(in) :: i   !! card image number
+        integer, intent(in) :: f   !! field number, 1..nfields
         reader_is_blank = len_trim(me%raw(i, f)) == 0
     end function reader_is_blank
 
@@ -145,8 +148,9 @@ contains
     !! card continuation 3, field F1 'time')".
     function context(me, i, f, what) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what
+        integer, intent(in) :: i               !! card image number
+        integer, intent(in) :: f               !! field number, 1..nfields
+        character(len=*), intent(in) :: what   !! what the field holds, as in the card's documentation
         character(len=:), allocatable :: s
         character(len=40) :: cols
         integer :: c1, c2, j
@@ -171,11 +175,14 @@ contains
     !! `default` when present and is an error otherwise.
     subroutine reader_real(me, i, f, what, units, v, lo, hi, default)
         class(deck_reader_t), intent(inout) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what, units
-        real(wp), intent(out) :: v
-        real(wp), intent(in) :: lo, hi
-        real(wp), intent(in), optional :: default
+        integer, intent(in) :: i                    !! card image number
+        integer, intent(in) :: f                    !! field number, 1..nfields
+        character(len=*), intent(in) :: what        !! what the field holds (named in messages)
+        character(len=*), intent(in) :: units       !! its units (named in messages)
+        real(wp), intent(out) :: v                  !! the value (0 on an error)
+        real(wp), intent(in) :: lo                  !! smallest value accepted
+        real(wp), intent(in) :: hi                  !! largest value accepted
+        real(wp), intent(in), optional :: default   !! value of a blank field (absent: blank is an error)
         character(len=10) :: s
         character(len=60) :: range
         character(len=10) :: why
@@ -217,11 +224,13 @@ contains
     !> Integer from field f of line i, in [lo, hi].
     subroutine reader_int(me, i, f, what, v, lo, hi, default)
         class(deck_reader_t), intent(inout) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what
-        integer, intent(out) :: v
-        integer, intent(in) :: lo, hi
-        integer, intent(in), optional :: default
+        integer, intent(in) :: i                   !! card image number
+        integer, intent(in) :: f                   !! field number, 1..nfields
+        character(len=*), intent(in) :: what       !! what the field holds (named in messages)
+        integer, intent(out) :: v                  !! the value (0 on an error)
+        integer, intent(in) :: lo                  !! smallest value accepted
+        integer, intent(in) :: hi                  !! largest value accepted
+        integer, intent(in), optional :: default   !! value of a blank field (absent: blank is an error)
         character(len=10) :: s
         character(len=60) :: range
         integer :: k, ios
@@ -253,10 +262,11 @@ contains
     !! only when `optional_blank` is true.
     subroutine reader_name(me, i, f, what, v, optional_blank)
         class(deck_reader_t), intent(inout) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what
-        character(len=*), intent(out) :: v
-        logical, intent(in), optional :: optional_blank
+        integer, intent(in) :: i                          !! card image number
+        integer, intent(in) :: f                          !! field number, 1..nfields
+        character(len=*), intent(in) :: what              !! what the field holds (named in messages)
+        character(len=*), intent(out) :: v                !! the name, upper case ('' on an error or when blank)
+        logical, intent(in), optional :: optional_blank   !! a blank field is allowed (default: no)
         character(len=10) :: s
         integer :: k
         v = ''
@@ -282,7 +292,8 @@ contains
     !> Free text of columns c1..80 of line i.
     function reader_text(me, i, c1) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, c1
+        integer, intent(in) :: i    !! card image number
+        integer, intent(in) :: c1   !! first column of the text
         character(len=:), allocatable :: s
         s = trim(adjustl(me%lines(i)%text(c1:80)))
     end function reader_text
@@ -402,7 +413,7 @@ contains
 
     !> Upper-case copy of a string.
     pure function upper(s) result(u)
-        character(len=*), intent(in) :: s
+        character(len=*), intent(in) :: s   !! the string (ASCII)
         character(len=len(s)) :: u
         integer :: k, c
         u = s
@@ -519,7 +530,8 @@ contains
     !! named `source` in messages), expanding INCLUDE cards.
     subroutine read_card_images(me, path, source, depth)
         class(deck_reader_t), intent(inout) :: me
-        character(len=*), intent(in) :: path, source
+        character(len=*), intent(in) :: path     !! file to read, or stdin_path
+        character(len=*), intent(in) :: source   !! its name in messages ('stdin' or the file name)
         integer, intent(in), optional :: depth   !! unused (kept for callers that pass 0)
         character(len=:), allocatable :: bytes
         character(len=msglen) :: iomsg
@@ -773,7 +785,8 @@ contains
         integer, intent(in) :: field               !! field number across the card, 1..3*nfields
         integer, intent(out) :: nfound             !! number of matching cards
         integer, intent(out) :: line               !! index in lines of the field's card image (0: none)
-        integer, intent(out) :: c1, c2             !! the field's columns
+        integer, intent(out) :: c1                 !! the field's first column
+        integer, intent(out) :: c2                 !! the field's last column
         integer :: i, k
         nfound = 0
         k = 0
@@ -819,7 +832,7 @@ contains
     end subroutine read_data_file
 
     pure function int_str(i) result(s)
-        integer, intent(in) :: i
+        integer, intent(in) :: i   !! the integer
         character(len=16) :: s
         write (s, '(i0)') i
     end function int_str
