@@ -84,10 +84,11 @@ contains
     !> Read the sweep deck `path` (named `source` in messages), the base
     !! deck it names, and check every parameter against the base deck.
     subroutine read_sweep(path, source, sw, stat, errmsg)
-        character(len=*), intent(in) :: path, source
-        type(sweep_t), intent(out) :: sw
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        character(len=*), intent(in) :: path           !! sweep deck file, or stdin_path
+        character(len=*), intent(in) :: source         !! its name in messages
+        type(sweep_t), intent(out) :: sw               !! the sweep (base deck lines, parameters, design)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
         type(deck_reader_t) :: rd
         rd%top = source
         call read_card_images(rd, path, source, 0)
@@ -101,11 +102,11 @@ contains
     !> A sweep deck already read into card images (INCLUDE expanded), e.g.
     !! one assembled in memory by the calibration for each of its cases.
     subroutine read_sweep_lines(lines, source, sw, stat, errmsg)
-        type(deck_line_t), intent(in) :: lines(:)   !! card images
-        character(len=*), intent(in) :: source      !! name of the deck in messages
-        type(sweep_t), intent(out) :: sw
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(deck_line_t), intent(in) :: lines(:)      !! card images
+        character(len=*), intent(in) :: source         !! name of the deck in messages
+        type(sweep_t), intent(out) :: sw               !! the sweep (base deck lines, parameters, design)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
         type(deck_reader_t) :: rd
         rd%top = source
         rd%lines = lines
@@ -379,7 +380,7 @@ contains
     !! random (seeded, same on every machine). OAT: run 1 nominal, then each
     !! parameter in turn at nominal*(1 - step) and nominal*(1 + step).
     function sweep_design(sw) result(v)
-        type(sweep_t), intent(in) :: sw
+        type(sweep_t), intent(in) :: sw   !! the sweep (parameters and design)
         real(wp), allocatable :: v(:, :)
         integer :: np, n, r, p, idx, lev
         integer, allocatable :: perm(:)
@@ -428,8 +429,8 @@ contains
 
     !> Value at fraction u in [0, 1] of the parameter's range.
     pure real(wp) function spread_value(p, u) result(x)
-        type(sweep_param_t), intent(in) :: p
-        real(wp), intent(in) :: u
+        type(sweep_param_t), intent(in) :: p   !! the parameter (its range and spacing)
+        real(wp), intent(in) :: u              !! fraction of the range, 0 to 1
         if (p%log_spacing) then
             x = exp(log(p%low) + u*(log(p%high) - log(p%low)))
         else
@@ -451,11 +452,11 @@ contains
     !! factors applied to the model. Sampling is made 0.1 ms or finer so
     !! that the injury criteria are computed.
     subroutine sweep_member_case(sw, v, cs, stat, errmsg)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:)          !! one value per parameter
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(sweep_t), intent(in) :: sw                !! the sweep (base deck, parameters)
+        real(wp), intent(in) :: v(:)                   !! one value per parameter
+        type(case_t), intent(out) :: cs                !! the member's case (no result file, sampling 0.1 ms or finer)
+        integer, intent(out) :: stat                   !! stat_ok, or the failure of the member's deck or tree
+        character(len=msglen), intent(out) :: errmsg   !! why the member's case is invalid ('' when stat_ok)
         type(deck_line_t), allocatable :: lines(:)
         integer :: p, c1, c2
         logical :: rebuild_tree
@@ -504,9 +505,9 @@ contains
     !> Run member `v` of the sweep (listing discarded, no HDF5) and
     !! summarise it. A member that fails keeps its exit code and message.
     subroutine run_member(sw, v, rec)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:)
-        type(member_record_t), intent(out) :: rec
+        type(sweep_t), intent(in) :: sw             !! the sweep
+        real(wp), intent(in) :: v(:)                !! the member's parameter values (a column of sweep_design)
+        type(member_record_t), intent(out) :: rec   !! exit code, message, summary outputs, effort
         type(case_t) :: cs
         type(run_result_t) :: res
         type(run_state_t) :: run
