@@ -19,8 +19,10 @@ contains
 
     !> Coefficients a0, a1, a2, b1, b2 for class `cfc` [Hz] at sample interval dt [s].
     pure subroutine cfc_coefficients(cfc, dt, a, b)
-        real(wp), intent(in) :: cfc, dt
-        real(wp), intent(out) :: a(0:2), b(1:2)
+        real(wp), intent(in) :: cfc       !! channel frequency class [Hz]
+        real(wp), intent(in) :: dt        !! sample interval [s]
+        real(wp), intent(out) :: a(0:2)   !! a0, a1, a2 (input weights)
+        real(wp), intent(out) :: b(1:2)   !! b1, b2 (output feedback weights)
         real(wp) :: wd, wa, den
         wd = two*pi*cfc*2.0775_wp
         wa = tan(wd*dt/two)

@@ -29,8 +29,12 @@ contains
     !! a [g] sampled every dt [s]; t1, t2 are the sample times (from 0) of
     !! the maximizing interval.
     pure subroutine hic(a, dt, window, value, t1, t2)
-        real(wp), intent(in) :: a(:), dt, window
-        real(wp), intent(out) :: value, t1, t2
+        real(wp), intent(in) :: a(:)     !! resultant head acceleration [g], CFC 1000
+        real(wp), intent(in) :: dt       !! sample interval [s]
+        real(wp), intent(in) :: window   !! longest interval t2 - t1 [s] (0.015 or 0.036)
+        real(wp), intent(out) :: value   !! HIC (0 when no interval has a positive mean)
+        real(wp), intent(out) :: t1      !! start of the maximizing interval [s from the first sample]
+        real(wp), intent(out) :: t2      !! its end [s from the first sample]
         real(wp) :: c(size(a)), avg, h, span
         integer :: i, j, n, w
         n = size(a)
@@ -57,9 +61,13 @@ contains
     !> The four Nij modes at every sample, zero where a mode does not apply:
     !! fz > 0 tension, my > 0 flexion (loads of the head on the neck at the OC).
     pure subroutine nij(fz, my, crit, nte, ntf, nce, ncf)
-        real(wp), intent(in) :: fz(:), my(:)          !! [N], [N m]
-        type(nij_intercepts_t), intent(in) :: crit
-        real(wp), intent(out), dimension(size(fz)) :: nte, ntf, nce, ncf
+        real(wp), intent(in) :: fz(:)                       !! axial force at the OC, tension positive [N]
+        real(wp), intent(in) :: my(:)                       !! moment at the OC, flexion positive [N m]
+        type(nij_intercepts_t), intent(in) :: crit          !! critical intercepts Fzc, Myc
+        real(wp), intent(out), dimension(size(fz)) :: nte   !! tension-extension Nij
+        real(wp), intent(out), dimension(size(fz)) :: ntf   !! tension-flexion Nij
+        real(wp), intent(out), dimension(size(fz)) :: nce   !! compression-extension Nij
+        real(wp), intent(out), dimension(size(fz)) :: ncf   !! compression-flexion Nij
         real(wp) :: ft, fc, mf, me
         integer :: i
         do i = 1, size(fz)
@@ -77,8 +85,10 @@ contains
     !> NIC(t) = 0.2 a_rel + v_rel^2 from the x-accelerations of T1 and the
     !! head [m/s^2], v_rel the trapezoidal integral of a_rel from the first sample.
     pure subroutine nic(ax_t1, ax_head, dt, value)
-        real(wp), intent(in) :: ax_t1(:), ax_head(:), dt
-        real(wp), intent(out) :: value(size(ax_t1))
+        real(wp), intent(in) :: ax_t1(:)              !! x-acceleration of T1 [m/s^2], CFC 60
+        real(wp), intent(in) :: ax_head(:)            !! x-acceleration of the head [m/s^2], CFC 60
+        real(wp), intent(in) :: dt                    !! sample interval [s]
+        real(wp), intent(out) :: value(size(ax_t1))   !! NIC at every sample [m^2/s^2]
         real(wp) :: arel(size(ax_t1)), v
         integer :: i
         arel = ax_t1 - ax_head

@@ -22,7 +22,7 @@ contains
 
     !> Name of a solver code.
     pure function solver_name(code) result(s)
-        integer, intent(in) :: code
+        integer, intent(in) :: code   !! solver code (solver_gauss, solver_cholesky, solver_articulated)
         character(len=:), allocatable :: s
         if (code >= 1 .and. code <= size(solver_names)) then
             s = trim(solver_names(code))
@@ -33,7 +33,7 @@ contains
 
     !> Code of a solver's deck name; 0 when unknown.
     pure integer function solver_code(name) result(code)
-        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: name   !! deck name ('GAUSS', 'CHOLESKY', 'ABA'), upper case
         code = findloc(solver_names, name, dim=1)
     end function solver_code
 
@@ -42,10 +42,10 @@ contains
     !! when a pivot is zero or below n*eps times the largest entry.
     !! pivot_ratio: smallest over largest |pivot| (a conditioning indicator).
     pure subroutine gauss_solve(a, b, stat, pivot_ratio, pivot_row)
-        real(wp), intent(inout) :: a(:, :)
-        real(wp), intent(inout) :: b(:)
-        integer, intent(out) :: stat
-        real(wp), intent(out), optional :: pivot_ratio
+        real(wp), intent(inout) :: a(:, :)               !! (n, n) in: the matrix; out: overwritten by its LU factors
+        real(wp), intent(inout) :: b(:)                  !! (n) in: the right-hand side; out: the solution x
+        integer, intent(out) :: stat                     !! stat_ok, or stat_singular (pivot at most n eps max|a|)
+        real(wp), intent(out), optional :: pivot_ratio   !! smallest over largest |pivot| (0 when singular)
         integer, intent(out), optional :: pivot_row      !! row of the smallest pivot
         integer :: n, j, k, piv, kmin
         real(wp) :: tb, tol, tmp, pmin, pmax
@@ -93,9 +93,9 @@ contains
     !! recursive dpotrf). The lower triangle of `a` is overwritten by L, b
     !! by x. stat = stat_singular when a is not positive definite.
     pure subroutine cholesky_solve(a, b, stat, bad_row)
-        real(wp), intent(inout) :: a(:, :)
-        real(wp), intent(inout) :: b(:)
-        integer, intent(out) :: stat
+        real(wp), intent(inout) :: a(:, :)          !! (n, n) in: the matrix; out: L in the lower triangle
+        real(wp), intent(inout) :: b(:)             !! (n) in: the right-hand side; out: the solution x
+        integer, intent(out) :: stat                !! stat_ok, or stat_singular (not positive definite)
         integer, intent(out), optional :: bad_row   !! order of the leading minor that is not positive definite
         integer :: k
         call cholesky_factor(a, stat, k)
@@ -107,9 +107,9 @@ contains
     !> In-place Cholesky factor L (lower triangle) of a symmetric positive
     !! definite matrix (columns, unit stride).
     pure subroutine cholesky_factor(a, stat, bad_row)
-        real(wp), intent(inout) :: a(:, :)
-        integer, intent(out) :: stat
-        integer, intent(out) :: bad_row   !! first non-positive pivot (0: none)
+        real(wp), intent(inout) :: a(:, :)   !! (n, n) in: the matrix; out: L in the lower triangle (upper untouched)
+        integer, intent(out) :: stat         !! stat_ok, or stat_singular (not positive definite)
+        integer, intent(out) :: bad_row      !! first non-positive pivot (0: none)
         call cholesky_kernel(size(a, 1), a, stat, bad_row)
     end subroutine cholesky_factor
 
@@ -158,8 +158,8 @@ contains
 
     !> Solve L L^T x = b in place with the factor of cholesky_factor.
     pure subroutine cholesky_substitute(l, b)
-        real(wp), intent(in) :: l(:, :)
-        real(wp), intent(inout) :: b(:)
+        real(wp), intent(in) :: l(:, :)   !! (n, n) the factor L from cholesky_factor (lower triangle)
+        real(wp), intent(inout) :: b(:)   !! (n) in: the right-hand side; out: the solution x
         call substitute_kernel(size(b), l, b)
     end subroutine cholesky_substitute
 
@@ -189,11 +189,12 @@ contains
     !! is the unknown concerned. A pivot ratio (Gauss) or squared diagonal
     !! ratio of the factor (Cholesky) below 1e-14 counts as ill-conditioned.
     pure subroutine linear_solve(method, a, b, stat, errmsg, row)
-        integer, intent(in) :: method
-        real(wp), intent(inout) :: a(:, :), b(:)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
-        integer, intent(out) :: row
+        integer, intent(in) :: method                  !! solver_gauss or solver_cholesky (any other code: Gauss)
+        real(wp), intent(inout) :: a(:, :)             !! (n, n) in: a_ij; out: overwritten by its factors
+        real(wp), intent(inout) :: b(:)                !! (n) in: f_i; out: xddot_j
+        integer, intent(out) :: stat                   !! stat_ok, stat_singular, or stat_ill_conditioned (x still in b)
+        character(len=msglen), intent(out) :: errmsg   !! why it failed ('' when stat_ok)
+        integer, intent(out) :: row                    !! the unknown of the smallest pivot, or of the failing one
         real(wp), parameter :: ill = 1.0e-14_wp
         real(wp) :: ratio, d(size(b))
         integer :: k
@@ -225,8 +226,8 @@ contains
     !> Reciprocal 1-norm condition number estimate of a symmetric positive
     !! definite matrix (LAPACK dpotrf + dpocon); 0 when not positive definite.
     subroutine spd_rcond(a, rcond)
-        real(wp), intent(in) :: a(:, :)
-        real(wp), intent(out) :: rcond
+        real(wp), intent(in) :: a(:, :)   !! (n, n) symmetric matrix (upper triangle used)
+        real(wp), intent(out) :: rcond    !! reciprocal 1-norm condition number estimate (0: not positive definite)
         real(wp) :: f(size(a, 1), size(a, 2)), work(3*size(a, 1)), anorm
         integer :: iwork(size(a, 1)), info, n
         n = size(a, 1)

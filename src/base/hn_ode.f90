@@ -28,11 +28,11 @@ module hn_ode
         subroutine rhs_interface(me, t, y, dydt, stat, errmsg)
             import :: ode_system_t, wp, msglen
             class(ode_system_t), intent(inout) :: me
-            real(wp), intent(in) :: t
-            real(wp), intent(in) :: y(:)
-            real(wp), intent(out) :: dydt(:)
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            real(wp), intent(in) :: t                      !! time [s]
+            real(wp), intent(in) :: y(:)                   !! state; second order: (x, xdot, quadratures)
+            real(wp), intent(out) :: dydt(:)               !! g(t, y), the size of y
+            integer, intent(out) :: stat                   !! stat_ok, or a status code from hn_status
+            character(len=msglen), intent(out) :: errmsg   !! what is wrong ('' when stat_ok)
         end subroutine rhs_interface
     end interface
 
@@ -44,11 +44,13 @@ contains
     !! the system has none.
     subroutine no_tangent(me, t, y, mass, stiffness, damping, stat, errmsg)
         class(ode_system_t), intent(inout) :: me
-        real(wp), intent(in) :: t            !! time
-        real(wp), intent(in) :: y(:)         !! state
-        real(wp), intent(out) :: mass(:, :), stiffness(:, :), damping(:, :)  !! (nsecond, nsecond)
-        integer, intent(out) :: stat         !! stat_bad_input: no tangent
-        character(len=msglen), intent(out) :: errmsg
+        real(wp), intent(in) :: t                      !! time
+        real(wp), intent(in) :: y(:)                   !! state
+        real(wp), intent(out) :: mass(:, :)            !! (nsecond, nsecond) M; zero here
+        real(wp), intent(out) :: stiffness(:, :)       !! (nsecond, nsecond) K; zero here
+        real(wp), intent(out) :: damping(:, :)         !! (nsecond, nsecond) C; zero here
+        integer, intent(out) :: stat                   !! stat_bad_input: no tangent
+        character(len=msglen), intent(out) :: errmsg   !! says the system has no tangent
         mass = 0; stiffness = 0; damping = 0
         stat = stat_bad_input
         errmsg = 'this system has no second-order tangent'

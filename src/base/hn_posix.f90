@@ -216,7 +216,8 @@ contains
 
     !> Rename `old` to `new` (atomically replacing `new`); stat /= 0 on failure.
     subroutine rename_file(old, new, stat)
-        character(len=*), intent(in) :: old, new   !! file names
+        character(len=*), intent(in) :: old        !! file name now (trailing blanks are part of it)
+        character(len=*), intent(in) :: new        !! file name after (replaced when it exists)
         integer, intent(out) :: stat               !! 0 on success
         stat = int(c_rename(old//c_null_char, new//c_null_char))
     end subroutine rename_file
@@ -266,7 +267,8 @@ contains
 
     !> dir/name ('name' when dir is empty).
     pure function join_path(dir, name) result(p)
-        character(len=*), intent(in) :: dir, name   !! directory, file name
+        character(len=*), intent(in) :: dir    !! directory ('' for none; trailing blanks ignored)
+        character(len=*), intent(in) :: name   !! file name (trailing blanks ignored)
         character(len=:), allocatable :: p
         if (len_trim(dir) == 0) then
             p = trim(name)

@@ -26,14 +26,15 @@ contains
     !> Restart the stream from an integer seed.
     pure subroutine rng_seed(me, seed)
         class(rng_t), intent(inout) :: me
-        integer, intent(in) :: seed
+        integer, intent(in) :: seed   !! any integer; equal seeds give equal streams
         me%s = 88172645463325252_i8 + int(seed, i8)
     end subroutine rng_seed
 
     !> Uniform deviate in [a, b).
     real(wp) function rng_uniform(me, a, b) result(u)
         class(rng_t), intent(inout) :: me
-        real(wp), intent(in) :: a, b
+        real(wp), intent(in) :: a   !! lower bound (included)
+        real(wp), intent(in) :: b   !! upper bound (excluded)
         integer(i8) :: z
         me%s = me%s + (-7046029254386353131_i8)
         z = me%s
@@ -46,7 +47,7 @@ contains
     !> A random permutation of 1..size(p) (Fisher–Yates).
     subroutine rng_permutation(me, p)
         class(rng_t), intent(inout) :: me
-        integer, intent(out) :: p(:)
+        integer, intent(out) :: p(:)   !! a permutation of 1..size(p)
         integer :: i, j, tmp
         p = [(i, i=1, size(p))]
         do i = size(p), 2, -1

@@ -18,7 +18,8 @@ contains
 
     !> Cross product a x b.
     pure function cross(a, b) result(c)
-        real(wp), intent(in) :: a(3), b(3)
+        real(wp), intent(in) :: a(3)   !! first factor
+        real(wp), intent(in) :: b(3)   !! second factor
         real(wp) :: c(3)
         c(1) = a(2)*b(3) - a(3)*b(2)
         c(2) = a(3)*b(1) - a(1)*b(3)
@@ -27,14 +28,14 @@ contains
 
     !> Skew-symmetric matrix with skew(a) b = a x b.
     pure function skew(a) result(m)
-        real(wp), intent(in) :: a(3)
+        real(wp), intent(in) :: a(3)   !! the vector whose cross product the matrix applies
         real(wp) :: m(3, 3)
         m = reshape([zero, a(3), -a(2), -a(3), zero, a(1), a(2), -a(1), zero], [3, 3])
     end function skew
 
     !> Euclidean norm of a 3-vector.
     pure real(wp) function norm3(a)
-        real(wp), intent(in) :: a(3)
+        real(wp), intent(in) :: a(3)   !! the vector
         norm3 = sqrt(a(1)**2 + a(2)**2 + a(3)**2)
     end function norm3
 
@@ -48,7 +49,7 @@ contains
 
     !> Rotation by angle a [rad] about y.
     pure function rot_y(a) result(m)
-        real(wp), intent(in) :: a
+        real(wp), intent(in) :: a   !! angle [rad], right-handed about y
         real(wp) :: m(3, 3)
         real(wp) :: c, s
         c = cos(a); s = sin(a)
@@ -58,7 +59,7 @@ contains
 
     !> Bryant-angle matrix Rx(q1) Ry(q2) Rz(q3) (child components -> parent components).
     pure function bryant_matrix(q) result(m)
-        real(wp), intent(in) :: q(3)
+        real(wp), intent(in) :: q(3)   !! Bryant angles (alpha, beta, gamma) about x, y', z'' [rad]
         real(wp) :: m(3, 3)
         real(wp) :: c1, s1, c2, s2, c3, s3
         c1 = cos(q(1)); s1 = sin(q(1))
@@ -78,7 +79,7 @@ contains
     !> The three Bryant rotation axes in parent components: e1, Rx(q1) e2,
     !! Rx(q1) Ry(q2) e3. The relative angular velocity is sum(axes(:,m) * qdot(m)).
     pure function bryant_axes(q) result(u)
-        real(wp), intent(in) :: q(3)
+        real(wp), intent(in) :: q(3)   !! Bryant angles (alpha, beta, gamma) [rad]; gamma is not used
         real(wp) :: u(3, 3)
         real(wp) :: c1, s1, c2, s2
         c1 = cos(q(1)); s1 = sin(q(1))
@@ -91,7 +92,7 @@ contains
 
     !> Rotation vector theta*n (axis n, angle theta in [0, pi]) of a rotation matrix.
     pure function rotation_vector(m) result(v)
-        real(wp), intent(in) :: m(3, 3)
+        real(wp), intent(in) :: m(3, 3)   !! rotation matrix (orthonormal, det +1)
         real(wp) :: v(3)
         real(wp) :: c, s, th, w(3), b(3, 3)
         integer :: k
@@ -120,7 +121,7 @@ contains
 
     !> Rotation matrix of the rotation vector v (Rodrigues).
     pure function axis_angle_matrix(v) result(m)
-        real(wp), intent(in) :: v(3)
+        real(wp), intent(in) :: v(3)   !! rotation vector: axis times angle [rad]
         real(wp) :: m(3, 3)
         real(wp) :: th, a, b, k(3, 3)
         th = norm3(v)

@@ -24,9 +24,10 @@ contains
     !> Store a table; stat = stat_bad_table when it is empty, t and y differ
     !! in size, or a time does not increase (bad_point = its index).
     pure subroutine table_set(tab, t, y, stat, bad_point)
-        type(table_t), intent(out) :: tab
-        real(wp), intent(in) :: t(:), y(:)
-        integer, intent(out) :: stat
+        type(table_t), intent(out) :: tab             !! the table (unallocated when stat /= stat_ok)
+        real(wp), intent(in) :: t(:)                  !! abscissae, strictly increasing [s]
+        real(wp), intent(in) :: y(:)                  !! ordinates at t (same size)
+        integer, intent(out) :: stat                  !! stat_ok or stat_bad_table
         integer, intent(out), optional :: bad_point   !! index of the first time that does not increase (0: none)
         integer :: i
         stat = stat_ok
@@ -48,7 +49,8 @@ contains
     !> Segment index i with t(i) <= tt < t(i+1), clamped to [1, n-1]
     !! (0 for a one-point table). Binary search.
     pure integer function table_segment(t, tt) result(i)
-        real(wp), intent(in) :: t(:), tt
+        real(wp), intent(in) :: t(:)   !! abscissae, increasing
+        real(wp), intent(in) :: tt     !! the abscissa to locate
         integer :: lo, hi, mid
         if (size(t) < 2) then
             i = 0; return
@@ -73,8 +75,8 @@ contains
 
     !> Linear interpolation; constant end values outside the table.
     pure real(wp) function table_value(tab, tt) result(y)
-        type(table_t), intent(in) :: tab
-        real(wp), intent(in) :: tt
+        type(table_t), intent(in) :: tab   !! the table
+        real(wp), intent(in) :: tt         !! time [s]
         integer :: i
         real(wp) :: s
         i = table_segment(tab%t, tt)
@@ -92,9 +94,10 @@ contains
 
     !> Natural cubic spline (zero second derivative at both ends).
     pure subroutine spline_set(sp, t, y, stat)
-        type(spline_t), intent(out) :: sp
-        real(wp), intent(in) :: t(:), y(:)
-        integer, intent(out) :: stat
+        type(spline_t), intent(out) :: sp   !! the spline (second derivatives m at the knots)
+        real(wp), intent(in) :: t(:)        !! knots, strictly increasing [s]
+        real(wp), intent(in) :: y(:)        !! values at the knots (same size)
+        integer, intent(out) :: stat        !! stat_ok, or stat_bad_table (as table_set)
         integer :: n, i
         real(wp) :: h(size(t)), diag(size(t)), rhs(size(t)), w
         type(table_t) :: check
@@ -127,9 +130,11 @@ contains
     !> Value, first and second derivative of a spline; linear extrapolation
     !! with the end slope outside the table.
     pure subroutine spline_eval(sp, tt, y, yd, ydd)
-        type(spline_t), intent(in) :: sp
-        real(wp), intent(in) :: tt
-        real(wp), intent(out) :: y, yd, ydd
+        type(spline_t), intent(in) :: sp   !! the spline from spline_set
+        real(wp), intent(in) :: tt         !! time [s]
+        real(wp), intent(out) :: y         !! value at tt
+        real(wp), intent(out) :: yd        !! first derivative dy/dt
+        real(wp), intent(out) :: ydd       !! second derivative (0 outside the knots)
         integer :: i, n
         real(wp) :: h, a, b, tc
         n = size(sp%t)

@@ -68,8 +68,8 @@ contains
 
     !> Size the workspace for a model.
     pure subroutine dynamics_setup(model, ws)
-        type(model_t), intent(in) :: model
-        type(dyn_workspace_t), intent(out) :: ws
+        type(model_t), intent(in) :: model         !! the model (tree, prescribed coordinates, elements)
+        type(dyn_workspace_t), intent(out) :: ws   !! sized for it, free/prescribed partition filled
         integer :: n, j, i1, i2
         n = model%tree%ndof
         ws%ndof = n
@@ -107,9 +107,11 @@ contains
 
     !> Fill all active coordinates from the free ones and the prescribed motions at t.
     pure subroutine state_to_coordinates(model, ws, t, xf, xdf)
-        type(model_t), intent(in) :: model
-        type(dyn_workspace_t), intent(inout) :: ws
-        real(wp), intent(in) :: t, xf(:), xdf(:)
+        type(model_t), intent(in) :: model           !! the model (prescribed motions)
+        type(dyn_workspace_t), intent(inout) :: ws   !! out: ws%x, ws%xd, and ws%xdd of the prescribed coordinates
+        real(wp), intent(in) :: t                    !! time [s]
+        real(wp), intent(in) :: xf(:)                !! free coordinates x_F [m, rad]
+        real(wp), intent(in) :: xdf(:)               !! their rates xdot_F [m/s, rad/s]
         integer :: i, j
         ws%x(ws%ifree) = xf
         ws%xd(ws%ifree) = xdf
@@ -122,9 +124,10 @@ contains
     !> Pack the free coordinates and rates of full arrays into a state
     !! vector, energy-audit integrals zero.
     pure subroutine coordinates_to_state(ws, x, xd, y)
-        type(dyn_workspace_t), intent(in) :: ws
-        real(wp), intent(in) :: x(:), xd(:)
-        real(wp), intent(out) :: y(:)
+        type(dyn_workspace_t), intent(in) :: ws   !! the free coordinate numbers
+        real(wp), intent(in) :: x(:)              !! all active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)             !! their rates [m/s, rad/s]
+        real(wp), intent(out) :: y(:)             !! state (x_F, xdot_F, E) with E = 0
         y = zero
         y(1:ws%nfree) = x(ws%ifree)
         y(ws%nfree + 1:2*ws%nfree) = xd(ws%ifree)
@@ -138,12 +141,14 @@ contains
     !! forms and a Cholesky solve (a_ij and f_i in ws as well); ABA,
     !! the O(n) articulated-body algorithm (ws%a, ws%f not formed).
     pure subroutine dynamics_evaluate(model, ws, t, xf, xdf, xddf, stat, errmsg)
-        type(model_t), intent(in) :: model
-        type(dyn_workspace_t), intent(inout) :: ws
-        real(wp), intent(in) :: t, xf(:), xdf(:)
-        real(wp), intent(out) :: xddf(:)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(model_t), intent(in) :: model             !! the model
+        type(dyn_workspace_t), intent(inout) :: ws     !! workspace from dynamics_setup; out: this evaluation
+        real(wp), intent(in) :: t                      !! time [s]
+        real(wp), intent(in) :: xf(:)                  !! free coordinates x_F [m, rad]
+        real(wp), intent(in) :: xdf(:)                 !! their rates xdot_F [m/s, rad/s]
+        real(wp), intent(out) :: xddf(:)               !! free accelerations xddot_F [m/s^2, rad/s^2] (0 on failure)
+        integer, intent(out) :: stat                   !! stat_ok; stat_gimbal, stat_singular or stat_ill_conditioned
+        character(len=msglen), intent(out) :: errmsg   !! time, failure and coordinate or body ('' when stat_ok)
         integer :: i, j, k
 
         call state_to_coordinates(model, ws, t, xf, xdf)
@@ -262,9 +267,11 @@ contains
     !! Body accelerations then follow from body_accelerations(tree,
     !! ws%kin, ws%xdd, ...). ws%a, ws%f and p_prescribed are left as they are.
     pure subroutine dynamics_outputs(model, ws, t, xf, xdf, stat, xddf)
-        type(model_t), intent(in) :: model
-        type(dyn_workspace_t), intent(inout) :: ws
-        real(wp), intent(in) :: t, xf(:), xdf(:)
+        type(model_t), intent(in) :: model             !! the model
+        type(dyn_workspace_t), intent(inout) :: ws     !! from dynamics_setup; out: coordinates, kinematics, loads, xdd
+        real(wp), intent(in) :: t                      !! time [s]
+        real(wp), intent(in) :: xf(:)                  !! free coordinates x_F [m, rad]
+        real(wp), intent(in) :: xdf(:)                 !! their rates xdot_F [m/s, rad/s]
         integer, intent(out) :: stat                   !! stat_ok, or stat_singular from the solve
         real(wp), intent(in), optional :: xddf(:)      !! free accelerations at t (else solved)
         integer :: k
@@ -283,9 +290,9 @@ contains
     !! given free accelerations (prescribed ones zero), with the kinematics
     !! of the last evaluation in ws; O(n), on every solver path.
     pure function inertia_forces_free(model, ws, xddf) result(q)
-        type(model_t), intent(in) :: model
-        type(dyn_workspace_t), intent(in) :: ws
-        real(wp), intent(in) :: xddf(:)
+        type(model_t), intent(in) :: model        !! the model (its tree)
+        type(dyn_workspace_t), intent(in) :: ws   !! kinematics of the last evaluation (joint columns, inertias)
+        real(wp), intent(in) :: xddf(:)           !! free accelerations xddot_F [m/s^2, rad/s^2]
         real(wp) :: q(size(xddf)), v(ws%ndof), av(ws%ndof)
         v = zero
         v(ws%ifree) = xddf
@@ -296,9 +303,9 @@ contains
     !> Energy terms from the workspace of the evaluation at a state and the
     !! state's four energy-audit integrals equad.
     pure function energy_terms(model, ws, equad) result(e)
-        type(model_t), intent(in) :: model
-        type(dyn_workspace_t), intent(in) :: ws
-        real(wp), intent(in) :: equad(nenergy)
+        type(model_t), intent(in) :: model        !! the model (masses, gravity, holding forces)
+        type(dyn_workspace_t), intent(in) :: ws   !! the evaluation at the state (kinematics, element energy)
+        real(wp), intent(in) :: equad(nenergy)    !! the state's energy-audit integrals E [J]
         type(energy_t) :: e
         integer :: k, root
         real(wp) :: dv(3)
@@ -322,7 +329,7 @@ contains
 
     !> Length of the state vector y = (x_F, xdot_F, E) of a model system.
     pure integer function state_size(sys) result(n)
-        type(model_ode_t), intent(in) :: sys
+        type(model_ode_t), intent(in) :: sys   !! a system from model_ode_init
         n = 2*sys%ws%nfree + nenergy
     end function state_size
 
@@ -330,8 +337,8 @@ contains
     !! structure of size nfree; the structured tangent (model_tangent) is
     !! offered unless model%jacobian is 'FD'.
     subroutine model_ode_init(sys, model)
-        type(model_ode_t), intent(out) :: sys
-        type(model_t), intent(in) :: model
+        type(model_ode_t), intent(out) :: sys   !! the system (a copy of the model, its workspace)
+        type(model_t), intent(in) :: model      !! the model to wrap
         sys%model = model
         sys%nquad = nenergy
         call dynamics_setup(sys%model, sys%ws)
@@ -344,11 +351,13 @@ contains
     !! elements (hn_jacobian). The structured Jacobian of the stiff methods.
     subroutine model_tangent(me, t, y, mass, stiffness, damping, stat, errmsg)
         class(model_ode_t), intent(inout) :: me
-        real(wp), intent(in) :: t
-        real(wp), intent(in) :: y(:)
-        real(wp), intent(out) :: mass(:, :), stiffness(:, :), damping(:, :)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        real(wp), intent(in) :: t                      !! time [s]
+        real(wp), intent(in) :: y(:)                   !! state (x_F, xdot_F, E)
+        real(wp), intent(out) :: mass(:, :)            !! (nfree, nfree) a_FF [kg, kg m, kg m^2]
+        real(wp), intent(out) :: stiffness(:, :)       !! (nfree, nfree) K_FF of the elements
+        real(wp), intent(out) :: damping(:, :)         !! (nfree, nfree) C_FF of the elements
+        integer, intent(out) :: stat                   !! stat_ok
+        character(len=msglen), intent(out) :: errmsg   !! ''
         real(wp) :: kgen(me%ws%ndof, me%ws%ndof), cgen(me%ws%ndof, me%ws%ndof)
         integer :: nf
         nf = me%ws%nfree
@@ -368,11 +377,11 @@ contains
     !> y = (x_F, xdot_F, E) -> y' = (xdot_F, xddot_F, energy-audit powers).
     subroutine model_rhs(me, t, y, dydt, stat, errmsg)
         class(model_ode_t), intent(inout) :: me
-        real(wp), intent(in) :: t
-        real(wp), intent(in) :: y(:)
-        real(wp), intent(out) :: dydt(:)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        real(wp), intent(in) :: t                      !! time [s]
+        real(wp), intent(in) :: y(:)                   !! state (x_F, xdot_F, E)
+        real(wp), intent(out) :: dydt(:)               !! (xdot_F, xddot_F, energy-audit powers [W])
+        integer, intent(out) :: stat                   !! stat_ok, or the failure of dynamics_evaluate
+        character(len=msglen), intent(out) :: errmsg   !! what failed, at what time ('' when stat_ok)
         integer :: nf
         nf = me%ws%nfree
         me%nevals = me%nevals + 1

@@ -47,10 +47,11 @@ contains
     !! for the kinematics kin of the state (x, xd) at time t (kin from
     !! body_kinematics or partial_velocities: joint columns filled).
     pure subroutine generalized_tangent(model, kin, t, x, xd, kgen, cgen)
-        type(model_t), intent(in) :: model
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(in) :: t
-        real(wp), intent(in) :: x(:), xd(:)     !! active coordinates and rates
+        type(model_t), intent(in) :: model      !! the model (elements and the families switched on)
+        type(kinematics_t), intent(in) :: kin   !! kinematics of (x, xd): joint columns filled
+        real(wp), intent(in) :: t               !! time [s] (for the muscles' activation)
+        real(wp), intent(in) :: x(:)            !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)           !! their rates [m/s, rad/s]
         real(wp), intent(out) :: kgen(:, :)     !! (n,n) generalized stiffness [N/m, N m/rad, ...]
         real(wp), intent(out) :: cgen(:, :)     !! (n,n) generalized damping
         integer :: e, fam

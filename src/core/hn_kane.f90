@@ -25,8 +25,8 @@ contains
     !! B^T B, B = [sqrt(m_p) v_pj ; (S L)^T omega_pj] (6 x chain length),
     !! which is how it is computed: six rank-one updates on the chain block.
     pure subroutine a_ij(tree, kin, a)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
+        type(body_tree_t), intent(in) :: tree   !! masses, inertia factors and chains of the bodies
+        type(kinematics_t), intent(in) :: kin   !! v_pjk, omega_pjk and S from partial_velocities
         real(wp), intent(out) :: a(:, :)        !! (n,n) symmetric positive definite
         integer :: p, ii, jj, j, nc, k, c0
         real(wp) :: sm, sl(3, 3), b(size(a, 1), 6), col(size(a, 1))
@@ -67,10 +67,10 @@ contains
     !> Generalized active forces (eq 19): F_i = v_pik F_pk + omega_pik M_pk
     !! plus the generalized forces applied directly to coordinates.
     pure subroutine generalized_active_forces(tree, kin, loads, fa)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
-        type(body_loads_t), intent(in) :: loads
-        real(wp), intent(out) :: fa(:)
+        type(body_tree_t), intent(in) :: tree     !! chains of the bodies
+        type(kinematics_t), intent(in) :: kin     !! v_pjk and omega_pjk from partial_velocities
+        type(body_loads_t), intent(in) :: loads   !! body forces F_pk [N], moments M_pk [N m], generalized forces q
+        real(wp), intent(out) :: fa(:)            !! (n) F_i [N or N m]
         call project_on_partials(tree, kin, loads%force, loads%moment, fa)
         fa = fa + loads%q(1:size(fa))
     end subroutine generalized_active_forces
@@ -78,10 +78,10 @@ contains
     !> Right-hand side (eq 18): f_i = F_i - sum_p [ m_p v_pik (dv_pqk/dt) xdot_q
     !!   + omega_pik ( I_pkn (domega_pqn/dt) xdot_q + (omega_p x I_p omega_p)_k ) ].
     pure subroutine f_i(tree, kin, loads, f)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
-        type(body_loads_t), intent(in) :: loads
-        real(wp), intent(out) :: f(:)
+        type(body_tree_t), intent(in) :: tree     !! masses and chains of the bodies
+        type(kinematics_t), intent(in) :: kin     !! v_pjk, omega_pjk, inertias in R and the velocity terms a0, alpha0
+        type(body_loads_t), intent(in) :: loads   !! body forces F_pk [N], moments M_pk [N m], generalized forces q
+        real(wp), intent(out) :: f(:)             !! (n) f_i [N or N m]
         real(wp) :: fstar(3, tree%nbody), mstar(3, tree%nbody), iw(3)
         integer :: p
         do p = 1, tree%nbody
@@ -102,12 +102,13 @@ contains
     !! axes of a body (bad_body) are singular (cos(beta) = 0) and q acts on
     !! its rotations.
     pure subroutine equivalent_body_loads(tree, kin, loads, force, moment, stat, bad_body)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
-        type(body_loads_t), intent(in) :: loads
-        real(wp), intent(out) :: force(:, :), moment(:, :)   !! (3, nb) in R
-        integer, intent(out) :: stat
-        integer, intent(out) :: bad_body   !! the body whose axes are singular (0: none)
+        type(body_tree_t), intent(in) :: tree     !! parents and coordinate numbering of the bodies
+        type(kinematics_t), intent(in) :: kin     !! axes, joint points and mass centres
+        type(body_loads_t), intent(in) :: loads   !! body loads and generalized forces q on coordinates
+        real(wp), intent(out) :: force(:, :)      !! (3, nb) resultant force through each mass centre in R [N]
+        real(wp), intent(out) :: moment(:, :)     !! (3, nb) resultant moment about each mass centre in R [N m]
+        integer, intent(out) :: stat              !! stat_ok, or stat_gimbal (Bryant axes of bad_body singular)
+        integer, intent(out) :: bad_body          !! the body whose axes are singular (0: none)
         integer :: k, p, m, j
         real(wp) :: ft(3), qr(3), u(3, 3), c(3), det, adj(3, 3)
         stat = stat_ok

@@ -42,8 +42,8 @@ contains
 
     !> Allocate the kinematic arrays for a built tree.
     pure subroutine kinematics_allocate(tree, kin)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(out) :: kin
+        type(body_tree_t), intent(in) :: tree    !! the built body tree
+        type(kinematics_t), intent(out) :: kin   !! arrays allocated for its bodies and coordinates
         integer :: n, nb
         n = max(tree%ndof, 1)
         nb = tree%nbody
@@ -61,10 +61,12 @@ contains
     !> The six relative coordinates of body k and their rates: locked ones at
     !! their reference value with zero rate, active ones from x and xd.
     pure subroutine body_coordinates(tree, k, x, xd, q, qd)
-        type(body_tree_t), intent(in) :: tree
-        integer, intent(in) :: k
-        real(wp), intent(in) :: x(:), xd(:)
-        real(wp), intent(out) :: q(6), qd(6)
+        type(body_tree_t), intent(in) :: tree   !! the body tree
+        integer, intent(in) :: k                !! the body
+        real(wp), intent(in) :: x(:)            !! active coordinates x_j [m, rad]
+        real(wp), intent(in) :: xd(:)           !! their rates xdot_j [m/s, rad/s]
+        real(wp), intent(out) :: q(6)           !! body k's translations [m] and Bryant angles [rad] in its parent
+        real(wp), intent(out) :: qd(6)          !! their rates [m/s, rad/s]
         integer :: m, j
         do m = 1, 6
             j = tree%dof_index(m, k)
@@ -83,10 +85,10 @@ contains
     !! accelerations a0 and alpha0 (by the recursion of the accelerations
     !! with xddot = 0), and the joint motion columns sj about kin%origin.
     pure subroutine body_kinematics(tree, x, xd, kin)
-        type(body_tree_t), intent(in) :: tree
-        real(wp), intent(in) :: x(:)     !! active coordinates
-        real(wp), intent(in) :: xd(:)    !! their time derivatives
-        type(kinematics_t), intent(inout) :: kin
+        type(body_tree_t), intent(in) :: tree      !! the body tree
+        real(wp), intent(in) :: x(:)               !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)              !! their time derivatives [m/s, rad/s]
+        type(kinematics_t), intent(inout) :: kin   !! allocated; out: the body-level quantities (not w, vp, wd, vd)
         integer :: ik
         do ik = 1, tree%nbody
             call body_step(tree, tree%order(ik), x, xd, kin)
@@ -156,10 +158,10 @@ contains
     !! parent plus the body's own coordinates. (The faithful path; a0 and
     !! alpha0 equal sum_q (dv_pq/dt) xdot_q and sum_q (domega_pq/dt) xdot_q.)
     pure subroutine partial_velocities(tree, x, xd, kin)
-        type(body_tree_t), intent(in) :: tree
-        real(wp), intent(in) :: x(:)     !! active coordinates
-        real(wp), intent(in) :: xd(:)    !! their time derivatives
-        type(kinematics_t), intent(inout) :: kin
+        type(body_tree_t), intent(in) :: tree      !! the body tree
+        real(wp), intent(in) :: x(:)               !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)              !! their time derivatives [m/s, rad/s]
+        type(kinematics_t), intent(inout) :: kin   !! allocated; out: body quantities, v_pjk, omega_pjk, d/dt of both
         integer :: ik, k, p, jj, j, m, jm
         real(wp) :: q(6), qd(6), sp(3, 3), omp(3), u(3, 3), ud(3, 3), e(3), d(3), dv(3), ea(3)
 
@@ -215,10 +217,11 @@ contains
     !! summed recursively as the spatial acceleration sj xddot of each
     !! body's chain (no partial-velocity arrays needed).
     pure subroutine body_accelerations(tree, kin, xdd, acc, alpha)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(in) :: xdd(:)
-        real(wp), intent(out) :: acc(:, :), alpha(:, :)
+        type(body_tree_t), intent(in) :: tree   !! the body tree
+        type(kinematics_t), intent(in) :: kin   !! from body_kinematics or partial_velocities at the same state
+        real(wp), intent(in) :: xdd(:)          !! coordinate accelerations xddot_j [m/s^2, rad/s^2]
+        real(wp), intent(out) :: acc(:, :)      !! (3, nb) mass-centre accelerations in R [m/s^2]
+        real(wp), intent(out) :: alpha(:, :)    !! (3, nb) angular accelerations in R [rad/s^2]
         real(wp) :: sa(6, tree%nbody)
         integer :: ik, k, m, j
         do ik = 1, tree%nbody
@@ -239,8 +242,8 @@ contains
 
     !> Kinetic energy sum_p (m_p v_p.v_p + omega_p.I_p omega_p)/2 from body velocities.
     pure real(wp) function kinetic_energy(tree, kin) result(t)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
+        type(body_tree_t), intent(in) :: tree   !! masses of the bodies
+        type(kinematics_t), intent(in) :: kin   !! velocities, angular velocities, inertias in R
         integer :: k
         t = zero
         do k = 1, tree%nbody
@@ -251,8 +254,8 @@ contains
 
     !> Total linear momentum sum_p m_p v_p.
     pure function linear_momentum(tree, kin) result(pl)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
+        type(body_tree_t), intent(in) :: tree   !! masses of the bodies
+        type(kinematics_t), intent(in) :: kin   !! mass-centre velocities
         real(wp) :: pl(3)
         integer :: k
         pl = zero
@@ -263,8 +266,8 @@ contains
 
     !> Total angular momentum about the origin of R.
     pure function angular_momentum(tree, kin) result(h)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
+        type(body_tree_t), intent(in) :: tree   !! masses of the bodies
+        type(kinematics_t), intent(in) :: kin   !! positions, velocities, angular velocities, inertias in R
         real(wp) :: h(3)
         integer :: k
         h = zero

@@ -21,15 +21,16 @@ contains
 
     !> Allocate zeroed loads for nb bodies and n coordinates.
     pure subroutine loads_allocate(loads, nb, n)
-        type(body_loads_t), intent(out) :: loads
-        integer, intent(in) :: nb, n
+        type(body_loads_t), intent(out) :: loads   !! allocated and zero
+        integer, intent(in) :: nb                  !! number of bodies
+        integer, intent(in) :: n                   !! number of coordinates (at least 1 entry is allocated)
         allocate (loads%force(3, nb), loads%moment(3, nb), loads%q(max(n, 1)))
         call loads_clear(loads)
     end subroutine loads_allocate
 
     !> Set every load to zero.
     pure subroutine loads_clear(loads)
-        type(body_loads_t), intent(inout) :: loads
+        type(body_loads_t), intent(inout) :: loads   !! allocated loads, set to zero
         loads%force = zero
         loads%moment = zero
         loads%q = zero
@@ -37,9 +38,11 @@ contains
 
     !> Add force f acting at point `point` (R) on body k whose mass centre is rk.
     pure subroutine add_point_force(loads, k, rk, point, f)
-        type(body_loads_t), intent(inout) :: loads
-        integer, intent(in) :: k
-        real(wp), intent(in) :: rk(3), point(3), f(3)
+        type(body_loads_t), intent(inout) :: loads   !! the loads the force is added to
+        integer, intent(in) :: k                     !! the body (0, the inertial frame: nothing added)
+        real(wp), intent(in) :: rk(3)                !! its mass centre in R [m]
+        real(wp), intent(in) :: point(3)             !! point of application in R [m]
+        real(wp), intent(in) :: f(3)                 !! the force in R [N]
         if (k < 1) return                     ! body 0 is the inertial frame
         loads%force(:, k) = loads%force(:, k) + f
         loads%moment(:, k) = loads%moment(:, k) + cross(point - rk, f)
@@ -47,9 +50,9 @@ contains
 
     !> Add a couple c to body k.
     pure subroutine add_couple(loads, k, c)
-        type(body_loads_t), intent(inout) :: loads
-        integer, intent(in) :: k
-        real(wp), intent(in) :: c(3)
+        type(body_loads_t), intent(inout) :: loads   !! the loads the couple is added to
+        integer, intent(in) :: k                     !! the body (0, the inertial frame: nothing added)
+        real(wp), intent(in) :: c(3)                 !! the couple in R [N m]
         if (k < 1) return
         loads%moment(:, k) = loads%moment(:, k) + c
     end subroutine add_couple
@@ -58,10 +61,14 @@ contains
     !! (-f, -c) on body ka. Such a pair does no net work in any rigid motion
     !! of the two bodies together.
     pure subroutine add_force_pair(loads, ka, ra, kb, rb, point, f, c)
-        type(body_loads_t), intent(inout) :: loads
-        integer, intent(in) :: ka, kb           !! bodies (0 = inertial frame)
-        real(wp), intent(in) :: ra(3), rb(3)    !! their mass centres
-        real(wp), intent(in) :: point(3), f(3), c(3)
+        type(body_loads_t), intent(inout) :: loads   !! the loads the pair is added to
+        integer, intent(in) :: ka                    !! body that receives (-f, -c) (0 = inertial frame)
+        integer, intent(in) :: kb                    !! body that receives (f, c) (0 = inertial frame)
+        real(wp), intent(in) :: ra(3)                !! mass centre of body ka in R [m]
+        real(wp), intent(in) :: rb(3)                !! mass centre of body kb in R [m]
+        real(wp), intent(in) :: point(3)             !! common point of application in R [m]
+        real(wp), intent(in) :: f(3)                 !! force on body kb in R [N]
+        real(wp), intent(in) :: c(3)                 !! couple on body kb in R [N m]
         call add_point_force(loads, kb, rb, point, f)
         call add_couple(loads, kb, c)
         call add_point_force(loads, ka, ra, point, -f)

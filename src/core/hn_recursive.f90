@@ -63,8 +63,8 @@ contains
     !! coordinate i of body k the force F = I_c(k) sj_i projected on the
     !! columns of k's chain. The same matrix as eq 17 (hn_kane's a_ij).
     pure subroutine composite_rigid_body(tree, kin, a)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
+        type(body_tree_t), intent(in) :: tree   !! masses, parents and coordinate numbering of the bodies
+        type(kinematics_t), intent(in) :: kin   !! joint columns sj, mass centres and inertias in R (body_kinematics)
         real(wp), intent(out) :: a(:, :)        !! (n,n) symmetric positive definite
         real(wp) :: cm(tree%nbody), ch(3, tree%nbody), cj(3, 3, tree%nbody), f(6)
         integer :: ik, k, p, m, i, jj, j
@@ -126,10 +126,10 @@ contains
     !! projected on the joint columns, plus the generalized forces on the
     !! coordinates. O(n), no partial-velocity arrays.
     pure subroutine f_recursive(tree, kin, loads, f)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
-        type(body_loads_t), intent(in) :: loads
-        real(wp), intent(out) :: f(:)
+        type(body_tree_t), intent(in) :: tree     !! masses, parents and coordinate numbering of the bodies
+        type(kinematics_t), intent(in) :: kin     !! joint columns sj and velocity terms a0, alpha0 (body_kinematics)
+        type(body_loads_t), intent(in) :: loads   !! body forces [N], moments [N m], generalized forces q
+        real(wp), intent(out) :: f(:)             !! (n) f_i [N or N m]
         real(wp) :: w(6, tree%nbody)
         integer :: k, i
         do k = 1, tree%nbody
@@ -145,9 +145,9 @@ contains
     !! (spatial accelerations sj v) and one backward pass (inertia forces),
     !! O(n) without a_ij.
     pure function inertia_times(tree, kin, v) result(av)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(in) :: v(:)
+        type(body_tree_t), intent(in) :: tree   !! masses, parents and coordinate numbering of the bodies
+        type(kinematics_t), intent(in) :: kin   !! joint columns sj, mass centres and inertias in R (body_kinematics)
+        real(wp), intent(in) :: v(:)            !! (n) the vector multiplied, one entry per active coordinate
         real(wp) :: av(size(v))
         real(wp) :: sa(6, tree%nbody), w(6, tree%nbody), m, h(3), j(3, 3)
         integer :: ik, k, mm, i
@@ -176,14 +176,14 @@ contains
     !! acceleration. stat = stat_singular (bad_body set) when a joint's
     !! articulated inertia S^T I^A S is singular.
     pure subroutine articulated_body_solve(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body)
-        type(body_tree_t), intent(in) :: tree
-        type(kinematics_t), intent(in) :: kin
-        type(body_loads_t), intent(in) :: loads
-        logical, intent(in) :: prescribed(:)    !! (n) coordinate is prescribed
-        real(wp), intent(inout) :: xdd(:)       !! (n) in: prescribed entries; out: free entries filled
-        real(wp), intent(out) :: lambda(:)      !! (n) constraint forces on prescribed coordinates, 0 on free
-        integer, intent(out) :: stat
-        integer, intent(out) :: bad_body        !! body of a singular joint (0: none)
+        type(body_tree_t), intent(in) :: tree     !! masses, parents and coordinate numbering of the bodies
+        type(kinematics_t), intent(in) :: kin     !! joint columns sj and velocity terms a0, alpha0 (body_kinematics)
+        type(body_loads_t), intent(in) :: loads   !! body forces [N], moments [N m], generalized forces q
+        logical, intent(in) :: prescribed(:)      !! (n) coordinate is prescribed
+        real(wp), intent(inout) :: xdd(:)         !! (n) in: prescribed entries; out: free entries filled
+        real(wp), intent(out) :: lambda(:)        !! (n) constraint forces on prescribed coordinates, 0 on free
+        integer, intent(out) :: stat              !! stat_ok, or stat_singular (bad_body's joint)
+        integer, intent(out) :: bad_body          !! body of a singular joint (0: none)
         real(wp) :: ia(6, 6, tree%nbody), pa(6, tree%nbody), c(6, tree%nbody), sa(6, tree%nbody)
         real(wp) :: u(6, 6, tree%nbody), dl(6, 6, tree%nbody), uu(6, tree%nbody), fj(6)
         integer :: nf(tree%nbody), cols(6, tree%nbody), ik, k, p, m, j

@@ -98,10 +98,10 @@ module hn_integrators
         subroutine step_interface(me, sys, tstop, stat, errmsg)
             import :: integrator_t, ode_system_t, wp, msglen
             class(integrator_t), intent(inout) :: me
-            class(ode_system_t), intent(inout) :: sys
-            real(wp), intent(in) :: tstop
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+            real(wp), intent(in) :: tstop                  !! time the step may not pass [s]
+            integer, intent(out) :: stat                   !! stat_ok, or why no step could be taken (hn_status)
+            character(len=msglen), intent(out) :: errmsg   !! the reason, with the time ('' when stat_ok)
         end subroutine step_interface
     end interface
 
@@ -184,106 +184,113 @@ module hn_integrators
         !> Step size limited so that the step ends exactly on tstop when it
         !! would otherwise pass it or stop just short of it.
         pure module function clip_step(t, h, tstop) result(hc)
-            real(wp), intent(in) :: t, h, tstop
+            real(wp), intent(in) :: t       !! current time [s]
+            real(wp), intent(in) :: h       !! planned step [s]
+            real(wp), intent(in) :: tstop   !! time the step may not pass [s]
             real(wp) :: hc
         end function clip_step
         !> Accept a step: old point <- current, current <- (tnew, ynew, fnew).
         module subroutine accept(me, tnew, ynew, fnew)
             class(integrator_t), intent(inout) :: me
-            real(wp), intent(in) :: tnew, ynew(:), fnew(:)
+            real(wp), intent(in) :: tnew      !! time at the end of the step [s]
+            real(wp), intent(in) :: ynew(:)   !! state at tnew
+            real(wp), intent(in) :: fnew(:)   !! g(tnew, ynew)
         end subroutine accept
         !> Weighted RMS norm of e with weights atol + rtol max(|y0|, |y1|).
         pure module function err_norm(me, e, y0, y1) result(r)
             class(integrator_t), intent(in) :: me
-            real(wp), intent(in) :: e(:), y0(:), y1(:)
+            real(wp), intent(in) :: e(:)    !! local error estimate
+            real(wp), intent(in) :: y0(:)   !! state at the start of the step
+            real(wp), intent(in) :: y1(:)   !! state at its end
             real(wp) :: r
         end function err_norm
         !> Interpolation at or beyond the end of the last step (or with no
         !! step yet): y and f of the current point; .false. otherwise.
         module function at_current_point(me, tout, yout, dydt) result(done)
             class(integrator_t), intent(in) :: me
-            real(wp), intent(in) :: tout
-            real(wp), intent(out) :: yout(:)
-            real(wp), intent(out), optional :: dydt(:)
+            real(wp), intent(in) :: tout                 !! time asked for [s]
+            real(wp), intent(out) :: yout(:)             !! the current y when done
+            real(wp), intent(out), optional :: dydt(:)   !! the current f when done
             logical :: done
         end function at_current_point
         !> The message of a step size below hmin.
         module subroutine step_too_small(t, hmin, stat, errmsg)
-            real(wp), intent(in) :: t, hmin
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            real(wp), intent(in) :: t                      !! time of the failure [s]
+            real(wp), intent(in) :: hmin                   !! the smallest step allowed [s]
+            integer, intent(out) :: stat                   !! stat_step_failed
+            character(len=msglen), intent(out) :: errmsg   !! the message, with a hint to try ROS34PW2
         end subroutine step_too_small
         module subroutine rk4_step(me, sys, tstop, stat, errmsg)
             class(rk4_t), intent(inout) :: me
-            class(ode_system_t), intent(inout) :: sys
-            real(wp), intent(in) :: tstop
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+            real(wp), intent(in) :: tstop                  !! time the step may not pass [s]
+            integer, intent(out) :: stat                   !! stat_ok, or the system's failure
+            character(len=msglen), intent(out) :: errmsg   !! the reason, with the time ('' when stat_ok)
         end subroutine rk4_step
         module subroutine abm4_step(me, sys, tstop, stat, errmsg)
             class(abm4_t), intent(inout) :: me
-            class(ode_system_t), intent(inout) :: sys
-            real(wp), intent(in) :: tstop
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+            real(wp), intent(in) :: tstop                  !! time the step may not pass [s]
+            integer, intent(out) :: stat                   !! stat_ok, or the system's failure
+            character(len=msglen), intent(out) :: errmsg   !! the reason, with the time ('' when stat_ok)
         end subroutine abm4_step
         module subroutine abm4_reset_history(me)
             class(abm4_t), intent(inout) :: me
         end subroutine abm4_reset_history
         module subroutine dopri5_step(me, sys, tstop, stat, errmsg)
             class(dopri5_t), intent(inout) :: me
-            class(ode_system_t), intent(inout) :: sys
-            real(wp), intent(in) :: tstop
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+            real(wp), intent(in) :: tstop                  !! time the step may not pass [s]
+            integer, intent(out) :: stat                   !! stat_ok, stat_step_failed (h < hmin), or the system's
+            character(len=msglen), intent(out) :: errmsg   !! the reason, with the time ('' when stat_ok)
         end subroutine dopri5_step
         module subroutine dopri5_interpolate(me, tout, yout, dydt)
             class(dopri5_t), intent(in) :: me
-            real(wp), intent(in) :: tout
-            real(wp), intent(out) :: yout(:)
-            real(wp), intent(out), optional :: dydt(:)
+            real(wp), intent(in) :: tout                 !! time within the last step [s]
+            real(wp), intent(out) :: yout(:)             !! y(tout)
+            real(wp), intent(out), optional :: dydt(:)   !! y'(tout) of the interpolant
         end subroutine dopri5_interpolate
         module subroutine dopri5_reset_history(me)
             class(dopri5_t), intent(inout) :: me
         end subroutine dopri5_reset_history
         module subroutine adams_step(me, sys, tstop, stat, errmsg)
             class(adams_t), intent(inout) :: me
-            class(ode_system_t), intent(inout) :: sys
-            real(wp), intent(in) :: tstop
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+            real(wp), intent(in) :: tstop                  !! time the step may not pass [s]
+            integer, intent(out) :: stat                   !! stat_ok, stat_step_failed (h < hmin), or the system's
+            character(len=msglen), intent(out) :: errmsg   !! the reason, with the time ('' when stat_ok)
         end subroutine adams_step
         module subroutine adams_interpolate(me, tout, yout, dydt)
             class(adams_t), intent(in) :: me
-            real(wp), intent(in) :: tout
-            real(wp), intent(out) :: yout(:)
-            real(wp), intent(out), optional :: dydt(:)
+            real(wp), intent(in) :: tout                 !! time within the last step [s]
+            real(wp), intent(out) :: yout(:)             !! y(tout)
+            real(wp), intent(out), optional :: dydt(:)   !! y'(tout) of the interpolant
         end subroutine adams_interpolate
         module subroutine adams_reset_history(me)
             class(adams_t), intent(inout) :: me
         end subroutine adams_reset_history
         module subroutine ros2_step(me, sys, tstop, stat, errmsg)
             class(ros2_t), intent(inout) :: me
-            class(ode_system_t), intent(inout) :: sys
-            real(wp), intent(in) :: tstop
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+            real(wp), intent(in) :: tstop                  !! time the step may not pass [s]
+            integer, intent(out) :: stat                   !! stat_ok, stat_step_failed, stat_singular, or the system's
+            character(len=msglen), intent(out) :: errmsg   !! the reason, with the time ('' when stat_ok)
         end subroutine ros2_step
         module subroutine ros2_reset_history(me)
             class(ros2_t), intent(inout) :: me
         end subroutine ros2_reset_history
         module subroutine rosw_step(me, sys, tstop, stat, errmsg)
             class(rosw_t), intent(inout) :: me
-            class(ode_system_t), intent(inout) :: sys
-            real(wp), intent(in) :: tstop
-            integer, intent(out) :: stat
-            character(len=msglen), intent(out) :: errmsg
+            class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+            real(wp), intent(in) :: tstop                  !! time the step may not pass [s]
+            integer, intent(out) :: stat                   !! stat_ok, stat_step_failed, stat_singular, or the system's
+            character(len=msglen), intent(out) :: errmsg   !! the reason, with the time ('' when stat_ok)
         end subroutine rosw_step
         module subroutine rosw_interpolate(me, tout, yout, dydt)
             class(rosw_t), intent(in) :: me
-            real(wp), intent(in) :: tout
-            real(wp), intent(out) :: yout(:)
-            real(wp), intent(out), optional :: dydt(:)
+            real(wp), intent(in) :: tout                 !! time within the last step [s]
+            real(wp), intent(out) :: yout(:)             !! y(tout)
+            real(wp), intent(out), optional :: dydt(:)   !! y'(tout) of the interpolant
         end subroutine rosw_interpolate
         module subroutine rosw_reset_history(me)
             class(rosw_t), intent(inout) :: me
@@ -343,11 +350,11 @@ contains
     !> Start at (t0, y0).
     subroutine integrator_init(me, sys, t0, y0, stat, errmsg)
         class(integrator_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys   !! the system
-        real(wp), intent(in) :: t0                  !! initial time
-        real(wp), intent(in) :: y0(:)               !! initial state
-        integer, intent(out) :: stat                !! stat_ok or the system's failure
-        character(len=msglen), intent(out) :: errmsg
+        class(ode_system_t), intent(inout) :: sys      !! the system
+        real(wp), intent(in) :: t0                     !! initial time
+        real(wp), intent(in) :: y0(:)                  !! initial state
+        integer, intent(out) :: stat                   !! stat_ok or the system's failure
+        character(len=msglen), intent(out) :: errmsg   !! the system's message ('' when stat_ok)
         me%t = t0
         me%y = y0
         if (allocated(me%f)) deallocate (me%f)
@@ -359,9 +366,9 @@ contains
     !! g): recompute f and start the formulas afresh.
     subroutine integrator_restart(me, sys, stat, errmsg)
         class(integrator_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys   !! the system
-        integer, intent(out) :: stat                !! stat_ok or the system's failure
-        character(len=msglen), intent(out) :: errmsg
+        class(ode_system_t), intent(inout) :: sys      !! the system
+        integer, intent(out) :: stat                   !! stat_ok or the system's failure
+        character(len=msglen), intent(out) :: errmsg   !! the system's message ('' when stat_ok)
         call sys%rhs(me%t, me%y, me%f, stat, errmsg)
         me%told = me%t
         me%yold = me%y
@@ -435,12 +442,12 @@ contains
     !> Step until t >= tout (never past tstop) and interpolate y at tout.
     subroutine integrator_advance(me, sys, tout, yout, tstop, stat, errmsg)
         class(integrator_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys   !! the system
-        real(wp), intent(in) :: tout                !! output time
-        real(wp), intent(out) :: yout(:)            !! y at tout
-        real(wp), intent(in) :: tstop               !! time no step may pass
-        integer, intent(out) :: stat                !! stat_ok or why a step failed
-        character(len=msglen), intent(out) :: errmsg
+        class(ode_system_t), intent(inout) :: sys      !! the system
+        real(wp), intent(in) :: tout                   !! output time
+        real(wp), intent(out) :: yout(:)               !! y at tout
+        real(wp), intent(in) :: tstop                  !! time no step may pass
+        integer, intent(out) :: stat                   !! stat_ok or why a step failed
+        character(len=msglen), intent(out) :: errmsg   !! why a step failed ('' when stat_ok)
         stat = stat_ok; errmsg = ''
         do while (me%t < tout - time_reached*max(one, abs(tout)))
             call me%step(sys, max(tstop, tout), stat, errmsg)
@@ -477,12 +484,13 @@ contains
     !! on finite-difference Jacobian-vector products; `lead` is the
     !! component with the largest entry of the dominant eigenvector.
     subroutine spectral_radius(sys, t, y, rho, lead, stat, errmsg)
-        class(ode_system_t), intent(inout) :: sys   !! the system
-        real(wp), intent(in) :: t, y(:)             !! the point
-        real(wp), intent(out) :: rho                !! spectral radius estimate [1/s]
-        integer, intent(out) :: lead                !! component leading the dominant mode
-        integer, intent(out) :: stat                !! stat_ok or the system's failure
-        character(len=msglen), intent(out) :: errmsg
+        class(ode_system_t), intent(inout) :: sys      !! the system
+        real(wp), intent(in) :: t                      !! time of the point [s]
+        real(wp), intent(in) :: y(:)                   !! state at the point
+        real(wp), intent(out) :: rho                   !! spectral radius estimate [1/s]
+        integer, intent(out) :: lead                   !! component leading the dominant mode
+        integer, intent(out) :: stat                   !! stat_ok or the system's failure
+        character(len=msglen), intent(out) :: errmsg   !! the system's message ('' when stat_ok)
         integer, parameter :: power_iterations = 40
         real(wp) :: f0(size(y)), f1(size(y)), v(size(y)), u(size(y)), d, nv
         integer :: it, n, j

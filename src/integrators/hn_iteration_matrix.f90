@@ -60,10 +60,12 @@ contains
     !! (of the second-order block only when the system is second order).
     subroutine im_form_jacobian(me, sys, t, y, f, stat, errmsg, force_differences)
         class(iteration_matrix_t), intent(inout) :: me
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: t, y(:), f(:)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        class(ode_system_t), intent(inout) :: sys            !! the system y' = g(t, y)
+        real(wp), intent(in) :: t                            !! time [s]
+        real(wp), intent(in) :: y(:)                         !! state
+        real(wp), intent(in) :: f(:)                         !! g(t, y)
+        integer, intent(out) :: stat                         !! stat_ok, or the system's failure
+        character(len=msglen), intent(out) :: errmsg         !! the system's message ('' when stat_ok)
         logical, intent(in), optional :: force_differences   !! dense differences whatever the system offers
         real(wp), allocatable :: full(:, :)
         logical :: dense
@@ -100,9 +102,9 @@ contains
     !> Factor W for the given hg.
     subroutine im_factor(me, hg, stat, errmsg)
         class(iteration_matrix_t), intent(inout) :: me
-        real(wp), intent(in) :: hg
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        real(wp), intent(in) :: hg                     !! step times the method's gamma [s]
+        integer, intent(out) :: stat                   !! stat_ok, or stat_singular (W singular)
+        character(len=msglen), intent(out) :: errmsg   !! the message with hg ('' when stat_ok)
         integer :: i, k, info
         stat = stat_ok
         errmsg = ''
@@ -176,7 +178,7 @@ contains
     !> The factorization is of W for this hg.
     pure logical function im_factored_for(me, hg) result(b)
         class(iteration_matrix_t), intent(in) :: me
-        real(wp), intent(in) :: hg
+        real(wp), intent(in) :: hg   !! step times the method's gamma [s]
         b = me%hg == hg
     end function im_factored_for
 
@@ -202,12 +204,14 @@ contains
     !> Jacobian dg/dy by forward differences over the first ncol components
     !! (default: all but the quadratures; other columns zero).
     subroutine fd_jacobian(sys, t, y, f, jac, stat, errmsg, ncol)
-        class(ode_system_t), intent(inout) :: sys
-        real(wp), intent(in) :: t, y(:), f(:)
-        real(wp), intent(out) :: jac(:, :)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
-        integer, intent(in), optional :: ncol
+        class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
+        real(wp), intent(in) :: t                      !! time [s]
+        real(wp), intent(in) :: y(:)                   !! state
+        real(wp), intent(in) :: f(:)                   !! g(t, y)
+        real(wp), intent(out) :: jac(:, :)             !! (n, n) dg/dy; columns beyond ncol zero
+        integer, intent(out) :: stat                   !! stat_ok, or the system's failure
+        character(len=msglen), intent(out) :: errmsg   !! the system's message ('' when stat_ok)
+        integer, intent(in), optional :: ncol          !! number of leading columns to form (default: n - nquad)
         real(wp) :: yp(size(y)), fp(size(y)), d
         integer :: j, nc
         stat = stat_ok

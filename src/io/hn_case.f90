@@ -3,20 +3,11 @@
 module hn_case
     use hn_kinds, only: wp, zero
     use hn_model, only: model_t
+    use hn_deck_reader, only: deck_line_t, path_len
     implicit none
     private
 
-    public :: case_t, deck_line_t
-
-    integer, parameter, public :: path_len = 256
-
-    !> One card image as read, with where it came from.
-    type :: deck_line_t
-        character(len=80) :: text = ''
-        character(len=:), allocatable :: source  !! 'stdin' or the included file
-        integer :: line = 0                      !! line number in that source
-        integer :: via = 0                       !! which INCLUDE brought it in (0: the deck itself)
-    end type deck_line_t
+    public :: case_t, deck_line_t, path_len
 
     !> Everything needed to run and report one case.
     type :: case_t
@@ -41,6 +32,7 @@ module hn_case
         type(deck_line_t), allocatable :: deck(:)   !! the cards as read
         character(len=100), allocatable :: scene(:)  !! what the scene cards did (listing summary)
         character(len=160), allocatable :: warnings(:)  !! physical plausibility warnings
+        character(len=160), allocatable :: changes(:)   !! what the CHANGE cards did (listing, result file)
     end type case_t
 
 end module hn_case

@@ -20,6 +20,8 @@ module hn_deck
     use hn_rotation, only: norm3
     use hn_scene, only: merge_bodies, lock_sagittal
     use hn_plausibility, only: plausibility_warnings
+    use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes
+    use hn_csv, only: read_two_columns
     implicit none
     private
 
@@ -61,11 +63,11 @@ contains
     !! `source` in messages) into `cs`. INCLUDE files are looked for next to
     !! the including file, in the working directory, then in `include_path`.
     subroutine read_case(path, source, cs, stat, errmsg, include_path)
-        character(len=*), intent(in) :: path    !! file to read
-        character(len=*), intent(in) :: source  !! its name in messages
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        character(len=*), intent(in) :: path                       !! file to read
+        character(len=*), intent(in) :: source                     !! its name in messages
+        type(case_t), intent(out) :: cs                            !! the run case (model and run control)
+        integer, intent(out) :: stat                               !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg               !! the first error, located in the deck
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE files
         type(deck_reader_t) :: rd
         rd%top = source
@@ -81,11 +83,11 @@ contains
     !> Interpret card images already read (INCLUDE expanded), as kept in
     !! `case_t%deck`: a deck edited in memory, e.g. one member of a sweep.
     subroutine read_case_lines(lines, source, cs, stat, errmsg)
-        type(deck_line_t), intent(in) :: lines(:)
-        character(len=*), intent(in) :: source  !! name of the deck in messages
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(deck_line_t), intent(in) :: lines(:)      !! card images, INCLUDE cards expanded
+        character(len=*), intent(in) :: source         !! name of the deck in messages
+        type(case_t), intent(out) :: cs                !! the run case (model and run control)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg   !! the first error, located in the deck
         type(deck_reader_t) :: rd
         rd%top = source
         rd%lines = lines
@@ -104,12 +106,23 @@ contains
         type(named_table_t), allocatable :: tabs(:)
         character(len=10), allocatable :: bnames(:)
         type(body_map_t) :: bmap
+        type(change_t), allocatable :: changes(:)
+        integer, allocatable :: first(:)
         integer :: k
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
             call group_cards(rd, cards)
         end if
-        allocate (cs%scene(0))
+        allocate (cs%scene(0), cs%changes(0))
+        ! CHANGE cards: fields rewritten in rd's images (cs%deck keeps the deck as read)
+        if (.not. rd%failed()) then
+            allocate (first(0))
+            do k = 1, size(cards)
+                if (cards(k)%key == 'CHANGE') first = [first, cards(k)%first]
+            end do
+            call read_changes(rd, first, changes)
+        end if
+        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
         if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call control_cards(rd, cards, cs)
         if (.not. rd%failed()) call table_cards(rd, cards, tabs)
@@ -118,6 +131,7 @@ contains
         if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, bmap, tabs)
         if (.not. rd%failed()) call report_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call stiffen_cards(rd, cards, cs)
+        if (.not. rd%failed()) call apply_model_changes(rd, changes, cs%model, cs%changes)
         if (.not. rd%failed()) call runlimit_card(rd, cards, cs)
         if (.not. rd%failed()) call check_unknowns(rd, cards, cs)
         if (.not. rd%failed()) then
@@ -184,11 +198,11 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(35) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(36) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
             'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM', 'SCALE', &
-            'RUNLIMIT', 'VIA']
+            'RUNLIMIT', 'CHANGE', 'VIA']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -227,6 +241,7 @@ contains
                     return
                 end if
                 need = (npts + 2)/3
+                if (upper(adjustl(rd%raw(i, 5))) == 'CSV') need = 1     ! the file name card
             end if
             nc = nc + 1
             cards(nc)%key = key
@@ -433,29 +448,8 @@ contains
             kb = kb + 1
             i = cards(k)%first
             bline(kb) = i
-            call rd%name(i, 1, 'body name', bnames(kb))
+            call body_name(rd, i, bnames(1:kb - 1), bnames(kb))
             if (rd%failed()) return
-            if (bnames(kb) == 'R' .or. bnames(kb) == 'INERTIAL') then
-                call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
-                             trim(bnames(kb))//'", which names the inertial frame (R, alias INERTIAL); '// &
-                             'expected another name')
-                return
-            end if
-            if (bnames(kb) == 'ALL') then
-                call rd%fail(rd%context(i, 1, 'body name')//': found "ALL", a reserved word (LOCK ALL '// &
-                             'means every body); expected another name')
-                return
-            end if
-            if (len_trim(bnames(kb)) > name_len) then
-                call rd%fail(rd%context(i, 1, 'body name')//': found "'// &
-                             trim(bnames(kb))//'"; expected at most 12 characters')
-                return
-            end if
-            if (any(bnames(1:kb - 1) == bnames(kb))) then
-                call rd%fail(rd%context(i, 1, 'body name')//': body "'// &
-                             trim(bnames(kb))//'" is defined twice; expected a new name')
-                return
-            end if
             call rd%name(i, 2, 'parent body', pnames(kb))
             call rd%real(i, 3, 'mass', 'kg', cs%model%tree%mass(kb), 1.0e-6_wp, 1.0e4_wp)
             cs%model%tree%inertia(:, :, kb) = zero
@@ -559,6 +553,29 @@ contains
             s = s//')'
         end function body_place
     end subroutine body_cards
+
+    !> The name of a new body on BODY card image i: not a name of the
+    !! inertial frame, not reserved, not too long, not a name already used.
+    subroutine body_name(rd, i, earlier, name)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i                      !! the BODY card image
+        character(len=10), intent(in) :: earlier(:)   !! the bodies defined before it
+        character(len=10), intent(out) :: name        !! its name
+        call rd%name(i, 1, 'body name', name)
+        if (rd%failed()) return
+        if (name == 'R' .or. name == 'INERTIAL') then
+            call rd%fail(rd%context(i, 1, 'body name')//': found "'//trim(name)//'", which names the '// &
+                         'inertial frame (R, alias INERTIAL); expected another name')
+        else if (name == 'ALL') then
+            call rd%fail(rd%context(i, 1, 'body name')//': found "ALL", a reserved word (LOCK ALL '// &
+                         'means every body); expected another name')
+        else if (len_trim(name) > name_len) then
+            call rd%fail(rd%context(i, 1, 'body name')//': found "'//trim(name)//'"; expected at most 12 characters')
+        else if (any(earlier == name)) then
+            call rd%fail(rd%context(i, 1, 'body name')//': body "'//trim(name)// &
+                         '" is defined twice; expected a new name')
+        end if
+    end subroutine body_name
 
     !> Exactly one body hangs from R, and following parents from any body
     !! reaches it: errors name the BODY cards concerned.
@@ -722,7 +739,7 @@ contains
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(named_table_t), allocatable, intent(out) :: tabs(:)
-        integer :: k, nt, i, npts, j, c, f, stat, bad
+        integer :: k, nt, i, npts, c, stat, bad
         character(len=12) :: v1, v2
         real(wp) :: tscale, yscale
         real(wp), allocatable :: t(:), y(:)
@@ -745,23 +762,12 @@ contains
             call rd%real(i, 3, 'time scale', 's per unit', tscale, 1.0e-9_wp, 1.0e3_wp, default=one)
             call rd%real(i, 4, 'value scale', 'per unit', yscale, -1.0e9_wp, 1.0e9_wp, default=one)
             if (rd%failed()) return
-            allocate (t(npts), y(npts))
-            do j = 1, npts
-                c = i + 1 + (j - 1)/3
-                f = 2*mod(j - 1, 3) + 1
-                call rd%real(c, f, 'time', 'table time unit', t(j), -1.0e7_wp, 1.0e7_wp)
-                call rd%real(c, f + 1, 'value', 'table unit', y(j), -1.0e12_wp, 1.0e12_wp)
-            end do
+            if (upper(adjustl(rd%raw(i, 5))) == 'CSV') then
+                call csv_points(rd, i, tabs(nt)%name, npts, t, y)
+            else
+                call card_points(rd, i, cards(k)%ncont, tabs(nt)%name, npts, t, y)
+            end if
             if (rd%failed()) return
-            c = i + cards(k)%ncont
-            do f = 2*mod(npts - 1, 3) + 3, 7
-                if (.not. rd%is_blank(c, f)) then
-                    call rd%fail(rd%where(c)//' (TABLE '//trim(tabs(nt)%name)//' data): found "'// &
-                                 trim(rd%raw(c, f))//'" in field F'//achar(48 + f)//' after the last of '// &
-                                 trim(int_str(npts))//' points; expected blank (or a larger point count)')
-                    return
-                end if
-            end do
             if (maxval(abs(y)) > zero .and. maxval(abs(y))*abs(yscale) < tiny_value) then
                 write (v1, '(es11.2e3)') yscale
                 write (v2, '(es11.2e3)') maxval(abs(y))*abs(yscale)
@@ -780,6 +786,67 @@ contains
             deallocate (t, y)
         end do
     end subroutine table_cards
+
+    !> The npts (time, value) points of a TABLE on its continuation cards:
+    !! three pairs per card, fields after the last point blank.
+    subroutine card_points(rd, i, ncont, name, npts, t, y)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, ncont, npts       !! TABLE card image, its continuation cards, points
+        character(len=*), intent(in) :: name        !! table name (messages)
+        real(wp), allocatable, intent(out) :: t(:), y(:)
+        integer :: j, c, f
+        allocate (t(npts), y(npts))
+        do j = 1, npts
+            c = i + 1 + (j - 1)/3
+            f = 2*mod(j - 1, 3) + 1
+            call rd%real(c, f, 'time', 'table time unit', t(j), -1.0e7_wp, 1.0e7_wp)
+            call rd%real(c, f + 1, 'value', 'table unit', y(j), -1.0e12_wp, 1.0e12_wp)
+        end do
+        if (rd%failed()) return
+        c = i + ncont
+        do f = 2*mod(npts - 1, 3) + 3, 7
+            if (.not. rd%is_blank(c, f)) then
+                call rd%fail(rd%where(c)//' (TABLE '//trim(name)//' data): found "'// &
+                             trim(rd%raw(c, f))//'" in field F'//achar(48 + f)//' after the last of '// &
+                             trim(int_str(npts))//' points; expected blank (or a larger point count)')
+                return
+            end if
+        end do
+    end subroutine card_points
+
+    !> The npts points of a TABLE from the two-column file named on its
+    !! continuation card (columns 11-80; looked for as INCLUDE files are).
+    subroutine csv_points(rd, i, name, npts, t, y)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, npts              !! TABLE card image, declared points
+        character(len=*), intent(in) :: name        !! table name (messages)
+        real(wp), allocatable, intent(out) :: t(:), y(:)
+        character(len=:), allocatable :: fname, path, bytes, why
+        integer :: stat
+        character(len=msglen) :: msg
+        fname = trim(adjustl(rd%lines(i + 1)%text(11:80)))
+        if (len(fname) == 0) then
+            call rd%fail(rd%where(i + 1)//', columns 11-80 (TABLE '//trim(name)//' file): found no file name; '// &
+                         'expected the path of a two-column (time, value) file')
+            return
+        end if
+        call rd%read_data_file(i + 1, fname, path, bytes, stat, msg)
+        if (stat /= 0) then
+            call rd%fail(rd%where(i + 1)//' (TABLE '//trim(name)//' file): '//trim(msg))
+            return
+        end if
+        call read_two_columns(bytes, t, y, stat, why)
+        if (stat /= 0) then
+            call rd%fail('TABLE '//trim(name)//' ('//rd%where(i)//'), file "'//path//'" '//why)
+            return
+        end if
+        if (size(t) /= npts) then
+            call rd%fail(rd%context(i, 2, 'number of points')//': TABLE '//trim(name)//' declares '// &
+                         trim(int_str(npts))//' points; its file "'//path//'" has '//trim(int_str(size(t)))// &
+                         ' data rows; expected the same number')
+            return
+        end if
+    end subroutine csv_points
 
     !> INITIAL and PRESCRIB cards. A card for a coordinate the scene locked
     !! is dropped when it only restates the neutral value; otherwise it is an

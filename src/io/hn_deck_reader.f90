@@ -19,13 +19,23 @@ module hn_deck_reader
     use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_double, c_null_char, c_null_ptr
     use hn_kinds, only: wp, msglen, i8
     use hn_status, only: stat_bad_input
-    use hn_case, only: deck_line_t, path_len
     use hn_posix, only: file_kind, stdin_kind, kind_name, kind_missing, kind_regular, kind_fifo, kind_socket, &
                         parent_directory, is_absolute, join_path, read_stdin_block
     implicit none
     private
 
-    public :: deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
+    public :: deck_line_t, deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
+    public :: field_text, field_value, locate_field, read_data_file, next_line
+
+    integer, parameter, public :: path_len = 256   !! longest file path
+
+    !> One card image as read, with where it came from.
+    type :: deck_line_t
+        character(len=80) :: text = ''
+        character(len=:), allocatable :: source  !! 'stdin' or the included file
+        integer :: line = 0                      !! line number in that source
+        integer :: via = 0                       !! which INCLUDE brought it in (0: the deck itself)
+    end type deck_line_t
 
     interface
         function c_strtod(str, endptr) bind(C, name='strtod') result(v)
@@ -67,14 +77,16 @@ module hn_deck_reader
         procedure :: text => reader_text
         procedure :: where => reader_where
         procedure :: context
+        procedure :: read_data_file
     end type deck_reader_t
 
 contains
 
     !> First and last column of field f (1..7).
     pure subroutine field_columns(f, c1, c2)
-        integer, intent(in) :: f
-        integer, intent(out) :: c1, c2
+        integer, intent(in) :: f     !! field number, 1..nfields (F1..F7)
+        integer, intent(out) :: c1   !! its first column (11 for F1)
+        integer, intent(out) :: c2   !! its last column (c1 + 9)
         c1 = 1 + 10*f
         c2 = c1 + 9
     end subroutine field_columns
@@ -87,7 +99,7 @@ contains
     !> Record the first error only.
     subroutine reader_fail(me, msg)
         class(deck_reader_t), intent(inout) :: me
-        character(len=*), intent(in) :: msg
+        character(len=*), intent(in) :: msg   !! the whole message (context, found, expected)
         if (me%stat /= 0) return
         me%stat = stat_bad_input
         me%errmsg = msg
@@ -97,7 +109,7 @@ contains
     !! where it was included: "a.inp line 3 (included from stdin line 12)".
     function reader_where(me, i) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i
+        integer, intent(in) :: i   !! card image number
         character(len=:), allocatable :: s
         s = me%lines(i)%source//' line '//trim(int_str(me%lines(i)%line))
         if (allocated(me%vias) .and. me%lines(i)%via > 0) then
@@ -108,7 +120,7 @@ contains
     !> Card name of line i (columns 1-8, upper case).
     function reader_key(me, i) result(k)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i
+        integer, intent(in) :: i   !! card image number
         character(len=8) :: k
         k = upper(me%lines(i)%text(1:8))
     end function reader_key
@@ -116,7 +128,8 @@ contains
     !> Raw text of field f of line i, adjusted left.
     function reader_raw(me, i, f) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, f
+        integer, intent(in) :: i   !! card image number
+        integer, intent(in) :: f   !! field number, 1..nfields
         character(len=10) :: s
         integer :: c1, c2
         call field_columns(f, c1, c2)
@@ -125,7 +138,8 @@ contains
 
     logical function reader_is_blank(me, i, f)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, f
+        integer, intent(in) :: i   !! card image number
+        integer, intent(in) :: f   !! field number, 1..nfields
         reader_is_blank = len_trim(me%raw(i, f)) == 0
     end function reader_is_blank
 
@@ -134,8 +148,9 @@ contains
     !! card continuation 3, field F1 'time')".
     function context(me, i, f, what) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what
+        integer, intent(in) :: i               !! card image number
+        integer, intent(in) :: f               !! field number, 1..nfields
+        character(len=*), intent(in) :: what   !! what the field holds, as in the card's documentation
         character(len=:), allocatable :: s
         character(len=40) :: cols
         integer :: c1, c2, j
@@ -160,11 +175,14 @@ contains
     !! `default` when present and is an error otherwise.
     subroutine reader_real(me, i, f, what, units, v, lo, hi, default)
         class(deck_reader_t), intent(inout) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what, units
-        real(wp), intent(out) :: v
-        real(wp), intent(in) :: lo, hi
-        real(wp), intent(in), optional :: default
+        integer, intent(in) :: i                    !! card image number
+        integer, intent(in) :: f                    !! field number, 1..nfields
+        character(len=*), intent(in) :: what        !! what the field holds (named in messages)
+        character(len=*), intent(in) :: units       !! its units (named in messages)
+        real(wp), intent(out) :: v                  !! the value (0 on an error)
+        real(wp), intent(in) :: lo                  !! smallest value accepted
+        real(wp), intent(in) :: hi                  !! largest value accepted
+        real(wp), intent(in), optional :: default   !! value of a blank field (absent: blank is an error)
         character(len=10) :: s
         character(len=60) :: range
         character(len=10) :: why
@@ -206,11 +224,13 @@ contains
     !> Integer from field f of line i, in [lo, hi].
     subroutine reader_int(me, i, f, what, v, lo, hi, default)
         class(deck_reader_t), intent(inout) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what
-        integer, intent(out) :: v
-        integer, intent(in) :: lo, hi
-        integer, intent(in), optional :: default
+        integer, intent(in) :: i                   !! card image number
+        integer, intent(in) :: f                   !! field number, 1..nfields
+        character(len=*), intent(in) :: what       !! what the field holds (named in messages)
+        integer, intent(out) :: v                  !! the value (0 on an error)
+        integer, intent(in) :: lo                  !! smallest value accepted
+        integer, intent(in) :: hi                  !! largest value accepted
+        integer, intent(in), optional :: default   !! value of a blank field (absent: blank is an error)
         character(len=10) :: s
         character(len=60) :: range
         integer :: k, ios
@@ -242,10 +262,11 @@ contains
     !! only when `optional_blank` is true.
     subroutine reader_name(me, i, f, what, v, optional_blank)
         class(deck_reader_t), intent(inout) :: me
-        integer, intent(in) :: i, f
-        character(len=*), intent(in) :: what
-        character(len=*), intent(out) :: v
-        logical, intent(in), optional :: optional_blank
+        integer, intent(in) :: i                          !! card image number
+        integer, intent(in) :: f                          !! field number, 1..nfields
+        character(len=*), intent(in) :: what              !! what the field holds (named in messages)
+        character(len=*), intent(out) :: v                !! the name, upper case ('' on an error or when blank)
+        logical, intent(in), optional :: optional_blank   !! a blank field is allowed (default: no)
         character(len=10) :: s
         integer :: k
         v = ''
@@ -271,7 +292,8 @@ contains
     !> Free text of columns c1..80 of line i.
     function reader_text(me, i, c1) result(s)
         class(deck_reader_t), intent(in) :: me
-        integer, intent(in) :: i, c1
+        integer, intent(in) :: i    !! card image number
+        integer, intent(in) :: c1   !! first column of the text
         character(len=:), allocatable :: s
         s = trim(adjustl(me%lines(i)%text(c1:80)))
     end function reader_text
@@ -391,7 +413,7 @@ contains
 
     !> Upper-case copy of a string.
     pure function upper(s) result(u)
-        character(len=*), intent(in) :: s
+        character(len=*), intent(in) :: s   !! the string (ASCII)
         character(len=len(s)) :: u
         integer :: k, c
         u = s
@@ -508,7 +530,8 @@ contains
     !! named `source` in messages), expanding INCLUDE cards.
     subroutine read_card_images(me, path, source, depth)
         class(deck_reader_t), intent(inout) :: me
-        character(len=*), intent(in) :: path, source
+        character(len=*), intent(in) :: path     !! file to read, or stdin_path
+        character(len=*), intent(in) :: source   !! its name in messages ('stdin' or the file name)
         integer, intent(in), optional :: depth   !! unused (kept for callers that pass 0)
         character(len=:), allocatable :: bytes
         character(len=msglen) :: iomsg
@@ -539,7 +562,7 @@ contains
         character(len=:), allocatable :: line, incfile, incbytes
         character(len=path_len) :: incname
         character(len=msglen) :: iomsg
-        integer :: ios, lineno, k, c, p0, p1, n, ivia
+        integer :: ios, lineno, k, c, p0, n, ivia
 
         ivia = 0
         if (len(via) > 0) then
@@ -550,14 +573,7 @@ contains
         p0 = 1
         do while (p0 <= len(bytes))
             if (me%failed()) return
-            p1 = index(bytes(p0:), achar(10))
-            if (p1 == 0) then
-                p1 = len(bytes) + 1
-            else
-                p1 = p0 + p1 - 1
-            end if
-            line = bytes(p0:p1 - 1)
-            p0 = p1 + 1
+            call next_line(bytes, p0, line)
             lineno = lineno + 1
             me%nphysical = me%nphysical + 1
             if (me%nphysical > max_deck_lines) then
@@ -600,7 +616,8 @@ contains
                     return
                 end if
                 if (depth >= max_include_depth) then
-                    call me%fail(at(lineno)//' (INCLUDE card): includes nested too deeply (more than 4 levels; a loop?)')
+                    call me%fail(at(lineno)//' (INCLUDE card): includes nested too deeply (more than '// &
+                                 trim(int_str(max_include_depth))//' levels; a loop?)')
                     return
                 end if
                 call resolve_include(me, trim(incname), path, incfile, iomsg)
@@ -713,8 +730,109 @@ contains
         me%lines(me%nlines)%via = via
     end subroutine append_line
 
+    !> The line of `text` that starts at position p, without its line feed;
+    !! p moves to the start of the next line (beyond len(text) after the last).
+    pure subroutine next_line(text, p, line)
+        character(len=*), intent(in) :: text                 !! text of lines ended by LF
+        integer, intent(inout) :: p                          !! start of the line; then of the next one
+        character(len=:), allocatable, intent(out) :: line   !! the line
+        integer :: q
+        q = index(text(p:), achar(10))
+        if (q == 0) then
+            q = len(text) + 1
+        else
+            q = p + q - 1
+        end if
+        line = text(p:q - 1)
+        p = q + 1
+    end subroutine next_line
+
+    !> The most precise text of v that fits a 10-column field.
+    pure function field_text(v) result(s)
+        real(wp), intent(in) :: v   !! the value
+        character(len=10) :: s
+        character(len=24) :: buf
+        integer :: d, ios
+        do d = 9, 1, -1
+            write (buf, '(es24.'//achar(48 + d)//'e0)', iostat=ios) v
+            if (ios /= 0) cycle
+            buf = adjustl(buf)
+            if (len_trim(buf) <= 10) exit
+        end do
+        s = buf(1:10)
+    end function field_text
+
+    !> v as it reads back from its field text.
+    pure real(wp) function field_value(v) result(x)
+        real(wp), intent(in) :: v   !! the value
+        character(len=10) :: s
+        integer :: ios
+        s = field_text(v)
+        read (s, *, iostat=ios) x
+        if (ios /= 0) x = v
+    end function field_value
+
+    !> The card `key` whose field F1 holds `name` (any such card when name
+    !! is blank) among `lines`: how many there are, and for exactly one the
+    !! line holding field number `field` counted across the card and its
+    !! continuation cards (F8 is F1 of the first continuation card), with
+    !! that field's columns. line = 0 when the card has no continuation card
+    !! for the field.
+    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2)
+        type(deck_line_t), intent(in) :: lines(:)  !! card images
+        character(len=*), intent(in) :: key        !! card name (columns 1-8)
+        character(len=*), intent(in) :: name       !! name in field F1, or blank
+        integer, intent(in) :: field               !! field number across the card, 1..3*nfields
+        integer, intent(out) :: nfound             !! number of matching cards
+        integer, intent(out) :: line               !! index in lines of the field's card image (0: none)
+        integer, intent(out) :: c1                 !! the field's first column
+        integer, intent(out) :: c2                 !! the field's last column
+        integer :: i, k
+        nfound = 0
+        k = 0
+        line = 0
+        call field_columns(1 + mod(field - 1, nfields), c1, c2)
+        do i = 1, size(lines)
+            if (upper(lines(i)%text(1:8)) /= upper(key)) cycle
+            if (len_trim(name) > 0) then
+                if (upper(adjustl(lines(i)%text(11:20))) /= upper(name)) cycle
+            end if
+            nfound = nfound + 1
+            k = i
+        end do
+        if (nfound /= 1) return
+        line = k + (field - 1)/nfields
+        if (line > size(lines)) then
+            line = 0
+        else if (line /= k .and. len_trim(lines(line)%text(1:10)) /= 0) then
+            line = 0
+        end if
+    end subroutine locate_field
+
+    !> A data file named on card image i (a TABLE's CSV file): looked for as
+    !! INCLUDE files are (next to the file holding the card, the working
+    !! directory, the include path) and read whole; only regular files, at
+    !! most max_deck_bytes. stat /= 0 with a message otherwise.
+    subroutine read_data_file(me, i, name, path, bytes, stat, errmsg)
+        class(deck_reader_t), intent(in) :: me
+        integer, intent(in) :: i                             !! card image naming the file
+        character(len=*), intent(in) :: name                 !! the file name as written
+        character(len=:), allocatable, intent(out) :: path   !! where it was found
+        character(len=:), allocatable, intent(out) :: bytes  !! its contents
+        integer, intent(out) :: stat                         !! stat_ok or stat_bad_input
+        character(len=*), intent(out) :: errmsg              !! why it could not be read
+        call resolve_include(me, name, me%lines(i)%source, path, errmsg)
+        stat = stat_bad_input
+        if (len(path) == 0) return
+        call read_bytes(path, max_deck_bytes, bytes, stat, errmsg)
+        if (stat /= 0) then
+            errmsg = '"'//path//'": '//trim(errmsg)
+            stat = stat_bad_input
+        end if
+    end subroutine read_data_file
+
     pure function int_str(i) result(s)
-        integer, intent(in) :: i
+        integer, intent(in) :: i   !! the integer
         character(len=16) :: s
         write (s, '(i0)') i
     end function int_str

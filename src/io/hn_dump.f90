@@ -22,7 +22,7 @@ contains
     !> Create group /dump with the constant body tables and empty series,
     !! units on each; `nrec` records are expected (the chunk size).
     subroutine dump_open(h5, model, nrec)
-        type(h5_file_t), intent(inout) :: h5
+        type(h5_file_t), intent(inout) :: h5   !! the open result file
         type(model_t), intent(in) :: model     !! the model (body tables, coordinates)
         integer, intent(in), optional :: nrec  !! number of dump times
         integer :: nb, n, j, nr
@@ -67,12 +67,12 @@ contains
 
     !> Append one record from the workspace of the dynamics evaluation at t.
     subroutine dump_record(h5, model, ws, t, stat, errmsg)
-        type(h5_file_t), intent(inout) :: h5
-        type(model_t), intent(in) :: model
-        type(dyn_workspace_t), intent(in) :: ws
-        real(wp), intent(in) :: t
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(h5_file_t), intent(inout) :: h5           !! the result file with /dump from dump_open
+        type(model_t), intent(in) :: model             !! the model (body tree)
+        type(dyn_workspace_t), intent(in) :: ws        !! workspace of a full dynamics evaluation at t
+        real(wp), intent(in) :: t                      !! time of the record [s]
+        integer, intent(out) :: stat                   !! stat_ok, or stat_gimbal (a body's joint couples not resolved)
+        character(len=msglen), intent(out) :: errmsg   !! which body's Bryant axes are singular ('' when stat_ok)
         real(wp) :: acc(3, model%tree%nbody), alpha(3, model%tree%nbody)
         real(wp) :: force(3, model%tree%nbody), moment(3, model%tree%nbody)
         integer :: bad_body

@@ -459,7 +459,9 @@ contains
     !! string (h5py reads it as str); an attribute of that name is replaced.
     subroutine h5_attr_string(me, path, name, value)
         class(h5_file_t), intent(inout) :: me
-        character(len=*), intent(in) :: path, name, value   !! object, attribute name, text
+        character(len=*), intent(in) :: path    !! the object (group or dataset)
+        character(len=*), intent(in) :: name    !! attribute name
+        character(len=*), intent(in) :: value   !! the text
         character(len=len(value) + 1, kind=c_char), target :: buf
         type(c_ptr), target :: ptr(1)
         integer(hid_t) :: stype, space, attr
@@ -485,7 +487,8 @@ contains
     !> Real attribute (a vector, one element for a single value) on the object `path`.
     subroutine h5_attr_real(me, path, name, value)
         class(h5_file_t), intent(inout) :: me
-        character(len=*), intent(in) :: path, name   !! object, attribute name
+        character(len=*), intent(in) :: path         !! the object (group or dataset)
+        character(len=*), intent(in) :: name         !! attribute name
         real(wp), intent(in), target :: value(:)     !! value(s)
         integer(hid_t) :: space, attr
         integer :: err
@@ -671,7 +674,8 @@ contains
 
     !> Shape of dataset `path` in file `fname` (Fortran order); stat /= 0 if absent.
     subroutine h5_dims(fname, path, dims, stat)
-        character(len=*), intent(in) :: fname, path   !! file, dataset
+        character(len=*), intent(in) :: fname         !! HDF5 file name
+        character(len=*), intent(in) :: path          !! dataset path in it
         integer, allocatable, intent(out) :: dims(:)  !! its shape
         integer, intent(out) :: stat                  !! 0 on success
         integer(hid_t) :: f, dset, space
@@ -706,7 +710,8 @@ contains
 
     !> Read a whole real dataset into buf (size must match); stat /= 0 on failure.
     subroutine h5_read_real(fname, path, buf, stat)
-        character(len=*), intent(in) :: fname, path   !! file, dataset
+        character(len=*), intent(in) :: fname         !! HDF5 file name
+        character(len=*), intent(in) :: path          !! dataset path in it
         real(wp), intent(out), target :: buf(*)       !! values, Fortran order
         integer, intent(out) :: stat                  !! 0 on success
         integer(hid_t) :: f, dset
@@ -729,7 +734,9 @@ contains
 
     !> Read a text attribute of object `path`, fixed-length or variable-length.
     subroutine h5_read_string_attr(fname, path, name, value, stat)
-        character(len=*), intent(in) :: fname, path, name   !! file, object, attribute
+        character(len=*), intent(in) :: fname               !! HDF5 file name
+        character(len=*), intent(in) :: path                !! the object (group or dataset)
+        character(len=*), intent(in) :: name                !! attribute name
         character(len=*), intent(out) :: value              !! its text
         integer, intent(out) :: stat                        !! 0 on success
         integer(hid_t) :: f, attr, ftype, mtype

@@ -46,8 +46,9 @@ contains
     !> Set the header fields; the date and time are taken now.
     subroutine listing_start(me, unit, title, version)
         class(listing_t), intent(inout) :: me
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: title, version
+        integer, intent(in) :: unit               !! output unit of the listing (6: stdout)
+        character(len=*), intent(in) :: title     !! deck title for the page headers (80 characters kept)
+        character(len=*), intent(in) :: version   !! program version for the page headers
         character(len=8) :: d
         character(len=10) :: t
         me%unit = unit
@@ -73,14 +74,14 @@ contains
     !> Start a new page unless n more lines fit on this one.
     subroutine listing_need(me, n)
         class(listing_t), intent(inout) :: me
-        integer, intent(in) :: n
+        integer, intent(in) :: n   !! lines about to be written together
         if (me%line + n > page_lines) call me%new_page()
     end subroutine listing_need
 
     !> One line of the listing.
     subroutine listing_put(me, s)
         class(listing_t), intent(inout) :: me
-        character(len=*), intent(in) :: s
+        character(len=*), intent(in) :: s   !! the line (trailing blanks dropped)
         call me%need(1)
         write (me%unit, '(a)') trim(s)
         me%line = me%line + 1
@@ -89,7 +90,7 @@ contains
     !> A boxed message (run status, errors).
     subroutine listing_message(me, s)
         class(listing_t), intent(inout) :: me
-        character(len=*), intent(in) :: s
+        character(len=*), intent(in) :: s   !! the message
         call me%need(3)
         call me%put('')
         call me%put(' *** '//trim(s))
@@ -99,7 +100,7 @@ contains
     !> Echo of the card images under a column ruler.
     subroutine listing_echo_deck(me, deck)
         class(listing_t), intent(inout) :: me
-        type(deck_line_t), intent(in) :: deck(:)
+        type(deck_line_t), intent(in) :: deck(:)   !! card images with their sources and lines
         integer :: k
         character(len=140) :: s
         call me%new_page()
@@ -128,7 +129,7 @@ contains
 
     subroutine listing_model_summary(me, cs)
         class(listing_t), intent(inout) :: me
-        type(case_t), intent(in) :: cs
+        type(case_t), intent(in) :: cs   !! the run case (model tables, run control)
         character(len=160) :: s
         character(len=12) :: pname, status
         integer :: k, j, f, n, nfree, npres
@@ -192,6 +193,14 @@ contains
                     call me%put('     '//trim(cs%scene(k)))
                 end do
             end if
+            if (allocated(cs%changes)) then
+                if (size(cs%changes) > 0) then
+                    call me%put('   CHANGES FOR THIS RUN (CHANGE CARDS):')
+                    do k = 1, size(cs%changes)
+                        call me%put('     '//trim(cs%changes(k)))
+                    end do
+                end if
+            end if
             if (cs%hold_posture) call me%put('   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE)')
             call me%put('')
             write (s, '(a,a,a,es10.3,a,es10.3,a,es10.3,a,es9.2,a,es9.2)') '   INTEGRATOR ', trim(cs%integrator), &
@@ -240,7 +249,8 @@ contains
     subroutine listing_histories(me, ch, times, rows, nrows)
         class(listing_t), intent(inout) :: me
         type(channel_set_t), intent(in) :: ch   !! channel names, units, groups
-        real(wp), intent(in) :: times(:), rows(:, :)   !! print times [s], channel values
+        real(wp), intent(in) :: times(:)        !! print times [s]
+        real(wp), intent(in) :: rows(:, :)      !! (channels, rows) channel values at those times
         integer, intent(in) :: nrows            !! rows to print
         call tables(me, ch, nrows, row_of)
     contains
@@ -309,8 +319,11 @@ contains
     !> Summary of peaks of every channel (from the full sampled histories).
     subroutine listing_peaks(me, ch, vmax, tmax, vmin, tmin)
         class(listing_t), intent(inout) :: me
-        type(channel_set_t), intent(in) :: ch
-        real(wp), intent(in) :: vmax(:), tmax(:), vmin(:), tmin(:)
+        type(channel_set_t), intent(in) :: ch   !! channel names and units
+        real(wp), intent(in) :: vmax(:)         !! largest value of each channel
+        real(wp), intent(in) :: tmax(:)         !! when [s]
+        real(wp), intent(in) :: vmin(:)         !! smallest value of each channel
+        real(wp), intent(in) :: tmin(:)         !! when [s]
         integer :: k
         character(len=120) :: s
         call me%new_page()
@@ -327,7 +340,7 @@ contains
     !> Injury criteria with their limits (reference-data.md, section 4).
     subroutine listing_criteria(me, a)
         class(listing_t), intent(inout) :: me
-        type(assessment_t), intent(in) :: a
+        type(assessment_t), intent(in) :: a   !! the run's injury assessment
         character(len=120) :: s
         character(len=3), parameter :: modes(4) = ['NTE', 'NTF', 'NCE', 'NCF']
         integer :: k

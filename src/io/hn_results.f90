@@ -55,11 +55,12 @@ contains
     !! directory created).
     subroutine results_open(me, cs, ch, fname, code_version, stat, errmsg, note)
         class(results_t), intent(inout) :: me
-        type(case_t), intent(in) :: cs                 !! the case (deck, model, times)
-        type(channel_set_t), intent(in) :: ch          !! channel names and units
-        character(len=*), intent(in) :: fname, code_version  !! file name, program version
-        integer, intent(out) :: stat                   !! stat_ok or stat_io
-        character(len=msglen), intent(out) :: errmsg   !! the reason on failure
+        type(case_t), intent(in) :: cs                        !! the case (deck, model, times)
+        type(channel_set_t), intent(in) :: ch                 !! channel names and units
+        character(len=*), intent(in) :: fname                 !! result file name (.h5)
+        character(len=*), intent(in) :: code_version          !! program version written to the file
+        integer, intent(out) :: stat                          !! stat_ok or stat_io
+        character(len=msglen), intent(out) :: errmsg          !! the reason on failure
         character(len=msglen), intent(out), optional :: note  !! what was done to files already there
         integer :: nb, n, k, nexp
         integer(i8) :: rate
@@ -149,6 +150,13 @@ contains
         call h%write_strings('/deck/source', sources)
         call h%write_int('/deck/line', lines, [n])
         call h%attr_string('/deck/line', 'units', '1')
+        if (allocated(cs%changes)) then
+            if (size(cs%changes) > 0) then
+                call h%write_strings('/deck/changes', cs%changes)
+                call h%attr_string('/deck/changes', 'description', 'what the CHANGE cards changed for this run '// &
+                                   '(old and new values, the card)')
+            end if
+        end if
     end subroutine write_deck
 
     !> /model: names, tree and inertia tables, with units.
@@ -292,10 +300,11 @@ contains
     !! was removed after a write failure ('' when there is nothing to say).
     subroutine results_close(me, ch, status, message, stat, errmsg, note)
         class(results_t), intent(inout) :: me
-        type(channel_set_t), intent(in) :: ch        !! channel names
-        character(len=*), intent(in) :: status, message   !! 'complete'/'incomplete', why it stopped
-        integer, intent(out) :: stat                 !! stat_ok or stat_io
-        character(len=msglen), intent(out) :: errmsg !! the reason on failure
+        type(channel_set_t), intent(in) :: ch                 !! channel names
+        character(len=*), intent(in) :: status                !! 'complete' or 'incomplete'
+        character(len=*), intent(in) :: message               !! why the run stopped
+        integer, intent(out) :: stat                          !! stat_ok or stat_io
+        character(len=msglen), intent(out) :: errmsg          !! the reason on failure
         character(len=msglen), intent(out), optional :: note  !! where the results are
         character(len=40) :: tt
         stat = 0; errmsg = ''

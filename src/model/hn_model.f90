@@ -138,7 +138,9 @@ contains
         case (fam_muscles)
             select case (item)
             case ('M1'); model%muscles%m1 = factor*model%muscles%m1
-            case ('M2'); model%muscles%m2 = factor*model%muscles%m2
+            case ('M2')      ! the damping of either law: m2 (eq 11) and the Hill damping
+                model%muscles%m2 = factor*model%muscles%m2
+                model%muscles%hill%damping = factor*model%muscles%hill%damping
             case ('F0')      ! Hill-type muscles: F0 and the damping that is proportional to it
                 model%muscles%hill%f0 = factor*model%muscles%hill%f0
                 model%muscles%hill%damping = factor*model%muscles%hill%damping

@@ -28,7 +28,7 @@ contains
 
     !> A coordinate held at value x0.
     pure function motion_constant(x0) result(m)
-        real(wp), intent(in) :: x0
+        real(wp), intent(in) :: x0   !! the value held [m or rad]
         type(motion_t) :: m
         m%kind = motion_kind_constant
         m%x0 = x0
@@ -38,9 +38,12 @@ contains
     !! v0 at t(1); integrated exactly. Outside the table the end acceleration
     !! holds. stat = stat_bad_table when the times do not increase.
     pure subroutine motion_accel_table(m, t, a, x0, v0, stat)
-        type(motion_t), intent(out) :: m
-        real(wp), intent(in) :: t(:), a(:), x0, v0
-        integer, intent(out) :: stat
+        type(motion_t), intent(out) :: m   !! the motion (knot positions and velocities filled)
+        real(wp), intent(in) :: t(:)       !! table times, strictly increasing [s]
+        real(wp), intent(in) :: a(:)       !! accelerations at t [m/s^2 or rad/s^2]
+        real(wp), intent(in) :: x0         !! position at t(1) [m or rad]
+        real(wp), intent(in) :: v0         !! velocity at t(1) [m/s or rad/s]
+        integer, intent(out) :: stat       !! stat_ok, or stat_bad_table (from table_set)
         integer :: i, n
         real(wp) :: h, s
         m%kind = motion_kind_accel
@@ -60,16 +63,20 @@ contains
 
     !> Position table x(t) through a natural cubic spline.
     pure subroutine motion_position_table(m, t, x, stat)
-        type(motion_t), intent(out) :: m
-        real(wp), intent(in) :: t(:), x(:)
-        integer, intent(out) :: stat
+        type(motion_t), intent(out) :: m   !! the motion
+        real(wp), intent(in) :: t(:)       !! table times, strictly increasing [s]
+        real(wp), intent(in) :: x(:)       !! positions at t [m or rad]
+        integer, intent(out) :: stat       !! stat_ok, or stat_bad_table (from spline_set)
         m%kind = motion_kind_position
         call spline_set(m%pos, t, x, stat)
     end subroutine motion_position_table
 
     !> x = x0 + amp sin(freq t + phase).
     pure function motion_harmonic(x0, amp, freq, phase) result(m)
-        real(wp), intent(in) :: x0, amp, freq, phase
+        real(wp), intent(in) :: x0      !! mean value [m or rad]
+        real(wp), intent(in) :: amp     !! amplitude [m or rad]
+        real(wp), intent(in) :: freq    !! circular frequency [rad/s]
+        real(wp), intent(in) :: phase   !! phase at t = 0 [rad]
         type(motion_t) :: m
         m%kind = motion_kind_harmonic
         m%x0 = x0; m%amp = amp; m%freq = freq; m%phase = phase
@@ -77,9 +84,11 @@ contains
 
     !> Position, velocity and acceleration at time t.
     pure subroutine motion_eval(m, t, x, xd, xdd)
-        type(motion_t), intent(in) :: m
-        real(wp), intent(in) :: t
-        real(wp), intent(out) :: x, xd, xdd
+        type(motion_t), intent(in) :: m   !! the motion
+        real(wp), intent(in) :: t         !! time [s]
+        real(wp), intent(out) :: x        !! position [m or rad]
+        real(wp), intent(out) :: xd       !! velocity [m/s or rad/s]
+        real(wp), intent(out) :: xdd      !! acceleration [m/s^2 or rad/s^2]
         integer :: i, n
         real(wp) :: tau, s
         select case (m%kind)
@@ -116,7 +125,7 @@ contains
 
     !> Times where the motion's acceleration has a kink (table knots).
     pure function motion_breakpoints(m) result(tb)
-        type(motion_t), intent(in) :: m
+        type(motion_t), intent(in) :: m   !! the motion
         real(wp), allocatable :: tb(:)
         select case (m%kind)
         case (motion_kind_accel)

@@ -27,8 +27,8 @@ contains
 
     !> Warnings about the model, one line each.
     subroutine plausibility_warnings(model, warnings)
-        type(model_t), intent(in) :: model
-        character(len=160), allocatable, intent(out) :: warnings(:)
+        type(model_t), intent(in) :: model                            !! the model as read from the deck
+        character(len=160), allocatable, intent(out) :: warnings(:)   !! one line per doubtful value (none: size 0)
         integer :: k, e
         real(wp) :: ev(3), reach
         character(len=160) :: w

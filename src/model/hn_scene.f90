@@ -16,7 +16,7 @@ contains
     !> Lock the out-of-plane coordinates (TY, RX, RZ) of every body: the
     !! sagittal scene keeps TX, TZ and RY, 3 of 6 per body.
     pure subroutine lock_sagittal(tree)
-        type(body_tree_t), intent(inout) :: tree
+        type(body_tree_t), intent(inout) :: tree   !! tables before tree_build; out: TY, RX, RZ inactive on every body
         tree%active(2, :) = .false.
         tree%active(4, :) = .false.
         tree%active(6, :) = .false.
@@ -30,12 +30,13 @@ contains
     !! new_index(k) is the number of old body k in the reduced tree and
     !! shift(:, k) is what to add to a point given in old body k's frame.
     pure subroutine merge_bodies(tree, survivor, absorbed, new_index, shift, stat, errmsg)
-        type(body_tree_t), intent(inout) :: tree
-        integer, intent(in) :: survivor, absorbed(:)
-        integer, intent(out) :: new_index(tree%nbody)
-        real(wp), intent(out) :: shift(3, tree%nbody)
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(body_tree_t), intent(inout) :: tree        !! tables before tree_build; out: the reduced tree
+        integer, intent(in) :: survivor                 !! the body that remains (keeps its axes and name)
+        integer, intent(in) :: absorbed(:)              !! the bodies merged into it
+        integer, intent(out) :: new_index(tree%nbody)   !! number in the reduced tree of each old body
+        real(wp), intent(out) :: shift(3, tree%nbody)   !! add to a point in old body k's frame [m]
+        integer, intent(out) :: stat                    !! stat_ok, or stat_bad_model (errmsg says why)
+        character(len=msglen), intent(out) :: errmsg    !! why the bodies cannot be merged ('' when stat_ok)
         type(body_tree_t) :: old
         logical :: inset(tree%nbody), done(tree%nbody)
         real(wp) :: pos(3, tree%nbody), g(3), mtot, inertia(3, 3), d(3), eye(3, 3)

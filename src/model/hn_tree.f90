@@ -49,8 +49,8 @@ contains
     !> Allocate the tables for `n` bodies with neutral values: unit mass and
     !! inertia, every coordinate active and zero, a chain of bodies.
     pure subroutine tree_allocate(tree, n)
-        type(body_tree_t), intent(out) :: tree
-        integer, intent(in) :: n            !! number of bodies
+        type(body_tree_t), intent(out) :: tree   !! tables for n bodies with neutral values
+        integer, intent(in) :: n                 !! number of bodies
         integer :: k
         tree%nbody = n
         allocate (tree%name(n), tree%parent(n), tree%mass(n), tree%inertia(3, 3, n))
@@ -77,10 +77,10 @@ contains
     !! Rejects parents out of range, loops, non-positive mass and inertia
     !! that is not symmetric positive definite.
     pure subroutine tree_build(tree, stat, errmsg, bad_body)
-        type(body_tree_t), intent(inout) :: tree
-        integer, intent(out) :: stat                !! stat_ok, or stat_bad_model with errmsg
+        type(body_tree_t), intent(inout) :: tree     !! tables filled; out: order, numbering and chains as well
+        integer, intent(out) :: stat                 !! stat_ok, or stat_bad_model with errmsg
         character(len=msglen), intent(out) :: errmsg !! reason on failure
-        integer, intent(out), optional :: bad_body  !! the body at fault (0 when none is)
+        integer, intent(out), optional :: bad_body   !! the body at fault (0 when none is)
         integer :: n, k, m, p, steps, pos, j
         logical, allocatable :: placed(:)
         real(wp) :: a(3, 3), d1, d2, d3, scale
@@ -220,8 +220,8 @@ contains
 
     !> Readable label of active coordinate j, e.g. "HEAD.rx".
     pure function dof_label(tree, j) result(s)
-        type(body_tree_t), intent(in) :: tree
-        integer, intent(in) :: j
+        type(body_tree_t), intent(in) :: tree   !! a built tree
+        integer, intent(in) :: j                !! active coordinate number
         character(len=name_len + 3) :: s
         character(len=2), parameter :: local(6) = ['tx', 'ty', 'tz', 'rx', 'ry', 'rz']
         s = trim(tree%name(tree%dof_body(j)))//'.'//local(tree%dof_local(j))

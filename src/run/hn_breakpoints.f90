@@ -37,7 +37,7 @@ contains
     !! prescribed acceleration tables, applied-load tables and muscle
     !! activation tables; sorted, without repeats.
     function case_breakpoints(cs) result(tb)
-        type(case_t), intent(in) :: cs
+        type(case_t), intent(in) :: cs   !! the run case (prescribed motions, load and activation tables, times)
         real(wp), allocatable :: tb(:), all(:)
         integer :: j, e, i, n
         allocate (all(0))
@@ -77,7 +77,8 @@ contains
     !> The corners of a piecewise-linear table y(t) held constant outside
     !! its times (slope zero before the first and after the last knot).
     pure function table_corners(t, y) result(tc)
-        real(wp), intent(in) :: t(:), y(:)     !! knot times (increasing) and values
+        real(wp), intent(in) :: t(:)   !! knot times, increasing [s]
+        real(wp), intent(in) :: y(:)   !! values at the knots
         real(wp), allocatable :: tc(:)
         logical :: corner(size(t))
         real(wp) :: range, sl, sr, tau

@@ -51,7 +51,8 @@ contains
     !! terminal once the run takes a while) or progress_on (always).
     subroutine progress_start(me, t0, t_end, mode, wall_limit, step_limit)
         class(progress_t), intent(inout) :: me
-        real(wp), intent(in) :: t0, t_end         !! simulated start and end [s]
+        real(wp), intent(in) :: t0                !! simulated start time [s]
+        real(wp), intent(in) :: t_end             !! simulated end time [s]
         integer, intent(in) :: mode               !! progress_off, progress_auto or progress_on
         real(wp), intent(in) :: wall_limit        !! stop after this wall time [s] (0: none)
         integer, intent(in) :: step_limit         !! stop after this many steps (0: none)
@@ -183,9 +184,10 @@ contains
     !! order one, the step is held down by stability (a stiff model): an
     !! implicit method or a softer model helps; otherwise by accuracy.
     function limit_diagnosis(sys, t, y, h, integrator) result(s)
-        type(model_ode_t), intent(inout) :: sys   !! the model's ODE system
-        real(wp), intent(in) :: t, y(:)           !! last good state
-        real(wp), intent(in) :: h                 !! last step size [s]
+        type(model_ode_t), intent(inout) :: sys     !! the model's ODE system
+        real(wp), intent(in) :: t                   !! time of the last good state [s]
+        real(wp), intent(in) :: y(:)                !! last good state (x_F, xdot_F, E)
+        real(wp), intent(in) :: h                   !! last step size [s]
         character(len=*), intent(in) :: integrator  !! method name (CONTROL F4)
         character(len=:), allocatable :: s
         real(wp) :: rho

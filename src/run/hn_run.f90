@@ -83,6 +83,10 @@ module hn_run
         real(wp), allocatable :: vmax(:), vmin(:), tmax(:), tmin(:)
     end type peaks_t
 
+    !> Columns of the run's store of assessment inputs (one per criteria_input_t field).
+    integer, parameter :: col_head_ax = 1, col_head_ay = 2, col_head_az = 3, col_t1_ax = 4, col_oc_fx = 5, &
+                          col_oc_fz = 6, col_oc_my = 7, ncrit_cols = 7
+
     !> Which channels feed the injury assessment (indices into the channel set).
     type :: criteria_columns_t
         integer :: head_ax = 0, head_ay = 0, head_az = 0, t1_ax = 0, oc_fx = 0, oc_fz = 0, oc_my = 0
@@ -236,7 +240,7 @@ contains
             nsample = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
             call me%rows%init(1 + me%ch%n)
             if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample))
-            call me%crit%init(7)
+            call me%crit%init(ncrit_cols)
             me%icol = criteria_columns_t(channel_index(me%ch, 'HEAD_AX'), channel_index(me%ch, 'HEAD_AY'), &
                                          channel_index(me%ch, 'HEAD_AZ'), channel_index(me%ch, 'T1_AX'), &
                                          channel_index(me%ch, 'OC_FX'), channel_index(me%ch, 'OC_FZ'), &
@@ -394,13 +398,16 @@ contains
         class(run_state_t), intent(inout) :: me
         real(wp), intent(in) :: t
         integer :: k
+        real(wp) :: row(ncrit_cols)
         call me%out%sample(t, me%ch, me%sys%ws)
         if (me%out%failed()) call me%fail(exit_output, me%out%error())
         me%ks = me%ks + 1
         k = me%ks
         associate (v => me%ch%value, c => me%icol)
-            call me%crit%add([v(c%head_ax), v(c%head_ay), v(c%head_az), v(c%t1_ax), v(c%oc_fx), v(c%oc_fz), &
-                              v(c%oc_my)])
+            row(col_head_ax) = v(c%head_ax); row(col_head_ay) = v(c%head_ay); row(col_head_az) = v(c%head_az)
+            row(col_t1_ax) = v(c%t1_ax); row(col_oc_fx) = v(c%oc_fx); row(col_oc_fz) = v(c%oc_fz)
+            row(col_oc_my) = v(c%oc_my)
+            call me%crit%add(row)
         end associate
         if (me%keep) then
             me%res%samples_t(k) = t
@@ -591,9 +598,10 @@ contains
         end if
         if (me%rows%m > 0) then
             call criteria_input_allocate(hist, me%crit%n)
-            hist%head_ax = me%crit%column(1); hist%head_ay = me%crit%column(2); hist%head_az = me%crit%column(3)
-            hist%t1_ax = me%crit%column(4); hist%oc_fx = me%crit%column(5); hist%oc_fz = me%crit%column(6)
-            hist%oc_my = me%crit%column(7)
+            hist%head_ax = me%crit%column(col_head_ax); hist%head_ay = me%crit%column(col_head_ay)
+            hist%head_az = me%crit%column(col_head_az); hist%t1_ax = me%crit%column(col_t1_ax)
+            hist%oc_fx = me%crit%column(col_oc_fx); hist%oc_fz = me%crit%column(col_oc_fz)
+            hist%oc_my = me%crit%column(col_oc_my)
             call me%crit%clear()
             call assess(me%cs%t_start, me%cs%sample_dt, hist, me%ks, me%res%criteria)
             call me%lst%histories(me%ch, me%rows)

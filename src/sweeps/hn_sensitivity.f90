@@ -28,7 +28,7 @@ contains
         logical, intent(in) :: ok(:)         !! run completed
         real(wp), intent(in) :: percent      !! step [%]
         real(wp), intent(out) :: s(:)        !! one per parameter
-        logical, intent(out) :: valid(:)
+        logical, intent(out) :: valid(:)     !! s(p) could be computed (its three runs complete, y0 /= 0)
         integer :: p
         do p = 1, size(s)
             valid(p) = ok(1) .and. ok(2*p) .and. ok(2*p + 1) .and. abs(y(1)) > tiny(one)
@@ -46,8 +46,8 @@ contains
         real(wp), intent(in) :: y(:)         !! (nrun) output
         logical, intent(in) :: ok(:)         !! run completed
         real(wp), intent(out) :: b(:)        !! (np)
-        real(wp), intent(out) :: r2
-        logical, intent(out) :: valid
+        real(wp), intent(out) :: r2          !! R^2 of the fit (fraction of the output's variance explained)
+        logical, intent(out) :: valid        !! b and r2 could be computed
         real(wp), allocatable :: z(:, :), w(:), rxx(:, :), rxy(:)
         real(wp) :: sd
         integer :: np, n, p, stat

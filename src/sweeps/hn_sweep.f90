@@ -7,8 +7,10 @@
 module hn_sweep
     use hn_kinds, only: wp, zero, one, msglen
     use hn_case, only: case_t, deck_line_t, path_len
-    use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper
+    use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper, field_text, &
+                              field_value, locate_field
     use hn_deck, only: read_case_lines
+    use hn_changes, only: read_param_kind, kind_family, kind_body, kind_field
     use hn_tree, only: tree_build
     use hn_model, only: model_set_neutral, family_name, family_count, family_items, scale_family
     use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
@@ -23,7 +25,7 @@ module hn_sweep
               run_member, field_text
     public :: output_names, output_units, nout
 
-    integer, parameter, public :: par_family = 1, par_body = 2, par_field = 3
+    integer, parameter, public :: par_family = kind_family, par_body = kind_body, par_field = kind_field
     integer, parameter, public :: design_factorial = 1, design_lhs = 2, design_oat = 3
     character(len=9), parameter, public :: design_name(3) = [character(len=9) :: 'FACTORIAL', 'LHS', 'OAT']
     integer, parameter :: max_params = 50, max_runs = 100000
@@ -82,10 +84,11 @@ contains
     !> Read the sweep deck `path` (named `source` in messages), the base
     !! deck it names, and check every parameter against the base deck.
     subroutine read_sweep(path, source, sw, stat, errmsg)
-        character(len=*), intent(in) :: path, source
-        type(sweep_t), intent(out) :: sw
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        character(len=*), intent(in) :: path           !! sweep deck file, or stdin_path
+        character(len=*), intent(in) :: source         !! its name in messages
+        type(sweep_t), intent(out) :: sw               !! the sweep (base deck lines, parameters, design)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
         type(deck_reader_t) :: rd
         rd%top = source
         call read_card_images(rd, path, source, 0)
@@ -99,11 +102,11 @@ contains
     !> A sweep deck already read into card images (INCLUDE expanded), e.g.
     !! one assembled in memory by the calibration for each of its cases.
     subroutine read_sweep_lines(lines, source, sw, stat, errmsg)
-        type(deck_line_t), intent(in) :: lines(:)   !! card images
-        character(len=*), intent(in) :: source      !! name of the deck in messages
-        type(sweep_t), intent(out) :: sw
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(deck_line_t), intent(in) :: lines(:)      !! card images
+        character(len=*), intent(in) :: source         !! name of the deck in messages
+        type(sweep_t), intent(out) :: sw               !! the sweep (base deck lines, parameters, design)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
+        character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
         type(deck_reader_t) :: rd
         rd%top = source
         rd%lines = lines
@@ -232,24 +235,8 @@ contains
                 call rd%fail(rd%context(i, 1, 'parameter name')//': found "'//trim(p%name)// &
                              '" a second time; expected a new name')
         end do
-        call rd%name(i, 2, 'kind', s)
+        call read_param_kind(rd, i, 2, p%kind, p%field)
         if (rd%failed()) return
-        if (s == 'FAMILY') then
-            p%kind = par_family
-        else if (s == 'BODY') then
-            p%kind = par_body
-        else if (s(1:5) == 'FIELD') then
-            p%kind = par_field
-            read (s(6:), *, iostat=ios) p%field
-            if (ios /= 0 .or. p%field < 1 .or. p%field > 3*nfields) then
-                call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FIELDn with n the '// &
-                             'field number 1 to 21 (8 to 14 on the first continuation card)')
-                return
-            end if
-        else
-            call rd%fail(rd%context(i, 2, 'kind')//': found "'//trim(s)//'"; expected FAMILY, BODY or FIELDn')
-            return
-        end if
         call rd%name(i, 3, 'target', p%target)
         call rd%name(i, 4, 'item', p%item, optional_blank=p%kind == par_field)
         if (sw%design == design_oat .and. rd%is_blank(i, 5) .and. rd%is_blank(i, 6)) then
@@ -314,33 +301,18 @@ contains
                 call rd%fail(rd%context(p%card_line, 4, 'item')//': found "'//trim(p%item)// &
                              '"; expected MASS or INERTIA')
         case (par_field)
-            nfound = 0
-            do i = 1, size(sw%base_lines)
-                if (upper(sw%base_lines(i)%text(1:8)) /= p%target(1:8)) cycle
-                if (len_trim(p%item) > 0) then
-                    if (upper(adjustl(sw%base_lines(i)%text(11:20))) /= p%item) cycle
-                end if
-                nfound = nfound + 1
-                k = i
-            end do
+            call locate_field(sw%base_lines, p%target, p%item, p%field, nfound, p%line, c1, c2)
             if (nfound /= 1) then
                 call rd%fail(at//': found '//trim(int_str(nfound))//' '//trim(p%target)//' cards'// &
                              trim(merge(' named '//p%item, repeat(' ', 17), len_trim(p%item) > 0))// &
                              ' in the base deck; expected exactly one')
                 return
             end if
-            p%line = k + (p%field - 1)/nfields
-            if (p%line > size(sw%base_lines)) then
+            if (p%line == 0) then
                 call rd%fail(at//': the '//trim(p%target)//' card has no continuation card for field '// &
                              trim(int_str(p%field)))
                 return
             end if
-            if (p%line /= k .and. len_trim(sw%base_lines(p%line)%text(1:10)) /= 0) then
-                call rd%fail(at//': the '//trim(p%target)//' card has no continuation card for field '// &
-                             trim(int_str(p%field)))
-                return
-            end if
-            call field_columns(1 + mod(p%field - 1, nfields), c1, c2)
             read (sw%base_lines(p%line)%text(c1:c2), *, iostat=ios) p%nominal
             if (ios /= 0 .or. len_trim(sw%base_lines(p%line)%text(c1:c2)) == 0) then
                 call rd%fail(at//': '//sw%base_lines(p%line)%source//' line '// &
@@ -408,7 +380,7 @@ contains
     !! random (seeded, same on every machine). OAT: run 1 nominal, then each
     !! parameter in turn at nominal*(1 - step) and nominal*(1 + step).
     function sweep_design(sw) result(v)
-        type(sweep_t), intent(in) :: sw
+        type(sweep_t), intent(in) :: sw   !! the sweep (parameters and design)
         real(wp), allocatable :: v(:, :)
         integer :: np, n, r, p, idx, lev
         integer, allocatable :: perm(:)
@@ -457,8 +429,8 @@ contains
 
     !> Value at fraction u in [0, 1] of the parameter's range.
     pure real(wp) function spread_value(p, u) result(x)
-        type(sweep_param_t), intent(in) :: p
-        real(wp), intent(in) :: u
+        type(sweep_param_t), intent(in) :: p   !! the parameter (its range and spacing)
+        real(wp), intent(in) :: u              !! fraction of the range, 0 to 1
         if (p%log_spacing) then
             x = exp(log(p%low) + u*(log(p%high) - log(p%low)))
         else
@@ -480,11 +452,11 @@ contains
     !! factors applied to the model. Sampling is made 0.1 ms or finer so
     !! that the injury criteria are computed.
     subroutine sweep_member_case(sw, v, cs, stat, errmsg)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:)          !! one value per parameter
-        type(case_t), intent(out) :: cs
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(sweep_t), intent(in) :: sw                !! the sweep (base deck, parameters)
+        real(wp), intent(in) :: v(:)                   !! one value per parameter
+        type(case_t), intent(out) :: cs                !! the member's case (no result file, sampling 0.1 ms or finer)
+        integer, intent(out) :: stat                   !! stat_ok, or the failure of the member's deck or tree
+        character(len=msglen), intent(out) :: errmsg   !! why the member's case is invalid ('' when stat_ok)
         type(deck_line_t), allocatable :: lines(:)
         integer :: p, c1, c2
         logical :: rebuild_tree
@@ -533,9 +505,9 @@ contains
     !> Run member `v` of the sweep (listing discarded, no HDF5) and
     !! summarise it. A member that fails keeps its exit code and message.
     subroutine run_member(sw, v, rec)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:)
-        type(member_record_t), intent(out) :: rec
+        type(sweep_t), intent(in) :: sw             !! the sweep
+        real(wp), intent(in) :: v(:)                !! the member's parameter values (a column of sweep_design)
+        type(member_record_t), intent(out) :: rec   !! exit code, message, summary outputs, effort
         type(case_t) :: cs
         type(run_result_t) :: res
         type(run_state_t) :: run
@@ -611,30 +583,5 @@ contains
         character(len=*), intent(in) :: name
         k = findloc(ch%name, name, dim=1)
     end function channel
-
-    !> The most precise text of v that fits a 10-column field.
-    pure function field_text(v) result(s)
-        real(wp), intent(in) :: v
-        character(len=10) :: s
-        character(len=24) :: buf
-        integer :: d, ios
-        do d = 9, 1, -1
-            write (buf, '(es24.'//achar(48 + d)//'e0)', iostat=ios) v
-            if (ios /= 0) cycle
-            buf = adjustl(buf)
-            if (len_trim(buf) <= 10) exit
-        end do
-        s = buf(1:10)
-    end function field_text
-
-    !> v as it reads back from its field text.
-    pure real(wp) function field_value(v) result(x)
-        real(wp), intent(in) :: v
-        character(len=10) :: s
-        integer :: ios
-        s = field_text(v)
-        read (s, *, iostat=ios) x
-        if (ios /= 0) x = v
-    end function field_value
 
 end module hn_sweep

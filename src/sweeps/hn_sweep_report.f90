@@ -23,14 +23,16 @@ contains
     !> Everything after the member runs: sensitivities, the listing on unit
     !! lu, and the result file `h5name` ('' for none).
     subroutine sweep_finish(sw, v, recs, nranks, wall, lu, h5name, version, stat, errmsg)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:, :)
-        type(member_record_t), intent(in) :: recs(:)
-        integer, intent(in) :: nranks, lu
-        real(wp), intent(in) :: wall
-        character(len=*), intent(in) :: h5name, version
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(sweep_t), intent(in) :: sw                !! the sweep
+        real(wp), intent(in) :: v(:, :)                !! (np, nrun) design: parameter values of every member
+        type(member_record_t), intent(in) :: recs(:)   !! (nrun) what each member run gave
+        integer, intent(in) :: nranks                  !! number of MPI ranks that ran the members
+        integer, intent(in) :: lu                      !! unit of the sweep listing
+        real(wp), intent(in) :: wall                   !! wall time of the whole sweep [s]
+        character(len=*), intent(in) :: h5name         !! sweep result file ('' for none)
+        character(len=*), intent(in) :: version        !! program version for the listing and the file
+        integer, intent(out) :: stat                   !! stat_ok, or the failure to write the result file
+        character(len=msglen), intent(out) :: errmsg   !! why the file could not be written ('' when stat_ok)
         real(wp) :: s(size(v, 1), nout), r2(nout)
         logical :: valid(size(v, 1), nout)
         call sweep_sensitivities(sw, v, recs, s, valid, r2)
@@ -45,12 +47,12 @@ contains
     !! standardised regression coefficients otherwise), their validity, and
     !! R^2 of each regression (1 for OAT).
     subroutine sweep_sensitivities(sw, v, recs, s, valid, r2)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:, :)                  !! (np, nrun) design
-        type(member_record_t), intent(in) :: recs(:)
-        real(wp), intent(out) :: s(size(v, 1), nout)
-        logical, intent(out) :: valid(size(v, 1), nout)
-        real(wp), intent(out) :: r2(nout)
+        type(sweep_t), intent(in) :: sw                   !! the sweep (design, step, LOG spacing)
+        real(wp), intent(in) :: v(:, :)                   !! (np, nrun) design
+        type(member_record_t), intent(in) :: recs(:)      !! (nrun) status and summary outputs of every member
+        real(wp), intent(out) :: s(size(v, 1), nout)      !! sensitivity of output k to parameter p
+        logical, intent(out) :: valid(size(v, 1), nout)   !! s(p, k) could be computed
+        real(wp), intent(out) :: r2(nout)                 !! R^2 of each output's regression (1 for OAT)
         real(wp) :: x(size(v, 1), size(v, 2))
         logical :: ok(size(recs))
         real(wp) :: y(size(recs))
@@ -77,8 +79,8 @@ contains
 
     !> "FAMILY MUSCLES M1", "BODY HEAD MASS", "DISC C2C1 F5".
     pure function param_label(sw, p) result(s)
-        type(sweep_t), intent(in) :: sw
-        integer, intent(in) :: p
+        type(sweep_t), intent(in) :: sw   !! the sweep
+        integer, intent(in) :: p          !! parameter number
         character(len=32) :: s
         associate (q => sw%params(p))
             select case (q%kind)
@@ -91,14 +93,16 @@ contains
 
     !> The sweep listing on unit lu.
     subroutine sweep_listing(sw, v, recs, s, valid, r2, nranks, wall, lu, version)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:, :)
-        type(member_record_t), intent(in) :: recs(:)
-        real(wp), intent(in) :: s(:, :), r2(:)
-        logical, intent(in) :: valid(:, :)
-        integer, intent(in) :: nranks, lu
-        real(wp), intent(in) :: wall
-        character(len=*), intent(in) :: version
+        type(sweep_t), intent(in) :: sw                !! the sweep
+        real(wp), intent(in) :: v(:, :)                !! (np, nrun) design: parameter values of every member
+        type(member_record_t), intent(in) :: recs(:)   !! (nrun) what each member run gave
+        real(wp), intent(in) :: s(:, :)                !! (np, nout) sensitivities
+        real(wp), intent(in) :: r2(:)                  !! (nout) R^2 of each output's regression
+        logical, intent(in) :: valid(:, :)             !! (np, nout) s could be computed
+        integer, intent(in) :: nranks                  !! number of MPI ranks that ran the members
+        integer, intent(in) :: lu                      !! unit of the sweep listing
+        real(wp), intent(in) :: wall                   !! wall time of the whole sweep [s]
+        character(len=*), intent(in) :: version        !! program version for the page headers
         type(listing_t) :: lst
         character(len=400) :: line
         integer :: p, r, k, np, nrun, nfail, kk
@@ -228,16 +232,18 @@ contains
 
     !> Write the sweep result file (layout in docs/sweeps.md).
     subroutine sweep_write_h5(sw, v, recs, s, valid, r2, nranks, wall, fname, version, stat, errmsg)
-        type(sweep_t), intent(in) :: sw
-        real(wp), intent(in) :: v(:, :)
-        type(member_record_t), intent(in) :: recs(:)
-        real(wp), intent(in) :: s(:, :), r2(:)
-        logical, intent(in) :: valid(:, :)
-        integer, intent(in) :: nranks
-        real(wp), intent(in) :: wall
-        character(len=*), intent(in) :: fname, version
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(sweep_t), intent(in) :: sw                !! the sweep
+        real(wp), intent(in) :: v(:, :)                !! (np, nrun) design: parameter values of every member
+        type(member_record_t), intent(in) :: recs(:)   !! (nrun) what each member run gave
+        real(wp), intent(in) :: s(:, :)                !! (np, nout) sensitivities
+        real(wp), intent(in) :: r2(:)                  !! (nout) R^2 of each output's regression
+        logical, intent(in) :: valid(:, :)             !! (np, nout) s could be computed
+        integer, intent(in) :: nranks                  !! number of MPI ranks that ran the members
+        real(wp), intent(in) :: wall                   !! wall time of the whole sweep [s]
+        character(len=*), intent(in) :: fname          !! sweep result file (.h5)
+        character(len=*), intent(in) :: version        !! program version written to the file
+        integer, intent(out) :: stat                   !! stat_ok, or stat_io
+        character(len=msglen), intent(out) :: errmsg   !! why the file could not be written ('' when stat_ok)
         type(h5_file_t) :: h5
         character(len=:), allocatable :: deck
         character(len=32) :: labels(size(v, 1))

@@ -1,0 +1,238 @@
+!> One-run parameter changes: CHANGE cards scale or set a parameter of the
+!! case for this run without editing the model deck, with the parameter
+!! kinds of a sweep (docs/sweeps.md):
+!!
+!!   CHANGE  name  FAMILY  family  item           SCALE       factor
+!!   CHANGE  name  BODY    body    MASS|INERTIA   SCALE|SET   value
+!!   CHANGE  name  FIELDn  card    name-in-F1     SCALE|SET   value
+!!
+!! A FIELD change rewrites the field before the cards are interpreted, so
+!! that the deck's own checks and units apply to the new value; FAMILY and
+!! BODY changes act on the model after every element card. Each change is
+!! described in a note (old and new value) for the listing and the result
+!! file.
+module hn_changes
+    use hn_kinds, only: wp, zero, msglen
+    use hn_deck_reader, only: deck_reader_t, locate_field, field_text, int_str, nfields, parse_real
+    use hn_model, only: model_t, family_name, family_items, scale_family
+    use hn_tree, only: tree_build
+    implicit none
+    private
+
+    public :: change_t, read_changes, apply_field_changes, apply_model_changes, read_param_kind
+
+    !> Parameter kinds, shared with the sweeps' PARAM cards.
+    integer, parameter, public :: kind_family = 1   !! a property of every element of a family
+    integer, parameter, public :: kind_body = 2     !! a body's mass or inertia
+    integer, parameter, public :: kind_field = 3    !! a numeric field of a card
+    integer, parameter :: note_len = 160
+
+    !> One CHANGE card.
+    type :: change_t
+        character(len=10) :: name = ''     !! the change's name (F1)
+        integer :: kind = 0                !! kind_family, kind_body or kind_field
+        character(len=10) :: target = ''   !! family, body or card name (F3)
+        character(len=10) :: item = ''     !! property, or the name in field F1 of the card (F4)
+        integer :: field = 0               !! field number across the card (FIELDn)
+        logical :: set = .false.           !! SET (else SCALE)
+        real(wp) :: value = zero           !! factor or new value (F6)
+        integer :: line = 0                !! card image of the CHANGE card
+    end type change_t
+
+contains
+
+    !> The CHANGE cards at card images `first` of rd, checked field by field.
+    subroutine read_changes(rd, first, changes)
+        type(deck_reader_t), intent(inout) :: rd          !! the deck (errors located there)
+        integer, intent(in) :: first(:)                   !! card images of the CHANGE cards
+        type(change_t), allocatable, intent(out) :: changes(:)  !! the changes, in deck order
+        character(len=10) :: s
+        integer :: k, i
+        allocate (changes(size(first)))
+        do k = 1, size(first)
+            i = first(k)
+            changes(k)%line = i
+            call rd%name(i, 1, 'change name', changes(k)%name)
+            call read_param_kind(rd, i, 2, changes(k)%kind, changes(k)%field)
+            if (rd%failed()) return
+            call rd%name(i, 3, 'target', changes(k)%target)
+            call rd%name(i, 4, 'item', changes(k)%item, optional_blank=changes(k)%kind == kind_field)
+            call rd%name(i, 5, 'how', s)
+            if (rd%failed()) return
+            if (s /= 'SCALE' .and. s /= 'SET') then
+                call rd%fail(rd%context(i, 5, 'how')//': found "'//trim(s)//'"; expected SCALE or SET')
+                return
+            end if
+            changes(k)%set = s == 'SET'
+            if (changes(k)%set) then
+                call rd%real(i, 6, 'new value', 'units of the target', changes(k)%value, -1.0e30_wp, 1.0e30_wp)
+            else
+                call rd%real(i, 6, 'factor', '-', changes(k)%value, 1.0e-6_wp, 1.0e6_wp)
+            end if
+            if (rd%failed()) return
+            if (changes(k)%kind == kind_field .and. changes(k)%target == 'CHANGE') then
+                call rd%fail(rd%context(i, 3, 'target')//': found "CHANGE"; expected the card whose field '// &
+                             'changes (a CHANGE card cannot change another)')
+                return
+            end if
+        end do
+    end subroutine read_changes
+
+    !> The parameter kind in field f of card image i: FAMILY, BODY or FIELDn
+    !! (n the field number across the card, 1 to 3*nfields).
+    subroutine read_param_kind(rd, i, f, kind, field)
+        type(deck_reader_t), intent(inout) :: rd   !! the deck (errors located there)
+        integer, intent(in) :: i                   !! card image
+        integer, intent(in) :: f                   !! field number on it (1..nfields)
+        integer, intent(out) :: kind               !! kind_family, kind_body or kind_field (0 on error)
+        integer, intent(out) :: field              !! n of FIELDn (0 for the other kinds)
+        character(len=10) :: s
+        integer :: ios
+        kind = 0
+        field = 0
+        call rd%name(i, f, 'kind', s)
+        if (rd%failed()) return
+        if (s == 'FAMILY') then
+            kind = kind_family
+        else if (s == 'BODY') then
+            kind = kind_body
+        else if (s(1:5) == 'FIELD') then
+            kind = kind_field
+            read (s(6:), *, iostat=ios) field
+            if (ios /= 0 .or. field < 1 .or. field > 3*nfields) &
+                call rd%fail(rd%context(i, f, 'kind')//': found "'//trim(s)//'"; expected FIELDn with n the '// &
+                             'field number 1 to 21 (8 to 14 on the first continuation card)')
+        else
+            call rd%fail(rd%context(i, f, 'kind')//': found "'//trim(s)//'"; expected FAMILY, BODY or FIELDn')
+        end if
+    end subroutine read_param_kind
+
+    !> Rewrite the fields that FIELD changes name, in rd's card images (the
+    !! deck kept for the listing and the result file is not touched).
+    subroutine apply_field_changes(rd, changes, notes)
+        type(deck_reader_t), intent(inout) :: rd                   !! the deck
+        type(change_t), intent(in) :: changes(:)                   !! the changes
+        character(len=note_len), allocatable, intent(inout) :: notes(:)  !! one line per change made
+        integer :: k, nfound, line, c1, c2
+        real(wp) :: old, new
+        logical :: ok
+        character(len=note_len) :: note
+        do k = 1, size(changes)
+            associate (c => changes(k), i => changes(k)%line)
+                if (c%kind /= kind_field) cycle
+                call locate_field(rd%lines(1:rd%nlines), c%target, c%item, c%field, nfound, line, c1, c2)
+                if (nfound /= 1) then
+                    call rd%fail(rd%where(i)//' (CHANGE '//trim(c%name)//'): found '//trim(int_str(nfound))//' '// &
+                                 trim(c%target)//' cards'//trim(merge(' named '//c%item, repeat(' ', 17), &
+                                 len_trim(c%item) > 0))//' in the deck; expected exactly one')
+                    return
+                end if
+                if (line == 0) then
+                    call rd%fail(rd%where(i)//' (CHANGE '//trim(c%name)//'): the '//trim(c%target)// &
+                                 ' card has no continuation card for field '//trim(int_str(c%field)))
+                    return
+                end if
+                call parse_real(rd%lines(line)%text(c1:c2), old, ok)
+                if (.not. c%set .and. .not. ok) then
+                    call rd%fail(rd%where(i)//' (CHANGE '//trim(c%name)//'): '//rd%where(line)//', columns '// &
+                                 trim(int_str(c1))//'-'//trim(int_str(c2))//' holds "'// &
+                                 trim(rd%lines(line)%text(c1:c2))//'"; expected a number to SCALE (or SET a value)')
+                    return
+                end if
+                new = c%value
+                if (.not. c%set) new = c%value*old
+                rd%lines(line)%text(c1:c2) = field_text(new)
+                write (note, '(6a)') trim(c%name), ': ', trim(c%target), ' ', trim(c%item), &
+                    ' field F'//trim(int_str(c%field))//' '
+                if (ok) then
+                    note = trim(note)//' '//trim(adjustl(field_text(old)))//' -> '//trim(adjustl(field_text(new)))
+                else
+                    note = trim(note)//' blank -> '//trim(adjustl(field_text(new)))
+                end if
+                notes = [character(len=note_len) :: notes, trim(note)//'  ('//trim(rd%where(i))//')']
+            end associate
+        end do
+    end subroutine apply_field_changes
+
+    !> Apply the FAMILY and BODY changes to the model: family properties
+    !! scaled, body masses and inertias scaled or set (the tree's derived
+    !! tables rebuilt).
+    subroutine apply_model_changes(rd, changes, model, notes)
+        type(deck_reader_t), intent(inout) :: rd                   !! the deck (errors located there)
+        type(change_t), intent(in) :: changes(:)                   !! the changes
+        type(model_t), intent(inout) :: model                      !! the model changed
+        character(len=note_len), allocatable, intent(inout) :: notes(:)  !! one line per change made
+        character(len=10) :: items(3)
+        character(len=note_len) :: note
+        character(len=msglen) :: msg
+        integer :: k, fam, kb, stat
+        real(wp) :: old
+        logical :: rebuild
+        rebuild = .false.
+        do k = 1, size(changes)
+            associate (c => changes(k), i => changes(k)%line)
+                select case (c%kind)
+                case (kind_family)
+                    fam = findloc(family_name, c%target(1:min(len(c%target), len(family_name))), dim=1)
+                    if (fam == 0) then
+                        call rd%fail(rd%context(i, 3, 'target')//': found "'//trim(c%target)// &
+                                     '"; expected DISCS, LIGAMENTS, MUSCLES, LIMITS or SPRINGS')
+                        return
+                    end if
+                    items = family_items(fam)
+                    if (.not. any(items == c%item .and. len_trim(items) > 0)) then
+                        call rd%fail(rd%context(i, 4, 'item')//': found "'//trim(c%item)//'"; expected '// &
+                                     trim(items(1))//', '//trim(items(2))//' or '//trim(items(3))//' for '//trim(c%target))
+                        return
+                    end if
+                    if (c%set) then
+                        call rd%fail(rd%context(i, 5, 'how')//': found "SET"; a FAMILY change scales every '// &
+                                     'element of the family: expected SCALE')
+                        return
+                    end if
+                    call scale_family(model, fam, c%item, c%value)
+                    write (note, '(5a)') trim(c%name), ': every element of ', trim(c%target), ', ', trim(c%item)
+                    note = trim(note)//' x '//trim(adjustl(field_text(c%value)))
+                case (kind_body)
+                    kb = findloc(model%tree%name, c%target, dim=1)
+                    if (kb == 0) then
+                        call rd%fail(rd%context(i, 3, 'target')//': found "'//trim(c%target)// &
+                                     '"; expected a body of the deck (after its MERGE cards)')
+                        return
+                    end if
+                    if (c%item == 'MASS') then
+                        old = model%tree%mass(kb)
+                        model%tree%mass(kb) = merge(c%value, c%value*old, c%set)
+                        if (.not. (model%tree%mass(kb) > zero)) then
+                            call rd%fail(rd%context(i, 6, 'new value')//': gives a mass of '// &
+                                         trim(adjustl(field_text(model%tree%mass(kb))))//' kg; expected a positive mass')
+                            return
+                        end if
+                        note = trim(c%name)//': mass of '//trim(c%target)//' '//trim(adjustl(field_text(old)))// &
+                               ' -> '//trim(adjustl(field_text(model%tree%mass(kb))))//' kg'
+                    else if (c%item == 'INERTIA') then
+                        if (c%set) then
+                            call rd%fail(rd%context(i, 5, 'how')//': found "SET"; an inertia matrix is scaled '// &
+                                         '(SET it on the BODY card): expected SCALE')
+                            return
+                        end if
+                        model%tree%inertia(:, :, kb) = c%value*model%tree%inertia(:, :, kb)
+                        note = trim(c%name)//': inertia of '//trim(c%target)//' x '//trim(adjustl(field_text(c%value)))
+                    else
+                        call rd%fail(rd%context(i, 4, 'item')//': found "'//trim(c%item)//'"; expected MASS or INERTIA')
+                        return
+                    end if
+                    rebuild = .true.
+                case default
+                    cycle
+                end select
+                notes = [character(len=note_len) :: notes, trim(note)//'  ('//trim(rd%where(i))//')']
+            end associate
+        end do
+        if (rebuild) then
+            call tree_build(model%tree, stat, msg)
+            if (stat /= 0) call rd%fail(rd%where(changes(1)%line)//' (CHANGE cards): '//trim(msg))
+        end if
+    end subroutine apply_model_changes
+
+end module hn_changes
