@@ -8,7 +8,10 @@
 !! cases (x- and z-acceleration, angular acceleration, angular velocity,
 !! rotation; the rating of tools/compare_nbdl.py, docs/validation.md), P the
 !! mean over the cases' six head peaks of max(0, |z| - 1), z the peak's
-!! distance from the volunteers' mean in SDs, w = 0.02.
+!! distance from the volunteers' mean in SDs, w = 0.02, subject to the
+!! model standing at rest: a parameter set whose start state (posture held,
+!! the bracing activation) has an eigenvalue with real part above -1 1/s
+!! in any case (hn_rest_modes) is not run and gets J = 2 + 0.1 s (lmax + 1).
 !! Optimizer: a Latin hypercube of starting points (seeded) and Nelder-Mead
 !! from the best of them, in the unit cube of the parameter ranges (LOG
 !! ranges in logarithms), points clamped to the bounds. Deterministic: the
@@ -24,6 +27,7 @@ module hn_calibrate
     use hn_run, only: run_state_t, run_result_t, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
+    use hn_rest_modes, only: rest_mode_t, rest_modes
     implicit none
     private
 
@@ -42,6 +46,9 @@ module hn_calibrate
     real(wp), parameter :: window(2) = [30.0_wp, 250.0_wp]   !! rating window [ms]
     real(wp), parameter :: peak_weight = 0.02_wp             !! w of the objective
     real(wp), parameter :: failed_objective = 10.0_wp        !! J of a parameter set whose run fails
+    real(wp), parameter :: rest_margin = -1.0_wp             !! largest real part allowed at rest [1/s]
+    real(wp), parameter :: unstable_objective = 2.0_wp       !! J of a set unstable at rest, at the margin
+    real(wp), parameter :: unstable_slope = 0.1_wp           !! its growth per 1/s beyond the margin [s]
 
     !> The volunteers of one case, CFC 60: point-wise mean and SD of the
     !! rated channels and the mean and SD of the runs' peaks and times.
@@ -441,16 +448,51 @@ contains
         end function int_field
     end subroutine read_calibration
 
-    !> Objective J and the scores of every case for parameter values v.
-    subroutine evaluate(cal, v, j, sc, ok)
-        type(calibration_t), intent(in) :: cal
+    !> Largest real part of the eigenvalues at rest (hn_rest_modes: the
+    !! start state of every case, posture held as the case holds it) over
+    !! the cases at parameter values v [1/s]; huge when a case cannot be
+    !! built or analysed.
+    function rest_growth(cal, v) result(lmax)
+        type(calibration_t), intent(in) :: cal       !! the calibration
+        real(wp), intent(in) :: v(:)                 !! one value per parameter
+        real(wp) :: lmax
+        type(case_t) :: cs
+        type(rest_mode_t), allocatable :: modes(:)
+        integer :: c, stat
+        character(len=msglen) :: msg
+        lmax = -huge(one)
+        do c = 1, size(cal%sw)
+            call sweep_member_case(cal%sw(c), v, cs, stat, msg)
+            if (stat == stat_ok) call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
+            if (stat /= stat_ok) then
+                lmax = huge(one); return
+            end if
+            if (size(modes) > 0) lmax = max(lmax, modes(1)%re)
+        end do
+    end function rest_growth
+
+    !> Objective J and the scores of every case for parameter values v. A
+    !! parameter set whose model is not stable at rest with the margin
+    !! (largest real part above rest_margin in any case: a braced neck
+    !! stands) is not run: J = 2 + 0.1 s (lmax - rest_margin), worse than
+    !! any stable set and decreasing towards stability.
+    subroutine evaluate(cal, v, j, sc, ok, growth)
+        type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
         real(wp), intent(out) :: j                   !! the objective
         type(score_t), intent(out) :: sc(:)          !! (ncase)
         logical, intent(out) :: ok                   !! every run complete
+        real(wp), intent(out), optional :: growth    !! largest real part at rest over the cases [1/s]
         real(wp), allocatable :: y(:, :, :)
-        real(wp) :: rsum, psum
+        real(wp) :: rsum, psum, lmax
         integer :: c
+        lmax = rest_growth(cal, v)
+        if (present(growth)) growth = lmax
+        if (lmax > rest_margin) then
+            ok = .false.
+            j = min(failed_objective, unstable_objective + unstable_slope*(lmax - rest_margin))
+            return
+        end if
         allocate (y(maxval([(size(cal%vol(c)%t), c=1, size(cal%vol))]), nrated, size(cal%sw)))
         call member_histories(cal, v, y, ok)
         j = failed_objective
@@ -574,7 +616,7 @@ contains
         real(wp), intent(out) :: jbest               !! objective there
         integer, intent(out) :: nevals               !! model evaluations (each runs every case)
         real(wp), allocatable :: design(:, :)
-        real(wp) :: u0(size(cal%sw(1)%params)), ubest(size(u0)), j, jstart
+        real(wp) :: u0(size(cal%sw(1)%params)), ubest(size(u0)), j, jstart, lmax
         type(score_t) :: sc(size(cal%sw))
         logical :: ok
         integer :: r, k, nnm
@@ -584,9 +626,10 @@ contains
             if (cal%max_evals == 0) then                 ! score the decks as they are, or at VALUES
                 vbest = par%nominal
                 if (size(cal%values) == size(par)) vbest = cal%values
-                call evaluate(cal, vbest, jbest, sc, ok)
+                call evaluate(cal, vbest, jbest, sc, ok, lmax)
                 nevals = 1
                 call score_report(cal, sc, jbest, lu)
+                write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
                 return
             end if
             design = sweep_design(cal%sw(1))
@@ -604,8 +647,9 @@ contains
             call nelder_mead(obj, u0, 0.15_wp, max(cal%max_evals - nevals, size(par) + 2), 1.0e-4_wp, ubest, jbest, nnm)
             vbest = values_of(ubest)
             write (lu, '(a,f9.5,a,i0,a)') 'BEST OBJECTIVE ', jbest, ' AFTER ', nevals, ' EVALUATIONS'
-            call evaluate(cal, vbest, j, sc, ok)
+            call evaluate(cal, vbest, j, sc, ok, lmax)
             call score_report(cal, sc, j, lu)
+            write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
             do k = 1, size(par)
                 write (lu, '(a,a10,a,a10,a,es12.5,a,es12.5,a)') 'PARAM ', par(k)%name, ' = ', field_text(vbest(k)), &
                     '   (bounds ', par(k)%low, ' to ', par(k)%high, ')'
