@@ -28,9 +28,9 @@ contains
 
     !> The force or couple vector in R at time t.
     pure function applied_vector(al, kin, t) result(f)
-        type(applied_load_t), intent(in) :: al
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(in) :: t
+        type(applied_load_t), intent(in) :: al   !! the applied load
+        type(kinematics_t), intent(in) :: kin    !! kinematics of the tree
+        real(wp), intent(in) :: t                !! time [s]
         real(wp) :: f(3)
         f = table_value(al%magnitude, t)*al%direction
         if (al%frame == frame_body) f = matmul(kin%s(:, :, al%body), f)
@@ -38,10 +38,10 @@ contains
 
     !> Add the load at time t to the body loads.
     pure subroutine apply_applied_load(al, kin, t, loads)
-        type(applied_load_t), intent(in) :: al
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(in) :: t
-        type(body_loads_t), intent(inout) :: loads
+        type(applied_load_t), intent(in) :: al   !! the applied load
+        type(kinematics_t), intent(in) :: kin    !! kinematics of the tree
+        real(wp), intent(in) :: t                !! time [s]
+        type(body_loads_t), intent(inout) :: loads !! body loads, the load added
         real(wp) :: f(3), p(3)
         integer :: k
         k = al%body

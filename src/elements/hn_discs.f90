@@ -51,7 +51,7 @@ contains
 
     !> Stiffness K of the disc (eqs 1-9), ordered (u1, u2, u3, theta1, theta2, theta3).
     pure function disc_stiffness(d) result(k)
-        type(disc_t), intent(in) :: d
+        type(disc_t), intent(in) :: d            !! the disc
         real(wp) :: k(6, 6)
         real(wp) :: phi, kb
         k = zero
@@ -77,8 +77,8 @@ contains
     !> Fix the plate frames and neutral offset from the kinematics of the
     !! neutral configuration, and form K and C.
     pure subroutine disc_set_reference(d, kin)
-        type(disc_t), intent(inout) :: d
-        type(kinematics_t), intent(in) :: kin
+        type(disc_t), intent(inout) :: d         !! the disc; out: its plate frames, neutral offset, K and C
+        type(kinematics_t), intent(in) :: kin    !! kinematics in the neutral configuration
         real(wp) :: sl(3, 3), su(3, 3), plo(3), pup(3)
         d%ra = rot_y(d%tilt)
         call plates(d, kin, sl, su, plo, pup)
@@ -103,7 +103,7 @@ contains
     !> J_l(theta)^-1 of the rotation vector: thetadot = J^-1 omega, omega the
     !! left (spatial) angular velocity of exp(skew(theta)).
     pure function inv_left_jacobian(th) result(m)
-        real(wp), intent(in) :: th(3)
+        real(wp), intent(in) :: th(3)            !! rotation vector [rad]
         real(wp) :: m(3, 3), t, a, w(3, 3)
         integer :: i
         t = norm3(th)
@@ -122,9 +122,12 @@ contains
     !> Deformations q and rates qd of the disc, the lower plate frame L (R)
     !! and the upper plate centre (R) where the loads act.
     pure subroutine disc_deformation(d, kin, q, qd, l, pup)
-        type(disc_t), intent(in) :: d
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(out) :: q(6), qd(6), l(3, 3), pup(3)
+        type(disc_t), intent(in) :: d            !! the disc
+        type(kinematics_t), intent(in) :: kin    !! kinematics of the tree
+        real(wp), intent(out) :: q(6)            !! deformations: u1, u2, u3 [m], theta1-3 [rad]
+        real(wp), intent(out) :: qd(6)           !! their rates [m/s, rad/s]
+        real(wp), intent(out) :: l(3, 3)         !! lower plate frame L in R
+        real(wp), intent(out) :: pup(3)          !! upper plate centre in R [m]
         real(wp) :: sa(3, 3), sb(3, 3), plo(3), rel(3), vrel(3), wa(3), wb(3)
         call plates(d, kin, sa, sb, plo, pup)
         l = matmul(sa, d%ra)
@@ -142,26 +145,27 @@ contains
     !> Stress resultants s = K q + C qd: shear forces, axial force (tension
     !! positive), bending moments and torque conjugate to q.
     pure function disc_resultants(d, q, qd) result(s)
-        type(disc_t), intent(in) :: d
-        real(wp), intent(in) :: q(6), qd(6)
+        type(disc_t), intent(in) :: d            !! the disc
+        real(wp), intent(in) :: q(6)             !! deformations [m, rad]
+        real(wp), intent(in) :: qd(6)            !! their rates [m/s, rad/s]
         real(wp) :: s(6)
         s = matmul(d%k, q) + matmul(d%c, qd)
     end function disc_resultants
 
     !> Elastic energy q^T K q / 2.
     pure real(wp) function disc_energy(d, q) result(u)
-        type(disc_t), intent(in) :: d
-        real(wp), intent(in) :: q(6)
+        type(disc_t), intent(in) :: d            !! the disc
+        real(wp), intent(in) :: q(6)             !! deformations [m, rad]
         u = half*dot_product(q, matmul(d%k, q))
     end function disc_energy
 
     !> Add the disc loads to both bodies; returns the resultants s, the
     !! stored energy u = q^T K q / 2 and the dissipated power qd^T C qd.
     pure subroutine apply_disc(d, kin, loads, s, u, pdiss)
-        type(disc_t), intent(in) :: d
-        type(kinematics_t), intent(in) :: kin
-        type(body_loads_t), intent(inout) :: loads
-        real(wp), intent(out) :: s(6)
+        type(disc_t), intent(in) :: d            !! the disc
+        type(kinematics_t), intent(in) :: kin    !! kinematics of the tree
+        type(body_loads_t), intent(inout) :: loads !! body loads, the disc's added
+        real(wp), intent(out) :: s(6)            !! resultants: shear, axial [N], bending, torque [N m]
         real(wp), intent(out) :: u       !! elastic energy [J]
         real(wp), intent(out) :: pdiss   !! dissipated power [W]
         real(wp) :: q(6), qd(6), l(3, 3), pup(3), f(3), c(3)

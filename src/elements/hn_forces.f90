@@ -39,8 +39,8 @@ contains
 
     !> Size the element outputs of a model.
     pure subroutine element_output_allocate(model, eo)
-        type(model_t), intent(in) :: model
-        type(element_output_t), intent(out) :: eo
+        type(model_t), intent(in) :: model       !! the model
+        type(element_output_t), intent(out) :: eo !! outputs sized for its elements, zero
         allocate (eo%disc(6, size(model%discs)), eo%ligament(2, size(model%ligaments)))
         allocate (eo%muscle(3, size(model%muscles)), eo%limit(size(model%limits)))
         allocate (eo%spring(size(model%springs)))
@@ -50,12 +50,13 @@ contains
     !> All applied loads at time t for the kinematic state kin (x, xd the
     !! active coordinates and rates the kinematics was computed from).
     pure subroutine compute_loads(model, t, kin, x, xd, loads, eo)
-        type(model_t), intent(in) :: model
-        real(wp), intent(in) :: t
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(in) :: x(:), xd(:)
-        type(body_loads_t), intent(inout) :: loads
-        type(element_output_t), intent(inout) :: eo
+        type(model_t), intent(in) :: model       !! the model
+        real(wp), intent(in) :: t                !! time [s]
+        type(kinematics_t), intent(in) :: kin    !! kinematics at (x, xd)
+        real(wp), intent(in) :: x(:)             !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)            !! their rates [m/s, rad/s]
+        type(body_loads_t), intent(inout) :: loads !! body loads, every element's and applied load's added
+        type(element_output_t), intent(inout) :: eo !! element outputs, energies and powers
         integer :: k, e
         real(wp) :: u, pd, v(3), p(3), pv(3)
         type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles)), gs(size(model%springs))
@@ -156,7 +157,7 @@ contains
 
     !> Number of switching functions of the one-way elements.
     pure integer function switch_count(model) result(n)
-        type(model_t), intent(in) :: model
+        type(model_t), intent(in) :: model       !! the model
         integer :: e
         n = size(model%limits) + size(model%muscles)
         do e = 1, size(model%ligaments)
@@ -171,11 +172,11 @@ contains
     !! crossing zero (tension starts or stops), a ligament with l1 > 0
     !! becoming taut. Families switched off give +1.
     pure subroutine switching_functions(model, t, kin, x, sw)
-        type(model_t), intent(in) :: model
-        real(wp), intent(in) :: t
-        type(kinematics_t), intent(in) :: kin
-        real(wp), intent(in) :: x(:)
-        real(wp), intent(out) :: sw(:)
+        type(model_t), intent(in) :: model       !! the model
+        real(wp), intent(in) :: t                !! time [s]
+        type(kinematics_t), intent(in) :: kin    !! kinematics at x
+        real(wp), intent(in) :: x(:)             !! active coordinates [m, rad]
+        real(wp), intent(out) :: sw(:)           !! (switch_count) the switching functions
         type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles))
         real(wp) :: act(size(model%muscles))
         integer :: e, i

@@ -43,8 +43,8 @@ contains
 
     !> Damping coefficient C(X) (eq 13): continuous at both limits.
     pure real(wp) function limit_damping(lim, x) result(c)
-        type(joint_limit_t), intent(in) :: lim
-        real(wp), intent(in) :: x
+        type(joint_limit_t), intent(in) :: lim   !! the joint-limit damper
+        real(wp), intent(in) :: x                !! its coordinate [m or rad]
         if (x > lim%xmax) then
             c = lim%c0 + lim%c1*(x - lim%xmax)
         else if (x < lim%xmin) then
@@ -57,8 +57,9 @@ contains
     !> Generalized force (eq 12): -C xdot when the motion carries the
     !! coordinate away from neutral (towards a limit), zero otherwise.
     pure real(wp) function limit_force(lim, x, xd) result(q)
-        type(joint_limit_t), intent(in) :: lim
-        real(wp), intent(in) :: x, xd
+        type(joint_limit_t), intent(in) :: lim   !! the joint-limit damper
+        real(wp), intent(in) :: x                !! its coordinate [m or rad]
+        real(wp), intent(in) :: xd               !! its rate [m/s or rad/s]
         if (xd*(x - lim%xneutral) > zero) then
             q = -limit_damping(lim, x)*xd
         else
@@ -98,7 +99,8 @@ contains
         type(joint_range_t), intent(in) :: ranges(:)  !! the ranges
         real(wp), intent(in) :: x(:)                  !! active coordinates
         real(wp), intent(in) :: t                     !! time [s]
-        real(wp), intent(inout) :: peak(:), tpeak(:)  !! largest |excess| so far [rad], when [s]
+        real(wp), intent(inout) :: peak(:)       !! largest |excess| so far [rad]
+        real(wp), intent(inout) :: tpeak(:)      !! when [s]
         real(wp) :: e
         integer :: k
         do k = 1, size(ranges)

@@ -166,7 +166,7 @@ contains
         real(wp), intent(in) :: ca(3)          !! point a in body ka's frame [m]
         integer, intent(in) :: kb              !! body of end b
         real(wp), intent(in) :: cb(3)          !! point b in body kb's frame [m]
-        type(line_geometry_t), intent(out) :: g
+        type(line_geometry_t), intent(out) :: g  !! ends, unit vector a to b, length and its rate
         real(wp) :: va(3), vb(3), d(3)
         call attachment_point(kin, ka, ca, g%pa, va)
         call attachment_point(kin, kb, cb, g%pb, vb)
@@ -193,9 +193,10 @@ contains
 
     !> Apply a tension (positive pulls the ends together) along the line.
     pure subroutine apply_line_tension(loads, kin, ka, kb, g, tension)
-        type(body_loads_t), intent(inout) :: loads
+        type(body_loads_t), intent(inout) :: loads !! body loads, the tension's added
         type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
-        integer, intent(in) :: ka, kb          !! bodies of ends a and b
+        integer, intent(in) :: ka                !! body of end a (0: inertial frame)
+        integer, intent(in) :: kb                !! body of end b (0: inertial frame)
         type(line_geometry_t), intent(in) :: g !! the line's geometry
         real(wp), intent(in) :: tension        !! [N]
         if (ka > 0) call add_point_force(loads, ka, kin%r(:, ka), g%pa, tension*g%unit)
@@ -204,7 +205,7 @@ contains
 
     !> Apply the tensions of a list of line elements to their bodies.
     pure subroutine apply_line_tensions(loads, kin, at, g, tension)
-        type(body_loads_t), intent(inout) :: loads
+        type(body_loads_t), intent(inout) :: loads !! body loads, the tensions added
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
         class(line_attach_t), intent(in) :: at(:)    !! the elements (any kind)
         type(line_geometry_t), intent(in) :: g(:)    !! their geometry
@@ -298,7 +299,7 @@ contains
     !! tension pulls its two points together (at a via point the two
     !! segments' pulls add up).
     pure subroutine apply_muscle_tensions(loads, kin, muscles, g, tension)
-        type(body_loads_t), intent(inout) :: loads
+        type(body_loads_t), intent(inout) :: loads !! body loads, the tensions added
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
         type(muscle_t), intent(in) :: muscles(:)     !! the muscles
         type(line_geometry_t), intent(in) :: g(:)    !! their path geometry (muscle_geometries)

@@ -49,8 +49,8 @@ contains
 
     !> Number of elements of family f in the model.
     pure integer function family_count(model, f) result(n)
-        type(model_t), intent(in) :: model
-        integer, intent(in) :: f
+        type(model_t), intent(in) :: model       !! the model
+        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
         select case (f)
         case (fam_discs); n = size(model%discs)
         case (fam_ligaments); n = size(model%ligaments)
@@ -63,8 +63,8 @@ contains
 
     !> Start a model on a built tree: nothing prescribed, no elements.
     pure subroutine model_init(model, tree)
-        type(model_t), intent(out) :: model
-        type(body_tree_t), intent(in) :: tree
+        type(model_t), intent(out) :: model      !! the model, empty
+        type(body_tree_t), intent(in) :: tree    !! the built body tree
         model%tree = tree
         allocate (model%prescribed(tree%ndof), model%motion(tree%ndof), model%q_hold(tree%ndof))
         model%prescribed = .false.
@@ -77,7 +77,7 @@ contains
     !> Active coordinates of the neutral configuration (every coordinate at
     !! its reference value).
     pure function neutral_coordinates(model) result(x)
-        type(model_t), intent(in) :: model
+        type(model_t), intent(in) :: model       !! the model
         real(wp) :: x(model%tree%ndof)
         integer :: j
         do j = 1, model%tree%ndof
@@ -88,7 +88,7 @@ contains
     !> Measure the neutral configuration: disc plate frames and offsets,
     !! and the free lengths of ligaments and muscles not given explicitly.
     pure subroutine model_set_neutral(model)
-        type(model_t), intent(inout) :: model
+        type(model_t), intent(inout) :: model    !! the model; out: disc references and free lengths set
         type(kinematics_t) :: kin
         real(wp) :: x0(model%tree%ndof)
         integer :: e
@@ -105,7 +105,7 @@ contains
 
     !> Properties of a family that a FAMILY parameter may scale.
     pure function family_items(f) result(items)
-        integer, intent(in) :: f
+        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
         character(len=10) :: items(3)
         items = ''
         select case (f)
@@ -119,10 +119,10 @@ contains
 
     !> Multiply one property of every element of a family by `factor`.
     pure subroutine scale_family(model, f, item, factor)
-        type(model_t), intent(inout) :: model
-        integer, intent(in) :: f
-        character(len=*), intent(in) :: item
-        real(wp), intent(in) :: factor
+        type(model_t), intent(inout) :: model    !! the model
+        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
+        character(len=*), intent(in) :: item     !! property, one of family_items(f)
+        real(wp), intent(in) :: factor           !! the factor
         select case (f)
         case (fam_discs)
             select case (item)

@@ -83,7 +83,7 @@ module hn_calibrate
         !> An objective on the unit cube.
         function objective_fn(u) result(f)
             import :: wp
-            real(wp), intent(in) :: u(:)
+            real(wp), intent(in) :: u(:)             !! point in the unit cube
             real(wp) :: f
         end function objective_fn
     end interface
@@ -94,9 +94,9 @@ contains
     !! reference/nbdl_15g) filtered CFC 60: mean, SD and peaks.
     subroutine read_volunteers(dir, vd, stat, errmsg)
         character(len=*), intent(in) :: dir    !! data directory
-        type(volunteer_t), intent(out) :: vd
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        type(volunteer_t), intent(out) :: vd     !! the volunteers: times, mean, SD, peaks
+        integer, intent(out) :: stat             !! stat_ok, or stat_bad_input for a missing or bad file
+        character(len=msglen), intent(out) :: errmsg !! what failed
         character(len=16), parameter :: files(4) = [character(len=16) :: 'Head_XAccel', 'Head_ZAccel', &
                                                     'Head_YrotAccel', 'Head_YrotDisp']
         real(wp), allocatable :: t(:), runs(:, :), ch(:, :, :)
@@ -175,8 +175,14 @@ contains
     !! window (docs/validation.md): corridor rating c, cross-correlation
     !! rating x, rating (c + x)/2, lag [ms].
     pure subroutine cora_rating(t, y, r, s, c, x, rating, lag)
-        real(wp), intent(in) :: t(:), y(:), r(:), s(:)   !! times [ms], model, mean, SD
-        real(wp), intent(out) :: c, x, rating, lag
+        real(wp), intent(in) :: t(:)             !! times [ms]
+        real(wp), intent(in) :: y(:)             !! the model
+        real(wp), intent(in) :: r(:)             !! the volunteers' mean
+        real(wp), intent(in) :: s(:)             !! their SD
+        real(wp), intent(out) :: c               !! corridor rating
+        real(wp), intent(out) :: x               !! cross-correlation rating
+        real(wp), intent(out) :: rating          !! CORA-style rating (c + x)/2
+        real(wp), intent(out) :: lag             !! lag of the best correlation [ms]
         logical :: m(size(t))
         real(wp), allocatable :: yw(:), rw(:), sw(:), inner(:), outer(:), d(:), cs(:)
         real(wp) :: floor, dt, best, rho, ep, ev, es, shift
@@ -229,11 +235,12 @@ contains
     !! against the volunteers: each rated channel CFC 60, linearly
     !! interpolated to the volunteers' times.
     subroutine score_samples(vd, names, t0, dt, samples, sc)
-        type(volunteer_t), intent(in) :: vd
+        type(volunteer_t), intent(in) :: vd      !! the volunteers
         character(len=*), intent(in) :: names(:)     !! channel names of the rows of samples
-        real(wp), intent(in) :: t0, dt               !! first sample time and interval [s]
+        real(wp), intent(in) :: t0               !! first sample time [s]
+        real(wp), intent(in) :: dt               !! sample interval [s]
         real(wp), intent(in) :: samples(:, :)        !! (nchannel, nsample)
-        type(score_t), intent(out) :: sc
+        type(score_t), intent(out) :: sc         !! ratings and peaks
         call score_histories(vd, rated_histories(vd, names, t0, dt, samples), sc)
     end subroutine score_samples
 
@@ -257,9 +264,10 @@ contains
 
     !> The rated channels of a run, CFC 60, at the volunteers' times.
     function rated_histories(vd, names, t0, dt, samples) result(y)
-        type(volunteer_t), intent(in) :: vd
+        type(volunteer_t), intent(in) :: vd      !! the volunteers
         character(len=*), intent(in) :: names(:)     !! channel names of the rows of samples
-        real(wp), intent(in) :: t0, dt               !! first sample time and interval [s]
+        real(wp), intent(in) :: t0               !! first sample time [s]
+        real(wp), intent(in) :: dt               !! sample interval [s]
         real(wp), intent(in) :: samples(:, :)        !! (nchannel, nsample)
         real(wp) :: y(size(vd%t), nrated)
         real(wp) :: f(size(samples, 2)), tm(size(samples, 2))
@@ -276,10 +284,10 @@ contains
     !> Run every case of the calibration at parameter values v: the rated
     !! channels at the volunteers' times, y(:, :, case); ok false when a run fails.
     subroutine member_histories(cal, v, y, ok)
-        type(calibration_t), intent(in) :: cal
+        type(calibration_t), intent(in) :: cal   !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
         real(wp), intent(out) :: y(:, :, :)          !! (nt, nrated, ncase)
-        logical, intent(out) :: ok
+        logical, intent(out) :: ok               !! every run complete
         type(case_t) :: cs
         type(run_result_t) :: res
         type(channel_set_t) :: ch
@@ -375,10 +383,11 @@ contains
     !! max-evaluations is 0 (default: the decks' own values). Each case's
     !! parameters are bound to its own deck through a sweep (same checks).
     subroutine read_calibration(path, source, cal, stat, errmsg)
-        character(len=*), intent(in) :: path, source
-        type(calibration_t), intent(out) :: cal
-        integer, intent(out) :: stat
-        character(len=msglen), intent(out) :: errmsg
+        character(len=*), intent(in) :: path     !! the calibration deck's file
+        character(len=*), intent(in) :: source   !! its name in messages
+        type(calibration_t), intent(out) :: cal  !! the calibration
+        integer, intent(out) :: stat             !! stat_ok, or stat_bad_input
+        character(len=msglen), intent(out) :: errmsg !! the deck line, columns and what was expected
         type(deck_reader_t) :: rd
         type(deck_line_t), allocatable :: params(:), sl(:)
         character(len=10) :: s
@@ -510,11 +519,14 @@ contains
     !! points clamped to [0, 1]; stops after max_evals evaluations or when
     !! the simplex's objective values agree within ftol.
     subroutine nelder_mead(f, u0, step, max_evals, ftol, ubest, fbest, nevals)
-        procedure(objective_fn) :: f
-        real(wp), intent(in) :: u0(:), step, ftol
-        integer, intent(in) :: max_evals
-        real(wp), intent(out) :: ubest(size(u0)), fbest
-        integer, intent(out) :: nevals
+        procedure(objective_fn) :: f             !! the objective
+        real(wp), intent(in) :: u0(:)            !! starting point in the unit cube
+        real(wp), intent(in) :: step             !! initial simplex step
+        real(wp), intent(in) :: ftol             !! stop when the simplex's values agree within ftol
+        integer, intent(in) :: max_evals         !! most evaluations
+        real(wp), intent(out) :: ubest(size(u0)) !! best point
+        real(wp), intent(out) :: fbest           !! objective there
+        integer, intent(out) :: nevals           !! evaluations made
         real(wp) :: x(size(u0), size(u0) + 1), fx(size(u0) + 1), xc(size(u0)), xr(size(u0)), xe(size(u0))
         real(wp) :: xk(size(u0)), fr, fe, fk
         integer :: n, i, order(size(u0) + 1)
@@ -610,7 +622,7 @@ contains
     !> Run the calibration: the LHS starting points, then Nelder-Mead from
     !! the best; the history and the result on unit lu.
     subroutine calibrate(cal, lu, vbest, jbest, nevals)
-        type(calibration_t), intent(in) :: cal
+        type(calibration_t), intent(in) :: cal   !! the calibration
         integer, intent(in) :: lu                    !! listing unit
         real(wp), intent(out) :: vbest(:)            !! fitted parameter values
         real(wp), intent(out) :: jbest               !! objective there
