@@ -27,7 +27,7 @@ module hn_jacobian
     use hn_tree, only: body_tree_t
     use hn_discs, only: disc_deformation, disc_resultants, inv_left_jacobian
     use hn_line_elements, only: line_attach_t, line_geometry_t, line_geometry, ligament_tension, muscle_tension, &
-                                spring_tension
+                                spring_tension, max_via, muscle_path_points
     use hn_joint_limits, only: limit_force, range_moment
     use hn_forces, only: muscle_activation
     implicit none
@@ -84,20 +84,26 @@ contains
     ! families (ligament_t, muscle_t, spring_t, each a line_attach_t).
     ! ---------------------------------------------------------------------
 
-    !> Attachments of line element e of a family: bodies and points (body frames).
-    pure subroutine line_attachment(model, fam, e, ka, ca, kb, cb)
+    !> Path of line element e of a family: its points in order (bodies and
+    !! body-frame positions): the two ends, and a muscle's via points between.
+    pure subroutine line_path(model, fam, e, bodies, points, npt)
         type(model_t), intent(in) :: model
         integer, intent(in) :: fam, e
-        integer, intent(out) :: ka, kb
-        real(wp), intent(out) :: ca(3), cb(3)
+        integer, intent(out) :: bodies(max_via + 2), npt
+        real(wp), intent(out) :: points(3, max_via + 2)
         type(line_attach_t) :: a
+        if (fam == fam_muscles) then
+            call muscle_path_points(model%muscles(e), bodies, points, npt)
+            return
+        end if
         select case (fam)
         case (fam_ligaments); a = model%ligaments(e)%line_attach_t
-        case (fam_muscles); a = model%muscles(e)%line_attach_t
         case default; a = model%springs(e)%line_attach_t
         end select
-        ka = a%body_a; kb = a%body_b; ca = a%point_a; cb = a%point_b
-    end subroutine line_attachment
+        bodies = 0; points = zero; npt = 2
+        bodies(1) = a%body_a; bodies(2) = a%body_b
+        points(:, 1) = a%point_a; points(:, 2) = a%point_b
+    end subroutine line_path
 
     !> The scalar tension law of line element e at time t, length L and rate L'.
     pure real(wp) function line_tension(model, fam, e, t, length, rate) result(ten)
@@ -120,7 +126,8 @@ contains
 
     !> Line element: b_i = dL/dxdot_i = sj_i . phi_b - sj_i . phi_a with the
     !! spatial force phi = ((p - origin) x u; u) of a unit tension at each
-    !! end; K += (dT/dL) b b^T, C += (dT/dL') b b^T.
+    !! end, summed over the segments of a muscle's path through its via
+    !! points; K += (dT/dL) b b^T, C += (dT/dL') b b^T.
     pure subroutine add_line(model, kin, t, fam, e, kgen, cgen)
         type(model_t), intent(in) :: model
         type(kinematics_t), intent(in) :: kin
@@ -128,31 +135,44 @@ contains
         integer, intent(in) :: fam, e
         real(wp), intent(inout) :: kgen(:, :), cgen(:, :)
         type(line_geometry_t) :: g
-        integer :: ka, kb, ncol, cols(max(model%tree%ndof, 1)), sgn(size(cols)), i
-        real(wp) :: ca(3), cb(3), phia(6), phib(6), b(size(cols)), dl, dr, kl, cl
-        call line_attachment(model, fam, e, ka, ca, kb, cb)
-        call line_geometry(kin, ka, ca, kb, cb, g)
-        if (g%length <= zero) return
-        dl = max(fd_rel*g%length, fd_abs_length)
-        dr = max(fd_rel*abs(g%rate), fd_abs_rate)
-        kl = (line_tension(model, fam, e, t, g%length + dl, g%rate) - &
-              line_tension(model, fam, e, t, g%length - dl, g%rate))/(2*dl)
-        cl = (line_tension(model, fam, e, t, g%length, g%rate + dr) - &
-              line_tension(model, fam, e, t, g%length, g%rate - dr))/(2*dr)
+        integer :: bodies(max_via + 2), npt, k, ncol, cols(max(model%tree%ndof, 1)), sgn(size(cols)), i, nz
+        integer :: idx(size(kgen, 1))
+        real(wp) :: points(3, max_via + 2), phia(6), phib(6), b(size(kgen, 1)), length, rate, dl, dr, kl, cl
+        call line_path(model, fam, e, bodies, points, npt)
+        b = zero; length = zero; rate = zero
+        do k = 1, npt - 1
+            call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), g)
+            if (g%length <= zero) return
+            length = length + g%length
+            rate = rate + g%rate
+            phia = [cross(g%pa - kin%origin, g%unit), g%unit]
+            phib = [cross(g%pb - kin%origin, g%unit), g%unit]
+            call path_columns(model%tree, bodies(k), bodies(k + 1), cols, sgn, ncol)
+            do i = 1, ncol
+                if (sgn(i) > 0) then
+                    b(cols(i)) = b(cols(i)) + dot_product(kin%sj(:, cols(i)), phib)
+                else
+                    b(cols(i)) = b(cols(i)) - dot_product(kin%sj(:, cols(i)), phia)
+                end if
+            end do
+        end do
+        dl = max(fd_rel*length, fd_abs_length)
+        dr = max(fd_rel*abs(rate), fd_abs_rate)
+        kl = (line_tension(model, fam, e, t, length + dl, rate) - &
+              line_tension(model, fam, e, t, length - dl, rate))/(2*dl)
+        cl = (line_tension(model, fam, e, t, length, rate + dr) - &
+              line_tension(model, fam, e, t, length, rate - dr))/(2*dr)
         if (kl == zero .and. cl == zero) return
-        phia = [cross(g%pa - kin%origin, g%unit), g%unit]
-        phib = [cross(g%pb - kin%origin, g%unit), g%unit]
-        call path_columns(model%tree, ka, kb, cols, sgn, ncol)
-        do i = 1, ncol
-            if (sgn(i) > 0) then
-                b(i) = dot_product(kin%sj(:, cols(i)), phib)
-            else
-                b(i) = -dot_product(kin%sj(:, cols(i)), phia)
+        nz = 0
+        do i = 1, size(b)
+            if (b(i) /= zero) then
+                nz = nz + 1
+                idx(nz) = i
             end if
         end do
-        do i = 1, ncol
-            kgen(cols(1:ncol), cols(i)) = kgen(cols(1:ncol), cols(i)) + kl*b(i)*b(1:ncol)
-            cgen(cols(1:ncol), cols(i)) = cgen(cols(1:ncol), cols(i)) + cl*b(i)*b(1:ncol)
+        do i = 1, nz
+            kgen(idx(1:nz), idx(i)) = kgen(idx(1:nz), idx(i)) + kl*b(idx(i))*b(idx(1:nz))
+            cgen(idx(1:nz), idx(i)) = cgen(idx(1:nz), idx(i)) + cl*b(idx(i))*b(idx(1:nz))
         end do
     end subroutine add_line
 

@@ -99,11 +99,7 @@ contains
     end function ligament_energy
 
     !> Muscle tension (tension only) at length L, rate L' and activation a.
-    !! L is the length of the muscle's path; the structured Jacobian
-    !! (core/hn_jacobian) passes the distance between the two ends, which
-    !! is the path length wherever the via points lie on the straight line
-    !! between the ends (the model deck's neutral posture) and an
-    !! approximation of it elsewhere.
+    !! L is the length of the muscle's path through its via points.
     elemental real(wp) function muscle_tension(m, length, rate, act) result(t)
         type(muscle_t), intent(in) :: m      !! the muscle
         real(wp), intent(in) :: length       !! current length [m]
