@@ -32,15 +32,15 @@ contains
     !! `hold`, the posture-holding forces are first set so that the free
     !! accelerations vanish at that state (HOLD POSTURE, as a run does).
     subroutine rest_jacobian(model, t, x, xd, hold, jac, ifree, stat, errmsg)
-        type(model_t), intent(in) :: model       !! the model
+        type(model_t), intent(in) :: model              !! the model
         real(wp), intent(in) :: t                       !! time [s]
-        real(wp), intent(in) :: x(:)             !! all active coordinates [m, rad]
-        real(wp), intent(in) :: xd(:)            !! their rates [m/s, rad/s]
+        real(wp), intent(in) :: x(:)                    !! all active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)                   !! their rates [m/s, rad/s]
         logical, intent(in) :: hold                     !! hold the posture at (x, xd)
         real(wp), allocatable, intent(out) :: jac(:, :) !! (2 nf, 2 nf)
         integer, allocatable, intent(out) :: ifree(:)   !! model numbers of the free coordinates
-        integer, intent(out) :: stat             !! stat_ok, or the failure of a dynamics evaluation
-        character(len=msglen), intent(out) :: errmsg !! what failed
+        integer, intent(out) :: stat                    !! stat_ok, or the failure of a dynamics evaluation
+        character(len=msglen), intent(out) :: errmsg    !! what failed
         type(model_ode_t) :: sys
         real(wp), allocatable :: y(:), yp(:), gp(:), gm(:)
         real(wp) :: h
@@ -75,14 +75,14 @@ contains
     !> Eigenvalues of the Jacobian of rest_jacobian, sorted by decreasing
     !! real part, each with the free coordinate that dominates its mode.
     subroutine rest_modes(model, t, x, xd, hold, modes, stat, errmsg)
-        type(model_t), intent(in) :: model       !! the model
-        real(wp), intent(in) :: t                       !! time [s]
-        real(wp), intent(in) :: x(:)             !! all active coordinates [m, rad]
-        real(wp), intent(in) :: xd(:)            !! their rates [m/s, rad/s]
-        logical, intent(in) :: hold                     !! hold the posture at (x, xd)
+        type(model_t), intent(in) :: model                      !! the model
+        real(wp), intent(in) :: t                               !! time [s]
+        real(wp), intent(in) :: x(:)                            !! all active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)                           !! their rates [m/s, rad/s]
+        logical, intent(in) :: hold                             !! hold the posture at (x, xd)
         type(rest_mode_t), allocatable, intent(out) :: modes(:) !! (2 nf) eigenvalues, largest real part first
-        integer, intent(out) :: stat             !! stat_ok; stat_singular when dgeev fails
-        character(len=msglen), intent(out) :: errmsg !! what failed
+        integer, intent(out) :: stat                            !! stat_ok; stat_singular when dgeev fails
+        character(len=msglen), intent(out) :: errmsg            !! what failed
         real(wp), allocatable :: jac(:, :), wr(:), wi(:), vr(:, :), work(:), mag(:)
         real(wp) :: vl(1, 1), wq(1)
         integer, allocatable :: ifree(:)
