@@ -7,7 +7,10 @@ Line by line: the text with every number taken out must be the same, and
 every number must agree with the reference within rtol of the largest
 magnitude on its line plus one unit of its last printed digit; the time of
 an extreme (a number followed by MS, or the times of the peaks table) within
-2 ms, because a flat extreme may move by a few samples with the roundoff. Lines that
+2 ms, because a flat extreme may move by a few samples with the roundoff,
+and not at all when the extreme's value agrees within a tenth of the
+tolerance (two near-equal extremes, far apart in time, are the same
+extreme to within roundoff; either time is right). Lines that
 depend on the build or the machine are skipped: the page headers (version,
 date), the end-of-run statistics (steps, evaluations, wall time) and the
 energy-balance residual (a roundoff-level channel). Prints one PASS or FAIL line; exit 1 on a difference.
@@ -50,11 +53,18 @@ def main():
         words = [w for w in b.split() if not NUM.fullmatch(w)]
         if len(tb) == 4 and len(words) == 2:          # a row of the peaks table: max, time, min, time
             times |= {1, 3}
+        vals = [(float(x.replace("D", "E")), float(y.replace("D", "E"))) for x, y in zip(ta, tb)]
         for k, (x, y) in enumerate(zip(ta, tb)):
-            fx, fy = float(x.replace("D", "E")), float(y.replace("D", "E"))
+            fx, fy = vals[k]
             tol = rtol * scale + ulp(y)
             if k in times:
                 tol = max(tol, 2.0)
+                if k > 0 and abs(vals[k - 1][0] - vals[k - 1][1]) <= 0.1 * (rtol * scale + ulp(tb[k - 1])):
+                    # the extreme's value agrees within a tenth of the
+                    # tolerance: two near-equal extremes (a plateau, or two
+                    # peaks of the same height) cannot be told apart, and the
+                    # time of either one is the time of the extreme
+                    continue
             dev = abs(fx - fy) / tol if tol > 0 else 0.0
             if dev > worst:
                 worst, where = dev, "line %d: %s against %s" % (i, x, y)

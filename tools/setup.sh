@@ -34,3 +34,7 @@ python3 -c "import numpy, h5py, matplotlib" >/dev/null 2>&1 || {
     pip_install numpy h5py matplotlib
 }
 command -v fpm >/dev/null 2>&1 || { echo "setup: fpm is not on PATH after installing it" >&2; exit 1; }
+
+# the release executable, built here so that its build progress goes to
+# stderr and the first run's standard output is the listing alone
+fpm build --profile release >&2

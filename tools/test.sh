@@ -7,7 +7,8 @@
 #      pointer (skipped with --no-checking-build),
 #   3. every whole-program check test/scripts/*.sh, with HHNECK set to the
 #      debug build's executable (and to the checking build's too for a
-#      script with a line "# builds: debug checking").
+#      script with a line "# builds: debug checking"; to the release
+#      build's for one with "# builds: release").
 # The test programs of a build run $TEST_JOBS at a time (default: the
 # number of cores); each one's output is shown whole when all are done.
 # Each test program and script ends its output with "N passed, N failed";
@@ -113,16 +114,22 @@ if [ "$checking" = yes ]; then
 fi
 
 # the whole-program checks run the debug build's executable; a script
-# with a line "# builds: debug checking" runs on both builds' executables
+# with a line "# builds: debug checking" runs on both builds' executables,
+# one with "# builds: release" on fpm's release build (the README's run)
 for script in test/scripts/*.sh; do
     builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1)
     for build in ${builds:-debug}; do
         case $build in
             debug) flags=$DEBUG_FLAGS ;;
             checking) [ "$checking" = yes ] || continue; flags=$CHECK_FLAGS ;;
+            release) flags= ;;
             *) echo "$script: unknown build '$build'" >&2; continue ;;
         esac
-        HHNECK=$(fpm run --flag "$flags $PF_INC" --runner echo 2>/dev/null | tail -n 1)
+        if [ "$build" = release ]; then
+            HHNECK=$(fpm run --profile release --runner echo 2>/dev/null | tail -n 1)
+        else
+            HHNECK=$(fpm run --flag "$flags $PF_INC" --runner echo 2>/dev/null | tail -n 1)
+        fi
         export HHNECK
         step "$script ($build build)" sh "$script"
     done
