@@ -172,18 +172,18 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
-ACT = dict(u0=0.254321, u1=0.426571, delay=0.0581861, rise=0.020, tau_act=0.015, tau_deact=0.050)
+ACT = dict(u0=0.241094, u1=0.358178, delay=0.0581959, rise=0.020, tau_act=0.015, tau_deact=0.050)
 # short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
 # McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
 SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.76326),      # sigma_max / 0.5 MPa
-    ("VISCOUS", "DISCS", "VISCOUS", 5.29229), # disc retardation time / 5 ms
-    ("SHEAR", "DISCS", "G", 2.54841),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.38461),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 0.103169),     # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 1.96378),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 6.07885), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 2.37829),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.71159),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.147029),     # range-of-motion stiffness / 50 N m/rad
 ]
 
 # ---------------------------------------------------------------- limits
