@@ -9,8 +9,8 @@ Each frame shows a side (sagittal) view, a front view and a 3-D view that
 follow T1's translation, with ground marks fixed in R so the sled's motion
 shows, and the head angle against time. Vertebral bodies are boxes between
 their disc plates, the head is the uniform ellipsoid with its mass and
-principal inertia, discs, ligaments and muscles are lines coloured by their
-force. Bodies come from /bodies/position and /bodies/rotation, elements from
+principal inertia, discs, ligaments and muscles (through their via points)
+are lines coloured by their force. Bodies come from /bodies/position and /bodies/rotation, elements from
 /model/elements and their forces from /channels (docs/animation.md).
 Needs numpy, h5py and matplotlib; MP4 also needs ffmpeg.
 """
@@ -44,6 +44,14 @@ class Family:
         self.name = [text(n) for n in g["name"][:]]
         self.body = np.asarray(g["body"][:], dtype=int).reshape(-1, 2)
         self.point = np.asarray(g["point"][:], dtype=float).reshape(-1, 2, 3)
+        # a muscle's path through its via points (VIA cards): (body, point)
+        # pairs between the two ends; none in older files or other families
+        self.via = [[] for _ in self.name]
+        if "via_count" in g:
+            count = np.asarray(g["via_count"][:], dtype=int)
+            vbody = np.asarray(g["via_body"][:], dtype=int).reshape(len(self.name), -1)
+            vpoint = np.asarray(g["via_point"][:], dtype=float).reshape(len(self.name), -1, 3)
+            self.via = [list(zip(vbody[e, :count[e]], vpoint[e, :count[e]])) for e in range(len(self.name))]
         nt = chan["_nt"]
         self.force = np.full((nt, len(self.name)), np.nan)
         for e, n in enumerate(self.name):
@@ -114,6 +122,16 @@ class Result:
             for end in range(2):
                 out[e, end] = self.world(i, fam.body[e, end], fam.point[e, end])
         return out
+
+    def line_paths(self, i, fam):
+        """The path in R of each element of a family at sample i: (M, 3)
+        points from end a through its via points (muscles) to end b."""
+        ends = self.line_ends(i, fam)
+        paths = []
+        for e in range(len(fam.name)):
+            via = [self.world(i, b, c) for b, c in fam.via[e]]
+            paths.append(np.vstack([ends[e, 0]] + via + [ends[e, 1]]))
+        return paths
 
 
 def ellipsoid_axes(mass, inertia):
@@ -357,7 +375,7 @@ class Scene:
         ref = res.pos[i, res.root]
         bodies = geo.bodies(i)
         sled, ground, start = geo.sled(i, ref[2] + self.win["zfloor"], SLED_X)
-        ends = {n: e for fam in res.families.values() for n, e in zip(fam.name, res.line_ends(i, fam))}
+        ends = {n: e for fam in res.families.values() for n, e in zip(fam.name, res.line_paths(i, fam))}
         forces = {n: f for fam in res.families.values() for n, f in zip(fam.name, fam.force[i])}
         dends = {}
         if res.discs is not None:

@@ -26,31 +26,41 @@ from animate import LINE_FAMILIES, Result  # noqa: E402
 FAMILY_CODE = {"ligaments": 1, "muscles": 2, "springs": 3, "discs": 4}
 
 
-def element_tables(res):
-    """(names, family codes, families in order) of every element drawn."""
+def element_families(res):
+    """(family key, family) of every family drawn, discs last."""
     fams = [(n, res.families[n]) for n in LINE_FAMILIES if n in res.families]
     if res.discs is not None:
         fams.append(("discs", res.discs))
-    names = [n for _, f in fams for n in f.name]
-    codes = [FAMILY_CODE[k] for k, f in fams for _ in f.name]
-    return names, np.array(codes, dtype=np.int32), fams
+    return fams
+
+
+def element_segments(fams):
+    """The straight segments drawn: (family code, family, element, (body,
+    point) of each end) -- one per element, or one per leg of a muscle's
+    path through its via points."""
+    segs = []
+    for key, fam in fams:
+        for k in range(len(fam.name)):
+            path = [(fam.body[k, 0], fam.point[k, 0])] + list(fam.via[k]) \
+                + [(fam.body[k, 1], fam.point[k, 1])]
+            segs += [(FAMILY_CODE[key], fam, k, path[j], path[j + 1]) for j in range(len(path) - 1)]
+    return segs
 
 
 def write_sidecar(res, steps, path):
     """RESULT.elements.h5: end points (ns, 2 ne, 3), forces (ns, ne), connectivity,
-    family codes and names of the elements at the selected samples."""
-    names, codes, fams = element_tables(res)
-    ne = len(names)
+    family codes and names of the segments drawn (an element, or one leg of
+    a muscle's path through its via points) at the selected samples."""
+    segs = element_segments(element_families(res))
+    ne = len(segs)
+    names = [fam.name[k] for _, fam, k, _, _ in segs]
+    codes = np.array([c for c, _, _, _, _ in segs], dtype=np.int32)
     pts = np.empty((len(steps), 2 * ne, 3))
     force = np.empty((len(steps), ne))
-    e = 0
-    for _, fam in fams:
-        for k in range(len(fam.name)):
-            for end in range(2):
-                b, c = fam.body[k, end], fam.point[k, end]
-                pts[:, 2 * e + end] = c if b == 0 else res.pos[steps, b - 1] + res.rot[steps, b - 1] @ c
-            force[:, e] = fam.force[steps, k]
-            e += 1
+    for e, (_, fam, k, a, b) in enumerate(segs):
+        for end, (body, c) in enumerate((a, b)):
+            pts[:, 2 * e + end] = c if body == 0 else res.pos[steps, body - 1] + res.rot[steps, body - 1] @ c
+        force[:, e] = fam.force[steps, k]
     with h5py.File(path, "w") as f:
         f.attrs["source"] = "tools/write_xdmf.py"
         for name, data, units in (("time", res.time[steps], "s"), ("points", pts, "m"), ("force", force, "N"),

@@ -8,6 +8,7 @@ module hn_results_model
     use hn_kinds, only: wp
     use hn_model, only: model_t
     use hn_h5, only: h5_file_t
+    use hn_line_elements, only: max_via
     implicit none
     private
 
@@ -60,10 +61,11 @@ contains
 
         call h5%group('/model/elements')
         call write_table(h5, '/model/elements/ligaments', lig, 'ligament: tension-only band from point a to b')
-        call write_table(h5, '/model/elements/muscles', mus, 'muscle: tension-only line from point a to b')
+        call write_table(h5, '/model/elements/muscles', mus, 'muscle: tension-only path from point a through its via points to b')
         call write_table(h5, '/model/elements/springs', spr, 'linear spring-damper from point a to b')
         call write_table(h5, '/model/elements/discs', dsc, &
                          'disc: lower plate centre (a, on body a) and upper plate centre (b, on body b)')
+        call write_via_points(h5, model)
         call h5%write_real('/model/elements/discs/plate_frame', plate, [3, 3, 2, n])
         call h5%attr_string('/model/elements/discs/plate_frame', 'units', 'none')
         call h5%attr_string('/model/elements/discs/plate_frame', 'description', &
@@ -88,6 +90,30 @@ contains
         t%body = reshape(body, [2, ne])
         t%point = reshape(point, [3, 2, ne])
     end function element_table
+
+    !> The muscles' via points (VIA cards): via_count (ne), via_body
+    !! (ne, max_via) and via_point (ne, max_via, 3) as h5py shows them; a
+    !! muscle's path runs from point a through its first via_count via
+    !! points to point b.
+    subroutine write_via_points(h5, model)
+        type(h5_file_t), intent(inout) :: h5  !! result file being written
+        type(model_t), intent(in) :: model    !! model whose muscles are described
+        character(len=*), parameter :: path = '/model/elements/muscles'
+        integer :: e, n
+        n = size(model%muscles)
+        call h5%write_int(path//'/via_count', [(model%muscles(e)%nvia, e=1, n)], [n])
+        call h5%attr_string(path//'/via_count', 'units', 'none')
+        call h5%attr_string(path//'/via_count', 'description', &
+                            'via points of each muscle path, in order from point a to point b')
+        call h5%write_int(path//'/via_body', [(model%muscles(e)%via_body, e=1, n)], [max_via, n])
+        call h5%attr_string(path//'/via_body', 'units', 'none')
+        call h5%attr_string(path//'/via_body', 'description', &
+                            'bodies of the via points (0 = R, else /model order; unused slots 0)')
+        call h5%write_real(path//'/via_point', [(model%muscles(e)%via_point, e=1, n)], [3, max_via, n])
+        call h5%attr_string(path//'/via_point', 'units', 'm')
+        call h5%attr_string(path//'/via_point', 'description', &
+                            'via points in their body frames from the mass centre (unused slots 0)')
+    end subroutine write_via_points
 
     !> Group `path` with datasets name (ne), body (ne, 2), point (ne, 2, 3) as h5py shows them.
     subroutine write_table(h5, path, t, description)

@@ -237,16 +237,23 @@ cards = [l for l in open(sys.argv[3]) if not l.startswith("*")]
 bodies = [l.split()[1] for l in cards if l.startswith("BODY ")]
 n = [k for k, l in enumerate(cards) if l[10:20].strip() == "LCAPL"][0]
 w, c = cards[n].split(), np.array(cards[n + 1].split()[:6], dtype=float).reshape(2, 3)
-want = [f["bodies/position"][i, bodies.index(w[2 + e])] +
-        f["bodies/rotation"][i, bodies.index(w[2 + e])].T @ c[e] for e in range(2)]
+def world(body, point):
+    k = bodies.index(body)
+    return f["bodies/position"][i, k] + f["bodies/rotation"][i, k].T @ np.asarray(point, dtype=float)
+via = [l.split() for l in cards if l.startswith("VIA ") and l.split()[1] == "LCAPL"]
+want = [world(w[2], c[0])] + [world(v[2], v[3:6]) for v in via] + [world(w[3], c[1])]
 side = h5py.File(os.path.join(os.path.dirname(xmf), "c62.elements.h5"), "r")
-e = [m.decode().strip() for m in side["name"][:]].index("LCAPL")
-ends = el["Geometry"].reshape(-1, 3)[2 * e: 2 * e + 2]
-force = el["force"].ravel()[e]
-err = abs(ends - np.array(want)).max()
-print(("PASS" if err < 1e-12 and force == f["channels/LCAPL"][i] and force > 1 else "FAIL") +
-      "  elements grid at 100 ms: LCAPL (C5 to HEAD) ends = r + S c of its deck card (error %.1e m), "
-      "force %.2f N = channel LCAPL" % (err, force))
+segs = [k for k, m in enumerate(side["name"][:]) if m.decode().strip() == "LCAPL"]
+geo = el["Geometry"].reshape(-1, 3)
+path = [geo[2 * segs[0]]] + [geo[2 * k + 1] for k in segs]
+joined = all(np.array_equal(geo[2 * a + 1], geo[2 * b]) for a, b in zip(segs, segs[1:]))
+force = el["force"].ravel()[segs]
+err = abs(np.array(path) - np.array(want)).max() if len(path) == len(want) else np.inf
+print(("PASS" if len(via) > 0 and joined and err < 1e-12 and np.all(force == f["channels/LCAPL"][i]) and force[0] > 1
+       else "FAIL") +
+      "  elements grid at 100 ms: LCAPL (C5 to HEAD) drawn as %d joined segments through its %d VIA points, "
+      "points = r + S c of its deck cards (error %.1e m), force %.2f N = channel LCAPL on each"
+      % (len(segs), len(via), err, force[0]))
 EOF
 
 echo "$pass passed, $fail failed"
