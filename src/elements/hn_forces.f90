@@ -9,7 +9,7 @@ module hn_forces
     use hn_loads, only: body_loads_t, loads_clear
     use hn_line_elements, only: line_geometry_t, line_geometries, apply_line_tensions, spring_tension, &
                                 spring_energy, ligament_tension, muscle_tension, ligament_energy, &
-                                muscle_law_value, muscle_hill, muscle_geometries, apply_muscle_tensions
+                                muscle_law_value, muscle_hill, muscle_geometries, apply_muscle_tensions, max_via
     use hn_discs, only: apply_disc
     use hn_joint_limits, only: limit_force, range_moment, range_energy
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
@@ -60,6 +60,7 @@ contains
         integer :: k, e
         real(wp) :: u, pd, v(3), p(3), pv(3)
         type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles)), gs(size(model%springs))
+        type(line_geometry_t) :: gseg(max_via + 1, size(model%muscles))
 
         call loads_clear(loads)
         eo%u_elastic = zero; eo%p_diss = zero; eo%p_muscle = zero; eo%p_applied = zero
@@ -83,11 +84,11 @@ contains
             eo%u_elastic = eo%u_elastic + sum(ligament_energy(model%ligaments, gl%length))
         end if
         if (model%family_on(fam_muscles)) then
-            call muscle_geometries(kin, model%muscles, gm)
+            call muscle_geometries(kin, model%muscles, gm, gseg)
             eo%muscle(3, :) = muscle_activations(model, t)
             eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, eo%muscle(3, :))
             eo%muscle(2, :) = gm%length
-            call apply_muscle_tensions(loads, kin, model%muscles, gm, eo%muscle(1, :))
+            call apply_muscle_tensions(loads, kin, model%muscles, gseg, eo%muscle(1, :))
             eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
         end if
         if (model%family_on(fam_limits)) then
@@ -178,6 +179,7 @@ contains
         real(wp), intent(in) :: x(:)             !! active coordinates [m, rad]
         real(wp), intent(out) :: sw(:)           !! (switch_count) the switching functions
         type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles))
+        type(line_geometry_t) :: gseg(max_via + 1, size(model%muscles))
         real(wp) :: act(size(model%muscles))
         integer :: e, i
         sw = 1.0_wp
@@ -187,7 +189,7 @@ contains
             if (model%family_on(fam_limits)) sw(i) = x(model%limits(e)%dof) - model%limits(e)%xneutral
         end do
         if (model%family_on(fam_muscles)) then
-            call muscle_geometries(kin, model%muscles, gm)
+            call muscle_geometries(kin, model%muscles, gm, gseg)
             act = muscle_activations(model, t)
             sw(i + 1:i + size(model%muscles)) = muscle_law_value(model%muscles, gm%length, gm%rate, act)
         end if

@@ -218,11 +218,11 @@ contains
     pure subroutine set_neutral_lengths(kin, at)
         type(kinematics_t), intent(in) :: kin        !! kinematics in the neutral configuration
         class(line_attach_t), intent(inout) :: at(:) !! the elements (any kind)
-        type(line_geometry_t) :: g(size(at))
+        type(line_geometry_t) :: g(size(at)), seg(max_via + 1, size(at))
         integer :: e
         select type (at)
         type is (muscle_t)
-            call muscle_geometries(kin, at, g)
+            call muscle_geometries(kin, at, g, seg)
         class default
             call line_geometries(kin, at, g)
         end select
@@ -255,66 +255,53 @@ contains
 
     !> Geometry of a muscle's path: length and lengthening rate summed over
     !! its segments; pa, pb the two ends; unit the direction of the first
-    !! segment.
-    pure subroutine muscle_geometry(kin, m, g)
+    !! segment. `seg` receives the geometry of each segment.
+    pure subroutine muscle_geometry(kin, m, g, seg)
         type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
         type(muscle_t), intent(in) :: m        !! the muscle
-        type(line_geometry_t), intent(out) :: g
-        type(line_geometry_t) :: s
+        type(line_geometry_t), intent(out) :: g  !! the whole path: ends, first direction, length and its rate
+        type(line_geometry_t), intent(out) :: seg(max_via + 1)   !! its segments in path order (nvia + 1 used)
         integer :: bodies(max_via + 2), npt, k
         real(wp) :: points(3, max_via + 2)
-        if (m%nvia == 0) then
-            call line_geometry(kin, m%body_a, m%point_a, m%body_b, m%point_b, g)
-            return
-        end if
         call muscle_path_points(m, bodies, points, npt)
         do k = 1, npt - 1
-            call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), s)
-            if (k == 1) then
-                g%pa = s%pa
-                g%unit = s%unit
-            end if
-            g%length = g%length + s%length
-            g%rate = g%rate + s%rate
-            g%pb = s%pb
+            call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), seg(k))
+            g%length = g%length + seg(k)%length
+            g%rate = g%rate + seg(k)%rate
         end do
+        g%pa = seg(1)%pa
+        g%unit = seg(1)%unit
+        g%pb = seg(npt - 1)%pb
     end subroutine muscle_geometry
 
-    !> Path geometry of every muscle of a list.
-    pure subroutine muscle_geometries(kin, muscles, g)
+    !> Path geometry of every muscle of a list, and of each path's segments.
+    pure subroutine muscle_geometries(kin, muscles, g, seg)
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
         type(muscle_t), intent(in) :: muscles(:)     !! the muscles
         type(line_geometry_t), intent(out) :: g(:)   !! (size(muscles)) their path geometry
+        type(line_geometry_t), intent(out) :: seg(:, :)  !! (max_via + 1, size(muscles)) their segments' geometry
         integer :: e
         do e = 1, size(muscles)
-            call muscle_geometry(kin, muscles(e), g(e))
+            call muscle_geometry(kin, muscles(e), g(e), seg(:, e))
         end do
     end subroutine muscle_geometries
 
     !> Apply the muscles' tensions along their paths: on every segment the
     !! tension pulls its two points together (at a via point the two
     !! segments' pulls add up).
-    pure subroutine apply_muscle_tensions(loads, kin, muscles, g, tension)
+    pure subroutine apply_muscle_tensions(loads, kin, muscles, seg, tension)
         type(body_loads_t), intent(inout) :: loads !! body loads, the tensions added
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
         type(muscle_t), intent(in) :: muscles(:)     !! the muscles
-        type(line_geometry_t), intent(in) :: g(:)    !! their path geometry (muscle_geometries)
+        type(line_geometry_t), intent(in) :: seg(:, :)   !! (max_via + 1, size(muscles)) their segments (muscle_geometries)
         real(wp), intent(in) :: tension(:)           !! their tensions [N]
-        type(line_geometry_t) :: s
         integer :: e, k, bodies(max_via + 2), npt
         real(wp) :: points(3, max_via + 2)
         do e = 1, size(muscles)
-            associate (m => muscles(e))
-                if (m%nvia == 0) then
-                    call apply_line_tension(loads, kin, m%body_a, m%body_b, g(e), tension(e))
-                    cycle
-                end if
-                call muscle_path_points(m, bodies, points, npt)
-                do k = 1, npt - 1
-                    call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), s)
-                    call apply_line_tension(loads, kin, bodies(k), bodies(k + 1), s, tension(e))
-                end do
-            end associate
+            call muscle_path_points(muscles(e), bodies, points, npt)
+            do k = 1, npt - 1
+                call apply_line_tension(loads, kin, bodies(k), bodies(k + 1), seg(k, e), tension(e))
+            end do
         end do
     end subroutine apply_muscle_tensions
 
