@@ -2,13 +2,16 @@
 !! sweep deck: FAMILY scale factors, BODY scales, FIELDn values), within
 !! their bounds, to the NBDL volunteers of one or more cases, by minimising
 !!
-!!   J = (1 - R) + w P,
+!!   J = (1 - R) + w P + wt T,
 !!
 !! R the mean CORA-style rating of the five head kinematic channels over the
 !! cases (x- and z-acceleration, angular acceleration, angular velocity,
 !! rotation; the rating of tools/compare_nbdl.py, docs/validation.md), P the
 !! mean over the cases' six head peaks of max(0, |z| - 1), z the peak's
-!! distance from the volunteers' mean in SDs, w = 0.02, subject to the
+!! distance from the volunteers' mean in SDs, T the mean over the same peaks
+!! of max(0, |dt|/10 ms - 1), dt the peak time's distance from the
+!! volunteers' mean time; w (default 0.02) and wt (default 0) are fields 5
+!! and 6 of the FIT card; subject to the
 !! model standing at rest: a parameter set whose start state (posture held,
 !! the bracing activation) has an eigenvalue with real part above -1 1/s
 !! in any case (hn_rest_modes) is not run and gets J = 2 + 0.1 s (lmax + 1).
@@ -44,7 +47,7 @@ module hn_calibrate
     real(wp), parameter :: peak_window(2, npeaks) = reshape([30.0_wp, 250.0_wp, 30.0_wp, 125.0_wp, 125.0_wp, &
         250.0_wp, 30.0_wp, 250.0_wp, 30.0_wp, 250.0_wp, 30.0_wp, 250.0_wp], [2, npeaks])   !! [ms]
     real(wp), parameter :: window(2) = [30.0_wp, 250.0_wp]   !! rating window [ms]
-    real(wp), parameter :: peak_weight = 0.02_wp             !! w of the objective
+    real(wp), parameter :: time_tolerance = 10.0_wp          !! peak-time tolerance of the goal [ms]
     real(wp), parameter :: failed_objective = 10.0_wp        !! J of a parameter set whose run fails
     real(wp), parameter :: rest_margin = -1.0_wp             !! largest real part allowed at rest [1/s]
     real(wp), parameter :: unstable_objective = 2.0_wp       !! J of a set unstable at rest, at the margin
@@ -76,6 +79,8 @@ module hn_calibrate
         type(sweep_t), allocatable :: sw(:)
         type(volunteer_t), allocatable :: vol(:)
         integer :: max_evals = 200, nstart = 8, seed = 1
+        real(wp) :: peak_weight = 0.02_wp           !! w of the objective (FIT F5)
+        real(wp) :: time_weight = zero              !! wt of the objective (FIT F6)
         real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
     end type calibration_t
 
@@ -378,7 +383,7 @@ contains
 
     !> Read a calibration deck: TITLE; CASE path (columns 11-80) followed by
     !! DATA directory of that case's volunteers; FIT NELDER max-evaluations
-    !! starting-points seed; PARAM cards as in a sweep deck; optional VALUES
+    !! starting-points seed [peak-weight [peak-time-weight]]; PARAM cards as in a sweep deck; optional VALUES
     !! cards (up to 7 values each, in PARAM order), the point scored when
     !! max-evaluations is 0 (default: the decks' own values). Each case's
     !! parameters are bound to its own deck through a sweep (same checks).
@@ -416,6 +421,8 @@ contains
                 call rd%int(i, 2, 'maximum evaluations', cal%max_evals, 0, 100000)
                 call rd%int(i, 3, 'starting points', cal%nstart, 2, 10000)
                 call rd%int(i, 4, 'seed', cal%seed, 1, 2147483646)
+                call rd%real(i, 5, 'peak weight', '-', cal%peak_weight, zero, 1.0e3_wp, default=0.02_wp)
+                call rd%real(i, 6, 'peak-time weight', '-', cal%time_weight, zero, 1.0e3_wp, default=zero)
             case ('PARAM'); params = [params, rd%lines(i)]
             case ('VALUES')
                 do f = 1, 7
@@ -493,7 +500,7 @@ contains
         logical, intent(out) :: ok                   !! every run complete
         real(wp), intent(out), optional :: growth    !! largest real part at rest over the cases [1/s]
         real(wp), allocatable :: y(:, :, :)
-        real(wp) :: rsum, psum, lmax
+        real(wp) :: rsum, psum, tsum, lmax
         integer :: c
         lmax = rest_growth(cal, v)
         if (present(growth)) growth = lmax
@@ -506,13 +513,14 @@ contains
         call member_histories(cal, v, y, ok)
         j = failed_objective
         if (.not. ok) return
-        rsum = zero; psum = zero
+        rsum = zero; psum = zero; tsum = zero
         do c = 1, size(cal%sw)
             call score_histories(cal%vol(c), y(1:size(cal%vol(c)%t), :, c), sc(c))
             rsum = rsum + sum(sc(c)%rating)/nrated
             psum = psum + sum(max(zero, abs(sc(c)%z) - one))/npeaks
+            tsum = tsum + sum(max(zero, abs(sc(c)%time - cal%vol(c)%time_mean)/time_tolerance - one))/npeaks
         end do
-        j = (one - rsum/size(cal%sw)) + peak_weight*psum/size(cal%sw)
+        j = (one - rsum/size(cal%sw)) + (cal%peak_weight*psum + cal%time_weight*tsum)/size(cal%sw)
     end subroutine evaluate
 
     !> Nelder-Mead on the unit cube from u0 with initial steps `step`;
@@ -635,6 +643,8 @@ contains
         associate (par => cal%sw(1)%params)
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
+            write (lu, '(a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T; W ', cal%peak_weight, &
+                ', WT ', cal%time_weight
             if (cal%max_evals == 0) then                 ! score the decks as they are, or at VALUES
                 vbest = par%nominal
                 if (size(cal%values) == size(par)) vbest = cal%values
@@ -711,7 +721,7 @@ contains
         integer :: c, k
         write (lu, '(a,f8.4)') 'OBJECTIVE J = ', j
         do c = 1, size(sc)
-            write (lu, '(a,a,a,f6.3)') 'CASE ', trim(cal%decks(c)), ': MEAN RATING ', sum(sc(c)%rating)/nrated
+            write (lu, '(a,a,a,f7.4)') 'CASE ', trim(cal%decks(c)), ': MEAN RATING ', sum(sc(c)%rating)/nrated
             do k = 1, nrated
                 write (lu, '(2x,a10,a,f6.3,a,f6.3,a,f6.3)') rated_channels(k), ' RATING ', sc(c)%rating(k), &
                     '  C ', sc(c)%corridor(k), '  X ', sc(c)%xcorr(k)
