@@ -4,10 +4,18 @@ case decks, from the parameter choices below. Every number carries its source
 (S1..S6, listed in reference/parameters.md) or is marked ASSUMED.
 
     python3 tools/make_head_neck_deck.py > input/head_neck_54dof.inp
+    python3 tools/make_head_neck_deck.py --fit FIT.txt > input/head_neck_54dof.inp
+
+With --fit, the FITTED values (SCALE cards, ACTIVATE NECK levels and delay)
+are read from the listing of the calibration (the PARAM lines of
+hhneck --calibrate < input/calibrate_nbdl.inp > FIT.txt); without it, the
+copy of that output below is used.
 
 Pure arithmetic on the published numbers: no solver code lives here.
 """
 import math
+import re
+import sys
 
 # ---------------------------------------------------------------- sources
 SOURCES = """\
@@ -172,19 +180,40 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
-ACT = dict(u0=0.241094, u1=0.358178, delay=0.0581959, rise=0.020, tau_act=0.015, tau_deact=0.050)
+ACT = dict(u0=0.153439, u1=0.313600, delay=0.0628635, rise=0.020, tau_act=0.015, tau_deact=0.050)
 # short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
 # McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
 SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.96378),      # sigma_max / 0.5 MPa
-    ("VISCOUS", "DISCS", "VISCOUS", 6.07885), # disc retardation time / 5 ms
-    ("SHEAR", "DISCS", "G", 2.37829),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.71159),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 0.147029),     # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 1.94920),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 7.53164), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 0.566320),        # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.37359),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.0542595),    # range-of-motion stiffness / 50 N m/rad
 ]
+# the calibration's PARAM names of the ACTIVATE NECK fields
+FITTED_ACT = {"BRACE": "u0", "REFLEX": "u1", "DELAY": "delay"}
+
+
+def read_fit(listing):
+    """The PARAM lines of a calibration listing: {name: value}."""
+    fit = {}
+    for line in open(listing):
+        m = re.match(r"PARAM (\S+)\s+= (\S+)", line)
+        if m:
+            fit[m.group(1)] = float(m.group(2))
+    return fit
+
+
+if len(sys.argv) == 3 and sys.argv[1] == "--fit":
+    FIT = read_fit(sys.argv[2])
+    FITTED_SCALES = [(n, fam, item, FIT[n]) for (n, fam, item, _) in FITTED_SCALES]
+    for n, key in FITTED_ACT.items():
+        ACT[key] = FIT[n]
+elif len(sys.argv) != 1:
+    sys.exit("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING]")
 
 # ---------------------------------------------------------------- limits
 # S3: total range of motion (deg) skull-C2 / C2-T1: flexion-extension 40/82,
