@@ -491,7 +491,8 @@ contains
     !! parameter set whose model is not stable at rest with the margin
     !! (largest real part above rest_margin in any case: a braced neck
     !! stands) is not run: J = 2 + 0.1 s (lmax - rest_margin), worse than
-    !! any stable set and decreasing towards stability.
+    !! any stable set whose w P + wt T stays below 1, and decreasing
+    !! towards stability.
     subroutine evaluate(cal, v, j, sc, ok, growth)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
