@@ -149,7 +149,7 @@ contains
         if (k == 0) then
             p = c; v = zero
         else
-            d = matmul(kin%s(:, :, k), c)
+            d = kin%s(:, 1, k)*c(1) + kin%s(:, 2, k)*c(2) + kin%s(:, 3, k)*c(3)   ! S c, without a library matmul
             p = kin%r(:, k) + d
             v = kin%v(:, k) + cross(kin%omega(:, k), d)
         end if
