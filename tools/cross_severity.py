@@ -64,7 +64,7 @@ def main():
     rows = [head, "|" + "---|" * (len(names) + 8)]
     for label, tag in FITS:
         vals = [v for _, v in fits[tag]]
-        cells = ["%.3g" % float(v) for v in vals]
+        cells = ["%#.3g" % float(v) for v in vals]
         lmax = -1.0e30
         for sev in ("15g", "12g"):
             r, k, n, kt, lm = score(sev, vals)
