@@ -10,6 +10,7 @@ module hn_rest_modes
     use hn_model, only: model_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, inertia_forces_free, state_size
     use hn_lapack, only: dgeev
+    use hn_iteration_matrix, only: fd_jacobian
     implicit none
     private
 
@@ -21,9 +22,6 @@ module hn_rest_modes
         integer :: dominant = 0           !! free coordinate (model numbering) with the largest displacement
     end type rest_mode_t
 
-    !> Relative step of the central differences, and the smallest absolute
-    !! step [m, rad, m/s, rad/s].
-    real(wp), parameter :: fd_rel = 1.0e-7_wp, fd_abs = 1.0e-7_wp
 
 contains
 
@@ -42,34 +40,22 @@ contains
         integer, intent(out) :: stat                    !! stat_ok, or the failure of a dynamics evaluation
         character(len=msglen), intent(out) :: errmsg    !! what failed
         type(model_ode_t) :: sys
-        real(wp), allocatable :: y(:), yp(:), gp(:), gm(:)
-        real(wp) :: h
-        integer :: nf, j
+        real(wp), allocatable :: y(:), g(:), full(:, :)
+        integer :: nf
         call model_ode_init(sys, model)
         nf = sys%ws%nfree
         ifree = sys%ws%ifree
-        allocate (y(state_size(sys)), gp(state_size(sys)), gm(state_size(sys)), jac(2*nf, 2*nf))
+        allocate (y(state_size(sys)), g(state_size(sys)), full(state_size(sys), state_size(sys)))
         call coordinates_to_state(sys%ws, x, xd, y)
         if (hold) then
-            call sys%rhs(t, y, gp, stat, errmsg)
+            call sys%rhs(t, y, g, stat, errmsg)
             if (stat /= stat_ok) return
             sys%model%q_hold(sys%ws%ifree) = sys%model%q_hold(sys%ws%ifree) - &
-                                             inertia_forces_free(sys%model, sys%ws, gp(nf + 1:2*nf))
+                                             inertia_forces_free(sys%model, sys%ws, g(nf + 1:2*nf))
         end if
-        yp = y
-        do j = 1, 2*nf
-            h = max(fd_rel*abs(y(j)), fd_abs)
-            yp(j) = y(j) + h
-            call sys%rhs(t, yp, gp, stat, errmsg)
-            if (stat /= stat_ok) return
-            yp(j) = y(j) - h
-            call sys%rhs(t, yp, gm, stat, errmsg)
-            if (stat /= stat_ok) return
-            yp(j) = y(j)
-            jac(:, j) = (gp(1:2*nf) - gm(1:2*nf))/(2*h)
-        end do
-        stat = stat_ok
-        errmsg = ''
+        call fd_jacobian(sys, t, y, g, full, stat, errmsg, ncol=2*nf, central=.true.)
+        if (stat /= stat_ok) return
+        jac = full(1:2*nf, 1:2*nf)
     end subroutine rest_jacobian
 
     !> Eigenvalues of the Jacobian of rest_jacobian, sorted by decreasing

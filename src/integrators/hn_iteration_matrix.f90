@@ -28,6 +28,8 @@ module hn_iteration_matrix
     !> Relative difference step of the finite-difference Jacobians, and the
     !! smallest absolute step (for components near zero).
     real(wp), parameter :: fd_step_rel = sqrt(epsilon(one)), fd_step_floor = 1.0e-4_wp
+    !> Step of central differences: relative, and its floor in |y| [m, rad, m/s, rad/s]
+    real(wp), parameter :: central_step_rel = 1.0e-7_wp, central_step_floor = one
 
     !> Jacobian, factorization and counts.
     type :: iteration_matrix_t
@@ -202,30 +204,47 @@ contains
     end subroutine im_forget
 
     !> Jacobian dg/dy by forward differences over the first ncol components
-    !! (default: all but the quadratures; other columns zero).
-    subroutine fd_jacobian(sys, t, y, f, jac, stat, errmsg, ncol)
+    !! (default: all but the quadratures; other columns zero), or by central
+    !! differences when `central` (twice the evaluations, error O(h^2): the
+    !! rest-mode analysis, where eigenvalues near zero decide).
+    subroutine fd_jacobian(sys, t, y, f, jac, stat, errmsg, ncol, central)
         class(ode_system_t), intent(inout) :: sys      !! the system y' = g(t, y)
         real(wp), intent(in) :: t                      !! time [s]
         real(wp), intent(in) :: y(:)                   !! state
-        real(wp), intent(in) :: f(:)                   !! g(t, y)
+        real(wp), intent(in) :: f(:)                   !! g(t, y) (not used by central differences)
         real(wp), intent(out) :: jac(:, :)             !! (n, n) dg/dy; columns beyond ncol zero
         integer, intent(out) :: stat                   !! stat_ok, or the system's failure
         character(len=msglen), intent(out) :: errmsg   !! the system's message ('' when stat_ok)
         integer, intent(in), optional :: ncol          !! number of leading columns to form (default: n - nquad)
-        real(wp) :: yp(size(y)), fp(size(y)), d
+        logical, intent(in), optional :: central       !! central differences (default: forward)
+        real(wp) :: yp(size(y)), fp(size(y)), fm(size(y)), d
         integer :: j, nc
+        logical :: two_sided
         stat = stat_ok
         errmsg = ''
         nc = size(y) - sys%nquad
         if (present(ncol)) nc = ncol
+        two_sided = .false.
+        if (present(central)) two_sided = central
         jac = zero
         yp = y
         do j = 1, nc
-            d = fd_step_rel*max(abs(y(j)), fd_step_floor)
-            yp(j) = y(j) + d
-            call sys%rhs(t, yp, fp, stat, errmsg)
-            if (stat /= stat_ok) return
-            jac(:, j) = (fp - f)/d
+            if (two_sided) then
+                d = central_step_rel*max(abs(y(j)), central_step_floor)
+                yp(j) = y(j) + d
+                call sys%rhs(t, yp, fp, stat, errmsg)
+                if (stat /= stat_ok) return
+                yp(j) = y(j) - d
+                call sys%rhs(t, yp, fm, stat, errmsg)
+                if (stat /= stat_ok) return
+                jac(:, j) = (fp - fm)/(2*d)
+            else
+                d = fd_step_rel*max(abs(y(j)), fd_step_floor)
+                yp(j) = y(j) + d
+                call sys%rhs(t, yp, fp, stat, errmsg)
+                if (stat /= stat_ok) return
+                jac(:, j) = (fp - f)/d
+            end if
             yp(j) = y(j)
         end do
     end subroutine fd_jacobian
