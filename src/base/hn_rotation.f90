@@ -30,7 +30,9 @@ contains
     pure function skew(a) result(m)
         real(wp), intent(in) :: a(3)   !! the vector whose cross product the matrix applies
         real(wp) :: m(3, 3)
-        m = reshape([zero, a(3), -a(2), -a(3), zero, a(1), a(2), -a(1), zero], [3, 3])
+        m(:, 1) = [zero, a(3), -a(2)]
+        m(:, 2) = [-a(3), zero, a(1)]
+        m(:, 3) = [a(2), -a(1), zero]
     end function skew
 
     !> Euclidean norm of a 3-vector.

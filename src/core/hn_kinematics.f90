@@ -103,7 +103,8 @@ contains
         type(kinematics_t), intent(inout) :: kin
         integer :: p, m, j
         real(wp) :: q(6), qd(6), sp(3, 3), omp(3), rp(3), vpar(3), a0p(3), al0p(3), ub(3, 3), u(3, 3)
-        real(wp) :: e(3), rho(3), vt(3), ie(3, 3), ud(3, 3)
+        real(wp) :: e(3), rho(3), vt(3), ie(3, 3), ud(3, 3), sk(3, 3), ic(3, 3), jp(3), jc(3)
+        ! fixed-size copies keep the small products inline (no library calls, no heap temporaries)
         p = tree%parent(k)
         call body_coordinates(tree, k, x, xd, q, qd)
         if (p == 0) then
@@ -114,17 +115,21 @@ contains
             rp = kin%r(:, p); vpar = kin%v(:, p); a0p = kin%a0(:, p); al0p = kin%alpha0(:, p)
         end if
         ! orientation, joint point and mass centre
-        kin%s(:, :, k) = matmul(sp, bryant_matrix(q(4:6)))
+        sk = matmul(sp, bryant_matrix(q(4:6)))
+        kin%s(:, :, k) = sk
         ub = bryant_axes(q(4:6))
         u = matmul(sp, ub)
         kin%axes(:, 1:3, k) = sp
         kin%axes(:, 4:6, k) = u
-        kin%joint(:, k) = rp + matmul(sp, tree%joint_parent(:, k) + q(1:3))
+        jp = tree%joint_parent(:, k) + q(1:3)
+        kin%joint(:, k) = rp + matmul(sp, jp)
         if (k == tree%order(1)) kin%origin = kin%joint(:, k)
-        e = matmul(kin%s(:, :, k), tree%joint_child(:, k))   ! mass centre -> joint point
+        jc = tree%joint_child(:, k)
+        e = matmul(sk, jc)   ! mass centre -> joint point
         kin%r(:, k) = kin%joint(:, k) - e
         rho = kin%joint(:, k) - rp
-        ie = matmul(kin%s(:, :, k), matmul(tree%inertia(:, :, k), transpose(kin%s(:, :, k))))
+        ic = tree%inertia(:, :, k)
+        ie = matmul(sk, matmul(ic, transpose(sk)))
         kin%inertia_r(:, :, k) = half*(ie + transpose(ie))
         ! velocities: joint point moves with the parent plus the translations
         kin%omega(:, k) = omp + u(:, 1)*qd(4) + u(:, 2)*qd(5) + u(:, 3)*qd(6)

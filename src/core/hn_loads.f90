@@ -3,7 +3,6 @@
 !! (one-way joint dampers act that way, eq 12).
 module hn_loads
     use hn_kinds, only: wp, zero
-    use hn_rotation, only: cross
     implicit none
     private
 
@@ -43,9 +42,14 @@ contains
         real(wp), intent(in) :: rk(3)                !! its mass centre in R [m]
         real(wp), intent(in) :: point(3)             !! point of application in R [m]
         real(wp), intent(in) :: f(3)                 !! the force in R [N]
+        real(wp) :: d(3)
         if (k < 1) return                     ! body 0 is the inertial frame
+        d = point - rk
         loads%force(:, k) = loads%force(:, k) + f
-        loads%moment(:, k) = loads%moment(:, k) + cross(point - rk, f)
+        ! (point - rk) x f written out: this is the innermost call of every element
+        loads%moment(1, k) = loads%moment(1, k) + (d(2)*f(3) - d(3)*f(2))
+        loads%moment(2, k) = loads%moment(2, k) + (d(3)*f(1) - d(1)*f(3))
+        loads%moment(3, k) = loads%moment(3, k) + (d(1)*f(2) - d(2)*f(1))
     end subroutine add_point_force
 
     !> Add a couple c to body k.

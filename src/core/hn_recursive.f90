@@ -103,10 +103,12 @@ contains
         type(kinematics_t), intent(in) :: kin
         type(body_loads_t), intent(in) :: loads
         integer, intent(in) :: k
-        real(wp) :: w(6), iw(3)
-        iw = matmul(kin%inertia_r(:, :, k), kin%omega(:, k))
+        real(wp) :: w(6), iw(3), ir(3, 3), om(3)
+        ir = kin%inertia_r(:, :, k)     ! fixed-size copies keep the products inline
+        om = kin%omega(:, k)
+        iw = matmul(ir, om)
         w(4:6) = loads%force(:, k) - tree%mass(k)*kin%a0(:, k)
-        w(1:3) = loads%moment(:, k) - matmul(kin%inertia_r(:, :, k), kin%alpha0(:, k)) - cross(kin%omega(:, k), iw) &
+        w(1:3) = loads%moment(:, k) - matmul(ir, kin%alpha0(:, k)) - cross(om, iw) &
                  + cross(kin%r(:, k) - kin%origin, w(4:6))
     end function bias_wrench
 
@@ -249,14 +251,15 @@ contains
         real(wp), intent(out) :: u(6, 6), dl(6, 6), uu(6)
         integer, intent(out) :: stat
         real(wp), intent(inout), optional :: ia_parent(6, 6), pa_parent(6)
-        real(wp) :: y(6, 6), ylin(6), iat(6, 6), scale
+        real(wp) :: y(6, 6), ylin(6), iat(6, 6), scale, s6(6)
         integer :: a, b, n
         stat = stat_ok
         n = size(cols)
         u = zero; dl = zero; uu = zero
         do a = 1, n
-            u(:, a) = matmul(ia, sj(:, cols(a)))
-            uu(a) = tau(cols(a)) - dot_product(sj(:, cols(a)), pa)
+            s6 = sj(:, cols(a))      ! a fixed-size copy keeps the product inline
+            u(:, a) = matmul(ia, s6)
+            uu(a) = tau(cols(a)) - dot_product(s6, pa)
         end do
         do a = 1, n
             do b = 1, n
@@ -264,7 +267,10 @@ contains
             end do
         end do
         if (n > 0) then
-            scale = maxval([(abs(dl(a, a)), a=1, n)])
+            scale = zero
+            do a = 1, n
+                scale = max(scale, abs(dl(a, a)))
+            end do
             call small_cholesky(dl(1:n, 1:n), scale, stat)
             if (stat /= stat_ok) return
         end if
@@ -276,9 +282,16 @@ contains
         end do
         ylin(1:n) = uu(1:n)
         call forward_subst(dl(1:n, 1:n), ylin(1:n))
-        iat = ia - matmul(transpose(y(1:n, 1:6)), y(1:n, 1:6))
+        do b = 1, 6
+            do a = 1, 6
+                iat(a, b) = ia(a, b) - dot_product(y(1:n, a), y(1:n, b))
+            end do
+        end do
         ia_parent = ia_parent + iat
-        pa_parent = pa_parent + pa + matmul(iat, c) + matmul(transpose(y(1:n, 1:6)), ylin(1:n))
+        pa_parent = pa_parent + pa + matmul(iat, c)
+        do a = 1, 6
+            pa_parent(a) = pa_parent(a) + dot_product(y(1:n, a), ylin(1:n))
+        end do
     end subroutine joint_reduce
 
     !> ABA forward step of one joint: xddot_F = D^-1 (u - U^T a') and
@@ -312,7 +325,9 @@ contains
         real(wp) :: m, h(3), j(3, 3), hx(3, 3)
         integer :: a
         call body_inertia(tree, kin, k, m, h, j)
-        hx = reshape([zero, h(3), -h(2), -h(3), zero, h(1), h(2), -h(1), zero], [3, 3])
+        hx(:, 1) = [zero, h(3), -h(2)]
+        hx(:, 2) = [-h(3), zero, h(1)]
+        hx(:, 3) = [h(2), -h(1), zero]
         i6 = zero
         i6(1:3, 1:3) = j
         i6(1:3, 4:6) = hx

@@ -12,7 +12,7 @@
 !! segment, pulling each point towards its neighbours on the path.
 module hn_line_elements
     use hn_kinds, only: wp, zero, one
-    use hn_rotation, only: cross, norm3
+    use hn_rotation, only: norm3
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, add_point_force
     use hn_muscle, only: hill_t, hill_force
@@ -145,13 +145,17 @@ contains
         real(wp), intent(in) :: c(3)           !! point in the body frame [m]
         real(wp), intent(out) :: p(3)          !! position in R [m]
         real(wp), intent(out) :: v(3)          !! velocity in R [m/s]
-        real(wp) :: d(3)
+        real(wp) :: d(3), w(3)
         if (k == 0) then
             p = c; v = zero
         else
             d = kin%s(:, 1, k)*c(1) + kin%s(:, 2, k)*c(2) + kin%s(:, 3, k)*c(3)   ! S c, without a library matmul
             p = kin%r(:, k) + d
-            v = kin%v(:, k) + cross(kin%omega(:, k), d)
+            w = kin%omega(:, k)
+            ! v + omega x d written out: called for every end of every line element
+            v(1) = kin%v(1, k) + (w(2)*d(3) - w(3)*d(2))
+            v(2) = kin%v(2, k) + (w(3)*d(1) - w(1)*d(3))
+            v(3) = kin%v(3, k) + (w(1)*d(2) - w(2)*d(1))
         end if
     end subroutine attachment_point
 
