@@ -178,6 +178,8 @@ module hn_integrators
         integer :: jac_age_max = 20
         type(iteration_matrix_t) :: w
         real(wp), allocatable :: u(:, :)  !! (n, 4) stages of the last step (dense output)
+        real(wp) :: hacc = zero           !! the last accepted step (Gustafsson's controller; 0: none yet)
+        real(wp) :: erracc = zero         !! its error norm (at least 1e-2)
     contains
         procedure :: step => rosw_step
         procedure :: interpolate => rosw_interpolate

@@ -217,7 +217,14 @@ contains
         call sys%rhs(me%t + h, ynew, fnew, stat, errmsg)
         if (stat /= stat_ok) return
         me%jac_age = me%jac_age + 1
-        fac = min(fac_max, max(fac_min, 0.9_wp*err**(-one/3.0_wp)))
+        fac = 0.9_wp*err**(-one/3.0_wp)
+        ! Gustafsson's predictive controller (as in RADAU5 and RODAS): the
+        ! smaller of the standard step and the one predicted from the error
+        ! ratio of the last two accepted steps
+        if (me%hacc > zero) fac = min(fac, 0.9_wp*(h/me%hacc)*(me%erracc/err**2)**(one/3.0_wp))
+        me%hacc = h
+        me%erracc = max(1.0e-2_wp, err)
+        fac = min(fac_max, max(fac_min, fac))
         ! no growth right after a rejection (Hairer & Wanner's safeguard)
         if (rejected) fac = min(fac, one)
         ! a clipped step does not shrink the next; a small increase is not
