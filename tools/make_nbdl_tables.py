@@ -40,28 +40,34 @@ def table(name, t, mean, scale):
     return out
 
 
+def t1_tables(sev, z_cfc=Z_CFC):
+    """The lines of input/nbdlSEV_t1.inp, the z-acceleration filtered CFC z_cfc."""
+    c = CASES[sev]
+    lines = [
+        "* T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (sev.replace("g", " g"), c["runs"]),
+        "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
+        "* (the z-acceleration CFC %d: its runs are out of phase above about" % z_cfc,
+        "* 20 Hz), mean over the runs, every 1 ms. Written by",
+        "* tools/make_nbdl_tables.py from reference/nbdl_%s (Ewing & Thomas" % sev,
+        "* 1972, NHTSA Biomechanics Test Database, via IMMC-UWaterloo/ARCGen).",
+        "* Time in ms (scale 0.001 s).",
+    ]
+    for name, chan, scale, cls in (("T1XACC", "T1_XAccel", "9.80665", 60),
+                                   ("T1ZACC", "T1_ZAccel", "9.80665", z_cfc),
+                                   ("T1RY", "T1_YrotDisp", c["rot_scale"], 60)):
+        t, data, _ = runs(chan, sev)
+        dt = (t[1] - t[0]) * 1e-3
+        mean = np.mean([cfc(r, cls, dt) for r in data], axis=0)
+        lines += table(name, t, mean, scale)
+    for line in lines:
+        assert len(line) <= 80, line
+    return lines
+
+
 def main():
-    for sev, c in CASES.items():
-        lines = [
-            "* T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (sev.replace("g", " g"), c["runs"]),
-            "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
-            "* (the z-acceleration CFC %d: its runs are out of phase above about" % Z_CFC,
-            "* 20 Hz), mean over the runs, every 1 ms. Written by",
-            "* tools/make_nbdl_tables.py from reference/nbdl_%s (Ewing & Thomas" % sev,
-            "* 1972, NHTSA Biomechanics Test Database, via IMMC-UWaterloo/ARCGen).",
-            "* Time in ms (scale 0.001 s).",
-        ]
-        for name, chan, scale, cls in (("T1XACC", "T1_XAccel", "9.80665", 60),
-                                       ("T1ZACC", "T1_ZAccel", "9.80665", Z_CFC),
-                                       ("T1RY", "T1_YrotDisp", c["rot_scale"], 60)):
-            t, data, _ = runs(chan, sev)
-            dt = (t[1] - t[0]) * 1e-3
-            mean = np.mean([cfc(r, cls, dt) for r in data], axis=0)
-            lines += table(name, t, mean, scale)
-        for line in lines:
-            assert len(line) <= 80, line
+    for sev in CASES:
         with open(os.path.join("input", "nbdl%s_t1.inp" % sev), "w") as f:
-            f.write("\n".join(lines) + "\n")
+            f.write("\n".join(t1_tables(sev)) + "\n")
 
 
 if __name__ == "__main__":
