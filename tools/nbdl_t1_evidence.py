@@ -21,6 +21,8 @@ reference/nbdl_12g (docs/validation.md, "How T1 drives the model"):
    |spectrum|^2: 1 for a motion every run repeats, 1/n for runs out of phase
    with each other; the runs' strongest frequency above 30 Hz; the mean and
    the SD across runs at 100 ms (each run CFC 60).
+3. Size of the T1 z ringing: per run (CFC 60), the least and largest T1
+   z-acceleration in 85-120 ms, and the T1 z-displacement at 100 ms.
 """
 import os
 import sys
@@ -102,8 +104,24 @@ def coherence_table():
     return rows
 
 
+def ringing_table():
+    rows = ["| severity | run | least T1 z-acc. in 85-120 ms (g) | largest (g) | T1 z-disp. at 100 ms (mm) |",
+            "|---|---|---|---|---|"]
+    for sev in ("15g", "12g"):
+        t, acc, cols = runs("T1_ZAccel", sev)
+        disp = runs("T1_ZDisp", sev)[1]
+        dt = (t[1] - t[0]) * 1e-3
+        m = (t >= 85.0) & (t <= 120.0)
+        i100 = int(np.searchsorted(t, 100.0))
+        for name, a, d in zip(cols, acc, disp):
+            f = cfc(a, 60, dt)[m]
+            rows.append("| %s | %s | %.1f | %.1f | %.1f |" % (sev.replace("g", " g"), name[4:], f.min(), f.max(),
+                                                            d[i100]))
+    return rows
+
+
 def main():
-    print("\n".join(axes_table() + [""] + coherence_table()))
+    print("\n".join(axes_table() + [""] + coherence_table() + [""] + ringing_table()))
 
 
 if __name__ == "__main__":
