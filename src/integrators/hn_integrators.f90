@@ -5,6 +5,10 @@
 !! never passes `tstop` (a discontinuity of the inputs lands exactly on a
 !! step end); `interpolate` gives y, and on request y', anywhere in the
 !! last step (dense output), so output times never constrain the step.
+!! `interpolate_hermite` gives the cubic Hermite interpolant of the last step's
+!! end points (y and f = g(t, y) at both) for every method: its derivative
+!! is what the run's output path uses for the accelerations at sample times
+!! (exact at the step ends, where g was evaluated).
 !!
 !!   RK4       classical Runge-Kutta, fixed step, Hermite dense output
 !!   ABM4      Adams-Bashforth-Moulton 4 PECE, fixed step, started by RK4
@@ -31,7 +35,7 @@ module hn_integrators
     implicit none
     private
 
-    public :: integrator_t, new_integrator, spectral_radius, integrator_names
+    public :: integrator_t, new_integrator, spectral_radius, integrator_names, interpolate_hermite
     public :: rk4_t, abm4_t, adams_t, dopri5_t, ros2_t, rosw_t
 
     !> Deck names of the integrators (the CONTROL card and new_integrator).
@@ -479,6 +483,16 @@ contains
             dydt = (h00*me%yold - h00*me%y)/h + h10*me%fold + h11*me%f
         end if
     end subroutine hermite_interpolate
+
+    !> The cubic Hermite interpolant of the last step's end points and its
+    !! derivative, for every method (whatever its own dense output).
+    subroutine interpolate_hermite(integ, tout, yout, dydt)
+        class(integrator_t), intent(in) :: integ        !! the integrator after a step
+        real(wp), intent(in) :: tout                    !! time in the last step [s]
+        real(wp), intent(out) :: yout(:)                !! y(tout) of the interpolant
+        real(wp), intent(out), optional :: dydt(:)      !! y'(tout) of the interpolant
+        call hermite_interpolate(integ, tout, yout, dydt)
+    end subroutine interpolate_hermite
 
     !> Estimate of the spectral radius of dg/dy at (t, y) by power iteration
     !! on finite-difference Jacobian-vector products; `lead` is the

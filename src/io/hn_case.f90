@@ -17,6 +17,10 @@ module hn_case
         real(wp) :: h = zero            !! fixed step, or first step of adaptive methods [s]
         real(wp) :: print_dt = zero     !! listing interval [s]
         real(wp) :: sample_dt = zero    !! HDF5 sampling interval [s]
+        !> accelerations at output times: 'SOLVE' (articulated-body solve at
+        !! the interpolated state) or 'HERMITE' (derivative of the cubic
+        !! Hermite interpolant of the step's end points, no solve)
+        character(len=8) :: output_xdd = 'SOLVE'
         character(len=8) :: integrator = 'RK4'
         real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-8_wp
         real(wp), allocatable :: x0(:), xd0(:)      !! initial active coordinates and rates

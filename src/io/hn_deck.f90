@@ -384,6 +384,16 @@ contains
             if (span/cs%sample_dt > 1.0e7_wp) &
                 call rd%fail(rd%context(cards(ic)%first, 1, 'HDF5 sample interval')// &
                              ': expected at most 1E7 samples in the run')
+            if (len_trim(rd%raw(cards(ic)%first, 2)) > 0) then
+                call rd%name(cards(ic)%first, 2, 'output accelerations', s)
+                if (rd%failed()) return
+                if (s /= 'HERMITE' .and. s /= 'SOLVE') then
+                    call rd%fail(rd%context(cards(ic)%first, 2, 'output accelerations')//': found "'//trim(s)// &
+                                 '"; expected HERMITE or SOLVE')
+                    return
+                end if
+                cs%output_xdd = s(1:8)
+            end if
         end if
         ic = single(rd, cards, 'H5FILE', .false.)
         if (ic > 0) cs%h5file = rd%text(cards(ic)%first, 11)

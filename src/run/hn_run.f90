@@ -14,7 +14,7 @@ module hn_run
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
                            energy_t, dynamics_outputs, inertia_forces_free
     use hn_forces, only: switch_count, switching_functions
-    use hn_integrators, only: integrator_t, new_integrator, spectral_radius
+    use hn_integrators, only: integrator_t, new_integrator, spectral_radius, interpolate_hermite
     use hn_channels, only: channel_set_t, channels_define, channels_compute, channel_index
     use hn_results, only: results_t
     use hn_listing, only: listing_t
@@ -346,17 +346,24 @@ contains
     !! last step: channels, peaks, a sample, a listing row and a dump as due.
     subroutine run_output(me)
         class(run_state_t), intent(inout) :: me
-        real(wp) :: t, y(size(me%ygood)), dydt(size(me%ygood))
+        real(wp) :: t, y(size(me%ygood)), yh(size(me%ygood)), dydt(size(me%ygood))
         type(energy_t) :: en
         integer :: stat, nf
         character(len=msglen) :: msg
         associate (cs => me%cs, ws => me%sys%ws)
             nf = ws%nfree
             t = me%tout
-            ! kinematics, element loads and xddot (articulated-body solve, no
-            ! a_ij) at the interpolated state; a dump needs a full evaluation
+            ! kinematics and element loads at the interpolated state; xddot
+            ! from the Hermite interpolant of the step's end points (HERMITE)
+            ! or by the articulated-body solve there (SOLVE); a dump needs a
+            ! full evaluation
             call me%integ%interpolate(t, y)
-            call dynamics_outputs(me%sys%model, ws, t, y(1:nf), y(nf + 1:2*nf), stat)
+            if (cs%output_xdd == 'SOLVE') then
+                call dynamics_outputs(me%sys%model, ws, t, y(1:nf), y(nf + 1:2*nf), stat)
+            else
+                call interpolate_hermite(me%integ, t, yh, dydt)
+                call dynamics_outputs(me%sys%model, ws, t, y(1:nf), y(nf + 1:2*nf), stat, dydt(nf + 1:2*nf))
+            end if
             if (stat /= stat_ok) then
                 call me%fail(exit_diverged, 'run stopped: singular joint at an output time')
                 return
