@@ -12,9 +12,9 @@ filtered CFC 60; the z-acceleration CFC 20: above about 20 Hz the runs' T1
 z-accelerations are out of phase with each other (a mount ringing at 50-60 Hz,
 up to 88 g with millimetre displacements, at 85-120 ms), not a motion of the
 torso the model's rigid T1 should transmit to the head; the evidence is
-printed by tools/nbdl_t1_evidence.py (docs/validation.md). The 15 g rotation is in degrees;
-the 12 g rotation file carries no unit and is read as radians (the table's
-value scale converts it; reasons in reference/cases.md).
+printed by tools/nbdl_t1_evidence.py (docs/validation.md). The 15 g rotation
+is in degrees; the 12 g rotation file carries no unit and is read as radians
+(the table's value scale converts it; reasons in reference/cases.md).
 """
 import os
 import sys
