@@ -71,7 +71,7 @@ def main():
             lmax = max(lmax, lm)
             kind = "calibration" if tag in (sev, "both") else "prediction"
             cells += ["%s (%s)" % (rating_text(r), kind), "%d of %d" % (k, n), "%d of %d" % (kt, n)]
-        cells.append("%.3g" % lmax)
+        cells.append("%#.3g" % lmax)
         rows.append("| %s | %s |" % (label, " | ".join(cells)))
     print("\n".join(rows))
 

@@ -180,18 +180,18 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
-ACT = dict(u0=0.176588, u1=0.406798, delay=0.0659515, rise=0.020, tau_act=0.015, tau_deact=0.050)
+ACT = dict(u0=0.186632, u1=0.556956, delay=0.0651109, rise=0.020, tau_act=0.015, tau_deact=0.050)
 # short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
 # McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
 SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.80306),      # sigma_max / 0.5 MPa
-    ("VISCOUS", "DISCS", "VISCOUS", 10.9899), # disc retardation time / 5 ms
-    ("SHEAR", "DISCS", "G", 1.70721),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.45298),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 0.0506179),    # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 1.40188),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 7.92356), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 0.34145),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.11791),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.0505187),    # range-of-motion stiffness / 50 N m/rad
 ]
 # the calibration's PARAM names of the ACTIVATE NECK fields
 FITTED_ACT = {"BRACE": "u0", "REFLEX": "u1", "DELAY": "delay"}

@@ -1,10 +1,16 @@
 #!/usr/bin/env python3
 """The effect of each measured T1 motion on the head: runs the NBDL decks with
-T1 driven by x only, x + sagittal rotation, and x + z + rotation (the decks as
-shipped), and prints a Markdown table of the overall CORA-style rating and the
+T1 driven by x only, x + sagittal rotation, x + z + rotation with the z
+acceleration filtered CFC 60 like the others (the drive before the z filter)
+and x + z + rotation as shipped (z CFC 20; tools/make_nbdl_tables.py), and
+prints a Markdown table of the overall CORA-style rating and the
 head peaks (tools/compare_nbdl.py) for both severities.
 
-    python3 tools/t1_drive_effect.py        (release build; about 30 s)
+    python3 tools/t1_drive_effect.py [--z-cfc 30,10,5]     (release build; about 30 s)
+
+--z-cfc adds rows with the z table filtered at those CFC classes (the
+sensitivity to the choice of CFC 20). A distance of 1.00 SD after rounding is
+printed with three decimals (which side of the 1 SD target it is on).
 """
 import os
 import subprocess
@@ -13,37 +19,55 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare_nbdl import compare, s3  # noqa: E402
+from make_nbdl_tables import t1_tables  # noqa: E402
 
+# (label, replaced PRESCRIB cards, CFC class of the z table or None as shipped)
 VARIANTS = [
-    ("x only", {"TZ": "PRESCRIB  T1        TZ        CONSTANT", "RY": "PRESCRIB  T1        RY        CONSTANT"}),
-    ("x + rotation", {"TZ": "PRESCRIB  T1        TZ        CONSTANT"}),
-    ("x + z + rotation (shipped)", {}),
+    ("x only", {"TZ": "PRESCRIB  T1        TZ        CONSTANT", "RY": "PRESCRIB  T1        RY        CONSTANT"},
+     None),
+    ("x + rotation", {"TZ": "PRESCRIB  T1        TZ        CONSTANT"}, None),
+    ("x + z (CFC 60) + rotation", {}, 60),
+    ("x + z (CFC 20) + rotation (shipped)", {}, None),
 ]
 
 
-def deck_variant(sev, repl, path):
+def deck_variant(sev, repl, z_cfc, path):
     out = []
     for line in open("input/nbdl%s.inp" % sev):
         key = line[20:22] if line.startswith("PRESCRIB  T1") else None
+        if z_cfc is not None and line.startswith("INCLUDE   input/nbdl%s_t1.inp" % sev):
+            table = path + ".t1"
+            with open(table, "w") as f:
+                f.write("\n".join(t1_tables(sev, z_cfc)) + "\n")
+            line = "INCLUDE   %s\n" % table
         out.append((repl[key] + "\n") if key in repl else line)
     open(path, "w").write("".join(out))
 
 
+def sd(z):
+    return ("%+.3f" if round(abs(z), 2) == 1.0 else "%+.2f") % z
+
+
 def main():
+    variants = list(VARIANTS)
+    if sys.argv[1:2] == ["--z-cfc"] and len(sys.argv) == 3:
+        variants += [("x + z (CFC %s) + rotation" % c, {}, int(c)) for c in sys.argv[2].split(",")]
+    elif len(sys.argv) > 1:
+        sys.exit("usage: t1_drive_effect.py [--z-cfc CLASS,CLASS,...]")
     tmp = tempfile.mkdtemp()
     rows = ["| severity | T1 driven by | rating | x-acc. (g) | z dip (g) | z rebound (g) | ang. acc. (rad/s²) "
             "| ang. vel. (rad/s) | rotation (deg) |", "|---|---|---|---|---|---|---|---|---|"]
     for sev in ("15g", "12g"):
-        for label, repl in VARIANTS:
+        for label, repl, z_cfc in variants:
             deck = os.path.join(tmp, "d.inp")
-            deck_variant(sev, repl, deck)
+            deck_variant(sev, repl, z_cfc, deck)
             h5 = os.path.join(tmp, "r.h5")
             with open(deck) as f:
                 subprocess.run(["fpm", "run", "--profile", "release", "--", "--h5", h5], stdin=f,
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
             chans, peaks, overall, _, _, _ = compare(sev, h5)
             rows.append("| %s | %s | %.3f | %s |" % (sev.replace("g", " g"), label, overall, " | ".join(
-                "%s (%+.2f SD)" % (s3(p["mp"]), p["z"]) for p in peaks)))
+                "%s (%s SD)" % (s3(p["mp"]), sd(p["z"])) for p in peaks)))
         rows.append("| %s | volunteers (mean ± SD) | | %s |" % (sev.replace("g", " g"), " | ".join(
             "%s ± %s" % (s3(p["pm"]), s3(p["ps"])) for p in peaks)))
     print("\n".join(rows))
