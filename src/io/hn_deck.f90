@@ -360,12 +360,8 @@ contains
                 return
             end if
             if (len_trim(rd%raw(i, 2)) > 0) then
-                call rd%name(i, 2, 'Jacobian', s)
+                call rd%choice(i, 2, 'Jacobian', [character(len=6) :: 'STRUCT', 'FD'], s)
                 if (rd%failed()) return
-                if (s /= 'STRUCT' .and. s /= 'FD') then
-                    call rd%fail(rd%context(i, 2, 'Jacobian')//': found "'//trim(s)//'"; expected STRUCT or FD')
-                    return
-                end if
                 cs%model%jacobian = s(1:8)
             end if
         end if
@@ -385,13 +381,8 @@ contains
                 call rd%fail(rd%context(cards(ic)%first, 1, 'HDF5 sample interval')// &
                              ': expected at most 1E7 samples in the run')
             if (len_trim(rd%raw(cards(ic)%first, 2)) > 0) then
-                call rd%name(cards(ic)%first, 2, 'output accelerations', s)
+                call rd%choice(cards(ic)%first, 2, 'output accelerations', [character(len=7) :: 'HERMITE', 'SOLVE'], s)
                 if (rd%failed()) return
-                if (s /= 'HERMITE' .and. s /= 'SOLVE') then
-                    call rd%fail(rd%context(cards(ic)%first, 2, 'output accelerations')//': found "'//trim(s)// &
-                                 '"; expected HERMITE or SOLVE')
-                    return
-                end if
                 cs%output_xdd = s(1:8)
             end if
         end if
@@ -399,10 +390,7 @@ contains
         if (ic > 0) cs%h5file = rd%text(cards(ic)%first, 11)
         ic = single(rd, cards, 'EVENTS', .false.)
         if (ic > 0) then
-            call rd%name(cards(ic)%first, 1, 'event handling', s)
-            if (s /= 'NONE' .and. s /= 'TIME' .and. s /= 'STATE' .and. .not. rd%failed()) &
-                call rd%fail(rd%context(cards(ic)%first, 1, 'event handling')//': found "'//trim(s)// &
-                             '"; expected NONE, TIME or STATE')
+            call rd%choice(cards(ic)%first, 1, 'event handling', [character(len=5) :: 'NONE', 'TIME', 'STATE'], s)
             cs%events = s(1:8)
         end if
         ic = single(rd, cards, 'HOLD', .false.)
@@ -656,13 +644,8 @@ contains
         character(len=100) :: note
         ic = single(rd, cards, 'SCENE', .false.)
         if (ic > 0) then
-            call rd%name(cards(ic)%first, 1, 'scene', s)
+            call rd%choice(cards(ic)%first, 1, 'scene', [character(len=8) :: 'SAGITTAL', 'FULL'], s)
             if (rd%failed()) return
-            if (s /= 'SAGITTAL' .and. s /= 'FULL') then
-                call rd%fail(rd%context(cards(ic)%first, 1, 'scene')//': found "'//trim(s)// &
-                             '"; expected SAGITTAL or FULL')
-                return
-            end if
             if (s == 'SAGITTAL') then
                 call lock_sagittal(cs%model%tree)
                 call add_note('SCENE SAGITTAL: TY, RX, RZ OF EVERY BODY LOCKED AT NEUTRAL')

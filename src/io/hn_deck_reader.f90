@@ -74,6 +74,7 @@ module hn_deck_reader
         procedure :: real => reader_real
         procedure :: int => reader_int
         procedure :: name => reader_name
+        procedure :: choice => reader_choice
         procedure :: text => reader_text
         procedure :: where => reader_where
         procedure :: context
@@ -288,6 +289,28 @@ contains
         end do
         v = s
     end subroutine reader_name
+
+    !> A name that must be one of `choices`: refused with the located
+    !! message 'found "X"; expected A, B or C' otherwise.
+    subroutine reader_choice(me, i, f, what, choices, v)
+        class(deck_reader_t), intent(inout) :: me
+        integer, intent(in) :: i                      !! card image number
+        integer, intent(in) :: f                      !! field number, 1..nfields
+        character(len=*), intent(in) :: what          !! what the field holds (named in messages)
+        character(len=*), intent(in) :: choices(:)    !! the allowed names, upper case
+        character(len=*), intent(out) :: v            !! the name ('' on an error)
+        character(len=:), allocatable :: expected
+        integer :: k
+        call me%name(i, f, what, v)
+        if (me%failed() .or. any(choices == v)) return
+        expected = trim(choices(1))
+        do k = 2, size(choices)
+            expected = expected//merge(' or ', ',   ', k == size(choices))
+            expected = trim(expected)//' '//trim(choices(k))
+        end do
+        call me%fail(context(me, i, f, what)//': found "'//trim(v)//'"; expected '//expected)
+        v = ''
+    end subroutine reader_choice
 
     !> Free text of columns c1..80 of line i.
     function reader_text(me, i, c1) result(s)
