@@ -23,7 +23,7 @@ program bench_stiff
     use hn_kinematics, only: body_accelerations
     use hn_integrators, only: integrator_t, new_integrator, interpolate_hermite
     use hn_kinds, only: g_std
-    use bench_decks, only: copy_with_stiffen, delete_file
+    use bench_decks, only: read_stiffened_case, delete_file
     implicit none
 
     type :: config_t
@@ -208,17 +208,9 @@ contains
         integer, intent(out) :: i_th
         type(case_t) :: cs
         type(channel_set_t) :: ch
-        integer :: stat, lu
-        character(len=msglen) :: msg
+        integer :: lu
         character(len=*), parameter :: tmp = 'bench_stiff_deck.inp'
-        if (stiffen > 0) then
-            call copy_with_stiffen(deck, tmp, stiffen)
-            call read_case(tmp, tmp, cs, stat, msg)
-            call delete_file(tmp)
-        else
-            call read_case(deck, deck, cs, stat, msg)
-        end if
-        if (stat /= 0) error stop trim(msg)
+        call read_stiffened_case(deck, tmp, stiffen, cs)
         cs%integrator = cfg%method
         cs%rtol = cfg%rtol
         cs%atol = cfg%rtol*1.0e-2_wp

@@ -9,10 +9,9 @@
 !!   fpm run --example work_precision --profile release -- docs/work_precision.csv
 !!   python3 tools/plot_work_precision.py docs/work_precision.csv docs/work_precision.png
 program work_precision
-    use hn_kinds, only: wp, msglen
+    use hn_kinds, only: wp
     use hn_case, only: case_t
-    use bench_decks, only: copy_with_stiffen, delete_file
-    use hn_deck, only: read_case
+    use bench_decks, only: read_stiffened_case
     use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
     implicit none
@@ -107,17 +106,9 @@ contains
             integer, intent(out) :: i_th, i_om
             type(case_t) :: cs
             type(channel_set_t) :: ch
-            integer :: stat, lu
-            character(len=msglen) :: msg
+            integer :: lu
             character(len=*), parameter :: tmp = 'work_precision_deck.inp'
-            if (stiffen) then
-                call copy_with_stiffen(deck, tmp, 100.0_wp)
-                call read_case(tmp, tmp, cs, stat, msg)
-                call delete_file(tmp)
-            else
-                call read_case(deck, deck, cs, stat, msg)
-            end if
-            if (stat /= 0) error stop trim(msg)
+            call read_stiffened_case(deck, tmp, merge(100.0_wp, 0.0_wp, stiffen), cs)
             cs%integrator = cfg%method
             cs%h = cfg%h
             cs%rtol = cfg%rtol
