@@ -101,10 +101,7 @@ program hhneck
     if (sweep) call run_sweep()
     if (calib) call run_calibration()
     call read_case(trim(deck), trim(source), cs, stat, msg, search)
-    if (stat /= 0) then
-        write (error_unit, '(a)') 'hhneck: deck error: '//trim(msg)
-        stop exit_deck, quiet=.true.
-    end if
+    call stop_on_deck_error('')
     do i = 1, size(cs%warnings)
         write (error_unit, '(a)') 'hhneck: warning: '//trim(cs%warnings(i))
     end do
@@ -153,10 +150,7 @@ contains
         integer(i8) :: c0, c1, rate
         integer :: r
         call read_sweep(trim(deck), trim(source), sw, stat, msg)
-        if (stat /= 0) then
-            write (error_unit, '(a)') 'hhneck: sweep deck error: '//trim(msg)
-            stop exit_deck, quiet=.true.
-        end if
+        call stop_on_deck_error('sweep ')
         if (check_only) then
             write (error_unit, '(a)') 'hhneck: sweep deck is valid: '//trim(sw%title)
             stop 0, quiet=.true.
@@ -196,15 +190,21 @@ contains
         real(wp) :: j
         integer :: n
         call read_calibration(trim(deck), trim(source), cal, stat, msg)
-        if (stat /= 0) then
-            write (error_unit, '(a)') 'hhneck: calibration deck error: '//trim(msg)
-            stop exit_deck, quiet=.true.
-        end if
+        call stop_on_deck_error('calibration ')
         allocate (v(size(cal%sw(1)%params)))
         call calibrate(cal, output_unit, v, j, n)
         write (error_unit, '(a,i0,a,f8.5)') 'hhneck: calibration finished after ', n, ' evaluations; objective ', j
         stop 0, quiet=.true.
     end subroutine run_calibration
+
+    !> After reading a deck: on an error, its located message on stderr
+    !! ('hhneck: <kind>deck error: ...') and exit code exit_deck.
+    subroutine stop_on_deck_error(kind)
+        character(len=*), intent(in) :: kind   !! '' or the deck kind with a trailing blank ('sweep ')
+        if (stat == 0) return
+        write (error_unit, '(a)') 'hhneck: '//kind//'deck error: '//trim(msg)
+        stop exit_deck, quiet=.true.
+    end subroutine stop_on_deck_error
 
     subroutine h5name_argument()
         if (i == nargs) call usage('--h5 needs a file name')

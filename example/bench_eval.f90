@@ -18,6 +18,7 @@ program bench_eval
     use hn_dynamics, only: dyn_workspace_t, dynamics_setup, dynamics_evaluate
     use hn_linsolve, only: solver_gauss, solver_cholesky, solver_articulated
     use hn_random, only: rng_t
+    use hn_sorting, only: sort_index
     use hn_ode, only: ode_system_t
     use hn_dynamics, only: model_ode_t, model_ode_init, state_size, coordinates_to_state
     implicit none
@@ -88,7 +89,7 @@ contains
             call system_clock(c1)
             samples(rep) = real(c1 - c0, wp)/real(rate, wp)/ninner*1.0e6_wp
         end do
-        call sort(samples)
+        samples = samples(sort_index(samples))
         med = samples((nrep + 1)/2)
     end function time_eval
 
@@ -116,25 +117,10 @@ contains
             call system_clock(c1)
             samples(rep) = real(c1 - c0, wp)/real(rate, wp)/ninner*1.0e6_wp
         end do
-        call sort(samples)
+        samples = samples(sort_index(samples))
         med = samples((nrep + 1)/2)
     end function time_tangent
 
-    subroutine sort(a)
-        real(wp), intent(inout) :: a(:)
-        integer :: i, j
-        real(wp) :: v
-        do i = 2, size(a)
-            v = a(i)
-            j = i - 1
-            do while (j >= 1)
-                if (a(j) <= v) exit
-                a(j + 1) = a(j)
-                j = j - 1
-            end do
-            a(j + 1) = v
-        end do
-    end subroutine sort
 
     !> A random tree of nb bodies, all 6 coordinates active, gravity only.
     subroutine random_tree_model(nb, model)

@@ -30,6 +30,7 @@ module hn_calibrate
     use hn_run, only: run_state_t, run_result_t, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
+    use hn_sorting, only: sort_index
     use hn_rest_modes, only: rest_mode_t, rest_modes
     implicit none
     private
@@ -599,23 +600,6 @@ contains
         real(wp) :: c(size(u))
         c = min(one, max(zero, u))
     end function clamp
-
-    !> Indices that sort v ascending (insertion sort; stable).
-    pure function sort_index(v) result(idx)
-        real(wp), intent(in) :: v(:)
-        integer :: idx(size(v)), i, j, k
-        idx = [(i, i=1, size(v))]
-        do i = 2, size(v)
-            k = idx(i)
-            j = i - 1
-            do while (j >= 1)
-                if (v(idx(j)) <= v(k)) exit
-                idx(j + 1) = idx(j)
-                j = j - 1
-            end do
-            idx(j + 1) = k
-        end do
-    end function sort_index
 
     !> Position of value x in the unit range of parameter p (inverse of spread_value).
     pure real(wp) function unit_of(p, x) result(u)

@@ -13,10 +13,21 @@ module hn_sweep_report
     implicit none
     private
 
-    public :: sweep_finish, sweep_sensitivities, sweep_listing, sweep_write_h5, param_label
+    public :: sweep_finish, sweep_sensitivities, param_label
 
     !> Outputs shown in the listing's run and sensitivity tables.
     integer, parameter :: shown(8) = [1, 2, 4, 6, 8, 9, 10, 12]
+
+    !> A finished sweep: what the listing and the result file report.
+    type :: sweep_outcome_t
+        real(wp), allocatable :: v(:, :)                !! (np, nrun) design: parameter values of every member
+        type(member_record_t), allocatable :: recs(:)   !! (nrun) what each member run gave
+        real(wp), allocatable :: s(:, :)                !! (np, nout) sensitivities
+        logical, allocatable :: valid(:, :)             !! (np, nout) s could be computed
+        real(wp), allocatable :: r2(:)                  !! (nout) R^2 of each output's regression
+        integer :: nranks = 1                           !! number of MPI ranks that ran the members
+        real(wp) :: wall = zero                         !! wall time of the whole sweep [s]
+    end type sweep_outcome_t
 
 contains
 
@@ -33,14 +44,17 @@ contains
         character(len=*), intent(in) :: version        !! program version for the listing and the file
         integer, intent(out) :: stat                   !! stat_ok, or the failure to write the result file
         character(len=msglen), intent(out) :: errmsg   !! why the file could not be written ('' when stat_ok)
-        real(wp) :: s(size(v, 1), nout), r2(nout)
-        logical :: valid(size(v, 1), nout)
-        call sweep_sensitivities(sw, v, recs, s, valid, r2)
-        call sweep_listing(sw, v, recs, s, valid, r2, nranks, wall, lu, version)
+        type(sweep_outcome_t) :: o
+        o%v = v
+        o%recs = recs
+        o%nranks = nranks
+        o%wall = wall
+        allocate (o%s(size(v, 1), nout), o%valid(size(v, 1), nout), o%r2(nout))
+        call sweep_sensitivities(sw, v, recs, o%s, o%valid, o%r2)
+        call sweep_listing(sw, o, lu, version)
         stat = 0
         errmsg = ''
-        if (len(h5name) > 0) call sweep_write_h5(sw, v, recs, s, valid, r2, nranks, wall, h5name, version, &
-                                                 stat, errmsg)
+        if (len(h5name) > 0) call sweep_write_h5(sw, o, h5name, version, stat, errmsg)
     end subroutine sweep_finish
 
     !> Sensitivity s(p, k) of output k to parameter p (elasticities for OAT,
@@ -92,52 +106,48 @@ contains
     end function param_label
 
     !> The sweep listing on unit lu.
-    subroutine sweep_listing(sw, v, recs, s, valid, r2, nranks, wall, lu, version)
+    subroutine sweep_listing(sw, o, lu, version)
         type(sweep_t), intent(in) :: sw                !! the sweep
-        real(wp), intent(in) :: v(:, :)                !! (np, nrun) design: parameter values of every member
-        type(member_record_t), intent(in) :: recs(:)   !! (nrun) what each member run gave
-        real(wp), intent(in) :: s(:, :)                !! (np, nout) sensitivities
-        real(wp), intent(in) :: r2(:)                  !! (nout) R^2 of each output's regression
-        logical, intent(in) :: valid(:, :)             !! (np, nout) s could be computed
-        integer, intent(in) :: nranks                  !! number of MPI ranks that ran the members
+        type(sweep_outcome_t), intent(in) :: o         !! design, member records, sensitivities, ranks, wall time
         integer, intent(in) :: lu                      !! unit of the sweep listing
-        real(wp), intent(in) :: wall                   !! wall time of the whole sweep [s]
         character(len=*), intent(in) :: version        !! program version for the page headers
         type(listing_t) :: lst
         character(len=400) :: line
         integer :: p, r, k, np, nrun, nfail, kk
-        np = size(v, 1)
-        nrun = size(v, 2)
-        nfail = count(recs%status /= 0)
-        call lst%start(lu, 'SWEEP: '//sw%title, version)
-        call lst%echo_deck(sw%deck)
-        call lst%new_page()
-        call lst%put(' PARAMETER SWEEP')
-        call lst%put('')
-        call lst%put('   base deck       '//trim(sw%base))
-        select case (sw%design)
-        case (design_oat)
-            write (line, '(a,f8.3,a)') '   design          OAT: run 1 nominal, then each parameter at -/+', &
-                sw%percent, ' % (normalised sensitivities)'
-        case default
-            line = '   design          '//trim(design_name(sw%design))
-            if (sw%levels > 0 .and. sw%design == design_factorial) line = trim(line)//', '//trim(int_str(sw%levels))// &
-                                                           ' levels per parameter'
-            if (sw%design == design_lhs) line = trim(line)//', seed '//trim(int_str(sw%seed))
-            line = trim(line)//' (standardised regression coefficients)'
-        end select
-        call lst%put(line)
-        write (line, '(a,i0,a,i0,a,i0,a,f10.2,a,f8.3,a)') '   runs            ', nrun, ' (', nrun - nfail, &
-            ' complete, ', nfail, ' failed) on ', real(nranks, wp), ' ranks, ', wall, ' s wall time'
-        call lst%put(line)
-        call lst%put('')
-        call lst%put('   NO  NAME        WHAT                              LOW           HIGH          NOMINAL   SPACING')
-        do p = 1, np
-            associate (q => sw%params(p))
-                write (line, '(i5,2x,a10,2x,a32,3es14.5,2x,a)') p, q%name, param_label(sw, p), q%low, q%high, &
-                    q%nominal, merge('LOG', 'LIN', q%log_spacing)
-                if (sw%design == design_oat) write (line, '(i5,2x,a10,2x,a32,28x,es14.5,2x,a)') p, q%name, &
-                    param_label(sw, p), q%nominal, 'OAT'
+        associate (v => o%v, recs => o%recs, s => o%s, valid => o%valid, r2 => o%r2, nranks => o%nranks, &
+                   wall => o%wall)
+            np = size(v, 1)
+            nrun = size(v, 2)
+            nfail = count(recs%status /= 0)
+            call lst%start(lu, 'SWEEP: '//sw%title, version)
+            call lst%echo_deck(sw%deck)
+            call lst%new_page()
+            call lst%put(' PARAMETER SWEEP')
+            call lst%put('')
+            call lst%put('   base deck       '//trim(sw%base))
+            select case (sw%design)
+            case (design_oat)
+                write (line, '(a,f8.3,a)') '   design          OAT: run 1 nominal, then each parameter at -/+', &
+                    sw%percent, ' % (normalised sensitivities)'
+            case default
+                line = '   design          '//trim(design_name(sw%design))
+                if (sw%levels > 0 .and. sw%design == design_factorial) line = trim(line)//', '//trim(int_str(sw%levels))// &
+                                                               ' levels per parameter'
+                if (sw%design == design_lhs) line = trim(line)//', seed '//trim(int_str(sw%seed))
+                line = trim(line)//' (standardised regression coefficients)'
+            end select
+            call lst%put(line)
+            write (line, '(a,i0,a,i0,a,i0,a,f10.2,a,f8.3,a)') '   runs            ', nrun, ' (', nrun - nfail, &
+                ' complete, ', nfail, ' failed) on ', real(nranks, wp), ' ranks, ', wall, ' s wall time'
+            call lst%put(line)
+            call lst%put('')
+            call lst%put('   NO  NAME        WHAT                              LOW           HIGH          NOMINAL   SPACING')
+            do p = 1, np
+                associate (q => sw%params(p))
+                    write (line, '(i5,2x,a10,2x,a32,3es14.5,2x,a)') p, q%name, param_label(sw, p), q%low, q%high, &
+                        q%nominal, merge('LOG', 'LIN', q%log_spacing)
+                    if (sw%design == design_oat) write (line, '(i5,2x,a10,2x,a32,28x,es14.5,2x,a)') p, q%name, &
+                        param_label(sw, p), q%nominal, 'OAT'
             end associate
             call lst%put(line)
         end do
@@ -228,94 +238,92 @@ contains
         end do
         if (nfail > 0) call lst%message(trim(int_str(nfail))//' OF '//trim(int_str(nrun))// &
                                         ' MEMBER RUNS FAILED; SEE THE LIST ABOVE')
+        end associate
     end subroutine sweep_listing
 
     !> Write the sweep result file (layout in docs/sweeps.md).
-    subroutine sweep_write_h5(sw, v, recs, s, valid, r2, nranks, wall, fname, version, stat, errmsg)
+    subroutine sweep_write_h5(sw, o, fname, version, stat, errmsg)
         type(sweep_t), intent(in) :: sw                !! the sweep
-        real(wp), intent(in) :: v(:, :)                !! (np, nrun) design: parameter values of every member
-        type(member_record_t), intent(in) :: recs(:)   !! (nrun) what each member run gave
-        real(wp), intent(in) :: s(:, :)                !! (np, nout) sensitivities
-        real(wp), intent(in) :: r2(:)                  !! (nout) R^2 of each output's regression
-        logical, intent(in) :: valid(:, :)             !! (np, nout) s could be computed
-        integer, intent(in) :: nranks                  !! number of MPI ranks that ran the members
-        real(wp), intent(in) :: wall                   !! wall time of the whole sweep [s]
+        type(sweep_outcome_t), intent(in) :: o         !! design, member records, sensitivities, ranks, wall time
         character(len=*), intent(in) :: fname          !! sweep result file (.h5)
         character(len=*), intent(in) :: version        !! program version written to the file
         integer, intent(out) :: stat                   !! stat_ok, or stat_io
         character(len=msglen), intent(out) :: errmsg   !! why the file could not be written ('' when stat_ok)
         type(h5_file_t) :: h5
         character(len=:), allocatable :: deck
-        character(len=32) :: labels(size(v, 1))
-        character(len=10) :: names(size(v, 1))
-        real(wp) :: outs(nout, size(recs)), col(size(recs)), pcol(size(v, 1))
-        integer :: icol(size(recs)), ipcol(size(v, 1))
-        character(len=msglen) :: msgs(size(recs))
+        character(len=32) :: labels(size(o%v, 1))
+        character(len=10) :: names(size(o%v, 1))
+        real(wp) :: outs(nout, size(o%recs)), col(size(o%recs)), pcol(size(o%v, 1))
+        integer :: icol(size(o%recs)), ipcol(size(o%v, 1))
+        character(len=msglen) :: msgs(size(o%recs))
         integer :: k, np, nrun
-        np = size(v, 1)
-        nrun = size(v, 2)
-        call h5%create(fname, stat, errmsg)
-        if (stat /= 0) return
-        call h5%attr_string('/', 'code', 'HHNECK '//version)
-        call h5%attr_string('/', 'title', trim(sw%title))
-        call h5%attr_string('/', 'base', trim(sw%base))
-        call h5%attr_string('/', 'design', trim(design_name(sw%design)))
-        deck = ''
-        do k = 1, size(sw%deck)
-            deck = deck//sw%deck(k)%text//new_line('a')
-        end do
-        call h5%attr_string('/', 'sweep_deck', deck)
-        deck = ''
-        do k = 1, size(sw%base_lines)
-            deck = deck//sw%base_lines(k)%text//new_line('a')
-        end do
-        call h5%attr_string('/', 'base_deck', deck)
-        call h5%attr_real('/', 'ranks', [real(nranks, wp)])
-        call h5%attr_real('/', 'wall_time', [wall])
-        call h5%attr_real('/', 'failed_runs', [real(count(recs%status /= 0), wp)])
-        call h5%group('/params')
-        do k = 1, np
-            names(k) = sw%params(k)%name
-            labels(k) = param_label(sw, k)
-        end do
-        call h5%write_strings('/params/name', names)
-        call h5%write_strings('/params/what', labels)
-        pcol = sw%params%low
-        call h5%write_real('/params/low', pcol, [np])
-        pcol = sw%params%high
-        call h5%write_real('/params/high', pcol, [np])
-        pcol = sw%params%nominal
-        call h5%write_real('/params/nominal', pcol, [np])
-        ipcol = merge(1, 0, sw%params%log_spacing)
-        call h5%write_int('/params/log_spacing', ipcol, [np])
-        call h5%group('/runs')
-        call h5%write_real('/runs/inputs', v, [np, nrun])
-        do k = 1, nrun
-            outs(:, k) = recs(k)%outputs
-        end do
-        call h5%write_real('/runs/outputs', outs, [nout, nrun])
-        call h5%write_strings('/runs/output_names', output_names)
-        call h5%write_strings('/runs/output_units', output_units)
-        icol = recs%status
-        call h5%write_int('/runs/status', icol, [nrun])
-        msgs = recs%message
-        call h5%write_strings('/runs/message', msgs)
-        icol = recs%rank
-        call h5%write_int('/runs/rank', icol, [nrun])
-        col = recs%wall
-        call h5%write_real('/runs/wall', col, [nrun])
-        icol = recs%nevals
-        call h5%write_int('/runs/evaluations', icol, [nrun])
-        col = recs%t_reached
-        call h5%write_real('/runs/t_reached', col, [nrun])
-        call h5%group('/sensitivity')
-        call h5%attr_string('/sensitivity', 'method', merge('OAT elasticity                   ', &
-                                                            'standardised regression (SRC)    ', sw%design == design_oat))
-        call h5%write_real('/sensitivity/coefficient', s, [np, nout])
-        call h5%write_int('/sensitivity/valid', merge(1, 0, valid), [np, nout])
-        call h5%write_real('/sensitivity/r2', r2, [nout])
-        call h5%attr_string('/', 'status', 'complete')
-        call h5%close(.true., stat, errmsg)
+        associate (v => o%v, recs => o%recs, s => o%s, valid => o%valid, r2 => o%r2, nranks => o%nranks, &
+                   wall => o%wall)
+            np = size(v, 1)
+            nrun = size(v, 2)
+            call h5%create(fname, stat, errmsg)
+            if (stat /= 0) return
+            call h5%attr_string('/', 'code', 'HHNECK '//version)
+            call h5%attr_string('/', 'title', trim(sw%title))
+            call h5%attr_string('/', 'base', trim(sw%base))
+            call h5%attr_string('/', 'design', trim(design_name(sw%design)))
+            deck = ''
+            do k = 1, size(sw%deck)
+                deck = deck//sw%deck(k)%text//new_line('a')
+            end do
+            call h5%attr_string('/', 'sweep_deck', deck)
+            deck = ''
+            do k = 1, size(sw%base_lines)
+                deck = deck//sw%base_lines(k)%text//new_line('a')
+            end do
+            call h5%attr_string('/', 'base_deck', deck)
+            call h5%attr_real('/', 'ranks', [real(nranks, wp)])
+            call h5%attr_real('/', 'wall_time', [wall])
+            call h5%attr_real('/', 'failed_runs', [real(count(recs%status /= 0), wp)])
+            call h5%group('/params')
+            do k = 1, np
+                names(k) = sw%params(k)%name
+                labels(k) = param_label(sw, k)
+            end do
+            call h5%write_strings('/params/name', names)
+            call h5%write_strings('/params/what', labels)
+            pcol = sw%params%low
+            call h5%write_real('/params/low', pcol, [np])
+            pcol = sw%params%high
+            call h5%write_real('/params/high', pcol, [np])
+            pcol = sw%params%nominal
+            call h5%write_real('/params/nominal', pcol, [np])
+            ipcol = merge(1, 0, sw%params%log_spacing)
+            call h5%write_int('/params/log_spacing', ipcol, [np])
+            call h5%group('/runs')
+            call h5%write_real('/runs/inputs', v, [np, nrun])
+            do k = 1, nrun
+                outs(:, k) = recs(k)%outputs
+            end do
+            call h5%write_real('/runs/outputs', outs, [nout, nrun])
+            call h5%write_strings('/runs/output_names', output_names)
+            call h5%write_strings('/runs/output_units', output_units)
+            icol = recs%status
+            call h5%write_int('/runs/status', icol, [nrun])
+            msgs = recs%message
+            call h5%write_strings('/runs/message', msgs)
+            icol = recs%rank
+            call h5%write_int('/runs/rank', icol, [nrun])
+            col = recs%wall
+            call h5%write_real('/runs/wall', col, [nrun])
+            icol = recs%nevals
+            call h5%write_int('/runs/evaluations', icol, [nrun])
+            col = recs%t_reached
+            call h5%write_real('/runs/t_reached', col, [nrun])
+            call h5%group('/sensitivity')
+            call h5%attr_string('/sensitivity', 'method', merge('OAT elasticity                   ', &
+                                                                'standardised regression (SRC)    ', sw%design == design_oat))
+            call h5%write_real('/sensitivity/coefficient', s, [np, nout])
+            call h5%write_int('/sensitivity/valid', merge(1, 0, valid), [np, nout])
+            call h5%write_real('/sensitivity/r2', r2, [nout])
+            call h5%attr_string('/', 'status', 'complete')
+            call h5%close(.true., stat, errmsg)
+        end associate
     end subroutine sweep_write_h5
 
 end module hn_sweep_report
