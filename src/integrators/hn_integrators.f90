@@ -83,7 +83,7 @@ module hn_integrators
         procedure :: set_max_step => integrator_set_max_step
         procedure :: restart => integrator_restart
         procedure :: reset_history => integrator_reset_history
-        procedure :: interpolate => hermite_interpolate
+        procedure :: interpolate => interpolate_hermite
         procedure :: advance => integrator_advance
         procedure :: stability_limit => integrator_stability_limit
         procedure :: current_time => integrator_current_time
@@ -463,9 +463,10 @@ contains
     end subroutine integrator_advance
 
     !> Cubic Hermite interpolation between (told, yold, fold) and (t, y, f),
-    !! and its derivative.
-    subroutine hermite_interpolate(me, tout, yout, dydt)
-        class(integrator_t), intent(in) :: me
+    !! and its derivative: the dense output of RK4 and ABM4, and for every
+    !! method the interpolant of the last step's end points.
+    subroutine interpolate_hermite(me, tout, yout, dydt)
+        class(integrator_t), intent(in) :: me       !! the integrator after a step
         real(wp), intent(in) :: tout            !! time in the last step
         real(wp), intent(out) :: yout(:)        !! y(tout)
         real(wp), intent(out), optional :: dydt(:)  !! y'(tout) of the interpolant
@@ -484,16 +485,6 @@ contains
             h11 = s*(3.0_wp*s - two)
             dydt = (h00*me%yold - h00*me%y)/h + h10*me%fold + h11*me%f
         end if
-    end subroutine hermite_interpolate
-
-    !> The cubic Hermite interpolant of the last step's end points and its
-    !! derivative, for every method (whatever its own dense output).
-    subroutine interpolate_hermite(integ, tout, yout, dydt)
-        class(integrator_t), intent(in) :: integ        !! the integrator after a step
-        real(wp), intent(in) :: tout                    !! time in the last step [s]
-        real(wp), intent(out) :: yout(:)                !! y(tout) of the interpolant
-        real(wp), intent(out), optional :: dydt(:)      !! y'(tout) of the interpolant
-        call hermite_interpolate(integ, tout, yout, dydt)
     end subroutine interpolate_hermite
 
     !> Estimate of the spectral radius of dg/dy at (t, y) by power iteration
