@@ -6,6 +6,11 @@ case decks, from the parameter choices below. Every number carries its source
     python3 tools/make_head_neck_deck.py > input/head_neck_54dof.inp
     python3 tools/make_head_neck_deck.py --fit FIT.txt > input/head_neck_54dof.inp
 
+    python3 tools/make_head_neck_deck.py --posture seated [--fit FIT.txt] > DECK
+
+With --posture seated (or seated-held), the column takes the sourced seated
+sagittal posture (T1 slope, C2-C7 lordosis, head level; "posture" below)
+instead of the shipped straight one; --t1-slope and --lordosis (deg) vary it.
 With --fit, the FITTED values (SCALE cards, ACTIVATE NECK levels and delay)
 are read from the listing of the calibration (the PARAM lines of
 hhneck --calibrate < input/calibrate_nbdl.inp > FIT.txt); without it, the
@@ -207,13 +212,49 @@ def read_fit(listing):
     return fit
 
 
-if len(sys.argv) == 3 and sys.argv[1] == "--fit":
-    FIT = read_fit(sys.argv[2])
-    FITTED_SCALES = [(n, fam, item, FIT[n]) for (n, fam, item, _) in FITTED_SCALES]
-    for n, key in FITTED_ACT.items():
-        ACT[key] = FIT[n]
-elif len(sys.argv) != 1:
-    sys.exit("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING]")
+# ---------------------------------------------------------------- posture
+# The shipped model is a straight column (every RY zero). --posture seated
+# gives it the sagittal posture of a seated adult as the joints' NEUTRAL values
+# (the unloaded shape: discs unstressed, ligaments and muscles at their rest
+# lengths, ranges of motion about it), --posture seated-held as INITIAL values
+# on the straight neutral (a deflection that HOLD POSTURE must hold). Values:
+#   T1 slope (superior endplate of T1 against the horizontal): 17.4 deg standing,
+#     30.2 deg natural sitting (Hey et al. 2017, Spine 42:1614-1621, 26 subjects);
+#     erect sitting, as the NBDL volunteers sat, taken midway, 23.8 deg (A).
+#     Put on the T1-C7 joint (C7 RY), which tilts the column as T1's plate does.
+#   C2-C7 Cobb lordosis 16.2 deg (Nojiri et al. 2003, J Neurosurg Spine 99:80-83,
+#     155 asymptomatic men, neutral lateral radiographs, SD 12.9 deg; meta-analysis
+#     12.7 deg, Guo et al. 2018, J Orthop Surg Res 13:147), split evenly over the
+#     five joints C7-C6 ... C3-C2 (A).
+#   Head level (the volunteers faced forward; the head rotation channel starts
+#     at zero): Oc-C2 extension = T1 slope - lordosis = 7.6 deg (Nojiri et al.
+#     2003: 14.5 +- 8 deg in men), split evenly over C2-C1 and C1-HEAD (A).
+POSTURES = ("straight", "seated", "seated-held")
+POSTURE, T1_SLOPE, LORDOSIS = "straight", 23.8, 16.2
+
+USAGE = ("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING] [--posture straight|seated|seated-held]\n"
+         "                              [--t1-slope DEG] [--lordosis DEG]")
+args = sys.argv[1:]
+while args:
+    a = args.pop(0)
+    if not args:
+        sys.exit(USAGE)
+    if a == "--fit":
+        FIT = read_fit(args.pop(0))
+        FITTED_SCALES = [(n, fam, item, FIT[n]) for (n, fam, item, _) in FITTED_SCALES]
+        for n, key in FITTED_ACT.items():
+            ACT[key] = FIT[n]
+    elif a == "--posture" and args[0] in POSTURES:
+        POSTURE = args.pop(0)
+    elif a == "--t1-slope":
+        T1_SLOPE = float(args.pop(0))
+    elif a == "--lordosis":
+        LORDOSIS = float(args.pop(0))
+    else:
+        sys.exit(USAGE)
+POSTURE_RY = {"C7": T1_SLOPE}
+POSTURE_RY.update({b: -LORDOSIS / 5 for b in ("C6", "C5", "C4", "C3", "C2")})
+POSTURE_RY.update({b: -(T1_SLOPE - LORDOSIS) / 2 for b in ("C1", "HEAD")})
 
 # ---------------------------------------------------------------- limits
 # S3: total range of motion (deg) skull-C2 / C2-T1: flexion-extension 40/82,
@@ -357,8 +398,9 @@ rom_cards = []
 for name in names[1:]:
     r = rom(name)
     for c in ("RX", "RY", "RZ"):
-        w(card("LIMIT", name, c, round(-r[c], 4), round(r[c], 4), LIMIT_C0, LIMIT_C1))
-        rom_cards.append(card("ROM", name, c, round(-r[c], 4), round(r[c], 4), ROM_K, ROM_T0))
+        d = POSTURE_RY[name] if (POSTURE == "seated" and c == "RY") else 0.0   # ranges about neutral
+        w(card("LIMIT", name, c, round(d - r[c], 4), round(d + r[c], 4), LIMIT_C0, LIMIT_C1))
+        rom_cards.append(card("ROM", name, c, round(d - r[c], 4), round(d + r[c], 4), ROM_K, ROM_T0))
 w("*")
 w("* RANGE OF MOTION: resistance beyond the physiological range of each joint")
 w("* rotation (the S3 ranges of the LIMIT cards), Q = -K t0 (exp(e/t0) - 1) for an")
@@ -375,6 +417,16 @@ for (name, fam, item, value) in FITTED_SCALES:
     w(card("SCALE", name, fam, item, value))
 w("*")
 w(card("HEADNECK", "HEAD", "T1"))
+if POSTURE != "straight":
+    kind = "NEUTRAL" if POSTURE == "seated" else "INITIAL"
+    w("*")
+    w("* SEATED POSTURE (%s): T1 slope %.1f deg on C7 RY, C2-C7 lordosis %.1f deg" % (kind, T1_SLOPE, LORDOSIS))
+    w("* over C6 ... C2, head level (tools/make_head_neck_deck.py, --posture).")
+    for name in names[1:]:
+        if POSTURE == "seated":
+            w(card("NEUTRAL", name, "RY", round(POSTURE_RY[name], 4)))
+        else:
+            w(card("INITIAL", name, "RY", round(POSTURE_RY[name], 4), 0.0))
 for line in "\n".join(out).split("\n"):
     assert len(line) <= 80, line
 print("\n".join(out))
