@@ -94,8 +94,12 @@ contains
         type(ligament_t), intent(in) :: g    !! the ligament
         real(wp), intent(in) :: length       !! current length [m]
         real(wp) :: d
-        d = max(zero, length - g%length0)
-        u = 0.5_wp*g%l1*d**2 + g%l2*d**(g%n + one)/(g%n + one)
+        d = length - g%length0
+        if (d > zero) then
+            u = 0.5_wp*g%l1*d**2 + g%l2*d**(g%n + one)/(g%n + one)
+        else
+            u = zero     ! slack: no power function evaluated (every evaluation computes the energy)
+        end if
     end function ligament_energy
 
     !> Muscle tension (tension only) at length L, rate L' and activation a.
