@@ -203,6 +203,7 @@ contains
         integer, intent(in) :: kb                !! body of end b (0: inertial frame)
         type(line_geometry_t), intent(in) :: g !! the line's geometry
         real(wp), intent(in) :: tension        !! [N]
+        if (tension == zero) return             ! a slack element adds nothing
         if (ka > 0) call add_point_force(loads, ka, kin%r(:, ka), g%pa, tension*g%unit)
         if (kb > 0) call add_point_force(loads, kb, kin%r(:, kb), g%pb, -tension*g%unit)
     end subroutine apply_line_tension
@@ -306,6 +307,7 @@ contains
         integer :: e, k, bodies(max_via + 2), npt
         real(wp) :: points(3, max_via + 2)
         do e = 1, size(muscles)
+            if (tension(e) == zero) cycle
             call muscle_path_points(muscles(e), bodies, points, npt)
             do k = 1, npt - 1
                 call apply_line_tension(loads, kin, bodies(k), bodies(k + 1), seg(k, e), tension(e))
