@@ -261,9 +261,10 @@ contains
             u(:, a) = matmul(ia, s6)
             uu(a) = tau(cols(a)) - dot_product(s6, pa)
         end do
-        do a = 1, n
-            do b = 1, n
-                dl(a, b) = dot_product(sj(:, cols(a)), u(:, b))
+        do a = 1, n      ! D = S^T U is symmetric: its lower triangle is all the factorization reads
+            s6 = sj(:, cols(a))
+            do b = 1, a
+                dl(a, b) = dot_product(s6, u(:, b))
             end do
         end do
         if (n > 0) then
@@ -275,16 +276,22 @@ contains
             if (stat /= stat_ok) return
         end if
         if (.not. present(ia_parent)) return
-        ! Y = L^-1 U^T (n x 6): I^a = I^A - Y^T Y; p^a = p^A + I^a c + Y^T (L^-1 u)
-        do a = 1, 6
-            y(1:n, a) = u(a, 1:n)
-            call forward_subst(dl(1:n, 1:n), y(1:n, a))
+        ! Y = L^-1 U^T (n x 6): I^a = I^A - Y^T Y; p^a = p^A + I^a c + Y^T (L^-1 u);
+        ! the seven right-hand sides in one forward substitution
+        do a = 1, n
+            y(a, 1:6) = u(1:6, a)
+            ylin(a) = uu(a)
+            do b = 1, a - 1
+                y(a, 1:6) = y(a, 1:6) - dl(a, b)*y(b, 1:6)
+                ylin(a) = ylin(a) - dl(a, b)*ylin(b)
+            end do
+            y(a, 1:6) = y(a, 1:6)/dl(a, a)
+            ylin(a) = ylin(a)/dl(a, a)
         end do
-        ylin(1:n) = uu(1:n)
-        call forward_subst(dl(1:n, 1:n), ylin(1:n))
         do b = 1, 6
-            do a = 1, 6
+            do a = 1, b      ! symmetric: the upper triangle, mirrored
                 iat(a, b) = ia(a, b) - dot_product(y(1:n, a), y(1:n, b))
+                iat(b, a) = iat(a, b)
             end do
         end do
         ia_parent = ia_parent + iat

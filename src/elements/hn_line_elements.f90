@@ -94,8 +94,12 @@ contains
         type(ligament_t), intent(in) :: g    !! the ligament
         real(wp), intent(in) :: length       !! current length [m]
         real(wp) :: d
-        d = max(zero, length - g%length0)
-        u = 0.5_wp*g%l1*d**2 + g%l2*d**(g%n + one)/(g%n + one)
+        d = length - g%length0
+        if (d > zero) then
+            u = 0.5_wp*g%l1*d**2 + g%l2*d**(g%n + one)/(g%n + one)
+        else
+            u = zero     ! slack: no power function evaluated (every evaluation computes the energy)
+        end if
     end function ligament_energy
 
     !> Muscle tension (tension only) at length L, rate L' and activation a.
@@ -199,6 +203,7 @@ contains
         integer, intent(in) :: kb                !! body of end b (0: inertial frame)
         type(line_geometry_t), intent(in) :: g !! the line's geometry
         real(wp), intent(in) :: tension        !! [N]
+        if (tension == zero) return             ! a slack element adds nothing
         if (ka > 0) call add_point_force(loads, ka, kin%r(:, ka), g%pa, tension*g%unit)
         if (kb > 0) call add_point_force(loads, kb, kin%r(:, kb), g%pb, -tension*g%unit)
     end subroutine apply_line_tension
@@ -302,6 +307,7 @@ contains
         integer :: e, k, bodies(max_via + 2), npt
         real(wp) :: points(3, max_via + 2)
         do e = 1, size(muscles)
+            if (tension(e) == zero) cycle
             call muscle_path_points(muscles(e), bodies, points, npt)
             do k = 1, npt - 1
                 call apply_line_tension(loads, kin, bodies(k), bodies(k + 1), seg(k, e), tension(e))
