@@ -187,18 +187,18 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
-ACT = dict(u0=0.261291, u1=0.434707, delay=0.0553713, rise=0.020, tau_act=0.015, tau_deact=0.050)
+ACT = dict(u0=0.234311, u1=0.369888, delay=0.0553446, rise=0.020, tau_act=0.015, tau_deact=0.050)
 # short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
 # McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
 SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.50884),      # sigma_max / 0.5 MPa
-    ("VISCOUS", "DISCS", "VISCOUS", 4.41897), # disc retardation time / 5 ms
-    ("SHEAR", "DISCS", "G", 2.44644),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.23506),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 0.270928),    # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 1.66379),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 4.16985), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 2.92903),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.16774),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.315392),    # range-of-motion stiffness / 50 N m/rad
 ]
 # the calibration's PARAM names of the ACTIVATE NECK fields
 FITTED_ACT = {"BRACE": "u0", "REFLEX": "u1", "DELAY": "delay"}
