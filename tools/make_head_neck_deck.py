@@ -187,18 +187,18 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
 # onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
 # time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
-ACT = dict(u0=0.234311, u1=0.369888, delay=0.0553446, rise=0.020, tau_act=0.015, tau_deact=0.050)
+ACT = dict(u0=0.241838, u1=0.40301, delay=0.0492591, rise=0.020, tau_act=0.015, tau_deact=0.050)
 # short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
 # McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
 SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.66379),      # sigma_max / 0.5 MPa
-    ("VISCOUS", "DISCS", "VISCOUS", 4.16985), # disc retardation time / 5 ms
-    ("SHEAR", "DISCS", "G", 2.92903),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.16774),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 0.315392),    # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 1.40707),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 5.20578), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 2.77993),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.0279),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.347133),    # range-of-motion stiffness / 50 N m/rad
 ]
 # the calibration's PARAM names of the ACTIVATE NECK fields
 FITTED_ACT = {"BRACE": "u0", "REFLEX": "u1", "DELAY": "delay"}
@@ -231,7 +231,8 @@ def read_fit(listing):
 #     five joints C7-C6 ... C3-C2 (A).
 #   Head level (the volunteers faced forward; the head rotation channel starts
 #     at zero): Oc-C2 extension = T1 slope - lordosis = 7.6 deg (Nojiri et al.
-#     2003: 14.5 +- 8 deg in men), split evenly over C2-C1 and C1-HEAD (A).
+#     2003: 14.5 +- 8 deg in men), all on C1-HEAD (Oc-C1, A): C1 stays aligned
+#     with C2 in the neutral posture, as a MERGE of C1 into C2 needs.
 POSTURES = ("straight", "seated", "seated-held")
 POSTURE, T1_SLOPE, LORDOSIS = "seated", 23.8, 16.2
 
@@ -257,7 +258,7 @@ while args:
         sys.exit(USAGE)
 POSTURE_RY = {"C7": T1_SLOPE}
 POSTURE_RY.update({b: -LORDOSIS / 5 for b in ("C6", "C5", "C4", "C3", "C2")})
-POSTURE_RY.update({b: -(T1_SLOPE - LORDOSIS) / 2 for b in ("C1", "HEAD")})
+POSTURE_RY.update({"C1": 0.0, "HEAD": -(T1_SLOPE - LORDOSIS)})
 
 # ---------------------------------------------------------------- limits
 # S3: total range of motion (deg) skull-C2 / C2-T1: flexion-extension 40/82,
