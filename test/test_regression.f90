@@ -3,7 +3,8 @@
 !! tools/regenerate_references.sh, never by this test), both at rtol 1e-8
 !! and atol 1e-11 with the deck's integrator. Every channel at every 1 ms
 !! sample must agree within 1e-4 of the channel's largest reference
-!! magnitude: far above the 1e-8 tolerance (builds with other optimization
+!! magnitude (at least 1e-4 of the largest channel of its unit, so that
+!! roundoff-only channels are not measured against their own noise): far above the 1e-8 tolerance (builds with other optimization
 !! have other roundoff and so other step sequences) and far below any change
 !! of the model or the method.
 program test_regression
@@ -20,6 +21,12 @@ program test_regression
     character(len=16), parameter :: cases(5) = [character(len=16) :: 'case6-1', 'case6-2', 'case6-5', 'nbdl15g', &
                                                 'hybrid3_flexion']
     real(wp), parameter :: rel_tol = 1.0e-4_wp
+    !> A channel is measured against at least this fraction of the largest
+    !! channel of its unit: the out-of-plane channels of the sagittal cases
+    !! are roundoff of about 1e-9 of their unit's largest (OC_FY 2.6e-7 N
+    !! against OC_FX 217 N in case 6-1) and differ between builds by as much
+    !! as they are large; at 1e-4 they must agree to 1e-8 of that largest.
+    real(wp), parameter :: noise_floor = 1.0e-4_wp
     integer :: k
 
     do k = 1, size(cases)
@@ -79,7 +86,10 @@ contains
             if (j == 0) then
                 ok = .false.; worst = nm; exit
             end if
-            scale = maxval(abs(chans(i, :)))
+            ! a channel that is zero but for roundoff (the out-of-plane channels
+            ! of a sagittal case) is measured against the largest channel of its
+            ! unit, not against its own noise
+            scale = max(maxval(abs(chans(i, :))), noise_floor*unit_scale(ch%units(j), names, chans, ch))
             dev = maxval(abs(res%samples(j, :) - chans(i, :)))/max(scale, 1.0e-12_wp)
             if (scale < 1.0e-9_wp) dev = maxval(abs(res%samples(j, :) - chans(i, :)))
             if (dev > worst_dev) then
@@ -90,5 +100,24 @@ contains
             trim(worst), ': ', worst_dev, ' of its range'
         call suite%check(ok .and. worst_dev <= rel_tol, name//' matches its reference outputs', det)
     end subroutine test_case
+
+    !> Largest magnitude in the reference of the channels with unit u.
+    real(wp) function unit_scale(u, names, chans, ch) result(m)
+        character(len=*), intent(in) :: u, names
+        real(wp), intent(in) :: chans(:, :)
+        type(channel_set_t), intent(in) :: ch
+        integer :: i, j, p0, p1
+        character(len=32) :: nm
+        m = 0
+        p0 = 1
+        do i = 1, size(chans, 1)
+            p1 = index(names(p0:), ' ')
+            nm = names(p0:p0 + p1 - 2)
+            p0 = p0 + p1
+            j = findloc(ch%name, nm, dim=1)
+            if (j == 0) cycle
+            if (ch%units(j) == u) m = max(m, maxval(abs(chans(i, :))))
+        end do
+    end function unit_scale
 
 end program test_regression
