@@ -12,7 +12,8 @@ module hn_dynamics
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities, body_kinematics, kinetic_energy
     use hn_loads, only: body_loads_t, loads_allocate
     use hn_kane, only: a_ij, f_i
-    use hn_recursive, only: composite_rigid_body, f_recursive, inertia_times, articulated_body_solve
+    use hn_recursive, only: composite_rigid_body, f_recursive, inertia_times, articulated_body_solve, aba_work_t, &
+                            aba_work_allocate
     use hn_jacobian, only: generalized_tangent
     use hn_forces, only: compute_loads, element_output_t, element_output_allocate
     use hn_linsolve, only: linear_solve, solver_gauss, solver_articulated
@@ -37,6 +38,7 @@ module hn_dynamics
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
         type(element_output_t) :: eo                 !! element forces of the last evaluation
+        type(aba_work_t) :: aba                      !! work arrays of the articulated-body solve
         real(wp), allocatable :: x(:), xd(:), xdd(:) !! all active coordinates, rates, accelerations
         real(wp), allocatable :: a(:, :), f(:)       !! a_ij and f_i of all active coordinates
         real(wp), allocatable :: aff(:, :), bf(:)    !! the free partition and its right-hand side
@@ -90,6 +92,7 @@ contains
         call kinematics_allocate(model%tree, ws%kin)
         call loads_allocate(ws%loads, model%tree%nbody, n)
         call element_output_allocate(model, ws%eo)
+        call aba_work_allocate(model%tree, ws%aba)
         allocate (ws%x(n), ws%xd(n), ws%xdd(n), ws%a(n, n), ws%f(n))
         allocate (ws%aff(ws%nfree, ws%nfree), ws%bf(ws%nfree), ws%lambda(n))
         ws%x = zero; ws%xd = zero; ws%xdd = zero; ws%a = zero; ws%f = zero; ws%lambda = zero
@@ -166,7 +169,8 @@ contains
         case (solver_articulated)
             call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
             call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
-            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k)
+            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k, &
+                                        ws%aba)
             if (stat /= stat_ok) then
                 write (errmsg, '(a,es12.5,3a)') 't = ', t, ' s: the joint of body ', trim(model%tree%name(max(k, 1))), &
                     ' has dependent axes (articulated inertia singular)'
@@ -282,7 +286,8 @@ contains
         if (present(xddf)) then
             ws%xdd(ws%ifree) = xddf
         else
-            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k)
+            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k, &
+                                        ws%aba)
         end if
     end subroutine dynamics_outputs
 

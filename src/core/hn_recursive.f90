@@ -23,12 +23,37 @@ module hn_recursive
     private
 
     public :: composite_rigid_body, f_recursive, inertia_times, articulated_body_solve
+    public :: aba_work_t, aba_work_allocate
 
     !> Relative size of a pivot of a joint's articulated inertia D = S^T I^A S
     !! below which the joint axes are taken as dependent (a singular joint).
     real(wp), parameter :: joint_pivot_min = 1.0e-13_wp
 
+    !> Work arrays of articulated_body_solve, sized once for a tree (no
+    !! allocation in the solve itself).
+    type :: aba_work_t
+        real(wp), allocatable :: ia(:, :, :)   !! (6,6,nb) articulated inertias
+        real(wp), allocatable :: pa(:, :)      !! (6,nb) articulated bias forces
+        real(wp), allocatable :: c(:, :)       !! (6,nb) known acceleration of each joint's prescribed columns
+        real(wp), allocatable :: sa(:, :)      !! (6,nb) spatial accelerations
+        real(wp), allocatable :: u(:, :, :)    !! (6,6,nb) U = I^A S of each joint
+        real(wp), allocatable :: dl(:, :, :)   !! (6,6,nb) Cholesky factor of D = S^T U
+        real(wp), allocatable :: uu(:, :)      !! (6,nb) u = tau - S^T p^A
+        integer, allocatable :: nf(:)          !! (nb) free columns of each joint
+        integer, allocatable :: cols(:, :)     !! (6,nb) their coordinate numbers
+    end type aba_work_t
+
 contains
+
+    !> Size the work arrays of articulated_body_solve for a tree.
+    pure subroutine aba_work_allocate(tree, work)
+        type(body_tree_t), intent(in) :: tree      !! the body tree
+        type(aba_work_t), intent(out) :: work      !! arrays sized for its bodies
+        integer :: nb
+        nb = tree%nbody
+        allocate (work%ia(6, 6, nb), work%pa(6, nb), work%c(6, nb), work%sa(6, nb), work%u(6, 6, nb))
+        allocate (work%dl(6, 6, nb), work%uu(6, nb), work%nf(nb), work%cols(6, nb))
+    end subroutine aba_work_allocate
 
     !> Spatial inertia of body k about the origin in compact form: mass m,
     !! first moment h = m c and rotational inertia J = I_c + m (|c|^2 1 - c c^T),
@@ -177,7 +202,7 @@ contains
     !! a body spans its free columns; its prescribed columns add a known
     !! acceleration. stat = stat_singular (bad_body set) when a joint's
     !! articulated inertia S^T I^A S is singular.
-    pure subroutine articulated_body_solve(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body)
+    pure subroutine articulated_body_solve(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body, work)
         type(body_tree_t), intent(in) :: tree     !! masses, parents and coordinate numbering of the bodies
         type(kinematics_t), intent(in) :: kin     !! joint columns sj and velocity terms a0, alpha0 (body_kinematics)
         type(body_loads_t), intent(in) :: loads   !! body forces [N], moments [N m], generalized forces q
@@ -186,9 +211,26 @@ contains
         real(wp), intent(out) :: lambda(:)        !! (n) constraint forces on prescribed coordinates, 0 on free
         integer, intent(out) :: stat              !! stat_ok, or stat_singular (bad_body's joint)
         integer, intent(out) :: bad_body          !! body of a singular joint (0: none)
-        real(wp) :: ia(6, 6, tree%nbody), pa(6, tree%nbody), c(6, tree%nbody), sa(6, tree%nbody)
-        real(wp) :: u(6, 6, tree%nbody), dl(6, 6, tree%nbody), uu(6, tree%nbody), fj(6)
-        integer :: nf(tree%nbody), cols(6, tree%nbody), ik, k, p, m, j
+        type(aba_work_t), intent(inout) :: work   !! work arrays from aba_work_allocate for this tree
+        call aba_sweeps(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body, work%ia, work%pa, work%c, &
+                        work%sa, work%u, work%dl, work%uu, work%nf, work%cols)
+    end subroutine articulated_body_solve
+
+    !> The two sweeps of articulated_body_solve on explicit-shape work arrays.
+    pure subroutine aba_sweeps(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body, ia, pa, c, sa, u, dl, uu, &
+                               nf, cols)
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        type(body_loads_t), intent(in) :: loads
+        logical, intent(in) :: prescribed(:)
+        real(wp), intent(inout) :: xdd(:)
+        real(wp), intent(out) :: lambda(:)
+        integer, intent(out) :: stat, bad_body
+        real(wp), intent(out) :: ia(6, 6, tree%nbody), pa(6, tree%nbody), c(6, tree%nbody), sa(6, tree%nbody)
+        real(wp), intent(out) :: u(6, 6, tree%nbody), dl(6, 6, tree%nbody), uu(6, tree%nbody)
+        integer, intent(out) :: nf(tree%nbody), cols(6, tree%nbody)
+        real(wp) :: fj(6)
+        integer :: ik, k, p, m, j
         stat = stat_ok
         bad_body = 0
         lambda = zero
@@ -238,7 +280,7 @@ contains
                 if (prescribed(j)) lambda(j) = dot_product(kin%sj(:, j), fj) - loads%q(j)
             end do
         end do
-    end subroutine articulated_body_solve
+    end subroutine aba_sweeps
 
     !> ABA backward step of one joint with free columns sj(:, cols): U = I^A S,
     !! D = S^T U factored (L L^T), u = tau - S^T p^A; the articulated inertia
