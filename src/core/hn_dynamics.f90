@@ -313,15 +313,17 @@ contains
         real(wp), intent(in) :: equad(nenergy)    !! the state's energy-audit integrals E [J]
         type(energy_t) :: e
         integer :: k, root
-        real(wp) :: dv(3)
+        real(wp) :: dv(3), ir(3, 3), om(3)
         e%kinetic = kinetic_energy(model%tree, ws%kin)
         root = findloc(model%tree%parent, 0, dim=1)
         do k = 1, model%tree%nbody
             e%gravity = e%gravity - model%tree%mass(k)*dot_product(model%gravity, ws%kin%r(:, k))
             if (k == root) cycle
             dv = ws%kin%v(:, k) - ws%kin%v(:, root)
+            ir = ws%kin%inertia_r(:, :, k)     ! fixed-size copies keep the product inline
+            om = ws%kin%omega(:, k)
             e%kinetic_rel = e%kinetic_rel + 0.5_wp*model%tree%mass(k)*dot_product(dv, dv) + &
-                            0.5_wp*dot_product(ws%kin%omega(:, k), matmul(ws%kin%inertia_r(:, :, k), ws%kin%omega(:, k)))
+                            0.5_wp*dot_product(om, matmul(ir, om))
         end do
         e%elastic = ws%eo%u_elastic
         e%hold = -dot_product(model%q_hold, ws%x)

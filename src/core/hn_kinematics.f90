@@ -103,8 +103,9 @@ contains
         type(kinematics_t), intent(inout) :: kin
         integer :: p, m, j
         real(wp) :: q(6), qd(6), sp(3, 3), omp(3), rp(3), vpar(3), a0p(3), al0p(3), ub(3, 3), u(3, 3)
-        real(wp) :: e(3), rho(3), vt(3), ie(3, 3), ud(3, 3), sk(3, 3), ic(3, 3), jp(3), jc(3)
-        ! fixed-size copies keep the small products inline (no library calls, no heap temporaries)
+        real(wp) :: e(3), rho(3), vt(3), ie(3, 3), ud(3, 3), sk(3, 3), ic(3, 3), jp(3), jc(3), rb(3, 3), ict(3, 3)
+        ! fixed-size copies and one product per statement keep the small products inline
+        ! (no library calls, no heap temporaries)
         p = tree%parent(k)
         call body_coordinates(tree, k, x, xd, q, qd)
         if (p == 0) then
@@ -115,7 +116,8 @@ contains
             rp = kin%r(:, p); vpar = kin%v(:, p); a0p = kin%a0(:, p); al0p = kin%alpha0(:, p)
         end if
         ! orientation, joint point and mass centre
-        sk = matmul(sp, bryant_matrix(q(4:6)))
+        rb = bryant_matrix(q(4:6))
+        sk = matmul(sp, rb)
         kin%s(:, :, k) = sk
         ub = bryant_axes(q(4:6))
         u = matmul(sp, ub)
@@ -129,7 +131,8 @@ contains
         kin%r(:, k) = kin%joint(:, k) - e
         rho = kin%joint(:, k) - rp
         ic = tree%inertia(:, :, k)
-        ie = matmul(sk, matmul(ic, transpose(sk)))
+        ict = matmul(ic, transpose(sk))
+        ie = matmul(sk, ict)
         kin%inertia_r(:, :, k) = half*(ie + transpose(ie))
         ! velocities: joint point moves with the parent plus the translations
         kin%omega(:, k) = omp + u(:, 1)*qd(4) + u(:, 2)*qd(5) + u(:, 3)*qd(6)
@@ -250,10 +253,13 @@ contains
         type(body_tree_t), intent(in) :: tree   !! masses of the bodies
         type(kinematics_t), intent(in) :: kin   !! velocities, angular velocities, inertias in R
         integer :: k
+        real(wp) :: ir(3, 3), om(3)
         t = zero
         do k = 1, tree%nbody
+            ir = kin%inertia_r(:, :, k)     ! fixed-size copies keep the product inline
+            om = kin%omega(:, k)
             t = t + half*tree%mass(k)*dot_product(kin%v(:, k), kin%v(:, k)) &
-                + half*dot_product(kin%omega(:, k), matmul(kin%inertia_r(:, :, k), kin%omega(:, k)))
+                + half*dot_product(om, matmul(ir, om))
         end do
     end function kinetic_energy
 
