@@ -116,8 +116,10 @@ contains
         real(wp), intent(in) :: xf(:)                !! free coordinates x_F [m, rad]
         real(wp), intent(in) :: xdf(:)               !! their rates xdot_F [m/s, rad/s]
         integer :: i, j
-        ws%x(ws%ifree) = xf
-        ws%xd(ws%ifree) = xdf
+        do i = 1, ws%nfree      ! element by element: a vector subscript would make a heap temporary
+            ws%x(ws%ifree(i)) = xf(i)
+            ws%xd(ws%ifree(i)) = xdf(i)
+        end do
         do i = 1, ws%npres
             j = ws%ipres(i)
             call motion_eval(model%motion(j), t, ws%x(j), ws%xd(j), ws%xdd(j))
@@ -177,8 +179,13 @@ contains
                 xddf = zero
                 return
             end if
-            xddf = ws%xdd(ws%ifree)
-            ws%p_prescribed = dot_product(ws%lambda(ws%ipres), ws%xd(ws%ipres))
+            ws%p_prescribed = zero
+            do i = 1, ws%nfree
+                xddf(i) = ws%xdd(ws%ifree(i))
+            end do
+            do i = 1, ws%npres
+                ws%p_prescribed = ws%p_prescribed + ws%lambda(ws%ipres(i))*ws%xd(ws%ipres(i))
+            end do
             errmsg = ''
             return
         case default
@@ -278,13 +285,15 @@ contains
         real(wp), intent(in) :: xdf(:)                 !! their rates xdot_F [m/s, rad/s]
         integer, intent(out) :: stat                   !! stat_ok, or stat_singular from the solve
         real(wp), intent(in), optional :: xddf(:)      !! free accelerations at t (else solved)
-        integer :: k
+        integer :: k, i
         call state_to_coordinates(model, ws, t, xf, xdf)
         call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
         call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
         stat = stat_ok
         if (present(xddf)) then
-            ws%xdd(ws%ifree) = xddf
+            do i = 1, ws%nfree
+                ws%xdd(ws%ifree(i)) = xddf(i)
+            end do
         else
             call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k, &
                                         ws%aba)
