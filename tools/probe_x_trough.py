@@ -129,6 +129,20 @@ def short_range(q=None, span=None):
     return edit
 
 
+def disc_bending(discs, f):
+    """Flexion-extension bending stiffness (Iy, continuation card F3) of the named discs times f."""
+    def edit(s):
+        out = s.splitlines()
+        for i, line in enumerate(out):
+            p = line.split()
+            if p and p[0] == "DISC" and p[1] in discs:
+                fields = [out[i + 2][a:a + 10] for a in range(0, 80, 10)]
+                fields[3] = "%-10s" % ("%.6g" % (float(fields[3]) * f))
+                out[i + 2] = "".join(fields).rstrip()
+        return "\n".join(out) + "\n"
+    return edit
+
+
 def deep_extensor(f0):
     """A pair of Hill muscles T1 -> C2 behind the lower column (a semispinalis
     cervicis, which the model does not have; geometry and F0 assumed), on the
@@ -173,6 +187,8 @@ PROBES = [
     ("T1 x drive CFC 20", None, t1x_class(20)),
     ("rotation held at C1-head and C1-C2", None, lock(("HEAD", "RY"), ("C1", "RY"))),
     ("rotation held at T1-C7 and C7-C6", None, lock(("C7", "RY"), ("C6", "RY"))),
+    ("disc bending stiffness x10, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 10.0), None),
+    ("disc bending stiffness x100, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 100.0), None),
     ("deep extensor T1-C2, F0 100 N per side", deep_extensor(100.0), None),
     ("deep extensor T1-C2, F0 400 N per side", deep_extensor(400.0), None),
     ("short-range stiffness q 5", short_range(q="5.0"), None),
