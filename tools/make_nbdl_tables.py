@@ -15,6 +15,14 @@ torso the model's rigid T1 should transmit to the head; the evidence is
 printed by tools/nbdl_t1_evidence.py (docs/validation.md). The 15 g rotation
 is in degrees; the 12 g rotation file carries no unit and is read as radians
 (the table's value scale converts it; reasons in reference/cases.md).
+
+input/nbdl8g_t1.inp: a synthetic 8 g drive for prediction. No 8 g time
+histories are in reference/, only the 8 g peaks of reference/reference-data.md
+section 3 (n = 10). The 12 g tables (same filters) are multiplied by
+s = 17.4 g / (mean of the 12 g runs' T1 x-acceleration peaks, each run CFC 60):
+the 8 g mean peak over the 12 g mean peak computed the way section 3 computes
+its peaks. The same factor on the z-acceleration and the rotation, and the
+12 g time course, are assumptions (docs/validation.md).
 """
 import os
 import sys
@@ -22,9 +30,10 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import cfc, runs  # noqa: E402
+from compare_nbdl import cfc, peak, runs  # noqa: E402
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
+T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
 CASES = {
     "15g": dict(runs="1635-1644 (n = 7)", rot_scale="1.0", rot_unit="deg"),
     "12g": dict(runs="1607-1617 (n = 10)", rot_scale="57.2958", rot_unit="rad, scaled to deg"),
@@ -38,6 +47,40 @@ def table(name, t, mean, scale):
     for i in range(0, len(tt), 3):
         out.append(" " * 10 + "".join("%10.1f%10.4f" % (a, b) for a, b in zip(tt[i:i + 3], vv[i:i + 3])))
     return out
+
+
+def t1_peak_mean(sev):
+    """Mean over the runs of the T1 x-acceleration peak (g, each run CFC 60,
+    the peak of tools/compare_nbdl.py), as reference-data.md section 3 has it."""
+    t, data, _ = runs("T1_XAccel", sev)
+    dt = (t[1] - t[0]) * 1e-3
+    return float(np.mean([peak(t, cfc(r, 60, dt), -1)[0] for r in data]))
+
+
+def scale_8g():
+    """Factor from the 12 g drive to the synthetic 8 g drive."""
+    return T1_PEAK_8G / abs(t1_peak_mean("12g"))
+
+
+def t1_tables_8g():
+    """The lines of input/nbdl8g_t1.inp: the 12 g tables times scale_8g()."""
+    s = scale_8g()
+    lines = [
+        "* SYNTHETIC T1 drive of an NBDL 8 g frontal sled, for prediction: the",
+        "* 12 g tables (runs 1607-1617, filters as there) times %.4f = 17.4 g" % s,
+        "* (8 g mean T1 x-acceleration peak, reference/reference-data.md",
+        "* section 3) / %.2f g (the 12 g runs' mean peak, each run CFC 60)." % abs(t1_peak_mean("12g")),
+        "* The same factor on z and rotation and the 12 g time course are",
+        "* assumptions. Written by tools/make_nbdl_tables.py.",
+        "* Time in ms (scale 0.001 s).",
+    ]
+    for line in t1_tables("12g"):
+        if line.startswith("TABLE"):
+            f = line.split()
+            line = "%-8s  %-10s%10s%10s%10s" % ("TABLE", f[1], f[2], f[3], "%.6g" % (float(f[4]) * s))
+        if not line.startswith("*"):
+            lines.append(line)
+    return lines
 
 
 def t1_tables(sev, z_cfc=Z_CFC):
@@ -68,6 +111,8 @@ def main():
     for sev in CASES:
         with open(os.path.join("input", "nbdl%s_t1.inp" % sev), "w") as f:
             f.write("\n".join(t1_tables(sev)) + "\n")
+    with open(os.path.join("input", "nbdl8g_t1.inp"), "w") as f:
+        f.write("\n".join(t1_tables_8g()) + "\n")
 
 
 if __name__ == "__main__":
