@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Compare the model's NBDL sled runs with the volunteers (15 g and 12 g).
 
-    python3 tools/compare_nbdl.py [--case 15g|12g|both] [--h5 SEV=RESULT.h5 ...] [--out DIR]
+    python3 tools/compare_nbdl.py [--case 15g|12g|both|NAME] [--h5 SEV=RESULT.h5 ...] [--out DIR]
+                                  [--data NAME=DIR] [--deck NAME=DECK]
 
 Without --h5 it runs `fpm run --profile release -- --h5 ... < input/nbdlSEVg.inp`
 for each case. Volunteer data: reference/nbdl_15g (runs 1635-1644) and
@@ -18,6 +19,11 @@ angular velocity, rotation, each against the mean +- SD of the runs' peaks
 (value and time). Writes a table on stdout, DIR/validation_table.md and
 DIR/validation_nbdlSEV.png (default DIR: docs). Every number has three
 significant digits.
+
+Other runs of the same kind (a directory with the same CHANNEL.csv files,
+columns time_ms,run_...): `--data NAME=DIR --case NAME` compares the deck
+input/nbdlNAME.inp (or `--deck NAME=DECK`) with them; tools/make_nbdl_tables.py
+--data DIR --name nbdlNAME writes that deck and its T1 tables.
 """
 import os
 import subprocess
@@ -29,6 +35,8 @@ import numpy as np
 G = 9.80665
 WINDOW = (30.0, 250.0)   # ms
 SEVERITIES = ("15g", "12g")
+DATA_DIRS = {}   # case name -> directory of volunteer runs (default reference/nbdl_NAME)
+DECKS = {}       # case name -> deck (default input/nbdlNAME.inp)
 
 RATED = ["head x-acceleration (g)", "head z-acceleration (g)", "head angular acceleration (rad/s2)",
          "head angular velocity (rad/s)", "head rotation (deg)"]
@@ -83,7 +91,9 @@ def cfc(x, cls, dt):
 
 
 def runs(name, sev="15g"):
-    d = np.genfromtxt(os.path.join("reference", "nbdl_" + sev, name + ".csv"), delimiter=",", names=True)
+    """One channel of a case's runs: (t_ms, runs[nrun, nt], run column names)."""
+    folder = DATA_DIRS.get(sev, os.path.join("reference", "nbdl_" + sev))
+    d = np.genfromtxt(os.path.join(folder, name + ".csv"), delimiter=",", names=True)
     t = d["time_ms"]
     cols = [c for c in d.dtype.names if c.startswith("run_")]
     return t, np.array([d[c] for c in cols]), cols
@@ -224,7 +234,7 @@ def figure(sev, curves, model_curves, path):
 
 def run_deck(sev, tmp):
     h5 = os.path.join(tmp, "nbdl%s.h5" % sev)
-    with open("input/nbdl%s.inp" % sev) as deck:
+    with open(DECKS.get(sev, "input/nbdl%s.inp" % sev)) as deck:
         subprocess.run(["fpm", "run", "--profile", "release", "--", "--h5", h5], stdin=deck,
                        stdout=subprocess.DEVNULL, check=True)
     return h5
@@ -242,8 +252,15 @@ def main():
         elif a == "--h5":
             k, v = args.pop(0).split("=", 1)
             given[k] = v
+        elif a == "--data":
+            k, v = args.pop(0).split("=", 1)
+            DATA_DIRS[k] = v
+        elif a == "--deck":
+            k, v = args.pop(0).split("=", 1)
+            DECKS[k] = v
         else:
-            sys.exit("usage: compare_nbdl.py [--case 15g|12g|both] [--h5 SEV=FILE ...] [--out DIR]")
+            sys.exit("usage: compare_nbdl.py [--case 15g|12g|both|NAME] [--h5 SEV=FILE ...] [--out DIR] "
+                     "[--data NAME=DIR] [--deck NAME=DECK]")
     sevs = SEVERITIES if which == "both" else (which,)
     tmp = tempfile.mkdtemp()
     lines = []

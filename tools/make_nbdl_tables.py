@@ -15,16 +15,39 @@ torso the model's rigid T1 should transmit to the head; the evidence is
 printed by tools/nbdl_t1_evidence.py (docs/validation.md). The 15 g rotation
 is in degrees; the 12 g rotation file carries no unit and is read as radians
 (the table's value scale converts it; reasons in reference/cases.md).
+
+input/nbdl8g_t1.inp: a synthetic 8 g drive for prediction. No 8 g time
+histories are in reference/, only the 8 g peaks of reference/reference-data.md
+section 3 (n = 10). The 12 g tables (same filters) are multiplied by
+s = 17.4 g / (mean of the 12 g runs' T1 x-acceleration peaks, each run CFC 60):
+the 8 g mean peak over the 12 g mean peak computed the way section 3 computes
+its peaks. The same factor on the z-acceleration and the rotation, and the
+12 g time course, are assumptions (docs/validation.md).
+
+Other runs of the same kind (a directory with the same CHANNEL.csv files):
+
+    python3 tools/make_nbdl_tables.py --data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]
+
+writes input/NAME_t1.inp (same filters, mean over the directory's runs) and
+input/NAME.inp (the 12 g deck with that drive; --into: another directory
+than input/); compare with
+`python3 tools/compare_nbdl.py --data X=DIR --deck X=input/NAME.inp --case X
+--out DIR2`. Without --rot-unit the T1 rotation is read as radians when the
+largest |mean| is below 1.5 (as the 12 g files, reference/cases.md), else as
+degrees; the choice is printed.
 """
 import os
+import re
 import sys
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import cfc, runs  # noqa: E402
+import compare_nbdl  # noqa: E402
+from compare_nbdl import cfc, peak, runs  # noqa: E402
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
+T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
 CASES = {
     "15g": dict(runs="1635-1644 (n = 7)", rot_scale="1.0", rot_unit="deg"),
     "12g": dict(runs="1607-1617 (n = 10)", rot_scale="57.2958", rot_unit="rad, scaled to deg"),
@@ -40,11 +63,50 @@ def table(name, t, mean, scale):
     return out
 
 
+def label(sev):
+    """'15 g' for the shipped cases, the case name as given otherwise."""
+    return sev.replace("g", " g") if re.fullmatch(r"\d+g", sev) else sev
+
+
+def t1_peak_mean(sev):
+    """Mean over the runs of the T1 x-acceleration peak (g, each run CFC 60,
+    the peak of tools/compare_nbdl.py), as reference-data.md section 3 has it."""
+    t, data, _ = runs("T1_XAccel", sev)
+    dt = (t[1] - t[0]) * 1e-3
+    return float(np.mean([peak(t, cfc(r, 60, dt), -1)[0] for r in data]))
+
+
+def scale_8g():
+    """Factor from the 12 g drive to the synthetic 8 g drive."""
+    return T1_PEAK_8G / abs(t1_peak_mean("12g"))
+
+
+def t1_tables_8g():
+    """The lines of input/nbdl8g_t1.inp: the 12 g tables times scale_8g()."""
+    s = scale_8g()
+    lines = [
+        "* SYNTHETIC T1 drive of an NBDL 8 g frontal sled, for prediction: the",
+        "* 12 g tables (runs 1607-1617, filters as there) times %.4f = 17.4 g" % s,
+        "* (8 g mean T1 x-acceleration peak, reference/reference-data.md",
+        "* section 3) / %.2f g (the 12 g runs' mean peak, each run CFC 60)." % abs(t1_peak_mean("12g")),
+        "* The same factor on z and rotation and the 12 g time course are",
+        "* assumptions. Written by tools/make_nbdl_tables.py.",
+        "* Time in ms (scale 0.001 s).",
+    ]
+    for line in t1_tables("12g"):
+        if line.startswith("TABLE"):
+            f = line.split()
+            line = "%-8s  %-10s%10s%10s%10s" % ("TABLE", f[1], f[2], f[3], "%.6g" % (float(f[4]) * s))
+        if not line.startswith("*"):
+            lines.append(line)
+    return lines
+
+
 def t1_tables(sev, z_cfc=Z_CFC):
     """The lines of input/nbdlSEV_t1.inp, the z-acceleration filtered CFC z_cfc."""
     c = CASES[sev]
     lines = [
-        "* T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (sev.replace("g", " g"), c["runs"]),
+        "* T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (label(sev), c["runs"]),
         "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
         "* (the z-acceleration CFC %d: its runs are out of phase above about" % z_cfc,
         "* 20 Hz), mean over the runs, every 1 ms. Written by",
@@ -64,10 +126,56 @@ def t1_tables(sev, z_cfc=Z_CFC):
     return lines
 
 
+def new_case(folder, name, rot_unit=None, into="input"):
+    """INTO/NAME_t1.inp and INTO/NAME.inp for the runs in `folder`."""
+    compare_nbdl.DATA_DIRS[name] = folder
+    t, rot, cols = runs("T1_YrotDisp", name)
+    dt = (t[1] - t[0]) * 1e-3
+    big = float(np.max(np.abs(np.mean([cfc(r, 60, dt) for r in rot], axis=0))))
+    if rot_unit is None:
+        rot_unit = "rad" if big < 1.5 else "deg"
+        print("T1 rotation: largest |mean| %.3g, read as %s (--rot-unit to choose)" % (big, rot_unit),
+              file=sys.stderr)
+    CASES[name] = dict(runs="of %s (n = %d)" % (os.path.basename(os.path.normpath(folder)), len(cols)),
+                       rot_scale="57.2958" if rot_unit == "rad" else "1.0",
+                       rot_unit="rad, scaled to deg" if rot_unit == "rad" else "deg")
+    tables = os.path.join(into, name + "_t1.inp")
+    with open(tables, "w") as f:
+        f.write("\n".join(t1_tables(name)) + "\n")
+    deck = open(os.path.join("input", "nbdl12g.inp")).read().splitlines()
+    out = ["* %s: the 54-DOF head/neck model with T1 driven by the mean of the %d runs" % (name, len(cols)),
+           "* in %s (T1 tables by tools/make_nbdl_tables.py --data)." % folder,
+           "* Compare: python3 tools/compare_nbdl.py --case X --out OUT",
+           "*   --data X=%s" % folder,
+           "*   --deck X=%s" % os.path.join(into, name + ".inp")]
+    for line in deck:
+        if line.startswith("*") and not any(l.startswith("TITLE") for l in out):
+            continue                      # the 12 g deck's own header
+        if line.startswith("TITLE"):
+            line = "%-10s%s" % ("TITLE", ("T1 DRIVEN BY THE MEAN OF %d RUNS: %s" % (len(cols), name)).upper()[:70])
+        elif line.startswith("H5FILE"):
+            line = "%-10s%s.h5" % ("H5FILE", name)
+        line = line.replace("input/nbdl12g_t1.inp", tables)
+        out.append(line)
+    with open(os.path.join(into, name + ".inp"), "w") as f:
+        f.write("\n".join(out) + "\n")
+    return tables
+
+
 def main():
+    args = sys.argv[1:]
+    if args:
+        opts = dict(zip(args[::2], args[1::2]))
+        if len(args) % 2 or set(opts) - {"--data", "--name", "--rot-unit", "--into"} \
+                or not {"--data", "--name"} <= set(opts) or opts.get("--rot-unit", "deg") not in ("deg", "rad"):
+            sys.exit("usage: make_nbdl_tables.py [--data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]]")
+        new_case(opts["--data"], opts["--name"], opts.get("--rot-unit"), opts.get("--into", "input"))
+        return
     for sev in CASES:
         with open(os.path.join("input", "nbdl%s_t1.inp" % sev), "w") as f:
             f.write("\n".join(t1_tables(sev)) + "\n")
+    with open(os.path.join("input", "nbdl8g_t1.inp"), "w") as f:
+        f.write("\n".join(t1_tables_8g()) + "\n")
 
 
 if __name__ == "__main__":

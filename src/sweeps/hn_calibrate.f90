@@ -7,11 +7,12 @@
 !! R the mean CORA-style rating of the five head kinematic channels over the
 !! cases (x- and z-acceleration, angular acceleration, angular velocity,
 !! rotation; the rating of tools/compare_nbdl.py, docs/validation.md), P the
-!! mean over the cases' six head peaks of max(0, |z| - 1), z the peak's
-!! distance from the volunteers' mean in SDs, T the mean over the same peaks
-!! of max(0, |dt|/10 ms - 1), dt the peak time's distance from the
-!! volunteers' mean time; w (default 0.02) and wt (default 0) are fields 5
-!! and 6 of the FIT card; subject to the
+!! mean over the cases' six head peaks of max(0, |z| - (1 - m)), z the peak's
+!! distance from the volunteers' mean in SDs and m a margin inside the
+!! 1 SD band, T the mean over the same peaks of max(0, |dt|/10 ms - 1), dt
+!! the peak time's distance from the volunteers' mean time; w (default
+!! 0.02), wt (default 0) and m (default 0) are fields 5, 6 and 7 of the FIT
+!! card; subject to the
 !! model standing at rest: a parameter set whose start state (posture held,
 !! the bracing activation) has an eigenvalue with real part above -1 1/s
 !! in any case (hn_rest_modes) is not run and gets J = 2 + 0.1 s (lmax + 1).
@@ -82,6 +83,7 @@ module hn_calibrate
         integer :: max_evals = 200, nstart = 8, seed = 1
         real(wp) :: peak_weight = 0.02_wp           !! w of the objective (FIT F5)
         real(wp) :: time_weight = zero              !! wt of the objective (FIT F6)
+        real(wp) :: peak_margin = zero              !! m of the objective: P counts |z| above 1 - m (FIT F7)
         real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
     end type calibration_t
 
@@ -425,6 +427,7 @@ contains
                 call rd%int(i, 4, 'seed', cal%seed, 1, 2147483646)
                 call rd%real(i, 5, 'peak weight', '-', cal%peak_weight, zero, 1.0e3_wp, default=0.02_wp)
                 call rd%real(i, 6, 'peak-time weight', '-', cal%time_weight, zero, 1.0e3_wp, default=zero)
+                call rd%real(i, 7, 'peak margin', 'SD', cal%peak_margin, zero, 0.9_wp, default=zero)
             case ('PARAM'); params = [params, rd%lines(i)]
             case ('VALUES')
                 do f = 1, 7
@@ -520,7 +523,7 @@ contains
         do c = 1, size(cal%sw)
             call score_histories(cal%vol(c), y(1:size(cal%vol(c)%t), :, c), sc(c))
             rsum = rsum + sum(sc(c)%rating)/nrated
-            psum = psum + sum(max(zero, abs(sc(c)%z) - one))/npeaks
+            psum = psum + sum(max(zero, abs(sc(c)%z) - (one - cal%peak_margin)))/npeaks
             tsum = tsum + sum(max(zero, abs(sc(c)%time - cal%vol(c)%time_mean)/time_tolerance - one))/npeaks
         end do
         j = (one - rsum/size(cal%sw)) + (cal%peak_weight*psum + cal%time_weight*tsum)/size(cal%sw)
@@ -629,8 +632,8 @@ contains
         associate (par => cal%sw(1)%params)
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
-            write (lu, '(a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T; W ', cal%peak_weight, &
-                ', WT ', cal%time_weight
+            write (lu, '(a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T; W ', cal%peak_weight, &
+                ', WT ', cal%time_weight, ', PEAK MARGIN M ', cal%peak_margin
             if (cal%max_evals == 0) then                 ! score the decks as they are, or at VALUES
                 vbest = par%nominal
                 if (size(cal%values) == size(par)) vbest = cal%values

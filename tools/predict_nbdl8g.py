@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Prediction at a severity the model was not fitted to: NBDL 8 g.
+
+    python3 tools/predict_nbdl8g.py [--h5 SEV=RESULT.h5 ...]
+
+reference/ holds no 8 g time histories, only the 8 g peaks of
+reference/reference-data.md section 3 (n = 10 runs, each CFC 60). The deck
+input/nbdl8g.inp drives T1 with the 12 g mean drive scaled to the 8 g mean T1
+peak (tools/make_nbdl_tables.py). This runs it (and the 12 g and 15 g decks,
+whose peaks were fitted: calibration) and prints, per severity, the model's
+peaks with the same definitions as section 3 -- T1 and head x-acceleration
+(least), head angular acceleration (largest) and deceleration (least), head
+angular velocity and flexion (largest), each channel CFC 60, 30-250 ms --
+against the volunteers' mean +- SD there, with (model - mean)/SD. The 8 g
+column is a prediction; the T1 row shows how well the synthetic drive meets
+the one 8 g number it was scaled to.
+"""
+import os
+import re
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare_nbdl import cfc, peak, run_deck, s3  # noqa: E402
+
+SEVERITIES = ("8g", "12g", "15g")
+# (row label of reference-data.md section 3, model channel, sign of the peak)
+ROWS = [
+    ("peak T1 x-accel (g)", "T1_AX", -1),
+    ("peak head x-accel (g)", "HEAD_AX", -1),
+    ("peak head angular accel (rad/s²)", "HEAD_ALPHY", +1),
+    ("peak angular deceleration (rad/s²)", "HEAD_ALPHY", -1),
+    ("peak head angular velocity (rad/s)", "HEAD_OMEGY", +1),
+    ("peak head flexion (deg)", "HEAD_THETY", +1),
+]
+
+
+def volunteer_peaks(path="reference/reference-data.md"):
+    """{row label: {severity: (mean, sd)}} from the table of section 3."""
+    out = {}
+    for line in open(path, encoding="utf-8"):
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 4 and cells[0] in [r[0] for r in ROWS]:
+            vals = {}
+            for sev, cell in zip(SEVERITIES, cells[1:]):
+                m = re.match(r"([−-]?[\d.]+) ± ([\d.]+)", cell)
+                vals[sev] = (float(m.group(1).replace("−", "-")), float(m.group(2)))
+            out[cells[0]] = vals
+    return out
+
+
+def model_peaks(h5):
+    """The model's six peaks, each channel CFC 60 (compare_nbdl.model_channels)."""
+    import h5py
+    f = h5py.File(h5, "r")
+    tm = f["time"][:] * 1e3
+    dt = (tm[1] - tm[0]) * 1e-3
+    out = {}
+    for label, chan, sign in ROWS:
+        x = cfc(f["channels"][chan][:], 60, dt)
+        out[label] = peak(tm, x, sign)
+    return out
+
+
+def main():
+    given = {}
+    args = sys.argv[1:]
+    while args:
+        a = args.pop(0)
+        if a == "--h5":
+            k, v = args.pop(0).split("=", 1)
+            given[k] = v
+        else:
+            sys.exit("usage: predict_nbdl8g.py [--h5 SEV=FILE ...]")
+    vol = volunteer_peaks()
+    tmp = tempfile.mkdtemp()
+    res = {sev: model_peaks(given.get(sev) or run_deck(sev, tmp)) for sev in SEVERITIES}
+    head = ("| peak | 8 g model (prediction) | 8 g volunteers | z | 12 g model (calibration) | 12 g volunteers"
+            " | z | 15 g model (calibration) | 15 g volunteers | z |")
+    lines = [head, "|---" * 10 + "|"]
+    count = {s: 0 for s in SEVERITIES}
+    for label, _, _ in ROWS:
+        row = [label]
+        for sev in SEVERITIES:
+            mp, mt = res[sev][label]
+            mean, sd = vol[label][sev]
+            z = (mp - mean) / sd
+            if label != ROWS[0][0]:
+                count[sev] += abs(z) <= 1.0
+            row += ["%s at %s ms" % (s3(mp), s3(mt)), "%s ± %s" % (s3(mean), s3(sd)), "%+.2f" % z]
+        lines.append("| " + " | ".join(row) + " |")
+    lines += ["", "Head peaks within 1 SD (the five head rows): " +
+              ", ".join("%s %d of 5" % (s.replace("g", " g"), count[s]) for s in SEVERITIES) + "."]
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,265 @@
+#!/usr/bin/env python3
+"""What moves the late head x-acceleration trough of the NBDL 15 g run?
+
+    python3 tools/probe_x_trough.py [--case 15g|12g]
+
+The model's head x-acceleration has a first trough near 97 ms, where the
+volunteers' peak is, and a deeper second one near 110 ms, which makes its
+peak 12.6 ms late (docs/validation.md, "What limits the fit"). This runs the
+case deck with one change at a time to the shipped model deck (copies in a
+temporary directory; nothing in input/ is changed) and prints, per change,
+the head x-acceleration (CFC 60) at 97 and 109 ms, its peak and the peak's
+time less the volunteers' mean time, and the head angular acceleration at
+110 ms (the volunteers' mean there: 911 rad/s2 at 15 g). Changes: the
+scale factors of the element families (SCALE cards), the range-of-motion
+stiffness of the upper cervical joints and of T1-C7, the activation
+(bracing, reflex), the T1 x drive filtered at a lower class, a per-level
+range-of-motion split (White and Panjabi's representative flexion-extension
+ranges scaled to the C2-T1 total of reference-data.md), and the head's
+joint point (the mass centre's offset from the occipital condyles).
+
+First it prints the head's x-velocity relative to T1 (the integral from 30 ms
+of head minus T1 x-acceleration, each CFC 60: the volunteers' means and the
+shipped model) at a few times, which shows where the late trough comes from.
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare_nbdl import cfc, runs, volunteer_channels, peak  # noqa: E402
+import make_nbdl_tables  # noqa: E402
+
+MODEL = "input/head_neck_54dof.inp"
+
+
+def scale(fam, item, f):
+    card = "%-10s%-10s%-10s%-10s%g" % ("SCALE", "PROBE", fam, item, f)
+    return lambda s: s.replace("HEADNECK  HEAD      T1", card + "\nHEADNECK  HEAD      T1")
+
+
+def rom_k(bodies, f):
+    """ROM cards' stiffness (F5) times f on the RY rows of `bodies`."""
+    def edit(s):
+        out = []
+        for line in s.splitlines():
+            p = line.split()
+            if p and p[0] == "ROM" and p[1] in bodies and p[2] == "RY":
+                line = line[:50] + "%-10s" % ("%g" % (float(p[5]) * f)) + line[60:]
+            out.append(line)
+        return "\n".join(out) + "\n"
+    return edit
+
+
+def activation(field, value):
+    """ACTIVATE NECK field F2 (bracing) or F3 (reflex level) set to value."""
+    def edit(s):
+        out = []
+        for line in s.splitlines():
+            if line.startswith("ACTIVATE  NECK"):
+                a, b = 10 * field, 10 * field + 10
+                line = line[:a] + "%-10s" % value + line[b:]
+            out.append(line.rstrip())
+        return "\n".join(out) + "\n"
+    return edit
+
+
+def rom_split(totals):
+    """LIMIT and ROM RY ranges centred on each joint's neutral angle with the given totals (deg)."""
+    def edit(s):
+        neutral = {m.group(1): float(m.group(2)) for m in re.finditer(r"^NEUTRAL\s+(\S+)\s+RY\s+(\S+)", s, re.M)}
+        out = []
+        for line in s.splitlines():
+            p = line.split()
+            if len(p) >= 5 and p[0] in ("LIMIT", "ROM") and p[1] in totals and p[2] == "RY":
+                n, t = neutral.get(p[1], 0.0), totals[p[1]]
+                line = line[:30] + "%-10.4f%-10.4f" % (n - t / 2, n + t / 2) + line[50:]
+            out.append(line)
+        return "\n".join(out) + "\n"
+    return edit
+
+
+def head_point(x, z):
+    def edit(s):
+        return re.sub(r"^(JOINT     HEAD      0.0       0.0       0.007     )\S+(\s+0.0\s+)\S+",
+                      lambda m: m.group(1) + "%-10s" % x + "0.0       " + "%s" % z, s, flags=re.M)
+    return edit
+
+
+def t1x_class(cls):
+    """Deck edit: the T1 x-acceleration table filtered CFC cls instead of 60."""
+    def edit(deck, sev, tmp):
+        lines = []
+        for name, chan, sc, c in (("T1XACC", "T1_XAccel", "9.80665", cls),
+                                  ("T1ZACC", "T1_ZAccel", "9.80665", make_nbdl_tables.Z_CFC),
+                                  ("T1RY", "T1_YrotDisp", make_nbdl_tables.CASES[sev]["rot_scale"], 60)):
+            t, data, _ = runs(chan, sev)
+            dt = (t[1] - t[0]) * 1e-3
+            lines += make_nbdl_tables.table(name, t, np.mean([cfc(r, c, dt) for r in data], axis=0), sc)
+        path = os.path.join(tmp, "t1_%d.inp" % cls)
+        open(path, "w").write("\n".join(lines) + "\n")
+        return deck.replace("input/nbdl%s_t1.inp" % sev, path)
+    return edit
+
+
+def lock(*pairs):
+    """Deck edit: the given (body, coordinate) pairs held at their neutral values."""
+    def edit(deck, sev, tmp):
+        cards = "".join("PRESCRIB  %-10s%-10sCONSTANT\n" % p for p in pairs)
+        return deck.replace("INCLUDE   input/nbdl%s_t1.inp" % sev, cards + "INCLUDE   input/nbdl%s_t1.inp" % sev)
+    return edit
+
+
+def short_range(q=None, span=None):
+    """The ACTIVATE continuation card's short-range stiffness q (F3) or its span (F4)."""
+    def edit(s):
+        out = s.splitlines()
+        i = next(k for k, line in enumerate(out) if line.startswith("ACTIVATE  NECK")) + 1
+        f = [out[i][a:a + 10] for a in range(0, 80, 10)]
+        if q is not None:
+            f[3] = "%-10s" % q
+        if span is not None:
+            f[4] = "%-10s" % span
+        out[i] = "".join(f).rstrip()
+        return "\n".join(out) + "\n"
+    return edit
+
+
+def disc_bending(discs, f):
+    """Flexion-extension bending stiffness (Iy, continuation card F3) of the named discs times f."""
+    def edit(s):
+        out = s.splitlines()
+        for i, line in enumerate(out):
+            p = line.split()
+            if p and p[0] == "DISC" and p[1] in discs:
+                fields = [out[i + 2][a:a + 10] for a in range(0, 80, 10)]
+                fields[3] = "%-10s" % ("%.6g" % (float(fields[3]) * f))
+                out[i + 2] = "".join(fields).rstrip()
+        return "\n".join(out) + "\n"
+    return edit
+
+
+def deep_extensor(f0):
+    """A pair of Hill muscles T1 -> C2 behind the lower column (a semispinalis
+    cervicis, which the model does not have; geometry and F0 assumed), on the
+    NECK activation history, with vias on C7 ... C3."""
+    def edit(s):
+        cards = []
+        for name, side in (("SSCVL", 1), ("SSCVR", -1)):
+            cards.append("%-10s%-10s%-10s%-10s%-10s%-10s%-10s%g" % ("HILL", name, "T1", "C2", "%g" % f0, "0.06",
+                                                                    "NECK", f0 / 10))
+            cards.append(" " * 10 + "%-10s%-10s%-10s%-10s%-10s%-10s" % ("-0.035", "%g" % (0.02 * side), "0.005",
+                                                                       "-0.04", "%g" % (0.01 * side), "0.0"))
+            for body in ("C7", "C6", "C5", "C4", "C3"):
+                cards.append("%-10s%-10s%-10s%-10s%-10s%-10s" % ("VIA", name, body, "-0.03", "%g" % (0.018 * side),
+                                                                 "0.0"))
+        anchor = "* Activation history of all muscles"
+        return s.replace(anchor, "\n".join(cards) + "\n" + anchor)
+    return edit
+
+
+# White & Panjabi's representative flexion-extension ranges C2-C3 ... C7-T1
+# (10, 15, 20, 20, 17, 9 deg) scaled to reference-data.md's C2-T1 total of 82 deg
+WP = dict(zip(("C2", "C3", "C4", "C5", "C6", "C7"), (9.0, 13.5, 18.0, 18.0, 15.3, 8.1)))
+
+PROBES = [
+    ("shipped", None, None),
+    ("disc axial stiffness x2", scale("DISCS", "E", 2.0), None),
+    ("disc shear stiffness x2", scale("DISCS", "G", 2.0), None),
+    ("disc retardation time x2", scale("DISCS", "VISCOUS", 2.0), None),
+    ("disc retardation time x0.5", scale("DISCS", "VISCOUS", 0.5), None),
+    ("muscle strength x2", scale("MUSCLES", "F0", 2.0), None),
+    ("muscle strength x0.5", scale("MUSCLES", "F0", 0.5), None),
+    ("joint-limit damping x10", scale("LIMITS", "C1", 10.0), None),
+    ("range-of-motion stiffness x30, all joints", scale("LIMITS", "ROMK", 30.0), None),
+    ("range-of-motion stiffness x10, C1 and head", rom_k(("HEAD", "C1"), 10.0), None),
+    ("range-of-motion stiffness x30, T1-C7", rom_k(("C7",), 30.0), None),
+    ("no bracing", activation(2, "0.0"), None),
+    ("no reflex", activation(3, "0.0"), None),
+    ("full reflex", activation(3, "1.0"), None),
+    ("per-level ROM split (White & Panjabi)", rom_split(WP), None),
+    ("head joint 10 mm lower (z -0.045)", head_point("-0.02", "-0.045"), None),
+    ("head joint 15 mm further back (x -0.035)", head_point("-0.035", "-0.035"), None),
+    ("T1 x drive CFC 20", None, t1x_class(20)),
+    ("rotation held at C1-head and C1-C2", None, lock(("HEAD", "RY"), ("C1", "RY"))),
+    ("rotation held at T1-C7 and C7-C6", None, lock(("C7", "RY"), ("C6", "RY"))),
+    ("disc bending stiffness x10, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 10.0), None),
+    ("disc bending stiffness x100, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 100.0), None),
+    ("deep extensor T1-C2, F0 100 N per side", deep_extensor(100.0), None),
+    ("deep extensor T1-C2, F0 400 N per side", deep_extensor(400.0), None),
+    ("short-range stiffness q 5", short_range(q="5.0"), None),
+    ("short-range stiffness q 40", short_range(q="40.0"), None),
+    ("short-range stiffness over 0.5 % of lopt", short_range(span="0.005"), None),
+    ("short-range stiffness over 2 % of lopt", short_range(span="0.02"), None),
+]
+
+
+def relative_velocity(sev, h5):
+    """Head x-velocity relative to T1 (m/s) from 30 ms: (t, volunteers' mean, model)."""
+    import h5py
+    g = 9.80665
+    t, hx, _ = runs("Head_XAccel", sev)
+    tx = runs("T1_XAccel", sev)[1]
+    dt = (t[1] - t[0]) * 1e-3
+    mean = lambda a: np.mean([cfc(r, 60, dt) for r in a], axis=0)
+    f = h5py.File(h5, "r")
+    tm = f["time"][:] * 1e3
+    dtm = (tm[1] - tm[0]) * 1e-3
+    mrel = cfc(f["channels"]["HEAD_AX"][:], 60, dtm) - cfc(f["channels"]["T1_AX"][:], 60, dtm)
+    on = t >= 30.0
+    vol = np.cumsum(np.where(on, (mean(hx) - mean(tx)) * g, 0.0)) * dt
+    mod = np.cumsum(np.where(on, np.interp(t, tm, mrel) * g, 0.0)) * dt
+    return t, vol, mod
+
+
+def main():
+    sev = "15g"
+    if sys.argv[1:3] and sys.argv[1] == "--case":
+        sev = sys.argv[2]
+    exe = subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"], capture_output=True,
+                         text=True, check=True).stdout.split()[-1]
+    vol, _ = volunteer_channels(sev)
+    t, data = vol["head x-acceleration (g)"]
+    tmean = np.mean([peak(t, r, -1)[1] for r in data])
+    model = open(MODEL).read()
+    tmp = tempfile.mkdtemp()
+    print("| change (%s) | head x-acc. at 97 ms (g) | at 109 ms (g) | peak (g) | peak time − volunteers' (ms) |"
+          " head angular acc. at 110 ms (rad/s2) |" % sev.replace("g", " g"))
+    print("|---|---|---|---|---|---|")
+    for k, (label, edit_model, edit_deck) in enumerate(PROBES):
+        inc = os.path.join(tmp, "model%d.inp" % k)
+        open(inc, "w").write(edit_model(model) if edit_model else model)
+        deck = open("input/nbdl%s.inp" % sev).read().replace(MODEL, inc)
+        if edit_deck:
+            deck = edit_deck(deck, sev, tmp)
+        h5 = os.path.join(tmp, "r%d.h5" % k)
+        r = subprocess.run([exe, "-I", os.getcwd(), "--h5", h5], input=deck, capture_output=True, text=True)
+        if r.returncode:
+            print("| %s | run failed: %s |" % (label, r.stderr.strip().splitlines()[-1]))
+            continue
+        import h5py
+        f = h5py.File(h5, "r")
+        tm = f["time"][:] * 1e3
+        dt = (tm[1] - tm[0]) * 1e-3
+        ax = cfc(f["channels"]["HEAD_AX"][:], 60, dt)
+        al = cfc(f["channels"]["HEAD_ALPHY"][:], 60, dt)
+        p, pt = peak(tm, ax, -1)
+        at = lambda x, ms: x[np.argmin(np.abs(tm - ms))]
+        print("| %s | %.1f | %.1f | %.1f | %+.1f | %.0f |" % (label, at(ax, 97), at(ax, 109), p, pt - tmean,
+                                                              at(al, 110)))
+        if k == 0:
+            shipped = h5
+    t, vol, mod = relative_velocity(sev, shipped)
+    iv, im = np.argmax(vol), np.argmax(mod)
+    print("\nHead x-velocity relative to T1 (m/s), volunteers' mean / shipped model: largest %.2f at %.1f ms /"
+          " %.2f at %.1f ms; " % (vol[iv], t[iv], mod[im], t[im]) +
+          ", ".join("%d ms %.2f / %.2f" % (ms, vol[np.argmin(np.abs(t - ms))], mod[np.argmin(np.abs(t - ms))])
+                    for ms in (95, 100, 105, 110, 115, 120, 130)))
+
+
+if __name__ == "__main__":
+    main()
