@@ -282,7 +282,7 @@ contains
         type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
         type(muscle_t), intent(in) :: m        !! the muscle
         type(line_geometry_t), intent(out) :: g  !! the whole path: ends, first direction, length and its rate
-        type(line_geometry_t), intent(out) :: seg(max_via + 1)   !! its segments in path order (nvia + 1 used)
+        type(line_geometry_t), intent(inout) :: seg(max_via + 1)   !! its segments in path order (nvia + 1 set, the rest left)
         integer :: bodies(max_via + 2), npt, k
         real(wp) :: points(3, max_via + 2), p(3, max_via + 2), v(3, max_via + 2)
         call muscle_path_points(m, bodies, points, npt)
@@ -299,12 +299,14 @@ contains
         g%pb = seg(npt - 1)%pb
     end subroutine muscle_geometry
 
-    !> Path geometry of every muscle of a list, and of each path's segments.
+    !> Path geometry of every muscle of a list, and of each path's segments
+    !! (inout: the unused segment slots are not cleared on every call).
     pure subroutine muscle_geometries(kin, muscles, g, seg)
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
         type(muscle_t), intent(in) :: muscles(:)     !! the muscles
         type(line_geometry_t), intent(out) :: g(:)   !! (size(muscles)) their path geometry
-        type(line_geometry_t), intent(out) :: seg(:, :)  !! (max_via + 1, size(muscles)) their segments' geometry
+        type(line_geometry_t), intent(inout), contiguous :: seg(:, :)  !! (max_via + 1, size(muscles)) their segments'
+                                                                        !! geometry (nvia + 1 set per muscle, the rest left)
         integer :: e
         do e = 1, size(muscles)
             call muscle_geometry(kin, muscles(e), g(e), seg(:, e))
