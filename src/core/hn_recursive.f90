@@ -296,8 +296,7 @@ contains
         real(wp), intent(inout), optional :: ia_parent(6, 6), pa_parent(6)
         real(wp) :: s(6, 6), yt(6, 6), ylin(6), iat(6, 6), scale, acc
         integer :: a, b, i
-        stat = stat_ok
-        u = zero; dl = zero; uu = zero
+        stat = stat_ok     ! only columns 1..n of u, the lower n x n of dl and uu(1:n) are set and read
         do a = 1, n
             s(:, a) = sj(:, cols(a))
             u(:, a) = matmul(ia, s(:, a))
