@@ -12,7 +12,8 @@ module hn_dynamics
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities, body_kinematics, kinetic_energy
     use hn_loads, only: body_loads_t, loads_allocate
     use hn_kane, only: a_ij, f_i
-    use hn_recursive, only: composite_rigid_body, f_recursive, inertia_times, articulated_body_solve
+    use hn_recursive, only: composite_rigid_body, f_recursive, inertia_times, articulated_body_solve, aba_work_t, &
+                            aba_work_allocate
     use hn_jacobian, only: generalized_tangent
     use hn_forces, only: compute_loads, element_output_t, element_output_allocate
     use hn_linsolve, only: linear_solve, solver_gauss, solver_articulated
@@ -37,6 +38,7 @@ module hn_dynamics
         type(kinematics_t) :: kin
         type(body_loads_t) :: loads
         type(element_output_t) :: eo                 !! element forces of the last evaluation
+        type(aba_work_t) :: aba                      !! work arrays of the articulated-body solve
         real(wp), allocatable :: x(:), xd(:), xdd(:) !! all active coordinates, rates, accelerations
         real(wp), allocatable :: a(:, :), f(:)       !! a_ij and f_i of all active coordinates
         real(wp), allocatable :: aff(:, :), bf(:)    !! the free partition and its right-hand side
@@ -90,6 +92,7 @@ contains
         call kinematics_allocate(model%tree, ws%kin)
         call loads_allocate(ws%loads, model%tree%nbody, n)
         call element_output_allocate(model, ws%eo)
+        call aba_work_allocate(model%tree, ws%aba)
         allocate (ws%x(n), ws%xd(n), ws%xdd(n), ws%a(n, n), ws%f(n))
         allocate (ws%aff(ws%nfree, ws%nfree), ws%bf(ws%nfree), ws%lambda(n))
         ws%x = zero; ws%xd = zero; ws%xdd = zero; ws%a = zero; ws%f = zero; ws%lambda = zero
@@ -113,8 +116,10 @@ contains
         real(wp), intent(in) :: xf(:)                !! free coordinates x_F [m, rad]
         real(wp), intent(in) :: xdf(:)               !! their rates xdot_F [m/s, rad/s]
         integer :: i, j
-        ws%x(ws%ifree) = xf
-        ws%xd(ws%ifree) = xdf
+        do i = 1, ws%nfree      ! element by element: a vector subscript would make a heap temporary
+            ws%x(ws%ifree(i)) = xf(i)
+            ws%xd(ws%ifree(i)) = xdf(i)
+        end do
         do i = 1, ws%npres
             j = ws%ipres(i)
             call motion_eval(model%motion(j), t, ws%x(j), ws%xd(j), ws%xdd(j))
@@ -166,15 +171,21 @@ contains
         case (solver_articulated)
             call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
             call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
-            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k)
+            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k, &
+                                        ws%aba)
             if (stat /= stat_ok) then
                 write (errmsg, '(a,es12.5,3a)') 't = ', t, ' s: the joint of body ', trim(model%tree%name(max(k, 1))), &
                     ' has dependent axes (articulated inertia singular)'
                 xddf = zero
                 return
             end if
-            xddf = ws%xdd(ws%ifree)
-            ws%p_prescribed = dot_product(ws%lambda(ws%ipres), ws%xd(ws%ipres))
+            ws%p_prescribed = zero
+            do i = 1, ws%nfree
+                xddf(i) = ws%xdd(ws%ifree(i))
+            end do
+            do i = 1, ws%npres
+                ws%p_prescribed = ws%p_prescribed + ws%lambda(ws%ipres(i))*ws%xd(ws%ipres(i))
+            end do
             errmsg = ''
             return
         case default
@@ -274,15 +285,18 @@ contains
         real(wp), intent(in) :: xdf(:)                 !! their rates xdot_F [m/s, rad/s]
         integer, intent(out) :: stat                   !! stat_ok, or stat_singular from the solve
         real(wp), intent(in), optional :: xddf(:)      !! free accelerations at t (else solved)
-        integer :: k
+        integer :: k, i
         call state_to_coordinates(model, ws, t, xf, xdf)
         call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
         call compute_loads(model, t, ws%kin, ws%x, ws%xd, ws%loads, ws%eo)
         stat = stat_ok
         if (present(xddf)) then
-            ws%xdd(ws%ifree) = xddf
+            do i = 1, ws%nfree
+                ws%xdd(ws%ifree(i)) = xddf(i)
+            end do
         else
-            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k)
+            call articulated_body_solve(model%tree, ws%kin, ws%loads, model%prescribed, ws%xdd, ws%lambda, stat, k, &
+                                        ws%aba)
         end if
     end subroutine dynamics_outputs
 
@@ -308,15 +322,17 @@ contains
         real(wp), intent(in) :: equad(nenergy)    !! the state's energy-audit integrals E [J]
         type(energy_t) :: e
         integer :: k, root
-        real(wp) :: dv(3)
+        real(wp) :: dv(3), ir(3, 3), om(3)
         e%kinetic = kinetic_energy(model%tree, ws%kin)
         root = findloc(model%tree%parent, 0, dim=1)
         do k = 1, model%tree%nbody
             e%gravity = e%gravity - model%tree%mass(k)*dot_product(model%gravity, ws%kin%r(:, k))
             if (k == root) cycle
             dv = ws%kin%v(:, k) - ws%kin%v(:, root)
+            ir = ws%kin%inertia_r(:, :, k)     ! fixed-size copies keep the product inline
+            om = ws%kin%omega(:, k)
             e%kinetic_rel = e%kinetic_rel + 0.5_wp*model%tree%mass(k)*dot_product(dv, dv) + &
-                            0.5_wp*dot_product(ws%kin%omega(:, k), matmul(ws%kin%inertia_r(:, :, k), ws%kin%omega(:, k)))
+                            0.5_wp*dot_product(om, matmul(ir, om))
         end do
         e%elastic = ws%eo%u_elastic
         e%hold = -dot_product(model%q_hold, ws%x)

@@ -56,17 +56,20 @@ contains
         real(wp), intent(out) :: cgen(:, :)     !! (n,n) generalized damping
         integer :: e, fam
         integer, parameter :: line_families(3) = [fam_ligaments, fam_muscles, fam_springs]
+        ! scratch of the element terms, sized once here rather than in every element's call
+        integer :: cols(max(size(kgen, 1), 1)), sgn(size(cols)), idx(size(cols))
+        real(wp) :: b(size(cols)), bd(6, size(cols))
         kgen = zero
         cgen = zero
         if (model%family_on(fam_discs)) then
             do e = 1, size(model%discs)
-                call add_disc(model, kin, e, kgen, cgen)
+                call add_disc(model, kin, e, kgen, cgen, cols, sgn, bd)
             end do
         end if
         do fam = 1, size(line_families)
             if (.not. model%family_on(line_families(fam))) cycle
             do e = 1, family_count(model, line_families(fam))
-                call add_line(model, kin, t, line_families(fam), e, kgen, cgen)
+                call add_line(model, kin, t, line_families(fam), e, kgen, cgen, cols, sgn, idx, b)
             end do
         end do
         if (model%family_on(fam_limits)) then
@@ -128,16 +131,17 @@ contains
     !! spatial force phi = ((p - origin) x u; u) of a unit tension at each
     !! end, summed over the segments of a muscle's path through its via
     !! points; K += (dT/dL) b b^T, C += (dT/dL') b b^T.
-    pure subroutine add_line(model, kin, t, fam, e, kgen, cgen)
+    pure subroutine add_line(model, kin, t, fam, e, kgen, cgen, cols, sgn, idx, b)
         type(model_t), intent(in) :: model
         type(kinematics_t), intent(in) :: kin
         real(wp), intent(in) :: t
         integer, intent(in) :: fam, e
         real(wp), intent(inout) :: kgen(:, :), cgen(:, :)
+        integer, intent(out) :: cols(:), sgn(:), idx(:)   ! scratch, at least n long
+        real(wp), intent(out) :: b(:)                      ! scratch, n long
         type(line_geometry_t) :: g
-        integer :: bodies(max_via + 2), npt, k, ncol, cols(max(model%tree%ndof, 1)), sgn(size(cols)), i, nz
-        integer :: idx(size(kgen, 1))
-        real(wp) :: points(3, max_via + 2), phia(6), phib(6), b(size(kgen, 1)), length, rate, dl, dr, kl, cl
+        integer :: bodies(max_via + 2), npt, k, ncol, i, nz
+        real(wp) :: points(3, max_via + 2), phia(6), phib(6), length, rate, dl, dr, kl, cl
         call line_path(model, fam, e, bodies, points, npt)
         b = zero; length = zero; rate = zero
         do k = 1, npt - 1
@@ -164,7 +168,7 @@ contains
               line_tension(model, fam, e, t, length, rate - dr))/(2*dr)
         if (kl == zero .and. cl == zero) return
         nz = 0
-        do i = 1, size(b)
+        do i = 1, size(kgen, 1)
             if (b(i) /= zero) then
                 nz = nz + 1
                 idx(nz) = i
@@ -181,14 +185,16 @@ contains
     !! upper plate centre where the loads act; + for the upper body's
     !! coordinates, - for the lower's); ds/dq and ds/dqd by central
     !! differences of disc_resultants.
-    pure subroutine add_disc(model, kin, e, kgen, cgen)
+    pure subroutine add_disc(model, kin, e, kgen, cgen, cols, sgn, b)
         type(model_t), intent(in) :: model
         type(kinematics_t), intent(in) :: kin
         integer, intent(in) :: e
         real(wp), intent(inout) :: kgen(:, :), cgen(:, :)
-        integer :: ncol, cols(max(model%tree%ndof, 1)), sgn(size(cols)), i, m
+        integer, intent(out) :: cols(:), sgn(:)   ! scratch, at least n long
+        real(wp), intent(out) :: b(:, :)           ! scratch, (6, n)
+        integer :: ncol, i, m
         real(wp) :: q(6), qd(6), l(3, 3), pup(3), ks(6, 6), cs(6, 6), dq(6), step, jinv(3, 3), pr(3)
-        real(wp) :: b(6, size(cols)), w(3), v(3)
+        real(wp) :: w(3), v(3)
         associate (d => model%discs(e))
             call disc_deformation(d, kin, q, qd, l, pup)
             do m = 1, 6
@@ -249,30 +255,31 @@ contains
     end subroutine add_range
 
     !> Coordinates on the tree path between bodies ka and kb (0 = R): those
-    !! in exactly one of the two chains, with sign +1 for kb's, -1 for ka's.
+    !! in exactly one of the two chains, ascending, with sign +1 for kb's,
+    !! -1 for ka's. The chains are ascending: one merge of the two lists.
     pure subroutine path_columns(tree, ka, kb, cols, sgn, ncol)
         type(body_tree_t), intent(in) :: tree
         integer, intent(in) :: ka, kb
         integer, intent(out) :: cols(:), sgn(:), ncol
-        integer :: s(size(cols)), j
-        s = x_sign(tree, ka, kb)
-        ncol = 0
-        do j = 1, size(s)
-            if (s(j) == 0) cycle
-            ncol = ncol + 1
-            cols(ncol) = j
-            sgn(ncol) = s(j)
+        integer :: ia, ib, na, nb, ja, jb
+        na = 0; nb = 0
+        if (ka > 0) na = tree%chain_len(ka)
+        if (kb > 0) nb = tree%chain_len(kb)
+        ia = 1; ib = 1; ncol = 0
+        do while (ia <= na .or. ib <= nb)
+            ja = huge(ja); jb = huge(jb)
+            if (ia <= na) ja = tree%chain(ia, ka)
+            if (ib <= nb) jb = tree%chain(ib, kb)
+            if (ja == jb) then          ! on both chains: the two ends move as one
+                ia = ia + 1; ib = ib + 1
+            else if (jb < ja) then
+                ncol = ncol + 1; cols(ncol) = jb; sgn(ncol) = 1
+                ib = ib + 1
+            else
+                ncol = ncol + 1; cols(ncol) = ja; sgn(ncol) = -1
+                ia = ia + 1
+            end if
         end do
     end subroutine path_columns
-
-    !> +1 on the chain of kb, -1 on the chain of ka, 0 on both or neither.
-    pure function x_sign(tree, ka, kb) result(s)
-        type(body_tree_t), intent(in) :: tree
-        integer, intent(in) :: ka, kb
-        integer :: s(max(tree%ndof, 1))
-        s = 0
-        if (kb > 0) s(tree%chain(1:tree%chain_len(kb), kb)) = 1
-        if (ka > 0) s(tree%chain(1:tree%chain_len(ka), ka)) = s(tree%chain(1:tree%chain_len(ka), ka)) - 1
-    end function x_sign
 
 end module hn_jacobian

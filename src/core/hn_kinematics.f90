@@ -103,8 +103,10 @@ contains
         type(kinematics_t), intent(inout) :: kin
         integer :: p, m, j
         real(wp) :: q(6), qd(6), sp(3, 3), omp(3), rp(3), vpar(3), a0p(3), al0p(3), ub(3, 3), u(3, 3)
-        real(wp) :: e(3), rho(3), vt(3), ie(3, 3), ud(3, 3), sk(3, 3), ic(3, 3), jp(3), jc(3)
-        ! fixed-size copies keep the small products inline (no library calls, no heap temporaries)
+        real(wp) :: e(3), rho(3), vt(3), ie(3, 3), ud(3, 3), sk(3, 3), ic(3, 3), jp(3), jc(3), rb(3, 3), ict(3, 3)
+        real(wp) :: jk(3), om(3), al(3), me(3), jo(3)
+        ! fixed-size copies and one product per statement keep the small products inline
+        ! (no library calls, no heap temporaries)
         p = tree%parent(k)
         call body_coordinates(tree, k, x, xd, q, qd)
         if (p == 0) then
@@ -115,34 +117,41 @@ contains
             rp = kin%r(:, p); vpar = kin%v(:, p); a0p = kin%a0(:, p); al0p = kin%alpha0(:, p)
         end if
         ! orientation, joint point and mass centre
-        sk = matmul(sp, bryant_matrix(q(4:6)))
+        rb = bryant_matrix(q(4:6))
+        sk = matmul(sp, rb)
         kin%s(:, :, k) = sk
         ub = bryant_axes(q(4:6))
         u = matmul(sp, ub)
         kin%axes(:, 1:3, k) = sp
         kin%axes(:, 4:6, k) = u
         jp = tree%joint_parent(:, k) + q(1:3)
-        kin%joint(:, k) = rp + matmul(sp, jp)
-        if (k == tree%order(1)) kin%origin = kin%joint(:, k)
+        jk = rp + matmul(sp, jp)
+        kin%joint(:, k) = jk
+        if (k == tree%order(1)) kin%origin = jk
         jc = tree%joint_child(:, k)
         e = matmul(sk, jc)   ! mass centre -> joint point
-        kin%r(:, k) = kin%joint(:, k) - e
-        rho = kin%joint(:, k) - rp
+        me = -e
+        kin%r(:, k) = jk - e
+        rho = jk - rp
         ic = tree%inertia(:, :, k)
-        ie = matmul(sk, matmul(ic, transpose(sk)))
+        ict = matmul(ic, transpose(sk))
+        ie = matmul(sk, ict)
         kin%inertia_r(:, :, k) = half*(ie + transpose(ie))
         ! velocities: joint point moves with the parent plus the translations
-        kin%omega(:, k) = omp + u(:, 1)*qd(4) + u(:, 2)*qd(5) + u(:, 3)*qd(6)
+        om = omp + u(:, 1)*qd(4) + u(:, 2)*qd(5) + u(:, 3)*qd(6)
+        kin%omega(:, k) = om
         vt = matmul(sp, qd(1:3))
-        kin%v(:, k) = vpar + cross(omp, rho) + vt + cross(kin%omega(:, k), -e)
+        kin%v(:, k) = vpar + cross(omp, rho) + vt + cross(om, me)
         ! velocity-dependent accelerations (xddot = 0): d/dt of the above
         ud(:, 1) = cross(omp, u(:, 1))
         ud(:, 2) = cross(omp + u(:, 1)*qd(4), u(:, 2))
         ud(:, 3) = cross(omp + u(:, 1)*qd(4) + u(:, 2)*qd(5), u(:, 3))
-        kin%alpha0(:, k) = al0p + ud(:, 1)*qd(4) + ud(:, 2)*qd(5) + ud(:, 3)*qd(6)
+        al = al0p + ud(:, 1)*qd(4) + ud(:, 2)*qd(5) + ud(:, 3)*qd(6)
+        kin%alpha0(:, k) = al
         kin%a0(:, k) = a0p + cross(al0p, rho) + cross(omp, cross(omp, rho)) + 2.0_wp*cross(omp, vt) &
-                       + cross(kin%alpha0(:, k), -e) + cross(kin%omega(:, k), cross(kin%omega(:, k), -e))
+                       + cross(al, me) + cross(om, cross(om, me))
         ! joint motion columns about the origin: (angular; linear at the origin)
+        jo = jk - kin%origin
         do m = 1, 6
             j = tree%dof_index(m, k)
             if (j == 0) cycle
@@ -151,7 +160,7 @@ contains
                 kin%sj(4:6, j) = sp(:, m)
             else
                 kin%sj(1:3, j) = u(:, m - 3)
-                kin%sj(4:6, j) = cross(kin%joint(:, k) - kin%origin, u(:, m - 3))
+                kin%sj(4:6, j) = cross(jo, u(:, m - 3))
             end if
         end do
     end subroutine body_step
@@ -250,10 +259,13 @@ contains
         type(body_tree_t), intent(in) :: tree   !! masses of the bodies
         type(kinematics_t), intent(in) :: kin   !! velocities, angular velocities, inertias in R
         integer :: k
+        real(wp) :: ir(3, 3), om(3)
         t = zero
         do k = 1, tree%nbody
+            ir = kin%inertia_r(:, :, k)     ! fixed-size copies keep the product inline
+            om = kin%omega(:, k)
             t = t + half*tree%mass(k)*dot_product(kin%v(:, k), kin%v(:, k)) &
-                + half*dot_product(kin%omega(:, k), matmul(kin%inertia_r(:, :, k), kin%omega(:, k)))
+                + half*dot_product(om, matmul(ir, om))
         end do
     end function kinetic_energy
 

@@ -23,12 +23,37 @@ module hn_recursive
     private
 
     public :: composite_rigid_body, f_recursive, inertia_times, articulated_body_solve
+    public :: aba_work_t, aba_work_allocate
 
     !> Relative size of a pivot of a joint's articulated inertia D = S^T I^A S
     !! below which the joint axes are taken as dependent (a singular joint).
     real(wp), parameter :: joint_pivot_min = 1.0e-13_wp
 
+    !> Work arrays of articulated_body_solve, sized once for a tree (no
+    !! allocation in the solve itself).
+    type :: aba_work_t
+        real(wp), allocatable :: ia(:, :, :)   !! (6,6,nb) articulated inertias
+        real(wp), allocatable :: pa(:, :)      !! (6,nb) articulated bias forces
+        real(wp), allocatable :: c(:, :)       !! (6,nb) known acceleration of each joint's prescribed columns
+        real(wp), allocatable :: sa(:, :)      !! (6,nb) spatial accelerations
+        real(wp), allocatable :: u(:, :, :)    !! (6,6,nb) U = I^A S of each joint
+        real(wp), allocatable :: dl(:, :, :)   !! (6,6,nb) Cholesky factor of D = S^T U
+        real(wp), allocatable :: uu(:, :)      !! (6,nb) u = tau - S^T p^A
+        integer, allocatable :: nf(:)          !! (nb) free columns of each joint
+        integer, allocatable :: cols(:, :)     !! (6,nb) their coordinate numbers
+    end type aba_work_t
+
 contains
+
+    !> Size the work arrays of articulated_body_solve for a tree.
+    pure subroutine aba_work_allocate(tree, work)
+        type(body_tree_t), intent(in) :: tree      !! the body tree
+        type(aba_work_t), intent(out) :: work      !! arrays sized for its bodies
+        integer :: nb
+        nb = tree%nbody
+        allocate (work%ia(6, 6, nb), work%pa(6, nb), work%c(6, nb), work%sa(6, nb), work%u(6, 6, nb))
+        allocate (work%dl(6, 6, nb), work%uu(6, nb), work%nf(nb), work%cols(6, nb))
+    end subroutine aba_work_allocate
 
     !> Spatial inertia of body k about the origin in compact form: mass m,
     !! first moment h = m c and rotational inertia J = I_c + m (|c|^2 1 - c c^T),
@@ -177,7 +202,7 @@ contains
     !! a body spans its free columns; its prescribed columns add a known
     !! acceleration. stat = stat_singular (bad_body set) when a joint's
     !! articulated inertia S^T I^A S is singular.
-    pure subroutine articulated_body_solve(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body)
+    pure subroutine articulated_body_solve(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body, work)
         type(body_tree_t), intent(in) :: tree     !! masses, parents and coordinate numbering of the bodies
         type(kinematics_t), intent(in) :: kin     !! joint columns sj and velocity terms a0, alpha0 (body_kinematics)
         type(body_loads_t), intent(in) :: loads   !! body forces [N], moments [N m], generalized forces q
@@ -186,9 +211,26 @@ contains
         real(wp), intent(out) :: lambda(:)        !! (n) constraint forces on prescribed coordinates, 0 on free
         integer, intent(out) :: stat              !! stat_ok, or stat_singular (bad_body's joint)
         integer, intent(out) :: bad_body          !! body of a singular joint (0: none)
-        real(wp) :: ia(6, 6, tree%nbody), pa(6, tree%nbody), c(6, tree%nbody), sa(6, tree%nbody)
-        real(wp) :: u(6, 6, tree%nbody), dl(6, 6, tree%nbody), uu(6, tree%nbody), fj(6)
-        integer :: nf(tree%nbody), cols(6, tree%nbody), ik, k, p, m, j
+        type(aba_work_t), intent(inout) :: work   !! work arrays from aba_work_allocate for this tree
+        call aba_sweeps(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body, work%ia, work%pa, work%c, &
+                        work%sa, work%u, work%dl, work%uu, work%nf, work%cols)
+    end subroutine articulated_body_solve
+
+    !> The two sweeps of articulated_body_solve on explicit-shape work arrays.
+    pure subroutine aba_sweeps(tree, kin, loads, prescribed, xdd, lambda, stat, bad_body, ia, pa, c, sa, u, dl, uu, &
+                               nf, cols)
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        type(body_loads_t), intent(in) :: loads
+        logical, intent(in) :: prescribed(:)
+        real(wp), intent(inout) :: xdd(:)
+        real(wp), intent(out) :: lambda(:)
+        integer, intent(out) :: stat, bad_body
+        real(wp), intent(out) :: ia(6, 6, tree%nbody), pa(6, tree%nbody), c(6, tree%nbody), sa(6, tree%nbody)
+        real(wp), intent(out) :: u(6, 6, tree%nbody), dl(6, 6, tree%nbody), uu(6, tree%nbody)
+        integer, intent(out) :: nf(tree%nbody), cols(6, tree%nbody)
+        real(wp) :: fj(6)
+        integer :: ik, k, p, m, j
         stat = stat_ok
         bad_body = 0
         lambda = zero
@@ -213,10 +255,10 @@ contains
             k = tree%order(ik)
             p = tree%parent(k)
             if (p > 0) then
-                call joint_reduce(kin%sj, loads%q, cols(1:nf(k), k), c(:, k), ia(:, :, k), pa(:, k), u(:, :, k), &
+                call joint_reduce(kin%sj, loads%q, cols(:, k), nf(k), c(:, k), ia(:, :, k), pa(:, k), u(:, :, k), &
                                   dl(:, :, k), uu(:, k), stat, ia(:, :, p), pa(:, p))
             else
-                call joint_reduce(kin%sj, loads%q, cols(1:nf(k), k), c(:, k), ia(:, :, k), pa(:, k), u(:, :, k), &
+                call joint_reduce(kin%sj, loads%q, cols(:, k), nf(k), c(:, k), ia(:, :, k), pa(:, k), u(:, :, k), &
                                   dl(:, :, k), uu(:, k), stat)
             end if
             if (stat /= stat_ok) then
@@ -230,7 +272,7 @@ contains
             p = tree%parent(k)
             sa(:, k) = c(:, k)
             if (p > 0) sa(:, k) = sa(:, k) + sa(:, p)
-            call joint_accelerations(kin%sj, cols(1:nf(k), k), u(:, :, k), dl(:, :, k), uu(:, k), sa(:, k), xdd)
+            call joint_accelerations(kin%sj, cols(:, k), nf(k), u(:, :, k), dl(:, :, k), uu(:, k), sa(:, k), xdd)
             fj = matmul(ia(:, :, k), sa(:, k)) + pa(:, k)
             do m = 1, 6
                 j = tree%dof_index(m, k)
@@ -238,33 +280,31 @@ contains
                 if (prescribed(j)) lambda(j) = dot_product(kin%sj(:, j), fj) - loads%q(j)
             end do
         end do
-    end subroutine articulated_body_solve
+    end subroutine aba_sweeps
 
-    !> ABA backward step of one joint with free columns sj(:, cols): U = I^A S,
+    !> ABA backward step of one joint with free columns sj(:, cols(1:n)): U = I^A S,
     !! D = S^T U factored (L L^T), u = tau - S^T p^A; the articulated inertia
     !! I^a = I^A - U D^-1 U^T and bias p^a = p^A + I^a c + U D^-1 u are added
-    !! to the parent's (when given).
-    pure subroutine joint_reduce(sj, tau, cols, c, ia, pa, u, dl, uu, stat, ia_parent, pa_parent)
+    !! to the parent's (when given). Fixed 6x6 arrays throughout: the
+    !! products stay inline.
+    pure subroutine joint_reduce(sj, tau, cols, n, c, ia, pa, u, dl, uu, stat, ia_parent, pa_parent)
         real(wp), intent(in) :: sj(:, :), tau(:)
-        integer, intent(in) :: cols(:)
+        integer, intent(in) :: cols(6), n
         real(wp), intent(in) :: c(6), ia(6, 6), pa(6)
         real(wp), intent(out) :: u(6, 6), dl(6, 6), uu(6)
         integer, intent(out) :: stat
         real(wp), intent(inout), optional :: ia_parent(6, 6), pa_parent(6)
-        real(wp) :: y(6, 6), ylin(6), iat(6, 6), scale, s6(6)
-        integer :: a, b, n
-        stat = stat_ok
-        n = size(cols)
-        u = zero; dl = zero; uu = zero
+        real(wp) :: s(6, 6), yt(6, 6), ylin(6), iat(6, 6), scale, acc
+        integer :: a, b, i
+        stat = stat_ok     ! only columns 1..n of u, the lower n x n of dl and uu(1:n) are set and read
         do a = 1, n
-            s6 = sj(:, cols(a))      ! a fixed-size copy keeps the product inline
-            u(:, a) = matmul(ia, s6)
-            uu(a) = tau(cols(a)) - dot_product(s6, pa)
+            s(:, a) = sj(:, cols(a))
+            u(:, a) = matmul(ia, s(:, a))
+            uu(a) = tau(cols(a)) - dot_product(s(:, a), pa)
         end do
         do a = 1, n      ! D = S^T U is symmetric: its lower triangle is all the factorization reads
-            s6 = sj(:, cols(a))
             do b = 1, a
-                dl(a, b) = dot_product(s6, u(:, b))
+                dl(a, b) = dot_product(s(:, a), u(:, b))
             end do
         end do
         if (n > 0) then
@@ -272,50 +312,57 @@ contains
             do a = 1, n
                 scale = max(scale, abs(dl(a, a)))
             end do
-            call small_cholesky(dl(1:n, 1:n), scale, stat)
+            call small_cholesky(dl, n, scale, stat)
             if (stat /= stat_ok) return
         end if
         if (.not. present(ia_parent)) return
-        ! Y = L^-1 U^T (n x 6): I^a = I^A - Y^T Y; p^a = p^A + I^a c + Y^T (L^-1 u);
-        ! the seven right-hand sides in one forward substitution
+        ! Y = L^-1 U^T (n x 6), held transposed (yt = Y^T): I^a = I^A - Y^T Y;
+        ! p^a = p^A + I^a c + Y^T (L^-1 u); the seven right-hand sides in one forward substitution
         do a = 1, n
-            y(a, 1:6) = u(1:6, a)
+            yt(:, a) = u(:, a)
             ylin(a) = uu(a)
             do b = 1, a - 1
-                y(a, 1:6) = y(a, 1:6) - dl(a, b)*y(b, 1:6)
+                yt(:, a) = yt(:, a) - dl(a, b)*yt(:, b)
                 ylin(a) = ylin(a) - dl(a, b)*ylin(b)
             end do
-            y(a, 1:6) = y(a, 1:6)/dl(a, a)
+            yt(:, a) = yt(:, a)/dl(a, a)
             ylin(a) = ylin(a)/dl(a, a)
         end do
         do b = 1, 6
             do a = 1, b      ! symmetric: the upper triangle, mirrored
-                iat(a, b) = ia(a, b) - dot_product(y(1:n, a), y(1:n, b))
+                acc = zero
+                do i = 1, n
+                    acc = acc + yt(a, i)*yt(b, i)
+                end do
+                iat(a, b) = ia(a, b) - acc
                 iat(b, a) = iat(a, b)
             end do
         end do
         ia_parent = ia_parent + iat
         pa_parent = pa_parent + pa + matmul(iat, c)
         do a = 1, 6
-            pa_parent(a) = pa_parent(a) + dot_product(y(1:n, a), ylin(1:n))
+            acc = zero
+            do i = 1, n
+                acc = acc + yt(a, i)*ylin(i)
+            end do
+            pa_parent(a) = pa_parent(a) + acc
         end do
     end subroutine joint_reduce
 
     !> ABA forward step of one joint: xddot_F = D^-1 (u - U^T a') and
     !! a = a' + S xddot_F (sa holds a' on entry, a on return).
-    pure subroutine joint_accelerations(sj, cols, u, dl, uu, sa, xdd)
+    pure subroutine joint_accelerations(sj, cols, n, u, dl, uu, sa, xdd)
         real(wp), intent(in) :: sj(:, :)
-        integer, intent(in) :: cols(:)
+        integer, intent(in) :: cols(6), n
         real(wp), intent(in) :: u(6, 6), dl(6, 6), uu(6)
         real(wp), intent(inout) :: sa(6), xdd(:)
         real(wp) :: r(6)
-        integer :: a, n
-        n = size(cols)
+        integer :: a
         do a = 1, n
             r(a) = uu(a) - dot_product(u(:, a), sa)
         end do
-        call forward_subst(dl(1:n, 1:n), r(1:n))
-        call backward_subst(dl(1:n, 1:n), r(1:n))
+        call forward_subst(dl, n, r)
+        call backward_subst(dl, n, r)
         do a = 1, n
             xdd(cols(a)) = r(a)
             sa = sa + sj(:, cols(a))*r(a)
@@ -344,16 +391,17 @@ contains
         end do
     end subroutine spatial_inertia6
 
-    !> In-place Cholesky factor L (lower) of a small SPD matrix; stat_singular
-    !! when a pivot falls below joint_pivot_min times `scale`.
-    pure subroutine small_cholesky(d, scale, stat)
-        real(wp), intent(inout) :: d(:, :)
+    !> In-place Cholesky factor L (lower) of the leading n x n block of a
+    !! small SPD matrix; stat_singular when a pivot falls below
+    !! joint_pivot_min times `scale`.
+    pure subroutine small_cholesky(d, n, scale, stat)
+        real(wp), intent(inout) :: d(6, 6)
+        integer, intent(in) :: n
         real(wp), intent(in) :: scale
         integer, intent(out) :: stat
-        integer :: i, j, n
+        integer :: i, j
         real(wp) :: s
         stat = stat_ok
-        n = size(d, 1)
         do j = 1, n
             s = d(j, j) - dot_product(d(j, 1:j - 1), d(j, 1:j - 1))
             if (.not. (s > joint_pivot_min*scale)) then
@@ -367,22 +415,23 @@ contains
         end do
     end subroutine small_cholesky
 
-    !> Solve L y = b in place (L lower triangular).
-    pure subroutine forward_subst(l, b)
-        real(wp), intent(in) :: l(:, :)
-        real(wp), intent(inout) :: b(:)
+    !> Solve L y = b in place for the leading n entries (L lower triangular).
+    pure subroutine forward_subst(l, n, b)
+        real(wp), intent(in) :: l(6, 6)
+        integer, intent(in) :: n
+        real(wp), intent(inout) :: b(6)
         integer :: i
-        do i = 1, size(b)
+        do i = 1, n
             b(i) = (b(i) - dot_product(l(i, 1:i - 1), b(1:i - 1)))/l(i, i)
         end do
     end subroutine forward_subst
 
-    !> Solve L^T x = b in place (L lower triangular).
-    pure subroutine backward_subst(l, b)
-        real(wp), intent(in) :: l(:, :)
-        real(wp), intent(inout) :: b(:)
-        integer :: i, n
-        n = size(b)
+    !> Solve L^T x = b in place for the leading n entries (L lower triangular).
+    pure subroutine backward_subst(l, n, b)
+        real(wp), intent(in) :: l(6, 6)
+        integer, intent(in) :: n
+        real(wp), intent(inout) :: b(6)
+        integer :: i
         do i = n, 1, -1
             b(i) = (b(i) - dot_product(l(i + 1:n, i), b(i + 1:n)))/l(i, i)
         end do

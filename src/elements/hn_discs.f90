@@ -121,26 +121,34 @@ contains
 
     !> Deformations q and rates qd of the disc, the lower plate frame L (R)
     !! and the upper plate centre (R) where the loads act.
-    pure subroutine disc_deformation(d, kin, q, qd, l, pup)
+    pure subroutine disc_deformation(d, kin, q, qd, l, pup, jinv)
         type(disc_t), intent(in) :: d            !! the disc
         type(kinematics_t), intent(in) :: kin    !! kinematics of the tree
         real(wp), intent(out) :: q(6)            !! deformations: u1, u2, u3 [m], theta1-3 [rad]
         real(wp), intent(out) :: qd(6)           !! their rates [m/s, rad/s]
         real(wp), intent(out) :: l(3, 3)         !! lower plate frame L in R
         real(wp), intent(out) :: pup(3)          !! upper plate centre in R [m]
-        real(wp) :: sa(3, 3), sb(3, 3), plo(3), rel(3), vrel(3), wa(3), wb(3), lt(3, 3)
+        real(wp), intent(out), optional :: jinv(3, 3) !! J_l(theta)^-1 of the rotation q(4:6) (inv_left_jacobian)
+        real(wp) :: sa(3, 3), sb(3, 3), plo(3), rel(3), vrel(3), wa(3), wb(3), lt(3, 3), ub(3, 3), lu(3, 3)
+        real(wp) :: ji(3, 3), wl(3)
+        ! one product per statement on fixed-size arrays: inline, no heap temporaries
         call plates(d, kin, sa, sb, plo, pup)
         l = matmul(sa, d%ra)
         lt = transpose(l)
         rel = pup - plo
         q(1:3) = matmul(lt, rel) - d%d0
-        q(4:6) = rotation_vector(matmul(lt, matmul(sb, d%rb)))
+        ub = matmul(sb, d%rb)
+        lu = matmul(lt, ub)
+        q(4:6) = rotation_vector(lu)
         wa = kin%omega(:, d%body_a)
         wb = kin%omega(:, d%body_b)
         vrel = kin%v(:, d%body_b) + cross(wb, pup - kin%r(:, d%body_b)) &
                - kin%v(:, d%body_a) - cross(wa, plo - kin%r(:, d%body_a)) - cross(wa, rel)
         qd(1:3) = matmul(lt, vrel)
-        qd(4:6) = matmul(inv_left_jacobian(q(4:6)), matmul(lt, wb - wa))
+        ji = inv_left_jacobian(q(4:6))
+        wl = matmul(lt, wb - wa)
+        qd(4:6) = matmul(ji, wl)
+        if (present(jinv)) jinv = ji
     end subroutine disc_deformation
 
     !> Stress resultants s = K q + C qd: shear forces, axial force (tension
@@ -169,14 +177,15 @@ contains
         real(wp), intent(out) :: s(6)            !! resultants: shear, axial [N], bending, torque [N m]
         real(wp), intent(out) :: u       !! elastic energy [J]
         real(wp), intent(out) :: pdiss   !! dissipated power [W]
-        real(wp) :: q(6), qd(6), l(3, 3), pup(3), f(3), c(3), jt(3, 3)
-        call disc_deformation(d, kin, q, qd, l, pup)
+        real(wp) :: q(6), qd(6), l(3, 3), pup(3), f(3), c(3), jt(3, 3), jinv(3, 3), m(3)
+        call disc_deformation(d, kin, q, qd, l, pup, jinv)
         s = disc_resultants(d, q, qd)
         u = disc_energy(d, q)
         pdiss = dot_product(qd, matmul(d%c, qd))
         f = -matmul(l, s(1:3))
-        jt = transpose(inv_left_jacobian(q(4:6)))
-        c = -matmul(l, matmul(jt, s(4:6)))
+        jt = transpose(jinv)
+        m = matmul(jt, s(4:6))
+        c = -matmul(l, m)
         call add_force_pair(loads, d%body_a, kin%r(:, d%body_a), d%body_b, kin%r(:, d%body_b), pup, f, c)
     end subroutine apply_disc
 

@@ -33,6 +33,10 @@ module hn_forces
         real(wp) :: p_diss = zero                   !! power dissipated by discs, springs, joint dampers [W]
         real(wp) :: p_muscle = zero                 !! power absorbed by the muscles [W]
         real(wp) :: p_applied = zero                !! power of the applied force and couple tables [W]
+        type(line_geometry_t), allocatable :: gl(:)       !! (nl) geometry of the ligaments
+        type(line_geometry_t), allocatable :: gm(:)       !! (nm) path geometry of the muscles
+        type(line_geometry_t), allocatable :: gs(:)       !! (ns) geometry of the springs
+        type(line_geometry_t), allocatable :: gseg(:, :)  !! (max_via + 1, nm) geometry of the muscles' segments
     end type element_output_t
 
 contains
@@ -44,6 +48,8 @@ contains
         allocate (eo%disc(6, size(model%discs)), eo%ligament(2, size(model%ligaments)))
         allocate (eo%muscle(3, size(model%muscles)), eo%limit(size(model%limits)))
         allocate (eo%spring(size(model%springs)))
+        allocate (eo%gl(size(model%ligaments)), eo%gm(size(model%muscles)), eo%gs(size(model%springs)))
+        allocate (eo%gseg(max_via + 1, size(model%muscles)))
         eo%disc = zero; eo%ligament = zero; eo%muscle = zero; eo%limit = zero; eo%spring = zero
     end subroutine element_output_allocate
 
@@ -59,8 +65,6 @@ contains
         type(element_output_t), intent(inout) :: eo !! element outputs, energies and powers
         integer :: k, e
         real(wp) :: u, pd, v(3), p(3), pv(3)
-        type(line_geometry_t) :: gl(size(model%ligaments)), gm(size(model%muscles)), gs(size(model%springs))
-        type(line_geometry_t) :: gseg(max_via + 1, size(model%muscles))
 
         call loads_clear(loads)
         eo%u_elastic = zero; eo%p_diss = zero; eo%p_muscle = zero; eo%p_applied = zero
@@ -77,19 +81,25 @@ contains
             end do
         end if
         if (model%family_on(fam_ligaments)) then
-            call line_geometries(kin, model%ligaments, gl)
-            eo%ligament(1, :) = ligament_tension(model%ligaments, gl%length)
-            eo%ligament(2, :) = gl%length
-            call apply_line_tensions(loads, kin, model%ligaments, gl, eo%ligament(1, :))
-            eo%u_elastic = eo%u_elastic + sum(ligament_energy(model%ligaments, gl%length))
+            associate (gl => eo%gl)
+                call line_geometries(kin, model%ligaments, gl)
+                eo%ligament(1, :) = ligament_tension(model%ligaments, gl%length)
+                eo%ligament(2, :) = gl%length
+                call apply_line_tensions(loads, kin, model%ligaments, gl, eo%ligament(1, :))
+                eo%u_elastic = eo%u_elastic + sum(ligament_energy(model%ligaments, gl%length))
+            end associate
         end if
         if (model%family_on(fam_muscles)) then
-            call muscle_geometries(kin, model%muscles, gm, gseg)
-            eo%muscle(3, :) = muscle_activations(model, t)
-            eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, eo%muscle(3, :))
-            eo%muscle(2, :) = gm%length
-            call apply_muscle_tensions(loads, kin, model%muscles, gseg, eo%muscle(1, :))
-            eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
+            associate (gm => eo%gm)
+                call muscle_geometries(kin, model%muscles, gm, eo%gseg)
+                do e = 1, size(model%muscles)
+                    eo%muscle(3, e) = muscle_activation(model, e, t)
+                end do
+                eo%muscle(1, :) = muscle_tension(model%muscles, gm%length, gm%rate, eo%muscle(3, :))
+                eo%muscle(2, :) = gm%length
+                call apply_muscle_tensions(loads, kin, model%muscles, eo%gseg, eo%muscle(1, :))
+                eo%p_muscle = eo%p_muscle + sum(eo%muscle(1, :)*gm%rate)
+            end associate
         end if
         if (model%family_on(fam_limits)) then
             do e = 1, size(model%limits)
@@ -107,11 +117,13 @@ contains
             end do
         end if
         if (model%family_on(fam_springs)) then
-            call line_geometries(kin, model%springs, gs)
-            eo%spring = spring_tension(model%springs, gs%length, gs%rate)
-            call apply_line_tensions(loads, kin, model%springs, gs, eo%spring)
-            eo%u_elastic = eo%u_elastic + sum(spring_energy(model%springs, gs%length))
-            eo%p_diss = eo%p_diss + sum(model%springs%damping*gs%rate**2)
+            associate (gs => eo%gs)
+                call line_geometries(kin, model%springs, gs)
+                eo%spring = spring_tension(model%springs, gs%length, gs%rate)
+                call apply_line_tensions(loads, kin, model%springs, gs, eo%spring)
+                eo%u_elastic = eo%u_elastic + sum(spring_energy(model%springs, gs%length))
+                eo%p_diss = eo%p_diss + sum(model%springs%damping*gs%rate**2)
+            end associate
         end if
         do e = 1, size(model%applied)
             associate (al => model%applied(e))

@@ -171,10 +171,22 @@ contains
         integer, intent(in) :: kb              !! body of end b
         real(wp), intent(in) :: cb(3)          !! point b in body kb's frame [m]
         type(line_geometry_t), intent(out) :: g  !! ends, unit vector a to b, length and its rate
-        real(wp) :: va(3), vb(3), d(3)
-        call attachment_point(kin, ka, ca, g%pa, va)
-        call attachment_point(kin, kb, cb, g%pb, vb)
-        d = g%pb - g%pa
+        real(wp) :: pa(3), va(3), pb(3), vb(3)
+        call attachment_point(kin, ka, ca, pa, va)
+        call attachment_point(kin, kb, cb, pb, vb)
+        call line_between(pa, va, pb, vb, g)
+    end subroutine line_geometry
+
+    !> Geometry of the line from point a to point b given their positions
+    !! and velocities in R.
+    pure subroutine line_between(pa, va, pb, vb, g)
+        real(wp), intent(in) :: pa(3), va(3)     !! position [m] and velocity [m/s] of end a
+        real(wp), intent(in) :: pb(3), vb(3)     !! position [m] and velocity [m/s] of end b
+        type(line_geometry_t), intent(out) :: g  !! ends, unit vector a to b, length and its rate
+        real(wp) :: d(3)
+        g%pa = pa
+        g%pb = pb
+        d = pb - pa
         g%length = norm3(d)
         if (g%length > zero) then
             g%unit = d/g%length
@@ -182,7 +194,7 @@ contains
             g%unit = zero
         end if
         g%rate = dot_product(g%unit, vb - va)
-    end subroutine line_geometry
+    end subroutine line_between
 
     !> Geometry of every element of a list of line elements.
     pure subroutine line_geometries(kin, at, g)
@@ -264,17 +276,21 @@ contains
 
     !> Geometry of a muscle's path: length and lengthening rate summed over
     !! its segments; pa, pb the two ends; unit the direction of the first
-    !! segment. `seg` receives the geometry of each segment.
+    !! segment. `seg` receives the geometry of each segment. Each point of
+    !! the path is placed once (a via point ends one segment and starts the next).
     pure subroutine muscle_geometry(kin, m, g, seg)
         type(kinematics_t), intent(in) :: kin  !! kinematics of the tree
         type(muscle_t), intent(in) :: m        !! the muscle
         type(line_geometry_t), intent(out) :: g  !! the whole path: ends, first direction, length and its rate
-        type(line_geometry_t), intent(out) :: seg(max_via + 1)   !! its segments in path order (nvia + 1 used)
+        type(line_geometry_t), intent(inout) :: seg(max_via + 1)   !! its segments in path order (nvia + 1 set, the rest left)
         integer :: bodies(max_via + 2), npt, k
-        real(wp) :: points(3, max_via + 2)
+        real(wp) :: points(3, max_via + 2), p(3, max_via + 2), v(3, max_via + 2)
         call muscle_path_points(m, bodies, points, npt)
+        do k = 1, npt
+            call attachment_point(kin, bodies(k), points(:, k), p(:, k), v(:, k))
+        end do
         do k = 1, npt - 1
-            call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), seg(k))
+            call line_between(p(:, k), v(:, k), p(:, k + 1), v(:, k + 1), seg(k))
             g%length = g%length + seg(k)%length
             g%rate = g%rate + seg(k)%rate
         end do
@@ -283,12 +299,14 @@ contains
         g%pb = seg(npt - 1)%pb
     end subroutine muscle_geometry
 
-    !> Path geometry of every muscle of a list, and of each path's segments.
+    !> Path geometry of every muscle of a list, and of each path's segments
+    !! (inout: the unused segment slots are not cleared on every call).
     pure subroutine muscle_geometries(kin, muscles, g, seg)
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
         type(muscle_t), intent(in) :: muscles(:)     !! the muscles
         type(line_geometry_t), intent(out) :: g(:)   !! (size(muscles)) their path geometry
-        type(line_geometry_t), intent(out) :: seg(:, :)  !! (max_via + 1, size(muscles)) their segments' geometry
+        type(line_geometry_t), intent(inout), contiguous :: seg(:, :)  !! (max_via + 1, size(muscles)) their segments'
+                                                                        !! geometry (nvia + 1 set per muscle, the rest left)
         integer :: e
         do e = 1, size(muscles)
             call muscle_geometry(kin, muscles(e), g(e), seg(:, e))
