@@ -2,6 +2,7 @@
 """Prediction at a severity the model was not fitted to: NBDL 8 g.
 
     python3 tools/predict_nbdl8g.py [--h5 SEV=RESULT.h5 ...]
+    python3 tools/predict_nbdl8g.py --fit LABEL=CALIBRATION_LISTING ...
 
 reference/ holds no 8 g time histories, only the 8 g peaks of
 reference/reference-data.md section 3 (n = 10 runs, each CFC 60). The deck
@@ -14,9 +15,16 @@ angular velocity and flexion (largest), each channel CFC 60, 30-250 ms --
 against the volunteers' mean +- SD there, with (model - mean)/SD. The 8 g
 column is a prediction; the T1 row shows how well the synthetic drive meets
 the one 8 g number it was scaled to.
+
+With --fit (one or more listings of `hhneck --calibrate`, as
+tools/cross_severity.py takes them) it runs the 8 g deck with each fit's
+parameters instead (set on a temporary copy of the model deck, the way the
+PARAM cards of input/calibrate_nbdl.inp bind them) and prints one row of
+8 g peaks per fit: which fit carries to a third severity.
 """
 import os
 import re
+import subprocess
 import sys
 import tempfile
 
@@ -64,17 +72,84 @@ def model_peaks(h5):
     return out
 
 
+def fitted_values(listing):
+    """[(name, value)] from the PARAM lines of a calibration listing."""
+    out = []
+    for line in open(listing):
+        m = re.match(r"PARAM (\S+)\s+= (\S+)", line)
+        if m:
+            out.append((m.group(1), float(m.group(2))))
+    return out
+
+
+def bindings(path="input/calibrate_nbdl.inp"):
+    """{name: (field number, card, item)} of the PARAM cards (kind FIELDn)."""
+    out = {}
+    for line in open(path):
+        if line.startswith("PARAM"):
+            name, kind, card, item = line[10:20].strip(), line[20:30].strip(), line[30:40].strip(), line[40:50].strip()
+            out[name] = (int(kind[len("FIELD"):]), card, item)
+    return out
+
+
+def with_values(model, values, bind):
+    """The model deck text with field n of the card CARD whose F1 is ITEM set to each value."""
+    lines = model.splitlines()
+    for name, value in values:
+        n, card, item = bind[name]
+        hits = [i for i, line in enumerate(lines) if line[:10].strip() == card and line[10:20].strip() == item]
+        if len(hits) != 1:
+            sys.exit("parameter %s: %d %s cards named %s in the model deck" % (name, len(hits), card, item))
+        i = hits[0]
+        line = lines[i].ljust(80)
+        lines[i] = (line[:10 * n] + "%-10s" % ("%.6g" % value) + line[10 * n + 10:]).rstrip()
+    return "\n".join(lines) + "\n"
+
+
+def fits_table(fits, vol):
+    """One row of 8 g peaks per calibration listing (label, path)."""
+    exe = subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"], capture_output=True, text=True,
+                         check=True).stdout.split()[-1]
+    bind = bindings()
+    model = open("input/head_neck_54dof.inp").read()
+    tmp = tempfile.mkdtemp()
+    rows = ["| fitted on | " + " | ".join(r[0].replace("peak ", "") for r in ROWS[1:]) + " | head peaks in 1 SD |",
+            "|---" * (len(ROWS) + 1) + "|"]
+    for label, listing in fits:
+        inc = os.path.join(tmp, "model_%d.inp" % len(rows))
+        open(inc, "w").write(with_values(model, fitted_values(listing), bind))
+        deck = open("input/nbdl8g.inp").read().replace("input/head_neck_54dof.inp", inc)
+        h5 = os.path.join(tmp, "r%d.h5" % len(rows))
+        subprocess.run([exe, "-I", os.getcwd(), "--h5", h5], input=deck, text=True, capture_output=True, check=True)
+        pk = model_peaks(h5)
+        cells, inside = [], 0
+        for row in ROWS[1:]:
+            mean, sd = vol[row[0]]["8g"]
+            z = (pk[row[0]][0] - mean) / sd
+            inside += abs(z) <= 1.0
+            cells.append("%s (%+.2f SD)" % (s3(pk[row[0]][0]), z))
+        rows.append("| %s | %s | %d of %d |" % (label, " | ".join(cells), inside, len(ROWS) - 1))
+    mean_row = ["%s ± %s" % (s3(vol[r[0]]["8g"][0]), s3(vol[r[0]]["8g"][1])) for r in ROWS[1:]]
+    rows.append("| 8 g volunteers (mean ± SD) | " + " | ".join(mean_row) + " | |")
+    print("\n".join(rows))
+
+
 def main():
-    given = {}
+    given, fits = {}, []
     args = sys.argv[1:]
     while args:
         a = args.pop(0)
         if a == "--h5":
             k, v = args.pop(0).split("=", 1)
             given[k] = v
+        elif a == "--fit":
+            fits.append(tuple(args.pop(0).split("=", 1)))
         else:
-            sys.exit("usage: predict_nbdl8g.py [--h5 SEV=FILE ...]")
+            sys.exit("usage: predict_nbdl8g.py [--h5 SEV=FILE ...] [--fit LABEL=LISTING ...]")
     vol = volunteer_peaks()
+    if fits:
+        fits_table(fits, vol)
+        return
     tmp = tempfile.mkdtemp()
     res = {sev: model_peaks(given.get(sev) or run_deck(sev, tmp)) for sev in SEVERITIES}
     head = ("| peak | 8 g model (prediction) | 8 g volunteers | z | 12 g model (calibration) | 12 g volunteers"
