@@ -22,7 +22,6 @@ module hn_rest_modes
         integer :: dominant = 0           !! free coordinate (model numbering) with the largest displacement
     end type rest_mode_t
 
-
 contains
 
     !> Jacobian J = dg/dy (2 nf x 2 nf) of the model at time t and state

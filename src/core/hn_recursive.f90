@@ -15,7 +15,7 @@
 module hn_recursive
     use hn_kinds, only: wp, zero
     use hn_status, only: stat_ok, stat_singular
-    use hn_rotation, only: cross
+    use hn_rotation, only: cross, skew
     use hn_tree, only: body_tree_t
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
@@ -379,9 +379,7 @@ contains
         real(wp) :: m, h(3), j(3, 3), hx(3, 3)
         integer :: a
         call body_inertia(tree, kin, k, m, h, j)
-        hx(:, 1) = [zero, h(3), -h(2)]
-        hx(:, 2) = [-h(3), zero, h(1)]
-        hx(:, 3) = [h(2), -h(1), zero]
+        hx = skew(h)
         i6 = zero
         i6(1:3, 1:3) = j
         i6(1:3, 4:6) = hx

@@ -386,8 +386,8 @@ contains
 
     !> Read a calibration deck: TITLE; CASE path (columns 11-80) followed by
     !! DATA directory of that case's volunteers; FIT NELDER max-evaluations
-    !! starting-points seed [peak-weight [peak-time-weight]]; PARAM cards as
-    !! in a sweep deck; optional VALUES
+    !! starting-points seed [peak-weight [peak-time-weight [peak-margin]]];
+    !! PARAM cards as in a sweep deck; optional VALUES
     !! cards (up to 7 values each, in PARAM order), the point scored when
     !! max-evaluations is 0 (default: the decks' own values). Each case's
     !! parameters are bound to its own deck through a sweep (same checks).
