@@ -102,8 +102,9 @@ def t1_tables_8g():
     return lines
 
 
-def t1_tables(sev, z_cfc=Z_CFC):
-    """The lines of input/nbdlSEV_t1.inp, the z-acceleration filtered CFC z_cfc."""
+def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
+    """The lines of input/nbdlSEV_t1.inp, the z-acceleration filtered CFC
+    z_cfc, the x-acceleration CFC x_cfc (the shipped tables: 60)."""
     c = CASES[sev]
     lines = [
         "* T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (label(sev), c["runs"]),
@@ -114,7 +115,7 @@ def t1_tables(sev, z_cfc=Z_CFC):
         "* 1972, NHTSA Biomechanics Test Database, via IMMC-UWaterloo/ARCGen).",
         "* Time in ms (scale 0.001 s).",
     ]
-    for name, chan, scale, cls in (("T1XACC", "T1_XAccel", "9.80665", 60),
+    for name, chan, scale, cls in (("T1XACC", "T1_XAccel", "9.80665", x_cfc),
                                    ("T1ZACC", "T1_ZAccel", "9.80665", z_cfc),
                                    ("T1RY", "T1_YrotDisp", c["rot_scale"], 60)):
         t, data, _ = runs(chan, sev)

@@ -32,6 +32,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare_nbdl import cfc, peak, run_deck, s3  # noqa: E402
+from deck_fields import field, is_card, set_field  # noqa: E402
 
 SEVERITIES = ("8g", "12g", "15g")
 # (row label of reference-data.md section 3, model channel, sign of the peak)
@@ -87,7 +88,7 @@ def bindings(path="input/calibrate_nbdl.inp"):
     out = {}
     for line in open(path):
         if line.startswith("PARAM"):
-            name, kind, card, item = line[10:20].strip(), line[20:30].strip(), line[30:40].strip(), line[40:50].strip()
+            name, kind, card, item = (field(line, n) for n in (1, 2, 3, 4))
             out[name] = (int(kind[len("FIELD"):]), card, item)
     return out
 
@@ -97,12 +98,10 @@ def with_values(model, values, bind):
     lines = model.splitlines()
     for name, value in values:
         n, card, item = bind[name]
-        hits = [i for i, line in enumerate(lines) if line[:10].strip() == card and line[10:20].strip() == item]
+        hits = [i for i, line in enumerate(lines) if is_card(line, card, item)]
         if len(hits) != 1:
             sys.exit("parameter %s: %d %s cards named %s in the model deck" % (name, len(hits), card, item))
-        i = hits[0]
-        line = lines[i].ljust(80)
-        lines[i] = (line[:10 * n] + "%-10s" % ("%.6g" % value) + line[10 * n + 10:]).rstrip()
+        lines[hits[0]] = set_field(lines[hits[0]], n, "%.6g" % value)
     return "\n".join(lines) + "\n"
 
 

@@ -33,6 +33,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare_nbdl import cfc, runs, volunteer_channels, peak  # noqa: E402
 import make_nbdl_tables  # noqa: E402
+from deck_fields import field, is_card, set_field  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 
@@ -42,30 +43,32 @@ def scale(fam, item, f):
     return lambda s: s.replace("HEADNECK  HEAD      T1", card + "\nHEADNECK  HEAD      T1")
 
 
+def card_field(card, names, n, new, coord=None, offset=0):
+    """Model edit: on every `card` image whose F1 is in `names` (and F2 is
+    `coord`, when given), field n of the image `offset` lines below (its
+    continuation) becomes new(old field text)."""
+    def edit(s):
+        out = s.splitlines()
+        for i, line in enumerate(out):
+            if is_card(line, card) and field(line, 1) in names and coord in (None, field(line, 2)):
+                out[i + offset] = set_field(out[i + offset], n, new(field(out[i + offset], n)))
+        return "\n".join(out) + "\n"
+    return edit
+
+
+def times(f):
+    """new() of card_field: the field's number times f."""
+    return lambda old: "%.6g" % (float(old) * f)
+
+
 def rom_k(bodies, f):
     """ROM cards' stiffness (F5) times f on the RY rows of `bodies`."""
-    def edit(s):
-        out = []
-        for line in s.splitlines():
-            p = line.split()
-            if p and p[0] == "ROM" and p[1] in bodies and p[2] == "RY":
-                line = line[:50] + "%-10s" % ("%g" % (float(p[5]) * f)) + line[60:]
-            out.append(line)
-        return "\n".join(out) + "\n"
-    return edit
+    return card_field("ROM", bodies, 5, times(f), coord="RY")
 
 
-def activation(field, value):
+def activation(n, value):
     """ACTIVATE NECK field F2 (bracing) or F3 (reflex level) set to value."""
-    def edit(s):
-        out = []
-        for line in s.splitlines():
-            if line.startswith("ACTIVATE  NECK"):
-                a, b = 10 * field, 10 * field + 10
-                line = line[:a] + "%-10s" % value + line[b:]
-            out.append(line.rstrip())
-        return "\n".join(out) + "\n"
-    return edit
+    return card_field("ACTIVATE", ("NECK",), n, lambda old: value)
 
 
 def rom_split(totals):
@@ -74,34 +77,27 @@ def rom_split(totals):
         neutral = {m.group(1): float(m.group(2)) for m in re.finditer(r"^NEUTRAL\s+(\S+)\s+RY\s+(\S+)", s, re.M)}
         out = []
         for line in s.splitlines():
-            p = line.split()
-            if len(p) >= 5 and p[0] in ("LIMIT", "ROM") and p[1] in totals and p[2] == "RY":
-                n, t = neutral.get(p[1], 0.0), totals[p[1]]
-                line = line[:30] + "%-10.4f%-10.4f" % (n - t / 2, n + t / 2) + line[50:]
+            body = field(line, 1)
+            if field(line, 0) in ("LIMIT", "ROM") and body in totals and field(line, 2) == "RY":
+                n, t = neutral.get(body, 0.0), totals[body]
+                line = set_field(set_field(line, 3, "%.4f" % (n - t / 2)), 4, "%.4f" % (n + t / 2))
             out.append(line)
         return "\n".join(out) + "\n"
     return edit
 
 
 def head_point(x, z):
-    def edit(s):
-        return re.sub(r"^(JOINT     HEAD      0.0       0.0       0.007     )\S+(\s+0.0\s+)\S+",
-                      lambda m: m.group(1) + "%-10s" % x + "0.0       " + "%s" % z, s, flags=re.M)
-    return edit
+    """The head's joint point in its own frame (JOINT HEAD F5, F7) set to (x, 0, z)."""
+    at_x = card_field("JOINT", ("HEAD",), 5, lambda old: x)
+    at_z = card_field("JOINT", ("HEAD",), 7, lambda old: z)
+    return lambda s: at_z(at_x(s))
 
 
 def t1x_class(cls):
     """Deck edit: the T1 x-acceleration table filtered CFC cls instead of 60."""
     def edit(deck, sev, tmp):
-        lines = []
-        for name, chan, sc, c in (("T1XACC", "T1_XAccel", "9.80665", cls),
-                                  ("T1ZACC", "T1_ZAccel", "9.80665", make_nbdl_tables.Z_CFC),
-                                  ("T1RY", "T1_YrotDisp", make_nbdl_tables.CASES[sev]["rot_scale"], 60)):
-            t, data, _ = runs(chan, sev)
-            dt = (t[1] - t[0]) * 1e-3
-            lines += make_nbdl_tables.table(name, t, np.mean([cfc(r, c, dt) for r in data], axis=0), sc)
         path = os.path.join(tmp, "t1_%d.inp" % cls)
-        open(path, "w").write("\n".join(lines) + "\n")
+        open(path, "w").write("\n".join(make_nbdl_tables.t1_tables(sev, x_cfc=cls)) + "\n")
         return deck.replace("input/nbdl%s_t1.inp" % sev, path)
     return edit
 
@@ -116,31 +112,14 @@ def lock(*pairs):
 
 def short_range(q=None, span=None):
     """The ACTIVATE continuation card's short-range stiffness q (F3) or its span (F4)."""
-    def edit(s):
-        out = s.splitlines()
-        i = next(k for k, line in enumerate(out) if line.startswith("ACTIVATE  NECK")) + 1
-        f = [out[i][a:a + 10] for a in range(0, 80, 10)]
-        if q is not None:
-            f[3] = "%-10s" % q
-        if span is not None:
-            f[4] = "%-10s" % span
-        out[i] = "".join(f).rstrip()
-        return "\n".join(out) + "\n"
-    return edit
+    if q is not None:
+        return card_field("ACTIVATE", ("NECK",), 3, lambda old: q, offset=1)
+    return card_field("ACTIVATE", ("NECK",), 4, lambda old: span, offset=1)
 
 
 def disc_bending(discs, f):
     """Flexion-extension bending stiffness (Iy, continuation card F3) of the named discs times f."""
-    def edit(s):
-        out = s.splitlines()
-        for i, line in enumerate(out):
-            p = line.split()
-            if p and p[0] == "DISC" and p[1] in discs:
-                fields = [out[i + 2][a:a + 10] for a in range(0, 80, 10)]
-                fields[3] = "%-10s" % ("%.6g" % (float(fields[3]) * f))
-                out[i + 2] = "".join(fields).rstrip()
-        return "\n".join(out) + "\n"
-    return edit
+    return card_field("DISC", discs, 3, times(f), offset=2)
 
 
 def deep_extensor(f0):
