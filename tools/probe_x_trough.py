@@ -13,10 +13,13 @@ time less the volunteers' mean time, and the head angular acceleration at
 110 ms (the volunteers' mean there: 911 rad/s2 at 15 g). Changes: the
 scale factors of the element families (SCALE cards), the range-of-motion
 stiffness of the upper cervical joints and of T1-C7, the activation
-(bracing, reflex), the T1 x drive filtered at a lower class, a per-level
-range-of-motion split (White and Panjabi's representative flexion-extension
-ranges scaled to the C2-T1 total of reference-data.md), and the head's
-joint point (the mass centre's offset from the occipital condyles).
+(bracing, reflex, short-range stiffness), the T1 x drive filtered at a lower
+class, a per-level range-of-motion split (White and Panjabi's representative
+flexion-extension ranges scaled to the C2-T1 total of reference-data.md),
+the head's joint point (the mass centre's offset from the occipital
+condyles), the lowest joints' rotation held or their discs' bending
+stiffened, and extensors the model does not have (a deep T1-C2 pair,
+segmental fascicles over two joints).
 
 First it prints the head's x-velocity relative to T1 (the integral from 30 ms
 of head minus T1 x-acceleration, each CFC 60: the volunteers' means and the
@@ -141,6 +144,31 @@ def deep_extensor(f0):
     return edit
 
 
+def segmental_extensors(f0):
+    """Pairs of Hill muscles each spanning two joints behind the column
+    (multifidus-like fascicles T1 -> C6, C7 -> C5, ..., C4 -> C2, which the
+    model does not have; geometry and F0 assumed): from the articular process
+    of the lower vertebra to the spinous process of the upper, via the middle
+    one, on the NECK activation history."""
+    column = ("T1", "C7", "C6", "C5", "C4", "C3", "C2")
+
+    def edit(s):
+        cards = []
+        for k in range(len(column) - 2):
+            low, mid, up = column[k], column[k + 1], column[k + 2]
+            for side, sgn in (("L", 1), ("R", -1)):
+                name = "MF%s%s" % (up, side)
+                cards.append("%-10s%-10s%-10s%-10s%-10s%-10s%-10s%g" % ("HILL", name, low, up, "%g" % f0, "0.03",
+                                                                        "NECK", f0 / 10))
+                cards.append(" " * 10 + "%-10s%-10s%-10s%-10s%-10s%-10s" % ("-0.02", "%g" % (0.02 * sgn), "0.0",
+                                                                           "-0.04", "%g" % (0.005 * sgn), "0.0"))
+                cards.append("%-10s%-10s%-10s%-10s%-10s%-10s" % ("VIA", name, mid, "-0.03", "%g" % (0.012 * sgn),
+                                                                 "0.0"))
+        anchor = "* Activation history of all muscles"
+        return s.replace(anchor, "\n".join(cards) + "\n" + anchor)
+    return edit
+
+
 # White & Panjabi's representative flexion-extension ranges C2-C3 ... C7-T1
 # (10, 15, 20, 20, 17, 9 deg) scaled to reference-data.md's C2-T1 total of 82 deg
 WP = dict(zip(("C2", "C3", "C4", "C5", "C6", "C7"), (9.0, 13.5, 18.0, 18.0, 15.3, 8.1)))
@@ -170,6 +198,8 @@ PROBES = [
     ("disc bending stiffness x100, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 100.0), None),
     ("deep extensor T1-C2, F0 100 N per side", deep_extensor(100.0), None),
     ("deep extensor T1-C2, F0 400 N per side", deep_extensor(400.0), None),
+    ("segmental extensors T1-C2 over two joints, F0 40 N per fascicle and side", segmental_extensors(40.0), None),
+    ("segmental extensors T1-C2 over two joints, F0 160 N per fascicle and side", segmental_extensors(160.0), None),
     ("short-range stiffness q 5", short_range(q="5.0"), None),
     ("short-range stiffness q 40", short_range(q="40.0"), None),
     ("short-range stiffness over 0.5 % of lopt", short_range(span="0.005"), None),
