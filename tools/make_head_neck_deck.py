@@ -13,7 +13,7 @@ lordosis, head level; "posture" below) as its neutral; --t1-slope and
 --lordosis (deg) vary it, --posture straight gives the straight column of the
 earlier model and --posture seated-held the seated angles as an initial
 deflection of the straight neutral.
-With --fit, the FITTED values (SCALE cards, ACTIVATE NECK levels and delay)
+With --fit, the FITTED values (SCALE cards, ACTIVATE FLEX and EXT levels and delays)
 are read from the listing of the calibration (the PARAM lines of
 hhneck --calibrate < input/calibrate_nbdl.inp > FIT.txt); without it, the
 copy of that output below is used.
@@ -184,24 +184,29 @@ MUSCLES = [
 VIA_MUSCLES = ("SPLC", "SSC", "LCOL", "LCAP")
 SIGMA_MAX = 0.5e6     # maximum isometric stress, Pa (FITTED scale: FAMILY MUSCLES F0; reference/parameters.md)
 MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
-# activation history NECK (reference/parameters.md): bracing level, reflex level and delay FITTED;
-# onset blank = the sled pulse onset found from the prescribed T1 motion; rise time A;
-# time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
-ACT = dict(u0=0.241838, u1=0.40301, delay=0.0492591, rise=0.020, tau_act=0.015, tau_deact=0.050)
+# two activation histories (reference/parameters.md): FLEX for the flexors in front of the
+# column, EXT for the extensors behind it; each its own bracing level, reflex level and
+# delay, FITTED; onset blank = the sled pulse onset found from the prescribed T1 motion;
+# rise time A; time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
+FLEXORS = ("SCM", "LCOL", "LCAP")
+ACT = {"FLEX": dict(u0=0.204612, u1=0.570227, delay=0.1),
+       "EXT": dict(u0=0.0106995, u1=0.115586, delay=0.0409276)}
+ACT_RISE, ACT_TAU, DEACT_TAU = 0.020, 0.015, 0.050
 # short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
 # McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
 SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
 # hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.40707),      # sigma_max / 0.5 MPa
-    ("VISCOUS", "DISCS", "VISCOUS", 5.20578), # disc retardation time / 5 ms
-    ("SHEAR", "DISCS", "G", 2.77993),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.0279),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 0.347133),    # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 1.55209),      # sigma_max / 0.5 MPa
+    ("VISCOUS", "DISCS", "VISCOUS", 9.82618), # disc retardation time / 5 ms
+    ("SHEAR", "DISCS", "G", 1.02597),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.52707),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 0.244915),    # range-of-motion stiffness / 50 N m/rad
 ]
-# the calibration's PARAM names of the ACTIVATE NECK fields
-FITTED_ACT = {"BRACE": "u0", "REFLEX": "u1", "DELAY": "delay"}
+# the calibration's PARAM names of the ACTIVATE FLEX and EXT fields
+FITTED_ACT = {"BRACEF": ("FLEX", "u0"), "REFLEXF": ("FLEX", "u1"), "DELAYF": ("FLEX", "delay"),
+              "BRACEE": ("EXT", "u0"), "REFLEXE": ("EXT", "u1"), "DELAYE": ("EXT", "delay")}
 
 
 def read_fit(listing):
@@ -246,8 +251,8 @@ while args:
     if a == "--fit":
         FIT = read_fit(args.pop(0))
         FITTED_SCALES = [(n, fam, item, FIT[n]) for (n, fam, item, _) in FITTED_SCALES]
-        for n, key in FITTED_ACT.items():
-            ACT[key] = FIT[n]
+        for n, (hist, key) in FITTED_ACT.items():
+            ACT[hist][key] = FIT[n]
     elif a == "--posture" and args[0] in POSTURES:
         POSTURE = args.pop(0)
     elif a == "--t1-slope":
@@ -379,22 +384,25 @@ for (mname, org, ins, pcsa, lopt) in MUSCLES:
     for s, side in ((1, "L"), (-1, "R")):
         ba, pa = org(s)
         bb, pb = ins(s)
-        w(card("HILL", mname + side, ba, bb, round(f0, 2), lopt, "NECK", round(MUSCLE_DAMPING * f0, 3)))
+        hist = "FLEX" if mname in FLEXORS else "EXT"
+        w(card("HILL", mname + side, ba, bb, round(f0, 2), lopt, hist, round(MUSCLE_DAMPING * f0, 3)))
         w(cont(*[round(v, 6) for v in rel(pa, ba)], *[round(v, 6) for v in rel(pb, bb)]))
         if mname in VIA_MUSCLES:
             for vb in names[names.index(ba) + 1:names.index(bb)]:
                 f = (centre[vb][2] - pa[2]) / (pb[2] - pa[2])
                 pv = tuple(pa[i] + f * (pb[i] - pa[i]) for i in range(3))
                 w(card("VIA", mname + side, vb, *[round(v, 6) for v in rel(pv, vb)]))
-w("* Activation history of all muscles: bracing level u0, reflex level u1 FITTED,")
-w("* onset blank = sled pulse onset (prescribed T1 acceleration first above 1 g),")
-w("* reflex delay FITTED, rise time A; time constants Thelen 2003; short-range")
-w("* stiffness of the active fibres k = q F / L0, q %.0f (Bergmark 1989, Cholewicki" % SRS_Q)
-w("* & McGill 1996: 10-40), over a stretch of %.0f %% of lopt (A)." % (100 * SRS_RANGE))
+w("* Activation histories: FLEX of the flexors (%s), EXT of the" % ", ".join(FLEXORS))
+w("* extensors (the others); each its bracing level u0, reflex level u1 and delay")
+w("* FITTED; onset blank = sled pulse onset (prescribed T1 acceleration first")
+w("* above 1 g), rise time A; time constants Thelen 2003; short-range stiffness")
+w("* of the active fibres k = q F / L0, q %.0f (Bergmark 1989, Cholewicki & McGill" % SRS_Q)
+w("* 1996: 10-40), over a stretch of %.0f %% of lopt (A)." % (100 * SRS_RANGE))
 w("*         name      u0        u1        onset (s) delay (s) rise (s)")
 w("*         tau act   tau deact q (SRS)   range")
-w(card("ACTIVATE", "NECK", ACT["u0"], ACT["u1"], None, ACT["delay"], ACT["rise"]))
-w(cont(ACT["tau_act"], ACT["tau_deact"], SRS_Q, SRS_RANGE))
+for hist, act in ACT.items():
+    w(card("ACTIVATE", hist, act["u0"], act["u1"], None, act["delay"], ACT_RISE))
+    w(cont(ACT_TAU, DEACT_TAU, SRS_Q, SRS_RANGE))
 w("*")
 w("* JOINT LIMITS (eqs 12-13): one-way dampers on the three rotations of every")
 w("* joint; ranges S3 split per joint (A); C0 %.2f, C1 %.0f N m s/rad per rad (A)" % (LIMIT_C0, LIMIT_C1))

@@ -39,6 +39,7 @@ import make_nbdl_tables  # noqa: E402
 from deck_fields import field, is_card, set_field  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
+HISTORIES = ("FLEX", "EXT")  # the model deck's ACTIVATE cards
 
 
 def scale(fam, item, f):
@@ -70,8 +71,8 @@ def rom_k(bodies, f):
 
 
 def activation(n, value):
-    """ACTIVATE NECK field F2 (bracing) or F3 (reflex level) set to value."""
-    return card_field("ACTIVATE", ("NECK",), n, lambda old: value)
+    """Field F2 (bracing) or F3 (reflex level) of both ACTIVATE cards (FLEX, EXT) set to value."""
+    return card_field("ACTIVATE", HISTORIES, n, lambda old: value)
 
 
 def rom_split(totals):
@@ -116,8 +117,8 @@ def lock(*pairs):
 def short_range(q=None, span=None):
     """The ACTIVATE continuation card's short-range stiffness q (F3) or its span (F4)."""
     if q is not None:
-        return card_field("ACTIVATE", ("NECK",), 3, lambda old: q, offset=1)
-    return card_field("ACTIVATE", ("NECK",), 4, lambda old: span, offset=1)
+        return card_field("ACTIVATE", HISTORIES, 3, lambda old: q, offset=1)
+    return card_field("ACTIVATE", HISTORIES, 4, lambda old: span, offset=1)
 
 
 def disc_bending(discs, f):
@@ -128,18 +129,18 @@ def disc_bending(discs, f):
 def deep_extensor(f0):
     """A pair of Hill muscles T1 -> C2 behind the lower column (a semispinalis
     cervicis, which the model does not have; geometry and F0 assumed), on the
-    NECK activation history, with vias on C7 ... C3."""
+    extensors' activation history EXT, with vias on C7 ... C3."""
     def edit(s):
         cards = []
         for name, side in (("SSCVL", 1), ("SSCVR", -1)):
             cards.append("%-10s%-10s%-10s%-10s%-10s%-10s%-10s%g" % ("HILL", name, "T1", "C2", "%g" % f0, "0.06",
-                                                                    "NECK", f0 / 10))
+                                                                    "EXT", f0 / 10))
             cards.append(" " * 10 + "%-10s%-10s%-10s%-10s%-10s%-10s" % ("-0.035", "%g" % (0.02 * side), "0.005",
                                                                        "-0.04", "%g" % (0.01 * side), "0.0"))
             for body in ("C7", "C6", "C5", "C4", "C3"):
                 cards.append("%-10s%-10s%-10s%-10s%-10s%-10s" % ("VIA", name, body, "-0.03", "%g" % (0.018 * side),
                                                                  "0.0"))
-        anchor = "* Activation history of all muscles"
+        anchor = "* Activation histories"
         return s.replace(anchor, "\n".join(cards) + "\n" + anchor)
     return edit
 
@@ -149,7 +150,7 @@ def segmental_extensors(f0):
     (multifidus-like fascicles T1 -> C6, C7 -> C5, ..., C4 -> C2, which the
     model does not have; geometry and F0 assumed): from the articular process
     of the lower vertebra to the spinous process of the upper, via the middle
-    one, on the NECK activation history."""
+    one, on the extensors' activation history EXT."""
     column = ("T1", "C7", "C6", "C5", "C4", "C3", "C2")
 
     def edit(s):
@@ -159,12 +160,12 @@ def segmental_extensors(f0):
             for side, sgn in (("L", 1), ("R", -1)):
                 name = "MF%s%s" % (up, side)
                 cards.append("%-10s%-10s%-10s%-10s%-10s%-10s%-10s%g" % ("HILL", name, low, up, "%g" % f0, "0.03",
-                                                                        "NECK", f0 / 10))
+                                                                        "EXT", f0 / 10))
                 cards.append(" " * 10 + "%-10s%-10s%-10s%-10s%-10s%-10s" % ("-0.02", "%g" % (0.02 * sgn), "0.0",
                                                                            "-0.04", "%g" % (0.005 * sgn), "0.0"))
                 cards.append("%-10s%-10s%-10s%-10s%-10s%-10s" % ("VIA", name, mid, "-0.03", "%g" % (0.012 * sgn),
                                                                  "0.0"))
-        anchor = "* Activation history of all muscles"
+        anchor = "* Activation histories"
         return s.replace(anchor, "\n".join(cards) + "\n" + anchor)
     return edit
 
