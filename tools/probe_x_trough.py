@@ -126,23 +126,31 @@ def disc_bending(discs, f):
     return card_field("DISC", discs, 3, times(f), offset=2)
 
 
-def deep_extensor(f0):
-    """A pair of Hill muscles T1 -> C2 behind the lower column (a semispinalis
-    cervicis, which the model does not have; geometry and F0 assumed), on the
-    extensors' activation history EXT, with vias on C7 ... C3."""
+def extra_muscles(muscles):
+    """Model edit: Hill muscles the model does not have, on the extensors'
+    activation history EXT, inserted before the ACTIVATE cards; each muscle
+    (name, body a, body b, F0, lopt, point on a, point on b, [(via body,
+    point)]), the damping F0/10 s/m as the model deck's."""
     def edit(s):
         cards = []
-        for name, side in (("SSCVL", 1), ("SSCVR", -1)):
-            cards.append("%-10s%-10s%-10s%-10s%-10s%-10s%-10s%g" % ("HILL", name, "T1", "C2", "%g" % f0, "0.06",
-                                                                    "EXT", f0 / 10))
-            cards.append(" " * 10 + "%-10s%-10s%-10s%-10s%-10s%-10s" % ("-0.035", "%g" % (0.02 * side), "0.005",
-                                                                       "-0.04", "%g" % (0.01 * side), "0.0"))
-            for body in ("C7", "C6", "C5", "C4", "C3"):
-                cards.append("%-10s%-10s%-10s%-10s%-10s%-10s" % ("VIA", name, body, "-0.03", "%g" % (0.018 * side),
-                                                                 "0.0"))
+        for name, ba, bb, f0, lopt, pa, pb, vias in muscles:
+            cards.append("%-10s%-10s%-10s%-10s%-10s%-10s%-10s%g" % ("HILL", name, ba, bb, "%g" % f0, lopt, "EXT",
+                                                                    f0 / 10))
+            cards.append(" " * 10 + "".join("%-10s" % ("%g" % v) for v in pa + pb))
+            cards += ["%-10s%-10s%-10s" % ("VIA", name, body) + "".join("%-10s" % ("%g" % v) for v in at)
+                      for body, at in vias]
         anchor = "* Activation histories"
         return s.replace(anchor, "\n".join(cards) + "\n" + anchor)
     return edit
+
+
+def deep_extensor(f0):
+    """A pair of Hill muscles T1 -> C2 behind the lower column (a semispinalis
+    cervicis, which the model does not have; geometry and F0 assumed), with
+    vias on C7 ... C3."""
+    return extra_muscles([(name, "T1", "C2", f0, "0.06", (-0.035, 0.02 * side, 0.005), (-0.04, 0.01 * side, 0.0),
+                           [(body, (-0.03, 0.018 * side, 0.0)) for body in ("C7", "C6", "C5", "C4", "C3")])
+                          for name, side in (("SSCVL", 1), ("SSCVR", -1))])
 
 
 def segmental_extensors(f0):
@@ -150,24 +158,12 @@ def segmental_extensors(f0):
     (multifidus-like fascicles T1 -> C6, C7 -> C5, ..., C4 -> C2, which the
     model does not have; geometry and F0 assumed): from the articular process
     of the lower vertebra to the spinous process of the upper, via the middle
-    one, on the extensors' activation history EXT."""
+    one."""
     column = ("T1", "C7", "C6", "C5", "C4", "C3", "C2")
-
-    def edit(s):
-        cards = []
-        for k in range(len(column) - 2):
-            low, mid, up = column[k], column[k + 1], column[k + 2]
-            for side, sgn in (("L", 1), ("R", -1)):
-                name = "MF%s%s" % (up, side)
-                cards.append("%-10s%-10s%-10s%-10s%-10s%-10s%-10s%g" % ("HILL", name, low, up, "%g" % f0, "0.03",
-                                                                        "EXT", f0 / 10))
-                cards.append(" " * 10 + "%-10s%-10s%-10s%-10s%-10s%-10s" % ("-0.02", "%g" % (0.02 * sgn), "0.0",
-                                                                           "-0.04", "%g" % (0.005 * sgn), "0.0"))
-                cards.append("%-10s%-10s%-10s%-10s%-10s%-10s" % ("VIA", name, mid, "-0.03", "%g" % (0.012 * sgn),
-                                                                 "0.0"))
-        anchor = "* Activation histories"
-        return s.replace(anchor, "\n".join(cards) + "\n" + anchor)
-    return edit
+    return extra_muscles([("MF%s%s" % (column[k + 2], side), column[k], column[k + 2], f0, "0.03",
+                           (-0.02, 0.02 * sgn, 0.0), (-0.04, 0.005 * sgn, 0.0),
+                           [(column[k + 1], (-0.03, 0.012 * sgn, 0.0))])
+                          for k in range(len(column) - 2) for side, sgn in (("L", 1), ("R", -1))])
 
 
 # White & Panjabi's representative flexion-extension ranges C2-C3 ... C7-T1
