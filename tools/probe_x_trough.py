@@ -17,7 +17,7 @@ stiffness of the upper cervical joints and of T1-C7, the activation
 class, a per-level range-of-motion split (White and Panjabi's representative
 flexion-extension ranges scaled to the C2-T1 total of reference-data.md),
 the head's joint point (the mass centre's offset from the occipital
-condyles), the lowest joints' rotation held or their discs' bending
+condyles), the measured T1 rotation scaled, the lowest joints' rotation held or their discs' bending
 stiffened, and extensors the model does not have (a deep T1-C2 pair,
 segmental fascicles over two joints).
 
@@ -106,6 +106,18 @@ def t1x_class(cls):
     return edit
 
 
+def t1_rotation(f):
+    """Deck edit: the T1 rotation drive (TABLE T1RY's value scale, F4) times f."""
+    def edit(deck, sev, tmp):
+        path = os.path.join(tmp, "t1_rot%g.inp" % f)
+        lines = open("input/nbdl%s_t1.inp" % sev).read().splitlines()
+        lines = [set_field(l, 4, "%g" % (float(field(l, 4)) * f)) if is_card(l, "TABLE") and field(l, 1) == "T1RY"
+                 else l for l in lines]
+        open(path, "w").write("\n".join(lines) + "\n")
+        return deck.replace("input/nbdl%s_t1.inp" % sev, path)
+    return edit
+
+
 def lock(*pairs):
     """Deck edit: the given (body, coordinate) pairs held at their neutral values."""
     def edit(deck, sev, tmp):
@@ -189,6 +201,8 @@ PROBES = [
     ("head joint 10 mm lower (z -0.045)", head_point("-0.02", "-0.045"), None),
     ("head joint 15 mm further back (x -0.035)", head_point("-0.035", "-0.035"), None),
     ("T1 x drive CFC 20", None, t1x_class(20)),
+    ("T1 rotation drive x0.5", None, t1_rotation(0.5)),
+    ("T1 rotation drive x1.5", None, t1_rotation(1.5)),
     ("rotation held at C1-head and C1-C2", None, lock(("HEAD", "RY"), ("C1", "RY"))),
     ("rotation held at T1-C7 and C7-C6", None, lock(("C7", "RY"), ("C6", "RY"))),
     ("disc bending stiffness x10, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 10.0), None),
