@@ -6,8 +6,6 @@
 # histories set to the same values give the run of one history for all
 # muscles, channel for channel.
 . test/scripts/lib/checks.sh
-ROOT=$(pwd)
-case $HHNECK in /*) ;; *) HHNECK=$ROOT/$HHNECK ;; esac
 
 "$HHNECK" --h5 "$tmp/shipped.h5" < input/nbdl15g.inp > /dev/null 2>&1
 py_checks - "$tmp/shipped.h5" input/head_neck_54dof.inp <<'PY'

@@ -1,8 +1,10 @@
 # Shared by the whole-program checks test/scripts/*.sh (sourced, not run):
 # counts checks, prints one "PASS  what" or "FAIL  what" line per check and
 # the closing "N passed, N failed" line. Run from the project root; the
-# executable is $HHNECK (default: fpm's debug build, built if needed).
+# executable is $HHNECK (default: fpm's debug build, built if needed), made
+# an absolute path.
 HHNECK=${HHNECK:-$(fpm run --runner echo 2>/dev/null | tail -n 1)}
+case $HHNECK in /*) ;; *) HHNECK=$(pwd)/$HHNECK ;; esac   # usable after a cd
 npass=0
 nfail=0
 tmp=$(mktemp -d)
