@@ -208,6 +208,8 @@ PROBES = [
     ("head joint 10 mm lower (z -0.045)", head_point("-0.02", "-0.045"), None),
     ("head joint 15 mm further back (x -0.035)", head_point("-0.035", "-0.035"), None),
     ("T1 x drive CFC 20", None, t1x_class(20)),
+    ("T1 x drive CFC 10", None, t1x_class(10)),
+    ("T1 x drive CFC 5", None, t1x_class(5)),
     ("T1 rotation drive x0.5", None, t1_rotation(0.5)),
     ("T1 rotation drive x1.5", None, t1_rotation(1.5)),
     ("rotation held at C1-head and C1-C2", None, lock(("HEAD", "RY"), ("C1", "RY"))),
