@@ -21,16 +21,15 @@ condyles), the measured T1 rotation scaled, the lowest joints' rotation held or 
 stiffened, and extensors the model does not have (a deep T1-C2 pair,
 segmental fascicles over two joints).
 
-Last it prints the shipped run's head x-acceleration at points below the
-mass centre, a_P = a + alpha x r + omega x (omega x r) in the sagittal plane
-(r fixed in the head, 1 to 4 cm down), filtered as the others: where the
-source's head accelerations are measured is not documented, and the
-rotation's share of a_P is largest near 97 ms (the model's angular
-acceleration peak).
-
-Before the table it prints the head's x-velocity relative to T1 (the integral from 30 ms
-of head minus T1 x-acceleration, each CFC 60: the volunteers' means and the
-shipped model) at a few times, which shows where the late trough comes from.
+After the table it prints the head's x-velocity relative to T1 (the
+integral from 30 ms of head minus T1 x-acceleration, each CFC 60: the
+volunteers' means and the shipped model) at a few times, which shows where
+the late trough comes from. Last it prints the shipped run's head
+x-acceleration peak at points 1 to 4 cm below the mass centre (fixed in the
+head), a_P = a + alpha x r + omega x (omega x r) in the sagittal plane,
+filtered as the others: the source does not document where its head
+accelerations are measured, and the rotation's share of a_P is largest near
+97 ms, at the model's angular acceleration peak.
 """
 import os
 import re
@@ -303,10 +302,12 @@ def main():
     import h5py
     tm = h5py.File(shipped, "r")["time"][:] * 1e3
     dt = (tm[1] - tm[0]) * 1e-3
+    points = []
+    for rz in (-0.01, -0.02, -0.03, -0.04):
+        p, pt = peak(tm, cfc(measuring_point(shipped, rz), 60, dt), -1)
+        points.append("%d mm %.1f g, %+.1f ms" % (round(-1e3 * rz), p, pt - tmean))
     print("\nShipped run, head x-acceleration peak at a point below the mass centre (peak time less the"
-          " volunteers' mean): " + "; ".join("%d mm %.1f g, %+.1f ms" % (
-            round(-1e3 * rz), *(lambda pk: (pk[0], pk[1] - tmean))(peak(tm, cfc(measuring_point(shipped, rz), 60, dt), -1)))
-        for rz in (-0.01, -0.02, -0.03, -0.04)))
+          " volunteers' mean): " + "; ".join(points))
 
 
 if __name__ == "__main__":
