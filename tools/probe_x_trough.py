@@ -17,7 +17,8 @@ stiffness of the upper cervical joints and of T1-C7, the activation
 class, a per-level range-of-motion split (White and Panjabi's representative
 flexion-extension ranges scaled to the C2-T1 total of reference-data.md),
 the head's joint point (the mass centre's offset from the occipital
-condyles), the measured T1 rotation scaled, the lowest joints' rotation held or their discs' bending
+condyles), the point of T1 that follows the measured translation, the
+measured T1 rotation scaled, the lowest joints' rotation held or their discs' bending
 stiffened, and extensors the model does not have (a deep T1-C2 pair,
 segmental fascicles over two joints).
 
@@ -96,10 +97,12 @@ def rom_split(totals):
     return edit
 
 
-def head_point(x, z):
-    """The head's joint point in its own frame (JOINT HEAD F5, F7) set to (x, 0, z)."""
-    at_x = card_field("JOINT", ("HEAD",), 5, lambda old: x)
-    at_z = card_field("JOINT", ("HEAD",), 7, lambda old: z)
+def joint_point(body, x, z):
+    """A body's joint point in its own frame (JOINT F5, F7) set to (x, 0, z).
+    For T1 that is the point whose translation is prescribed: the measured
+    T1 motion is applied there instead of at T1's mass centre."""
+    at_x = card_field("JOINT", (body,), 5, lambda old: x)
+    at_z = card_field("JOINT", (body,), 7, lambda old: z)
     return lambda s: at_z(at_x(s))
 
 
@@ -204,8 +207,11 @@ PROBES = [
     ("no reflex", activation(3, "0.0"), None),
     ("full reflex", activation(3, "1.0"), None),
     ("per-level ROM split (White & Panjabi)", rom_split(WP), None),
-    ("head joint 10 mm lower (z -0.045)", head_point("-0.02", "-0.045"), None),
-    ("head joint 15 mm further back (x -0.035)", head_point("-0.035", "-0.035"), None),
+    ("head joint 10 mm lower (z -0.045)", joint_point("HEAD", "-0.02", "-0.045"), None),
+    ("head joint 15 mm further back (x -0.035)", joint_point("HEAD", "-0.035", "-0.035"), None),
+    ("T1 drive at a point 60 mm behind T1's mass centre", joint_point("T1", "-0.06", "0.0"), None),
+    ("T1 drive at a point 30 mm ahead of T1's mass centre", joint_point("T1", "0.03", "0.0"), None),
+    ("T1 drive at a point 50 mm below T1's mass centre", joint_point("T1", "0.0", "-0.05"), None),
     ("T1 x drive CFC 20", None, t1x_class(20)),
     ("T1 x drive CFC 10", None, t1x_class(10)),
     ("T1 x drive CFC 5", None, t1x_class(5)),
