@@ -50,6 +50,8 @@ MODEL = {
     "head x-displacement rel. T1 (mm)": "HEAD_DX",
     "head z-displacement rel. T1 (mm)": "HEAD_DZ",
 }
+HEAD_FILES = ("Head_XAccel", "Head_ZAccel", "Head_YrotAccel", "Head_YrotDisp")   # the rated channels' files
+CHANNELS = HEAD_FILES + ("Head_XDisp", "Head_ZDisp", "T1_XAccel", "T1_ZAccel", "T1_YrotDisp", "T1_XDisp", "T1_ZDisp")
 # peak: (label, channel, sign, window ms)
 PEAKS = [
     ("x-acceleration (g)", "head x-acceleration (g)", -1, (30.0, 250.0)),
@@ -90,31 +92,75 @@ def cfc(x, cls, dt):
     return one(one(np.asarray(x, float))[::-1])[::-1]
 
 
+def channel_file(name, sev):
+    """Path of one channel file of a case's runs."""
+    return os.path.join(DATA_DIRS.get(sev, os.path.join("reference", "nbdl_" + sev)), name + ".csv")
+
+
+def has_channel(name, sev="15g"):
+    """True when the case's directory holds the channel's file."""
+    return os.path.isfile(channel_file(name, sev))
+
+
 def runs(name, sev="15g"):
-    """One channel of a case's runs: (t_ms, runs[nrun, nt], run column names)."""
-    folder = DATA_DIRS.get(sev, os.path.join("reference", "nbdl_" + sev))
-    d = np.genfromtxt(os.path.join(folder, name + ".csv"), delimiter=",", names=True)
+    """One channel of a case's runs: (t_ms, runs[nrun, nt], run column names).
+    A missing file, a file without a time_ms column or run_ columns, or
+    times not evenly spaced (the filter needs one step) stop the tool with a
+    message that names the file."""
+    path = channel_file(name, sev)
+    if not os.path.isfile(path):
+        sys.exit("%s: %s not found: a case's directory holds one CSV file per channel (%s), each with "
+                 "the columns time_ms,run_..." % (os.path.basename(sys.argv[0]), path, ", ".join(CHANNELS)))
+    d = np.genfromtxt(path, delimiter=",", names=True)
+    cols = [c for c in (d.dtype.names or ()) if c.startswith("run_")]
+    if "time_ms" not in (d.dtype.names or ()) or not cols or d.ndim != 1 or len(d) < 3:
+        sys.exit("%s: %s: expected a header time_ms,run_...,run_... and at least three rows of numbers"
+                 % (os.path.basename(sys.argv[0]), path))
     t = d["time_ms"]
-    cols = [c for c in d.dtype.names if c.startswith("run_")]
-    return t, np.array([d[c] for c in cols]), cols
+    step = np.diff(t)
+    if not np.all(np.isfinite(t)) or step[0] <= 0 or np.max(np.abs(step - step[0])) > 1e-6 * step[0]:
+        sys.exit("%s: %s: the times (column time_ms) are not evenly spaced and increasing; "
+                 "resample the runs to one step" % (os.path.basename(sys.argv[0]), path))
+    data = np.array([d[c] for c in cols])
+    if not np.all(np.isfinite(data)):
+        sys.exit("%s: %s: a run has an empty or non-numeric value" % (os.path.basename(sys.argv[0]), path))
+    return t, data, cols
 
 
 def volunteer_channels(sev):
-    """Each channel as (t_ms, runs[nrun, nt]) filtered CFC 60."""
+    """Each channel the case's runs have, as (t_ms, runs[nrun, nt]) filtered
+    CFC 60; a channel whose file is missing is left out."""
     out = {}
-    t, ax, cols = runs("Head_XAccel", sev)
+    present = [c for c in HEAD_FILES if has_channel(c, sev)]
+    if not present:
+        sys.exit("%s: %s has none of the head channels' files (%s.csv)" % (
+            os.path.basename(sys.argv[0]), os.path.dirname(channel_file(HEAD_FILES[0], sev)),
+            ".csv, ".join(HEAD_FILES)))
+    t, _, cols = runs(present[0], sev)
     dt = (t[1] - t[0]) * 1e-3
-    f = lambda a: np.array([cfc(r, 60, dt) for r in a])
-    out["head x-acceleration (g)"] = (t, f(ax))
-    out["head z-acceleration (g)"] = (t, f(runs("Head_ZAccel", sev)[1]))
-    out["head angular acceleration (rad/s2)"] = (t, f(runs("Head_YrotAccel", sev)[1]))
-    rot = f(runs("Head_YrotDisp", sev)[1])
-    # angular velocity: derivative of the filtered rotation (no drift, unlike
-    # integrating the angular acceleration)
-    out["head angular velocity (rad/s)"] = (t, np.gradient(np.radians(rot), dt, axis=1))
-    out["head rotation (deg)"] = (t, rot)
-    out["head x-displacement rel. T1 (mm)"] = (t, f(runs("Head_XDisp", sev)[1]) - f(runs("T1_XDisp", sev)[1]))
-    out["head z-displacement rel. T1 (mm)"] = (t, f(runs("Head_ZDisp", sev)[1]) - f(runs("T1_ZDisp", sev)[1]))
+
+    def f(name):
+        tc, data, cc = runs(name, sev)
+        if len(tc) != len(t) or np.max(np.abs(tc - t)) > 1e-9 or cc != cols:
+            sys.exit("%s: %s: its times or runs differ from %s's; every channel file of a case needs the same "
+                     "time_ms column and run_ columns" % (os.path.basename(sys.argv[0]), channel_file(name, sev),
+                                                         present[0]))
+        return np.array([cfc(r, 60, dt) for r in data])
+
+    for label, name in (("head x-acceleration (g)", "Head_XAccel"), ("head z-acceleration (g)", "Head_ZAccel"),
+                        ("head angular acceleration (rad/s2)", "Head_YrotAccel")):
+        if has_channel(name, sev):
+            out[label] = (t, f(name))
+    if has_channel("Head_YrotDisp", sev):
+        rot = f("Head_YrotDisp")
+        # angular velocity: derivative of the filtered rotation (no drift, unlike
+        # integrating the angular acceleration)
+        out["head angular velocity (rad/s)"] = (t, np.gradient(np.radians(rot), dt, axis=1))
+        out["head rotation (deg)"] = (t, rot)
+    for label, head, t1 in (("head x-displacement rel. T1 (mm)", "Head_XDisp", "T1_XDisp"),
+                            ("head z-displacement rel. T1 (mm)", "Head_ZDisp", "T1_ZDisp")):
+        if has_channel(head, sev) and has_channel(t1, sev):
+            out[label] = (t, f(head) - f(t1))
     return out, cols
 
 
@@ -174,6 +220,8 @@ def compare(sev, h5):
         chans.append(dict(label=label, C=C, X=X, score=score, lag=lag, inside=inside, rated=label in RATED))
         curves[label] = (t, data, mean, sd)
     for plabel, label, sign, win in PEAKS:
+        if label not in curves:
+            continue                        # the case's runs do not have the channel
         t, data, mean, sd = curves[label]
         mi = np.interp(t, tm, model[label])
         pk = np.array([peak(t, r, sign, win) for r in data])
@@ -200,10 +248,17 @@ def tables(sev, chans, peaks, overall, nrun):
             p["label"], s3(p["mp"]), p["mt"], s3(p["pm"]), s3(p["ps"]), p["tmn"], p["tsd"], p["z"],
             "yes" if p["ok_peak"] else "no", "yes" if p["ok_time"] else "no"))
     rep = np.mean([c["score"] for c in chans])
-    L += ["", "Overall CORA-style rating %s (mean of the five rated head channels): **%.3f** (target ≥ 0.85: %s); "
-          "with the two displacement channels: %.3f. Peaks within 1 SD: %d of %d; peak times within 10 ms: %d of %d."
-          % (sevt, overall, "met" if overall >= 0.85 else "not met", rep, sum(p["ok_peak"] for p in peaks),
-             len(peaks), sum(p["ok_time"] for p in peaks), len(peaks)), ""]
+    rated = [c["label"] for c in chans if c["rated"]]
+    nrep = len(chans) - len(rated)
+    which = "the five rated head channels" if len(rated) == len(RATED) else \
+        "the %d rated head channels the runs have; not in them: %s" % (
+            len(rated), ", ".join(c for c in RATED if c not in rated))
+    with_rep = "; with the two displacement channels: %.3f" % rep if nrep == len(REPORTED) else \
+        "; with the displacement channel: %.3f" % rep if nrep else ""
+    L += ["", "Overall CORA-style rating %s (mean of %s): **%.3f** (target ≥ 0.85: %s)%s. "
+          "Peaks within 1 SD: %d of %d; peak times within 10 ms: %d of %d."
+          % (sevt, which, overall, "met" if overall >= 0.85 else "not met", with_rep,
+             sum(p["ok_peak"] for p in peaks), len(peaks), sum(p["ok_time"] for p in peaks), len(peaks)), ""]
     return L
 
 
@@ -224,7 +279,8 @@ def figure(sev, curves, model_curves, path):
         ax.set_xlabel("time (ms)")
         ax.grid(alpha=0.3)
     axes.flat[0].legend(fontsize=8)
-    axes.flat[-1].axis("off")
+    for ax in axes.flat[len(curves):]:
+        ax.axis("off")                      # the channels the runs do not have, and the caption's place
     axes.flat[-1].text(0.0, 0.5, "NBDL %s frontal sled\nvolunteer runs (thin grey),\nmean ± 1 SD (band),\n"
                        "model (thick red);\nall CFC 60" % sev.replace("g", " g"), fontsize=11, va="center")
     fig.tight_layout()

@@ -44,7 +44,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import compare_nbdl  # noqa: E402
-from compare_nbdl import cfc, peak, runs  # noqa: E402
+from compare_nbdl import cfc, has_channel, peak, runs  # noqa: E402
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
@@ -55,8 +55,11 @@ CASES = {
 
 
 def table(name, t, mean, scale):
-    keep = np.abs(t - np.round(t)) < 1e-9
-    tt, vv = t[keep], mean[keep]
+    """A TABLE card and its points every 1 ms over the runs' span (linear
+    interpolation between the samples; at the samples themselves when the
+    runs are sampled on whole milliseconds, as the shipped ones are)."""
+    tt = np.arange(np.ceil(t[0] - 1e-9), np.floor(t[-1] + 1e-9) + 1.0) + 0.0   # + 0.0: no "-0.0"
+    vv = np.interp(tt, t, mean)
     out = ["%-8s  %-10s%10d%10s%10s" % ("TABLE", name, len(tt), "0.001", scale)]
     for i in range(0, len(tt), 3):
         out.append(" " * 10 + "".join("%10.1f%10.4f" % (a, b) for a, b in zip(tt[i:i + 3], vv[i:i + 3])))
@@ -118,6 +121,9 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
     for name, chan, scale, cls in (("T1XACC", "T1_XAccel", "9.80665", x_cfc),
                                    ("T1ZACC", "T1_ZAccel", "9.80665", z_cfc),
                                    ("T1RY", "T1_YrotDisp", c["rot_scale"], 60)):
+        if chan != "T1_XAccel" and not has_channel(chan, sev):
+            lines.append("* No %s.csv in the runs: no %s table; the deck holds that coordinate." % (chan, name))
+            continue
         t, data, _ = runs(chan, sev)
         dt = (t[1] - t[0]) * 1e-3
         mean = np.mean([cfc(r, cls, dt) for r in data], axis=0)
@@ -130,13 +136,19 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
 def new_case(folder, name, rot_unit=None, into="input"):
     """INTO/NAME_t1.inp and INTO/NAME.inp for the runs in `folder`."""
     compare_nbdl.DATA_DIRS[name] = folder
-    t, rot, cols = runs("T1_YrotDisp", name)
-    dt = (t[1] - t[0]) * 1e-3
-    big = float(np.max(np.abs(np.mean([cfc(r, 60, dt) for r in rot], axis=0))))
-    if rot_unit is None:
-        rot_unit = "rad" if big < 1.5 else "deg"
-        print("T1 rotation: largest |mean| %.3g, read as %s (--rot-unit to choose)" % (big, rot_unit),
+    cols = runs("T1_XAccel", name)[2]
+    held = {coord: chan for coord, chan in (("TZ", "T1_ZAccel"), ("RY", "T1_YrotDisp")) if not has_channel(chan, name)}
+    for coord, chan in held.items():
+        print("%s.csv not in %s: T1 %s is held at its initial value (PRESCRIB ... CONSTANT)" % (chan, folder, coord),
               file=sys.stderr)
+    if "RY" not in held:
+        t, rot, _ = runs("T1_YrotDisp", name)
+        dt = (t[1] - t[0]) * 1e-3
+        big = float(np.max(np.abs(np.mean([cfc(r, 60, dt) for r in rot], axis=0))))
+        if rot_unit is None:
+            rot_unit = "rad" if big < 1.5 else "deg"
+            print("T1 rotation: largest |mean| %.3g, read as %s (--rot-unit to choose)" % (big, rot_unit),
+                  file=sys.stderr)
     CASES[name] = dict(runs="of %s (n = %d)" % (os.path.basename(os.path.normpath(folder)), len(cols)),
                        rot_scale="57.2958" if rot_unit == "rad" else "1.0",
                        rot_unit="rad, scaled to deg" if rot_unit == "rad" else "deg")
@@ -157,6 +169,8 @@ def new_case(folder, name, rot_unit=None, into="input"):
         elif line.startswith("H5FILE"):
             line = "%-10s%s.h5" % ("H5FILE", name)
         line = line.replace("input/nbdl12g_t1.inp", tables)
+        if line.startswith("PRESCRIB  T1") and line[20:22] in held:
+            line = "%-10s%-10s%-10s%s" % ("PRESCRIB", "T1", line[20:22], "CONSTANT")
         out.append(line)
     with open(os.path.join(into, name + ".inp"), "w") as f:
         f.write("\n".join(out) + "\n")

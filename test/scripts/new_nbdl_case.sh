@@ -5,7 +5,10 @@
 # and input/nbdl15g_t1.inp (the rotation unit chosen by the rule: radians for
 # the 12 g files, degrees for the 15 g ones), the same head channels when run
 # as input/nbdl12g.inp, and tools/compare_nbdl.py --data gives the same table
-# as the shipped 12 g comparison.
+# as the shipped 12 g comparison. Runs that lack a channel or differ in form
+# (no T1 rotation or z file, no head angular acceleration, another sampling
+# step, a broken file) are taken the way the tools document, or refused with
+# a message that names the file.
 . test/scripts/lib/checks.sh
 
 cp -r reference/nbdl_12g "$tmp/runs12"
@@ -35,4 +38,63 @@ python3 tools/compare_nbdl.py --data new="$tmp/runs12" --case new --h5 new="$tmp
 python3 tools/compare_nbdl.py --case 12g --h5 12g="$tmp/shipped.h5" --out "$tmp/o2" > "$tmp/t2.md"
 check "compare_nbdl.py --data rates the new case" grep -q "Overall CORA-style rating 12 g" "$tmp/t1.md"
 check "and prints the shipped 12 g comparison" cmp -s "$tmp/t1.md" "$tmp/t2.md"
+
+# No T1 rotation or z file: the deck holds T1's RY and TZ; the run is the
+# shipped 12 g deck with those two PRESCRIB cards made CONSTANT.
+cp -r reference/nbdl_12g "$tmp/xonly"
+rm "$tmp/xonly/T1_YrotDisp.csv" "$tmp/xonly/T1_ZAccel.csv"
+python3 tools/make_nbdl_tables.py --data "$tmp/xonly" --name xonly --into "$tmp" 2> "$tmp/xonly.err"
+check "no T1 rotation or z file: the deck holds RY and TZ" sh -c \
+    "grep -q '^PRESCRIB  T1        RY        CONSTANT' '$tmp/xonly.inp' && grep -q '^PRESCRIB  T1        TZ        CONSTANT' '$tmp/xonly.inp'"
+check "and says so on stderr" sh -c "grep -q 'T1_YrotDisp.csv not in' '$tmp/xonly.err' && grep -q 'T1_ZAccel.csv not in' '$tmp/xonly.err'"
+sed -e 's/^PRESCRIB  T1        TZ .*/PRESCRIB  T1        TZ        CONSTANT/' \
+    -e 's/^PRESCRIB  T1        RY .*/PRESCRIB  T1        RY        CONSTANT/' input/nbdl12g.inp > "$tmp/held.inp"
+"$HHNECK" --h5 "$tmp/xonly.h5" < "$tmp/xonly.inp" > /dev/null 2>&1
+"$HHNECK" --h5 "$tmp/held.h5" < "$tmp/held.inp" > /dev/null 2>&1
+check "and runs as the 12 g deck with T1 driven in x only" python3 - "$tmp/xonly.h5" "$tmp/held.h5" <<'PY'
+import sys
+import h5py
+import numpy as np
+a, b = (h5py.File(f, "r")["channels"] for f in sys.argv[1:3])
+sys.exit(0 if all(np.array_equal(a[n][:], b[n][:]) for n in ("HEAD_AX", "HEAD_AZ", "HEAD_THETY", "T1_THETY")) else 1)
+PY
+
+# No head angular acceleration file: the rating is the mean of the other
+# four rated channels, each as in the full comparison.
+cp -r reference/nbdl_12g "$tmp/noalpha"
+rm "$tmp/noalpha/Head_YrotAccel.csv"
+python3 tools/compare_nbdl.py --data na="$tmp/noalpha" --case na --h5 na="$tmp/shipped.h5" --out "$tmp/o3" > "$tmp/t3.md"
+check "no head angular acceleration file: rated over the four channels the runs have" python3 - "$tmp/t2.md" "$tmp/t3.md" <<'PY'
+import re
+import sys
+full, part = (open(f).read() for f in sys.argv[1:3])
+rows = dict(re.findall(r"^\| (head [^|]*?) \|(?: [^|]* \|){2} \*\*([0-9.]+)\*\*", full, re.M))
+four = [float(rows[k]) for k in ("head x-acceleration (g)", "head z-acceleration (g)",
+                                 "head angular velocity (rad/s)", "head rotation (deg)")]
+m = re.search(r"mean of the 4 rated head channels the runs have; not in them: head angular acceleration "
+              r"\(rad/s2\)\): \*\*([0-9.]+)\*\*.*Peaks within 1 SD: \d+ of 5", part)
+sys.exit(0 if m and abs(float(m.group(1)) - sum(four) / 4) <= 0.001 else 1)
+PY
+
+# Another sampling step (every third sample: 1.5 ms): tables every 1 ms.
+mkdir "$tmp/coarse"
+for f in reference/nbdl_12g/*.csv; do awk 'NR == 1 || NR % 3 == 2' "$f" > "$tmp/coarse/${f##*/}"; done
+python3 tools/make_nbdl_tables.py --data "$tmp/coarse" --name coarse --into "$tmp" 2> /dev/null
+check "runs sampled every 1.5 ms give tables every 1 ms (0-298 ms)" \
+    grep -q '^TABLE     T1XACC           299     0.001' "$tmp/coarse_t1.inp"
+
+# Broken data: refused with the file's name, never a Python traceback.
+cp -r reference/nbdl_12g "$tmp/broken"
+rm "$tmp/broken/T1_XAccel.csv"
+python3 tools/make_nbdl_tables.py --data "$tmp/broken" --name broken --into "$tmp" 2> "$tmp/b1.err"
+rc=$?
+check "no T1 x-acceleration file: refused (exit $rc), naming the file" sh -c \
+    "[ $rc -ne 0 ] && grep -q 'T1_XAccel.csv not found' '$tmp/b1.err' && ! grep -q Traceback '$tmp/b1.err'"
+cp reference/nbdl_12g/T1_XAccel.csv "$tmp/broken/"
+sed -i '5s/,[^,]*,/,,/' "$tmp/broken/Head_ZAccel.csv"
+python3 tools/compare_nbdl.py --data b="$tmp/broken" --case b --h5 b="$tmp/shipped.h5" --out "$tmp/o4" \
+    > /dev/null 2> "$tmp/b2.err"
+rc=$?
+check "an empty value in a run: refused (exit $rc), naming the file" sh -c \
+    "[ $rc -ne 0 ] && grep -q 'Head_ZAccel.csv: a run has an empty or non-numeric value' '$tmp/b2.err' && ! grep -q Traceback '$tmp/b2.err'"
 finish
