@@ -23,7 +23,10 @@ significant digits.
 Other runs of the same kind (a directory with the same CHANNEL.csv files,
 columns time_ms,run_...): `--data NAME=DIR --case NAME` compares the deck
 input/nbdlNAME.inp (or `--deck NAME=DECK`) with them; tools/make_nbdl_tables.py
---data DIR --name nbdlNAME writes that deck and its T1 tables.
+--data DIR --name nbdlNAME writes that deck and its T1 tables. A channel
+whose file the directory lacks is left out (the overall rating is the mean
+over the rated channels present, and the table names the missing ones); a
+file that cannot be read as evenly spaced runs stops the tool with its name.
 """
 import os
 import subprocess

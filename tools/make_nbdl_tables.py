@@ -34,7 +34,9 @@ than input/); compare with
 `python3 tools/compare_nbdl.py --data X=DIR --deck X=input/NAME.inp --case X
 --out DIR2`. Without --rot-unit the T1 rotation is read as radians when the
 largest |mean| is below 1.5 (as the 12 g files, reference/cases.md), else as
-degrees; the choice is printed.
+degrees; the choice is printed. Without T1_ZAccel.csv or T1_YrotDisp.csv
+the deck holds that coordinate (PRESCRIB ... CONSTANT, printed); the tables
+are written every 1 ms over the runs' span whatever their sampling step.
 """
 import os
 import re
