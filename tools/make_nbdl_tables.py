@@ -36,7 +36,10 @@ than input/); compare with
 largest |mean| is below 1.5 (as the 12 g files, reference/cases.md), else as
 degrees; the choice is printed. Without T1_ZAccel.csv or T1_YrotDisp.csv
 the deck holds that coordinate (PRESCRIB ... CONSTANT, printed); the tables
-are written every 1 ms over the runs' span whatever their sampling step.
+are written every 1 ms over the runs' span whatever their sampling step. Runs
+whose pulse starts more than 10 ms away from the shipped runs' (their mean T1
+x-acceleration first below -1 g at about 52 ms) get a warning that says how
+far to shift their time_ms.
 """
 import os
 import re
@@ -50,6 +53,7 @@ from compare_nbdl import cfc, has_channel, peak, runs  # noqa: E402
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
+SHIPPED_ONSET = 52.0   # ms: where the shipped runs' mean T1 x-acceleration first passes -1 g (51.5 at 15 g, 52.0 at 12 g)
 CASES = {
     "15g": dict(runs="1635-1644 (n = 7)", rot_scale="1.0", rot_unit="deg"),
     "12g": dict(runs="1607-1617 (n = 10)", rot_scale="57.2958", rot_unit="rad, scaled to deg"),
@@ -71,6 +75,14 @@ def table(name, t, mean, scale):
 def label(sev):
     """'15 g' for the shipped cases, the case name as given otherwise."""
     return sev.replace("g", " g") if re.fullmatch(r"\d+g", sev) else sev
+
+
+def pulse_onset(t, data):
+    """Time (ms) at which the runs' mean T1 x-acceleration (each run CFC 60)
+    first passes -1 g; None when it never does."""
+    dt = (t[1] - t[0]) * 1e-3
+    below = np.mean([cfc(r, 60, dt) for r in data], axis=0) < -1.0
+    return float(t[np.argmax(below)]) if below.any() else None
 
 
 def t1_peak_mean(sev):
@@ -138,7 +150,16 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
 def new_case(folder, name, rot_unit=None, into="input"):
     """INTO/NAME_t1.inp and INTO/NAME.inp for the runs in `folder`."""
     compare_nbdl.DATA_DIRS[name] = folder
-    cols = runs("T1_XAccel", name)[2]
+    t, ax, cols = runs("T1_XAccel", name)
+    onset = pulse_onset(t, ax)
+    if onset is None:
+        sys.exit("make_nbdl_tables.py: %s: the runs' mean T1 x-acceleration never passes -1 g: no frontal "
+                 "sled pulse to drive the model with" % compare_nbdl.channel_file("T1_XAccel", name))
+    if abs(onset - SHIPPED_ONSET) > 10.0:
+        print("T1 x-acceleration first passes -1 g at %.1f ms, against about %.0f ms in the shipped runs (the "
+              "source's time origin): the deck starts from rest at 0 ms (HOLD POSTURE sets its holding forces "
+              "there) and tools/compare_nbdl.py rates 30-250 ms with the z dip before 125 ms; shift the runs' "
+              "time_ms by %+.0f ms to match" % (onset, SHIPPED_ONSET, SHIPPED_ONSET - onset), file=sys.stderr)
     held = {coord: chan for coord, chan in (("TZ", "T1_ZAccel"), ("RY", "T1_YrotDisp")) if not has_channel(chan, name)}
     for coord, chan in held.items():
         print("%s.csv not in %s: T1 %s is held at its initial value (PRESCRIB ... CONSTANT)" % (chan, folder, coord),

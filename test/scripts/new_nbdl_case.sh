@@ -7,8 +7,8 @@
 # as input/nbdl12g.inp, and tools/compare_nbdl.py --data gives the same table
 # as the shipped 12 g comparison. Runs that lack a channel or differ in form
 # (no T1 rotation or z file, no head angular acceleration, another sampling
-# step, a broken file) are taken the way the tools document, or refused with
-# a message that names the file.
+# step, another time origin, a broken file) are taken the way the tools
+# document, or refused with a message that names the file.
 . test/scripts/lib/checks.sh
 
 cp -r reference/nbdl_12g "$tmp/runs12"
@@ -82,6 +82,17 @@ for f in reference/nbdl_12g/*.csv; do awk 'NR == 1 || NR % 3 == 2' "$f" > "$tmp/
 python3 tools/make_nbdl_tables.py --data "$tmp/coarse" --name coarse --into "$tmp" 2> /dev/null
 check "runs sampled every 1.5 ms give tables every 1 ms (0-298 ms)" \
     grep -q '^TABLE     T1XACC           299     0.001' "$tmp/coarse_t1.inp"
+
+# A time origin 40 ms earlier than the source's: a warning says how far to
+# shift; the shipped runs get none.
+mkdir "$tmp/early"
+for f in reference/nbdl_12g/*.csv; do
+    awk -F, 'BEGIN { OFS = "," } NR == 1 { print; next } { $1 = $1 - 40; print }' "$f" > "$tmp/early/${f##*/}"
+done
+python3 tools/make_nbdl_tables.py --data "$tmp/early" --name early --into "$tmp" 2> "$tmp/early.err"
+check "a pulse 40 ms early: the warning says to shift time_ms by +40 ms" \
+    grep -q "first passes -1 g at 12.0 ms.*shift the runs' time_ms by +40 ms" "$tmp/early.err"
+check "the shipped runs: no such warning" sh -c "! grep -q 'first passes' '$tmp/unit12.txt' '$tmp/unit15.txt'"
 
 # Broken data: refused with the file's name, never a Python traceback.
 cp -r reference/nbdl_12g "$tmp/broken"
