@@ -93,6 +93,13 @@ python3 tools/make_nbdl_tables.py --data "$tmp/early" --name early --into "$tmp"
 check "a pulse 40 ms early: the warning says to shift time_ms by +40 ms" \
     grep -q "first passes -1 g at 12.0 ms.*shift the runs' time_ms by +40 ms" "$tmp/early.err"
 check "the shipped runs: no such warning" sh -c "! grep -q 'first passes' '$tmp/unit12.txt' '$tmp/unit15.txt'"
+cp -r reference/nbdl_12g "$tmp/still"
+awk -F, 'BEGIN { OFS = "," } NR == 1 { print; next } { for (i = 2; i <= NF; i++) $i = 0; print }' \
+    reference/nbdl_12g/T1_XAccel.csv > "$tmp/still/T1_XAccel.csv"
+python3 tools/make_nbdl_tables.py --data "$tmp/still" --name still --into "$tmp" 2> "$tmp/still.err"
+rc=$?
+check "no sled pulse in the T1 x-acceleration: refused (exit $rc)" sh -c \
+    "[ $rc -ne 0 ] && grep -q 'never passes -1 g' '$tmp/still.err' && [ ! -e '$tmp/still.inp' ]"
 
 # Broken data: refused with the file's name, never a Python traceback.
 cp -r reference/nbdl_12g "$tmp/broken"
