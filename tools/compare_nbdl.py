@@ -95,6 +95,11 @@ def cfc(x, cls, dt):
     return one(one(np.asarray(x, float))[::-1])[::-1]
 
 
+def stop(message):
+    """Stop the tool with `message` on stderr, prefixed by the tool's name (exit 1)."""
+    sys.exit("%s: %s" % (os.path.basename(sys.argv[0]), message))
+
+
 def channel_file(name, sev):
     """Path of one channel file of a case's runs."""
     return os.path.join(DATA_DIRS.get(sev, os.path.join("reference", "nbdl_" + sev)), name + ".csv")
@@ -112,21 +117,20 @@ def runs(name, sev="15g"):
     message that names the file."""
     path = channel_file(name, sev)
     if not os.path.isfile(path):
-        sys.exit("%s: %s not found: a case's directory holds one CSV file per channel (%s), each with "
-                 "the columns time_ms,run_..." % (os.path.basename(sys.argv[0]), path, ", ".join(CHANNELS)))
+        stop("%s not found: a case's directory holds one CSV file per channel (%s), each with the columns "
+             "time_ms,run_..." % (path, ", ".join(CHANNELS)))
     d = np.genfromtxt(path, delimiter=",", names=True)
     cols = [c for c in (d.dtype.names or ()) if c.startswith("run_")]
     if "time_ms" not in (d.dtype.names or ()) or not cols or d.ndim != 1 or len(d) < 3:
-        sys.exit("%s: %s: expected a header time_ms,run_...,run_... and at least three rows of numbers"
-                 % (os.path.basename(sys.argv[0]), path))
+        stop("%s: expected a header time_ms,run_...,run_... and at least three rows of numbers" % path)
     t = d["time_ms"]
     step = np.diff(t)
     if not np.all(np.isfinite(t)) or step[0] <= 0 or np.max(np.abs(step - step[0])) > 1e-6 * step[0]:
-        sys.exit("%s: %s: the times (column time_ms) are not evenly spaced and increasing; "
-                 "resample the runs to one step" % (os.path.basename(sys.argv[0]), path))
+        stop("%s: the times (column time_ms) are not evenly spaced and increasing; resample the runs to one step"
+             % path)
     data = np.array([d[c] for c in cols])
     if not np.all(np.isfinite(data)):
-        sys.exit("%s: %s: a run has an empty or non-numeric value" % (os.path.basename(sys.argv[0]), path))
+        stop("%s: a run has an empty or non-numeric value" % path)
     return t, data, cols
 
 
@@ -136,18 +140,16 @@ def volunteer_channels(sev):
     out = {}
     present = [c for c in HEAD_FILES if has_channel(c, sev)]
     if not present:
-        sys.exit("%s: %s has none of the head channels' files (%s.csv)" % (
-            os.path.basename(sys.argv[0]), os.path.dirname(channel_file(HEAD_FILES[0], sev)),
-            ".csv, ".join(HEAD_FILES)))
+        stop("%s has none of the head channels' files (%s.csv)"
+             % (os.path.dirname(channel_file(HEAD_FILES[0], sev)), ".csv, ".join(HEAD_FILES)))
     t, _, cols = runs(present[0], sev)
     dt = (t[1] - t[0]) * 1e-3
 
     def f(name):
         tc, data, cc = runs(name, sev)
         if len(tc) != len(t) or np.max(np.abs(tc - t)) > 1e-9 or cc != cols:
-            sys.exit("%s: %s: its times or runs differ from %s's; every channel file of a case needs the same "
-                     "time_ms column and run_ columns" % (os.path.basename(sys.argv[0]), channel_file(name, sev),
-                                                         present[0]))
+            stop("%s: its times or runs differ from %s's; every channel file of a case needs the same time_ms "
+                 "column and run_ columns" % (channel_file(name, sev), present[0]))
         return np.array([cfc(r, 60, dt) for r in data])
 
     for label, name in (("head x-acceleration (g)", "Head_XAccel"), ("head z-acceleration (g)", "Head_ZAccel"),

@@ -153,8 +153,8 @@ def new_case(folder, name, rot_unit=None, into="input"):
     t, ax, cols = runs("T1_XAccel", name)
     onset = pulse_onset(t, ax)
     if onset is None:
-        sys.exit("make_nbdl_tables.py: %s: the runs' mean T1 x-acceleration never passes -1 g: no frontal "
-                 "sled pulse to drive the model with" % compare_nbdl.channel_file("T1_XAccel", name))
+        compare_nbdl.stop("%s: the runs' mean T1 x-acceleration never passes -1 g: no frontal sled pulse to "
+                          "drive the model with" % compare_nbdl.channel_file("T1_XAccel", name))
     if abs(onset - SHIPPED_ONSET) > 10.0:
         print("T1 x-acceleration first passes -1 g at %.1f ms, against about %.0f ms in the shipped runs (the "
               "source's time origin): the deck starts from rest at 0 ms (HOLD POSTURE sets its holding forces "
