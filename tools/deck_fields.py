@@ -17,3 +17,14 @@ def set_field(line, n, value):
 def is_card(line, card, item=None):
     """True on a `card` image whose F1 is `item` (any F1 when item is None)."""
     return field(line, 0) == card and (item is None or field(line, 1) == item)
+
+
+def held(body, coord):
+    """A PRESCRIB card that holds a body's coordinate at its initial value."""
+    return "%-10s%-10s%-10sCONSTANT" % ("PRESCRIB", body, coord)
+
+
+def hold(lines, body, coords):
+    """The card images with the PRESCRIB cards of body's `coords` replaced by held ones."""
+    return [held(body, field(l, 2)) if is_card(l, "PRESCRIB", body) and field(l, 2) in coords else l
+            for l in lines]

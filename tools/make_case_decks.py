@@ -7,6 +7,11 @@
 See reference/cases.md.   python3 tools/make_case_decks.py
 """
 import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from deck_fields import held  # noqa: E402
 
 def fmt(v):
     s = "%.6g" % v
@@ -56,7 +61,7 @@ for case, (pulse, pts) in CASES.items():
         "HOLD      POSTURE",
         "INCLUDE   input/head_neck_54dof.inp",
     ]
-    L += ["PRESCRIB  T1        %-10sCONSTANT" % q for q in ("TX", "TY", "TZ", "RX", "RY", "RZ")]
+    L += [held("T1", q) for q in ("TX", "TY", "TZ", "RX", "RY", "RZ")]
     L += ["* impact force [N] against time [ms]"] + table("IMPACT", pts)
     L += [
         "*         body      frame     table     direction x, y, z",
@@ -100,7 +105,7 @@ L = [
     "*         body      coord     kind      table     x0 (m)    v0 (m/s)",
     "PRESCRIB  T1        TX        ACCEL     PENDULUM  0.0       %.4f" % V0,
 ]
-L += ["PRESCRIB  T1        %-10sCONSTANT" % q for q in ("TY", "TZ", "RX", "RY", "RZ")]
+L += [held("T1", q) for q in ("TY", "TZ", "RX", "RY", "RZ")]
 L += ["* pendulum acceleration [g] against time [ms] (a deceleration: negative)"]
 L += table("PENDULUM", [(t, a) for (t, a) in pend], vscale="-9.80665")
 for line in L:

@@ -50,6 +50,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import compare_nbdl  # noqa: E402
 from compare_nbdl import cfc, has_channel, peak, runs  # noqa: E402
+from deck_fields import hold  # noqa: E402
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
@@ -191,12 +192,9 @@ def new_case(folder, name, rot_unit=None, into="input"):
             line = "%-10s%s" % ("TITLE", ("T1 DRIVEN BY THE MEAN OF %d RUNS: %s" % (len(cols), name)).upper()[:70])
         elif line.startswith("H5FILE"):
             line = "%-10s%s.h5" % ("H5FILE", name)
-        line = line.replace("input/nbdl12g_t1.inp", tables)
-        if line.startswith("PRESCRIB  T1") and line[20:22] in held:
-            line = "%-10s%-10s%-10s%s" % ("PRESCRIB", "T1", line[20:22], "CONSTANT")
-        out.append(line)
+        out.append(line.replace("input/nbdl12g_t1.inp", tables))
     with open(os.path.join(into, name + ".inp"), "w") as f:
-        f.write("\n".join(out) + "\n")
+        f.write("\n".join(hold(out, "T1", held)) + "\n")
     return tables
 
 

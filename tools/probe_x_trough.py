@@ -43,7 +43,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare_nbdl import cfc, runs, volunteer_channels, peak  # noqa: E402
 import make_nbdl_tables  # noqa: E402
-from deck_fields import field, is_card, set_field  # noqa: E402
+from deck_fields import field, held, is_card, set_field  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 HISTORIES = ("FLEX", "EXT")  # the model deck's ACTIVATE cards
@@ -106,31 +106,31 @@ def joint_point(body, x, z):
     return lambda s: at_z(at_x(s))
 
 
+def t1_drive(sev, deck, path, lines):
+    """The case deck reading its T1 tables from `path`, written with `lines`."""
+    open(path, "w").write("\n".join(lines) + "\n")
+    return deck.replace("input/nbdl%s_t1.inp" % sev, path)
+
+
 def t1x_class(cls):
     """Deck edit: the T1 x-acceleration table filtered CFC cls instead of 60."""
-    def edit(deck, sev, tmp):
-        path = os.path.join(tmp, "t1_%d.inp" % cls)
-        open(path, "w").write("\n".join(make_nbdl_tables.t1_tables(sev, x_cfc=cls)) + "\n")
-        return deck.replace("input/nbdl%s_t1.inp" % sev, path)
-    return edit
+    return lambda deck, sev, tmp: t1_drive(sev, deck, os.path.join(tmp, "t1_%d.inp" % cls),
+                                           make_nbdl_tables.t1_tables(sev, x_cfc=cls))
 
 
 def t1_rotation(f):
     """Deck edit: the T1 rotation drive (TABLE T1RY's value scale, F4) times f."""
     def edit(deck, sev, tmp):
-        path = os.path.join(tmp, "t1_rot%g.inp" % f)
-        lines = open("input/nbdl%s_t1.inp" % sev).read().splitlines()
-        lines = [set_field(l, 4, "%g" % (float(field(l, 4)) * f)) if is_card(l, "TABLE") and field(l, 1) == "T1RY"
-                 else l for l in lines]
-        open(path, "w").write("\n".join(lines) + "\n")
-        return deck.replace("input/nbdl%s_t1.inp" % sev, path)
+        lines = [set_field(l, 4, "%g" % (float(field(l, 4)) * f)) if is_card(l, "TABLE", "T1RY") else l
+                 for l in open("input/nbdl%s_t1.inp" % sev).read().splitlines()]
+        return t1_drive(sev, deck, os.path.join(tmp, "t1_rot%g.inp" % f), lines)
     return edit
 
 
 def lock(*pairs):
     """Deck edit: the given (body, coordinate) pairs held at their neutral values."""
     def edit(deck, sev, tmp):
-        cards = "".join("PRESCRIB  %-10s%-10sCONSTANT\n" % p for p in pairs)
+        cards = "".join(held(*p) + "\n" for p in pairs)
         return deck.replace("INCLUDE   input/nbdl%s_t1.inp" % sev, cards + "INCLUDE   input/nbdl%s_t1.inp" % sev)
     return edit
 

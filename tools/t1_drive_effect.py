@@ -20,28 +20,26 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare_nbdl import compare, s3  # noqa: E402
 from make_nbdl_tables import t1_tables  # noqa: E402
+from deck_fields import hold, is_card  # noqa: E402
 
-# (label, replaced PRESCRIB cards, CFC class of the z table or None as shipped)
+# (label, T1 coordinates held instead of driven, CFC class of the z table or None as shipped)
 VARIANTS = [
-    ("x only", {"TZ": "PRESCRIB  T1        TZ        CONSTANT", "RY": "PRESCRIB  T1        RY        CONSTANT"},
-     None),
-    ("x + rotation", {"TZ": "PRESCRIB  T1        TZ        CONSTANT"}, None),
-    ("x + z (CFC 60) + rotation", {}, 60),
-    ("x + z (CFC 20) + rotation (shipped)", {}, None),
+    ("x only", ("TZ", "RY"), None),
+    ("x + rotation", ("TZ",), None),
+    ("x + z (CFC 60) + rotation", (), 60),
+    ("x + z (CFC 20) + rotation (shipped)", (), None),
 ]
 
 
-def deck_variant(sev, repl, z_cfc, path):
-    out = []
-    for line in open("input/nbdl%s.inp" % sev):
-        key = line[20:22] if line.startswith("PRESCRIB  T1") else None
-        if z_cfc is not None and line.startswith("INCLUDE   input/nbdl%s_t1.inp" % sev):
-            table = path + ".t1"
-            with open(table, "w") as f:
-                f.write("\n".join(t1_tables(sev, z_cfc)) + "\n")
-            line = "INCLUDE   %s\n" % table
-        out.append((repl[key] + "\n") if key in repl else line)
-    open(path, "w").write("".join(out))
+def deck_variant(sev, held, z_cfc, path):
+    out = open("input/nbdl%s.inp" % sev).read().splitlines()
+    if z_cfc is not None:
+        table = path + ".t1"
+        with open(table, "w") as f:
+            f.write("\n".join(t1_tables(sev, z_cfc)) + "\n")
+        out = [line.replace("input/nbdl%s_t1.inp" % sev, table) if is_card(line, "INCLUDE") else line
+               for line in out]
+    open(path, "w").write("\n".join(hold(out, "T1", held)) + "\n")
 
 
 def sd(z):
@@ -51,16 +49,16 @@ def sd(z):
 def main():
     variants = list(VARIANTS)
     if sys.argv[1:2] == ["--z-cfc"] and len(sys.argv) == 3:
-        variants += [("x + z (CFC %s) + rotation" % c, {}, int(c)) for c in sys.argv[2].split(",")]
+        variants += [("x + z (CFC %s) + rotation" % c, (), int(c)) for c in sys.argv[2].split(",")]
     elif len(sys.argv) > 1:
         sys.exit("usage: t1_drive_effect.py [--z-cfc CLASS,CLASS,...]")
     tmp = tempfile.mkdtemp()
     rows = ["| severity | T1 driven by | rating | x-acc. (g) | z dip (g) | z rebound (g) | ang. acc. (rad/s²) "
             "| ang. vel. (rad/s) | rotation (deg) |", "|---|---|---|---|---|---|---|---|---|"]
     for sev in ("15g", "12g"):
-        for label, repl, z_cfc in variants:
+        for label, held, z_cfc in variants:
             deck = os.path.join(tmp, "d.inp")
-            deck_variant(sev, repl, z_cfc, deck)
+            deck_variant(sev, held, z_cfc, deck)
             h5 = os.path.join(tmp, "r.h5")
             with open(deck) as f:
                 subprocess.run(["fpm", "run", "--profile", "release", "--", "--h5", h5], stdin=f,
