@@ -19,10 +19,15 @@ flexion-extension ranges scaled to the C2-T1 total of reference-data.md),
 the head's joint point (the mass centre's offset from the occipital
 condyles), the point of T1 that follows the measured translation, the
 measured T1 rotation scaled, the lowest joints' rotation held or their discs' bending
-stiffened, and extensors the model does not have (a deep T1-C2 pair,
-segmental fascicles over two joints).
+stiffened, the ligaments' stiffness scaled, every disc's bending stiffness
+scaled (a scan over which the peak jumps from the late trough to an early
+one) or every joint's rotation held, and extensors the model does not have
+(a deep T1-C2 pair, segmental fascicles over two joints).
 
-After the table it prints the head's x-velocity relative to T1 (the
+After the table it prints the T1 and head x-acceleration (CFC 60; the
+volunteers' means and the shipped model) at T1's first trough, its rebound
+and its second trough (86, 98 and 110 ms at 15 g): which of T1's troughs
+the head follows. Then the head's x-velocity relative to T1 (the
 integral from 30 ms of head minus T1 x-acceleration, each CFC 60: the
 volunteers' means and the shipped model) at a few times, which shows where
 the late trough comes from. Last it prints the shipped run's head
@@ -187,6 +192,9 @@ def segmental_extensors(f0):
                           for k in range(len(column) - 2) for side, sgn in (("L", 1), ("R", -1))])
 
 
+JOINTS = ("C7", "C6", "C5", "C4", "C3", "C2", "C1", "HEAD")  # each body's joint with its parent, T1-C7 ... C1-head
+DISC_NAMES = ("T1C7", "C7C6", "C6C5", "C5C4", "C4C3", "C3C2", "C2C1", "C1HD")
+
 # White & Panjabi's representative flexion-extension ranges C2-C3 ... C7-T1
 # (10, 15, 20, 20, 17, 9 deg) scaled to reference-data.md's C2-T1 total of 82 deg
 WP = dict(zip(("C2", "C3", "C4", "C5", "C6", "C7"), (9.0, 13.5, 18.0, 18.0, 15.3, 8.1)))
@@ -219,8 +227,15 @@ PROBES = [
     ("T1 rotation drive x1.5", None, t1_rotation(1.5)),
     ("rotation held at C1-head and C1-C2", None, lock(("HEAD", "RY"), ("C1", "RY"))),
     ("rotation held at T1-C7 and C7-C6", None, lock(("C7", "RY"), ("C6", "RY"))),
+    ("rotation held at every joint", None, lock(*[(b, "RY") for b in JOINTS])),
     ("disc bending stiffness x10, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 10.0), None),
     ("disc bending stiffness x100, T1-C7 and C7-C6", disc_bending(("T1C7", "C7C6"), 100.0), None),
+    ("disc bending stiffness x30, every disc", disc_bending(DISC_NAMES, 30.0), None),
+    ("disc bending stiffness x50, every disc", disc_bending(DISC_NAMES, 50.0), None),
+    ("disc bending stiffness x100, every disc", disc_bending(DISC_NAMES, 100.0), None),
+    ("ligament stiffness x0.1", scale("LIGAMENTS", "L2", 0.1), None),
+    ("ligament stiffness x10", scale("LIGAMENTS", "L2", 10.0), None),
+    ("ligament stiffness x100", scale("LIGAMENTS", "L2", 100.0), None),
     ("deep extensor T1-C2, F0 100 N per side", deep_extensor(100.0), None),
     ("deep extensor T1-C2, F0 400 N per side", deep_extensor(400.0), None),
     ("segmental extensors T1-C2 over two joints, F0 40 N per fascicle and side", segmental_extensors(40.0), None),
@@ -232,10 +247,10 @@ PROBES = [
 ]
 
 
-def relative_velocity(sev, h5):
-    """Head x-velocity relative to T1 (m/s) from 30 ms: (t, volunteers' mean, model)."""
+def x_accelerations(sev, h5):
+    """Head and T1 x-acceleration (g, CFC 60) on the volunteers' times:
+    (t, volunteers' mean head, their mean T1, model head, model T1)."""
     import h5py
-    g = 9.80665
     t, hx, _ = runs("Head_XAccel", sev)
     tx = runs("T1_XAccel", sev)[1]
     dt = (t[1] - t[0]) * 1e-3
@@ -243,11 +258,27 @@ def relative_velocity(sev, h5):
     f = h5py.File(h5, "r")
     tm = f["time"][:] * 1e3
     dtm = (tm[1] - tm[0]) * 1e-3
-    mrel = cfc(f["channels"]["HEAD_AX"][:], 60, dtm) - cfc(f["channels"]["T1_AX"][:], 60, dtm)
+    model = lambda name: np.interp(t, tm, cfc(f["channels"][name][:], 60, dtm))
+    return t, mean(hx), mean(tx), model("HEAD_AX"), model("T1_AX")
+
+
+def t1_troughs(t, t1):
+    """Times of T1's first x-acceleration trough, the rebound after it and its
+    second trough (each within 20 ms of the one before)."""
+    first = t[np.argmin(np.where(t < 95.0, t1, 0.0))]
+    after = (t > first) & (t < first + 20.0)
+    rebound = t[after][np.argmax(t1[after])]
+    after = (t > rebound) & (t < rebound + 20.0)
+    return first, rebound, t[after][np.argmin(t1[after])]
+
+
+def relative_velocity(t, vh, vt, mh, mt):
+    """Head x-velocity relative to T1 (m/s) from 30 ms, from x_accelerations():
+    (volunteers' mean, model)."""
+    g, dt = 9.80665, (t[1] - t[0]) * 1e-3
     on = t >= 30.0
-    vol = np.cumsum(np.where(on, (mean(hx) - mean(tx)) * g, 0.0)) * dt
-    mod = np.cumsum(np.where(on, np.interp(t, tm, mrel) * g, 0.0)) * dt
-    return t, vol, mod
+    return (np.cumsum(np.where(on, (vh - vt) * g, 0.0)) * dt,
+            np.cumsum(np.where(on, (mh - mt) * g, 0.0)) * dt)
 
 
 def measuring_point(h5, rz):
@@ -299,7 +330,12 @@ def main():
                                                               at(al, 110)))
         if k == 0:
             shipped = h5
-    t, vol, mod = relative_velocity(sev, shipped)
+    t, vh, vt, mh, mt = x_accelerations(sev, shipped)
+    at = lambda x, ms: x[np.argmin(np.abs(t - ms))]
+    print("\nT1 and head x-acceleration (g), volunteers' mean / shipped model, at T1's first trough, its rebound"
+          " and its second trough: " + "; ".join("%.1f ms T1 %.1f / %.1f, head %.1f / %.1f" % (
+              ms, at(vt, ms), at(mt, ms), at(vh, ms), at(mh, ms)) for ms in t1_troughs(t, vt)))
+    vol, mod = relative_velocity(t, vh, vt, mh, mt)
     iv, im = np.argmax(vol), np.argmax(mod)
     print("\nHead x-velocity relative to T1 (m/s), volunteers' mean / shipped model: largest %.2f at %.1f ms /"
           " %.2f at %.1f ms; " % (vol[iv], t[iv], mod[im], t[im]) +
