@@ -11,7 +11,9 @@
 !!   Phi = 12 E I k / (G A h^2), E = d1                       (eqs 2-6, 8-9)
 !!     [V; M] = E I / (h^3 (1 + Phi)) [12, -6h; -6h, (4 + Phi) h^2] [w; psi]
 !!   torsion  T = G J theta3 / h                              (eq 7)
-!! and C = (d2/d1) K (the same two-parameter viscoelastic law in every mode).
+!! and C = (d2/d1) K in the axial mode (eq 1) and C = (d2b/d1) K in shear,
+!! bending and torsion (d2b = d2 unless the deck gives it: the same
+!! two-parameter viscoelastic law in every mode).
 !! The loads on the bodies are the work-conjugates of q: the element stores
 !! U = q^T K q / 2 exactly and dissipates qdot^T C qdot.
 module hn_discs
@@ -23,7 +25,7 @@ module hn_discs
     private
 
     public :: disc_t, disc_stiffness, disc_set_reference, disc_deformation, disc_resultants
-    public :: apply_disc, disc_energy, inv_left_jacobian
+    public :: apply_disc, disc_energy, inv_left_jacobian, disc_d2b
 
     !> One disc and its constants.
     type :: disc_t
@@ -35,7 +37,8 @@ module hn_discs
         real(wp) :: area = zero               !! A [m^2]
         real(wp) :: h = zero                  !! thickness [m]
         real(wp) :: d1 = zero                 !! elastic modulus E [Pa]
-        real(wp) :: d2 = zero                 !! viscous modulus [Pa s]
+        real(wp) :: d2 = zero                 !! viscous modulus, axial [Pa s]
+        real(wp) :: d2b = -one                !! viscous modulus of shear, bending and torsion [Pa s]; < 0: d2
         real(wp) :: g = zero                  !! shear modulus [Pa]
         real(wp) :: ix = zero, iy = zero      !! second moments of area about plate x, y [m^4]
         real(wp) :: j = zero                  !! torsion constant [m^4]
@@ -86,8 +89,16 @@ contains
         d%rb = matmul(transpose(su), sl)
         d%d0 = matmul(transpose(sl), pup - plo)
         d%k = disc_stiffness(d)
-        d%c = (d%d2/d%d1)*d%k
+        d%c = (disc_d2b(d)/d%d1)*d%k          ! shear, bending, torsion (K has no axial coupling)
+        d%c(3, 3) = (d%d2/d%d1)*d%k(3, 3)     ! axial (eq 1)
     end subroutine disc_set_reference
+
+    !> The viscous modulus of shear, bending and torsion: d2b, or d2 where the deck gives none.
+    elemental function disc_d2b(d) result(v)
+        type(disc_t), intent(in) :: d            !! the disc
+        real(wp) :: v                            !! [Pa s]
+        v = merge(d%d2b, d%d2, d%d2b >= zero)
+    end function disc_d2b
 
     !> Body frames and plate centres (R) of the two bodies.
     pure subroutine plates(d, kin, sa, sb, plo, pup)

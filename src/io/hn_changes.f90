@@ -14,7 +14,7 @@
 module hn_changes
     use hn_kinds, only: wp, zero, msglen
     use hn_deck_reader, only: deck_reader_t, locate_field, field_text, int_str, nfields, parse_real
-    use hn_model, only: model_t, family_name, family_items, scale_family
+    use hn_model, only: model_t, family_name, family_items, family_items_text, scale_family, max_family_items
     use hn_tree, only: tree_build
     implicit none
     private
@@ -162,7 +162,7 @@ contains
         type(change_t), intent(in) :: changes(:)                   !! the changes
         type(model_t), intent(inout) :: model                      !! the model changed
         character(len=note_len), allocatable, intent(inout) :: notes(:)  !! one line per change made
-        character(len=10) :: items(3)
+        character(len=10) :: items(max_family_items)
         character(len=note_len) :: note
         character(len=msglen) :: msg
         integer :: k, fam, kb, stat
@@ -182,7 +182,7 @@ contains
                     items = family_items(fam)
                     if (.not. any(items == c%item .and. len_trim(items) > 0)) then
                         call rd%fail(rd%context(i, 4, 'item')//': found "'//trim(c%item)//'"; expected '// &
-                                     trim(items(1))//', '//trim(items(2))//' or '//trim(items(3))//' for '//trim(c%target))
+                                     family_items_text(fam)//' for '//trim(c%target))
                         return
                     end if
                     if (c%set) then

@@ -7,7 +7,8 @@ module hn_deck
     use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
-    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name, family_items, scale_family
+    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name, family_items, family_items_text, &
+                        scale_family, max_family_items
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic, motion_eval
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
@@ -1335,6 +1336,8 @@ contains
         call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
         call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
         call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
+        call rd%real(i + 2, 6, 'viscous modulus d2b of shear, bending and torsion', 'Pa s', d%d2b, zero, &
+                     big_modulus, default=d%d2)
         if (rd%failed()) return
         call map_ends(bmap, d%body_a, d%pa, d%body_b, d%pb, ninternal)
         keep = d%body_a /= d%body_b
@@ -1416,7 +1419,7 @@ contains
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i
         type(case_t), intent(inout) :: cs
-        character(len=10) :: s, item, items(3)
+        character(len=10) :: s, item, items(max_family_items)
         integer :: fam
         real(wp) :: factor
         call rd%name(i, 1, 'factor name', s)
@@ -1426,7 +1429,7 @@ contains
         call rd%name(i, 3, 'item', item)
         items = family_items(fam)
         if (.not. rd%failed() .and. .not. any(items == item .and. len_trim(items) > 0)) then
-            call rd%fail(rd%context(i, 3, 'item')//': found "'//trim(item)//'"; expected one of '//join(items))
+            call rd%fail(rd%context(i, 3, 'item')//': found "'//trim(item)//'"; expected '//family_items_text(fam))
             return
         end if
         call rd%real(i, 4, 'factor', '-', factor, 1.0e-6_wp, 1.0e6_wp)
@@ -1553,6 +1556,7 @@ contains
                 if (fam == 0 .or. family_name(max(fam, 1)) == 'DISCS') then
                     m%discs%d1 = fac*m%discs%d1
                     m%discs%d2 = fac*m%discs%d2
+                    m%discs%d2b = fac*m%discs%d2b
                     m%discs%g = fac*m%discs%g
                 end if
                 if (fam == 0 .or. family_name(max(fam, 1)) == 'LIGAMENTS') then

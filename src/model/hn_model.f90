@@ -15,7 +15,10 @@ module hn_model
     implicit none
     private
 
-    public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, scale_family
+    public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, family_items_text
+    public :: scale_family
+
+    integer, parameter, public :: max_family_items = 5   !! most properties a family has to scale
 
     !> Element families that can be switched on and off.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
@@ -106,16 +109,34 @@ contains
     !> Properties of a family that a FAMILY parameter may scale.
     pure function family_items(f) result(items)
         integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
-        character(len=10) :: items(3)
+        character(len=10) :: items(max_family_items)
         items = ''
         select case (f)
-        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G']
+        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND']
         case (fam_ligaments); items(1:2) = [character(len=10) :: 'L1', 'L2']
-        case (fam_muscles); items = [character(len=10) :: 'M1', 'M2', 'F0']
-        case (fam_limits); items = [character(len=10) :: 'C0', 'C1', 'ROMK']
+        case (fam_muscles); items(1:3) = [character(len=10) :: 'M1', 'M2', 'F0']
+        case (fam_limits); items(1:3) = [character(len=10) :: 'C0', 'C1', 'ROMK']
         case (fam_springs); items(1:2) = [character(len=10) :: 'K', 'C']
         end select
     end function family_items
+
+    !> The properties of a family that a FAMILY parameter may scale, as text: "A, B or C".
+    pure function family_items_text(f) result(s)
+        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
+        character(len=:), allocatable :: s
+        character(len=10) :: items(max_family_items)
+        integer :: k, n
+        items = family_items(f)
+        n = count(len_trim(items) > 0)
+        s = trim(items(1))
+        do k = 2, n
+            if (k == n) then
+                s = s//' or '//trim(items(k))
+            else
+                s = s//', '//trim(items(k))
+            end if
+        end do
+    end function family_items_text
 
     !> Multiply one property of every element of a family by `factor`.
     pure subroutine scale_family(model, f, item, factor)
@@ -127,7 +148,11 @@ contains
         case (fam_discs)
             select case (item)
             case ('E'); model%discs%d1 = factor*model%discs%d1
-            case ('VISCOUS'); model%discs%d2 = factor*model%discs%d2
+            case ('VISCOUS')     ! every mode's damping
+                model%discs%d2 = factor*model%discs%d2
+                model%discs%d2b = factor*model%discs%d2b
+            case ('VAXIAL'); model%discs%d2 = factor*model%discs%d2     ! axial damping (eq 1)
+            case ('VBEND'); model%discs%d2b = factor*model%discs%d2b    ! shear, bending, torsion damping
             case ('G'); model%discs%g = factor*model%discs%g
             end select
         case (fam_ligaments)

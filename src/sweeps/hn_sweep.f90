@@ -12,7 +12,7 @@ module hn_sweep
     use hn_deck, only: read_case_lines
     use hn_changes, only: read_param_kind, kind_family, kind_body, kind_field
     use hn_tree, only: tree_build
-    use hn_model, only: model_set_neutral, family_name, family_count, family_items, scale_family
+    use hn_model, only: model_set_neutral, family_name, family_count, family_items, family_items_text, scale_family
     use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
@@ -285,7 +285,7 @@ contains
             end if
             if (.not. any(family_items(p%family) == p%item)) then
                 call rd%fail(rd%context(p%card_line, 4, 'item')//': found "'//trim(p%item)//'"; expected '// &
-                             trim(items_text(p%family))//' for '//trim(p%target))
+                             family_items_text(p%family)//' for '//trim(p%target))
                 return
             end if
             if (family_count(base%model, p%family) == 0) &
@@ -492,15 +492,6 @@ contains
         if (cs%sample_dt > 1.0e-4_wp) cs%sample_dt = 1.0e-4_wp
         cs%h5file = ''
     end subroutine sweep_member_case
-
-    pure function items_text(f) result(s)
-        integer, intent(in) :: f
-        character(len=40) :: s
-        character(len=10) :: items(3)
-        items = family_items(f)
-        s = trim(items(1))//', '//trim(items(2))
-        if (len_trim(items(3)) > 0) s = trim(items(1))//', '//trim(items(2))//' or '//trim(items(3))
-    end function items_text
 
     !> Run member `v` of the sweep (listing discarded, no HDF5) and
     !! summarise it. A member that fails keeps its exit code and message.
