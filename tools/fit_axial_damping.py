@@ -15,7 +15,7 @@ so changed, once per FIT card below (copies in a temporary directory;
 nothing in input/ is changed). One row per fit: J, the fitted axial damping
 and retardation time, and per severity the rating, the head peaks within
 1 SD and their times within 10 ms (the goal's counts), and the largest real
-part at rest. Release build; about 5 minutes on two cores.
+part at rest. Release build; about 8 minutes on two cores.
 """
 import os
 import re

@@ -25,7 +25,7 @@ module hn_discs
     private
 
     public :: disc_t, disc_stiffness, disc_set_reference, disc_deformation, disc_resultants
-    public :: apply_disc, disc_energy, inv_left_jacobian, disc_d2b
+    public :: apply_disc, disc_energy, inv_left_jacobian
 
     !> One disc and its constants.
     type :: disc_t
