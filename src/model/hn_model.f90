@@ -146,6 +146,7 @@ contains
         real(wp), intent(in) :: factor           !! the factor
         select case (f)
         case (fam_discs)
+            where (model%discs%d2b < zero) model%discs%d2b = model%discs%d2   ! d2b not given: d2 from here on
             select case (item)
             case ('E'); model%discs%d1 = factor*model%discs%d1
             case ('VISCOUS')     ! every mode's damping
