@@ -26,6 +26,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cross_severity import params, rating_text  # noqa: E402
 from deck_fields import field, is_card, set_field  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
@@ -80,13 +81,14 @@ def split_calibration(deck, cases, bounds, fit):
     return "\n".join(out) + "\n"
 
 
-def summary(listing, c0):
-    """One table row's numbers from a calibration listing; None when the
-    search met no parameter set that stands at rest (J = 2 or more)."""
+def summary(path, c0):
+    """One table row's numbers from the calibration listing at `path`; None
+    when the search met no parameter set that stands at rest (J = 2 or more)."""
+    listing = open(path).read()
     j = float(re.search(r"^OBJECTIVE J =\s+(\S+)", listing, re.M).group(1))
     if j >= 2.0:
         return None
-    par = dict(re.findall(r"^PARAM (\S+)\s+= (\S+)", listing, re.M))
+    par = dict(params(path))
     cases = []
     for block in re.split(r"^CASE ", listing.split("BEST OBJECTIVE")[-1], flags=re.M)[1:]:
         rating = float(re.search(r"MEAN RATING\s+(\S+)", block).group(1))
@@ -97,7 +99,7 @@ def summary(listing, c0):
                 if abs(float(t) - float(tv)) > 10.0]
         count = lambda miss: "%d of %d%s" % (len(peaks) - len(miss), len(peaks),
                                              " (%s)" % ", ".join(miss) if miss else "")
-        cases.append("%.3f | %s | %s" % (rating, count(off), count(late)))
+        cases.append("%s | %s | %s" % (rating_text(rating), count(off), count(late)))
     lmax = float(re.search(r"LARGEST REAL PART AT REST\s+(\S+)", listing).group(1))
     vaxial, vbend = float(par["VAXIAL"]), float(par["VBEND"])
     return "%.3f | %s | %.1f | %s | %.2f" % (j, span(vaxial * min(c0), vaxial * max(c0)), 1e3 * TAU0 * vbend,
@@ -145,7 +147,7 @@ def main():
             if p.wait():
                 print("| %s | the calibration failed (exit %d) |" % (label, p.returncode))
                 continue
-            row = summary(open(path + ".out").read(), c0)
+            row = summary(path + ".out", c0)
             print("| %s (%s) | %s |" % (label, " ".join("%g" % v for v in fit), row or
                                         "every point the search met fails the check at rest (J = 2 or more)"))
 
