@@ -14,8 +14,12 @@
 !! and C = (d2/d1) K in the axial mode (eq 1) and C = (d2b/d1) K in shear,
 !! bending and torsion (d2b = d2 unless the deck gives it: the same
 !! two-parameter viscoelastic law in every mode).
+!! In tension (u3 > 0) the axial stiffness is ft (A/h) d1, ft the deck's
+!! tension fraction (default 1: the paper's linear law); the damping stays
+!! C in either direction.
 !! The loads on the bodies are the work-conjugates of q: the element stores
-!! U = q^T K q / 2 exactly and dissipates qdot^T C qdot.
+!! U = q^T K q / 2 - (1 - ft) K33 u3^2 / 2 (the last term in tension only)
+!! exactly and dissipates qdot^T C qdot.
 module hn_discs
     use hn_kinds, only: wp, zero, one, half
     use hn_rotation, only: cross, skew, rot_y, rotation_vector, norm3
@@ -39,6 +43,7 @@ module hn_discs
         real(wp) :: d1 = zero                 !! elastic modulus E [Pa]
         real(wp) :: d2 = zero                 !! viscous modulus, axial [Pa s]
         real(wp) :: d2b = -one                !! viscous modulus of shear, bending and torsion [Pa s]; < 0: d2
+        real(wp) :: ft = one                  !! axial stiffness in tension as a fraction of d1's [-]
         real(wp) :: g = zero                  !! shear modulus [Pa]
         real(wp) :: ix = zero, iy = zero      !! second moments of area about plate x, y [m^4]
         real(wp) :: j = zero                  !! torsion constant [m^4]
@@ -163,20 +168,23 @@ contains
     end subroutine disc_deformation
 
     !> Stress resultants s = K q + C qd: shear forces, axial force (tension
-    !! positive), bending moments and torque conjugate to q.
+    !! positive), bending moments and torque conjugate to q; in tension the
+    !! axial stiffness is ft K33.
     pure function disc_resultants(d, q, qd) result(s)
         type(disc_t), intent(in) :: d            !! the disc
         real(wp), intent(in) :: q(6)             !! deformations [m, rad]
         real(wp), intent(in) :: qd(6)            !! their rates [m/s, rad/s]
         real(wp) :: s(6)
         s = matmul(d%k, q) + matmul(d%c, qd)
+        if (q(3) > zero) s(3) = s(3) - (one - d%ft)*d%k(3, 3)*q(3)
     end function disc_resultants
 
-    !> Elastic energy q^T K q / 2.
+    !> Elastic energy q^T K q / 2, less (1 - ft) K33 u3^2 / 2 in tension.
     pure real(wp) function disc_energy(d, q) result(u)
         type(disc_t), intent(in) :: d            !! the disc
         real(wp), intent(in) :: q(6)             !! deformations [m, rad]
         u = half*dot_product(q, matmul(d%k, q))
+        if (q(3) > zero) u = u - half*(one - d%ft)*d%k(3, 3)*q(3)**2
     end function disc_energy
 
     !> Add the disc loads to both bodies; returns the resultants s, the

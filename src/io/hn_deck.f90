@@ -1338,6 +1338,8 @@ contains
         call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
         call rd%real(i + 2, 6, 'viscous modulus d2b of shear, bending and torsion', 'Pa s', d%d2b, zero, &
                      big_modulus, default=d%d2)
+        call rd%real(i + 2, 7, 'axial stiffness in tension as a fraction of d1''s', '-', d%ft, 1.0e-3_wp, one, &
+                     default=one)
         if (rd%failed()) return
         call map_ends(bmap, d%body_a, d%pa, d%body_b, d%pb, ninternal)
         keep = d%body_a /= d%body_b

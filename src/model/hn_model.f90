@@ -18,7 +18,7 @@ module hn_model
     public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, family_items_text
     public :: scale_family
 
-    integer, parameter, public :: max_family_items = 5   !! most properties a family has to scale
+    integer, parameter, public :: max_family_items = 6   !! most properties a family has to scale
 
     !> Element families that can be switched on and off.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
@@ -112,7 +112,7 @@ contains
         character(len=10) :: items(max_family_items)
         items = ''
         select case (f)
-        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND']
+        case (fam_discs); items = [character(len=10) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION']
         case (fam_ligaments); items(1:2) = [character(len=10) :: 'L1', 'L2']
         case (fam_muscles); items(1:3) = [character(len=10) :: 'M1', 'M2', 'F0']
         case (fam_limits); items(1:3) = [character(len=10) :: 'C0', 'C1', 'ROMK']
@@ -155,6 +155,7 @@ contains
             case ('VAXIAL'); model%discs%d2 = factor*model%discs%d2     ! axial damping (eq 1)
             case ('VBEND'); model%discs%d2b = factor*model%discs%d2b    ! shear, bending, torsion damping
             case ('G'); model%discs%g = factor*model%discs%g
+            case ('ETENSION'); model%discs%ft = factor*model%discs%ft   ! axial stiffness in tension / d1's
             end select
         case (fam_ligaments)
             select case (item)
