@@ -15,9 +15,14 @@
 !! card; subject to the
 !! model standing at rest: a parameter set whose start state (posture held,
 !! the bracing activation) has an eigenvalue with real part above -1 1/s
-!! in any case (hn_rest_modes) is not run and gets J = 2 + 0.1 s (lmax + 1).
+!! in any case (hn_rest_modes) is not run and gets J = 2 + 0.1 s (lmax + 1);
+!! with a PASSIVE card, nor is a set whose neck stands without its muscles
+!! (largest real part at rest, muscles off, below the card's limit, default
+!! 0: the osteoligamentous column buckles under far less than the head's
+!! weight), which gets J = 2 + 0.1 s (limit - lp).
 !! Optimizer: a Latin hypercube of starting points (seeded) and Nelder-Mead
-!! from the best of them, in the unit cube of the parameter ranges (LOG
+!! from the best of them, restarted about its best point while a restart
+!! gains more than 1e-4, in the unit cube of the parameter ranges (LOG
 !! ranges in logarithms), points clamped to the bounds. Deterministic: the
 !! same deck gives the same fit on every machine. Member runs are those of
 !! the sweep (sweep_member_case, run_state_t).
@@ -33,11 +38,13 @@ module hn_calibrate
     use hn_filters, only: cfc_filter
     use hn_sorting, only: sort_index
     use hn_rest_modes, only: rest_mode_t, rest_modes
+    use hn_model, only: fam_muscles
     implicit none
     private
 
     public :: volunteer_t, read_volunteers, cora_rating, score_t, score_samples, calibration_t, read_calibration, &
-              calibrate, evaluate, nelder_mead, objective_fn, member_histories, rated_histories, read_runs_csv
+              calibrate, evaluate, nelder_mead, restarted_nelder_mead, objective_fn, member_histories, rated_histories, &
+              read_runs_csv
 
     integer, parameter, public :: nrated = 5, npeaks = 6
     character(len=10), parameter, public :: rated_channels(nrated) = [character(len=10) :: 'HEAD_AX', 'HEAD_AZ', &
@@ -84,6 +91,8 @@ module hn_calibrate
         real(wp) :: peak_weight = 0.02_wp           !! w of the objective (FIT F5)
         real(wp) :: time_weight = zero              !! wt of the objective (FIT F6)
         real(wp) :: peak_margin = zero              !! m of the objective: P counts |z| above 1 - m (FIT F7)
+        logical :: passive = .false.                !! PASSIVE card: the neck without its muscles must not stand
+        real(wp) :: passive_limit = zero            !! its largest real part at rest must be above this (PASSIVE F1) [1/s]
         real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
     end type calibration_t
 
@@ -387,7 +396,8 @@ contains
     !> Read a calibration deck: TITLE; CASE path (columns 11-80) followed by
     !! DATA directory of that case's volunteers; FIT NELDER max-evaluations
     !! starting-points seed [peak-weight [peak-time-weight [peak-margin]]];
-    !! PARAM cards as in a sweep deck; optional VALUES
+    !! PARAM cards as in a sweep deck; optional PASSIVE [limit] (a set whose
+    !! neck stands without its muscles is not run); optional VALUES
     !! cards (up to 7 values each, in PARAM order), the point scored when
     !! max-evaluations is 0 (default: the decks' own values). Each case's
     !! parameters are bound to its own deck through a sweep (same checks).
@@ -429,6 +439,10 @@ contains
                 call rd%real(i, 6, 'peak-time weight', '-', cal%time_weight, zero, 1.0e3_wp, default=zero)
                 call rd%real(i, 7, 'peak margin', 'SD', cal%peak_margin, zero, 0.9_wp, default=zero)
             case ('PARAM'); params = [params, rd%lines(i)]
+            case ('PASSIVE')
+                cal%passive = .true.
+                call rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
+                             -100.0_wp, 100.0_wp, default=zero)
             case ('VALUES')
                 do f = 1, 7
                     if (rd%is_blank(i, f)) cycle
@@ -438,7 +452,7 @@ contains
             case ('END'); exit
             case default
                 call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(rd%key(i))// &
-                             '"; expected TITLE, CASE, DATA, FIT, PARAM, VALUES or END')
+                             '"; expected TITLE, CASE, DATA, FIT, PARAM, PASSIVE, VALUES or END')
             end select
         end do
         if (.not. rd%failed() .and. (size(cal%decks) == 0 .or. size(cal%data) /= size(cal%decks) .or. nfit /= 1)) &
@@ -471,11 +485,12 @@ contains
 
     !> Largest real part of the eigenvalues at rest (hn_rest_modes: the
     !! start state of every case, posture held as the case holds it) over
-    !! the cases at parameter values v [1/s]; huge when a case cannot be
-    !! built or analysed.
-    function rest_growth(cal, v) result(lmax)
+    !! the cases at parameter values v [1/s], with the muscles or without
+    !! them; huge when a case cannot be built or analysed.
+    function rest_growth(cal, v, muscles_off) result(lmax)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
+        logical, intent(in) :: muscles_off           !! the muscle family switched off
         real(wp) :: lmax
         type(case_t) :: cs
         type(rest_mode_t), allocatable :: modes(:)
@@ -484,6 +499,7 @@ contains
         lmax = -huge(one)
         do c = 1, size(cal%sw)
             call sweep_member_case(cal%sw(c), v, cs, stat, msg)
+            if (muscles_off) cs%model%family_on(fam_muscles) = .false.
             if (stat == stat_ok) call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
             if (stat /= stat_ok) then
                 lmax = huge(one); return
@@ -497,23 +513,36 @@ contains
     !! (largest real part above rest_margin in any case: a braced neck
     !! stands) is not run: J = 2 + 0.1 s (lmax - rest_margin), worse than
     !! any stable set whose w P + wt T stays below 1, and decreasing
-    !! towards stability.
-    subroutine evaluate(cal, v, j, sc, ok, growth)
+    !! towards stability. With a PASSIVE card, nor is a set whose neck
+    !! stands without its muscles (largest real part at rest below the
+    !! card's limit): J = 2 + 0.1 s (limit - lp).
+    subroutine evaluate(cal, v, j, sc, ok, growth, passive_growth)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
         real(wp), intent(out) :: j                   !! the objective
         type(score_t), intent(out) :: sc(:)          !! (ncase)
         logical, intent(out) :: ok                   !! every run complete
         real(wp), intent(out), optional :: growth    !! largest real part at rest over the cases [1/s]
+        real(wp), intent(out), optional :: passive_growth !! the same without the muscles (PASSIVE card) [1/s]
         real(wp), allocatable :: y(:, :, :)
-        real(wp) :: rsum, psum, tsum, lmax
+        real(wp) :: rsum, psum, tsum, lmax, lp
         integer :: c
-        lmax = rest_growth(cal, v)
+        lmax = rest_growth(cal, v, .false.)
         if (present(growth)) growth = lmax
+        if (present(passive_growth)) passive_growth = huge(one)
         if (lmax > rest_margin) then
             ok = .false.
             j = min(failed_objective, unstable_objective + unstable_slope*(lmax - rest_margin))
             return
+        end if
+        if (cal%passive) then
+            lp = rest_growth(cal, v, .true.)
+            if (present(passive_growth)) passive_growth = lp
+            if (lp < cal%passive_limit) then
+                ok = .false.
+                j = min(failed_objective, unstable_objective + unstable_slope*(cal%passive_limit - lp))
+                return
+            end if
         end if
         allocate (y(maxval([(size(cal%vol(c)%t), c=1, size(cal%vol))]), nrated, size(cal%sw)))
         call member_histories(cal, v, y, ok)
@@ -598,6 +627,34 @@ contains
         end function feval
     end subroutine nelder_mead
 
+    !> Nelder-Mead from u0, then restarted with a fresh simplex (the same
+    !! step) about its best point while a restart lowers the objective by
+    !! more than ftol and evaluations for one more simplex are left: a
+    !! simplex that has collapsed short of the minimum starts again.
+    subroutine restarted_nelder_mead(f, u0, step, max_evals, ftol, ubest, fbest, nevals)
+        procedure(objective_fn) :: f             !! the objective
+        real(wp), intent(in) :: u0(:)            !! starting point in the unit cube
+        real(wp), intent(in) :: step             !! initial simplex step of every run
+        integer, intent(in) :: max_evals         !! most evaluations in all
+        real(wp), intent(in) :: ftol             !! a run stops when its simplex's values agree within ftol
+        real(wp), intent(out) :: ubest(size(u0)) !! best point
+        real(wp), intent(out) :: fbest           !! objective there
+        integer, intent(out) :: nevals           !! evaluations made
+        real(wp) :: unew(size(u0)), fnew
+        integer :: n
+        logical :: gained
+        call nelder_mead(f, u0, step, max_evals, ftol, ubest, fbest, nevals)
+        do while (max_evals - nevals > 2*(size(u0) + 1))
+            call nelder_mead(f, ubest, step, max_evals - nevals, ftol, unew, fnew, n)
+            nevals = nevals + n
+            gained = fbest - fnew > ftol
+            if (fnew < fbest) then
+                ubest = unew; fbest = fnew
+            end if
+            if (.not. gained) exit
+        end do
+    end subroutine restarted_nelder_mead
+
     pure function clamp(u) result(c)
         real(wp), intent(in) :: u(:)
         real(wp) :: c(size(u))
@@ -617,7 +674,9 @@ contains
     end function unit_of
 
     !> Run the calibration: the LHS starting points, then Nelder-Mead from
-    !! the best; the history and the result on unit lu.
+    !! the best, restarted about its best point while a restart gains more
+    !! than 1e-4 and evaluations are left; the history and the result on
+    !! unit lu.
     subroutine calibrate(cal, lu, vbest, jbest, nevals)
         type(calibration_t), intent(in) :: cal   !! the calibration
         integer, intent(in) :: lu                    !! listing unit
@@ -625,7 +684,7 @@ contains
         real(wp), intent(out) :: jbest               !! objective there
         integer, intent(out) :: nevals               !! model evaluations (each runs every case)
         real(wp), allocatable :: design(:, :)
-        real(wp) :: u0(size(cal%sw(1)%params)), ubest(size(u0)), j, jstart, lmax
+        real(wp) :: u0(size(cal%sw(1)%params)), ubest(size(u0)), j, jstart, lmax, lp
         type(score_t) :: sc(size(cal%sw))
         logical :: ok
         integer :: r, k, nnm
@@ -637,10 +696,10 @@ contains
             if (cal%max_evals == 0) then                 ! score the decks as they are, or at VALUES
                 vbest = par%nominal
                 if (size(cal%values) == size(par)) vbest = cal%values
-                call evaluate(cal, vbest, jbest, sc, ok, lmax)
+                call evaluate(cal, vbest, jbest, sc, ok, lmax, lp)
                 nevals = 1
                 call score_report(cal, sc, jbest, lu)
-                write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
+                call rest_report(lmax, lp)
                 return
             end if
             design = sweep_design(cal%sw(1))
@@ -655,12 +714,13 @@ contains
                     u0 = [(unit_of(par(k), design(k, r)), k=1, size(par))]
                 end if
             end do
-            call nelder_mead(obj, u0, 0.15_wp, max(cal%max_evals - nevals, size(par) + 2), 1.0e-4_wp, ubest, jbest, nnm)
+            call restarted_nelder_mead(obj, u0, 0.15_wp, max(cal%max_evals - nevals, size(par) + 2), 1.0e-4_wp, &
+                                       ubest, jbest, nnm)
             vbest = values_of(ubest)
             write (lu, '(a,f9.5,a,i0,a)') 'BEST OBJECTIVE ', jbest, ' AFTER ', nevals, ' EVALUATIONS'
-            call evaluate(cal, vbest, j, sc, ok, lmax)
+            call evaluate(cal, vbest, j, sc, ok, lmax, lp)
             call score_report(cal, sc, j, lu)
-            write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
+            call rest_report(lmax, lp)
             do k = 1, size(par)
                 write (lu, '(a,a10,a,a10,a,es12.5,a,es12.5,a)') 'PARAM ', par(k)%name, ' = ', field_text(vbest(k)), &
                     '   (bounds ', par(k)%low, ' to ', par(k)%high, ')'
@@ -690,6 +750,13 @@ contains
                 if (cal%sw(1)%params(i)%kind == par_field) read (txt, *) v(i)
             end do
         end function values_of
+
+        subroutine rest_report(lmax, lp)
+            real(wp), intent(in) :: lmax, lp
+            write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
+            if (cal%passive .and. lp < huge(one)) &
+                write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST WITHOUT MUSCLES ', lp, ' 1/S'
+        end subroutine rest_report
 
         subroutine report(stage, n, f, v)
             character(len=*), intent(in) :: stage
