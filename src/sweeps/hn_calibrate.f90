@@ -9,8 +9,9 @@
 !! rotation; the rating of tools/compare_nbdl.py, docs/validation.md), P the
 !! mean over the cases' six head peaks of max(0, |z| - (1 - m)), z the peak's
 !! distance from the volunteers' mean in SDs and m a margin inside the
-!! 1 SD band, T the mean over the same peaks of max(0, |dt|/10 ms - 1), dt
-!! the peak time's distance from the volunteers' mean time; w (default
+!! 1 SD band, T the mean over the same peaks of max(0, |dt|/10 ms - (1 - m)),
+!! dt the peak time's distance from the volunteers' mean time (the same
+!! margin keeps the times off the 10 ms edge); w (default
 !! 0.02), wt (default 0) and m (default 0) are fields 5, 6 and 7 of the FIT
 !! card; subject to the
 !! model standing at rest: a parameter set whose start state (posture held,
@@ -553,7 +554,8 @@ contains
             call score_histories(cal%vol(c), y(1:size(cal%vol(c)%t), :, c), sc(c))
             rsum = rsum + sum(sc(c)%rating)/nrated
             psum = psum + sum(max(zero, abs(sc(c)%z) - (one - cal%peak_margin)))/npeaks
-            tsum = tsum + sum(max(zero, abs(sc(c)%time - cal%vol(c)%time_mean)/time_tolerance - one))/npeaks
+            tsum = tsum + sum(max(zero, abs(sc(c)%time - cal%vol(c)%time_mean)/time_tolerance - &
+                                  (one - cal%peak_margin)))/npeaks
         end do
         j = (one - rsum/size(cal%sw)) + (cal%peak_weight*psum + cal%time_weight*tsum)/size(cal%sw)
     end subroutine evaluate
