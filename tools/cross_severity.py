@@ -34,7 +34,9 @@ def params(listing):
 
 def score(sev, values):
     deck = open("input/calibrate_nbdl%s.inp" % sev).read().splitlines()
-    deck = [("FIT       NELDER    0         2         1" if l.startswith("FIT") else l) for l in deck]
+    # scored as a run, not fitted: the PASSIVE condition is the fit's, so it is left out
+    deck = [("FIT       NELDER    0         2         1" if l.startswith("FIT") else l) for l in deck
+            if not l.startswith("PASSIVE")]
     for i in range(0, len(values), 7):
         deck.append("VALUES    " + "".join("%-10s" % v for v in values[i:i + 7]))
     path = os.path.join(tempfile.mkdtemp(), "score.inp")

@@ -1,23 +1,26 @@
 #!/usr/bin/env python3
-"""The calibration with the discs' axial damping inside its published range.
+"""What the shipped calibration's disc parameters and its PASSIVE condition each bring.
 
     python3 tools/fit_axial_damping.py
 
-The shipped fit (input/calibrate_nbdl.inp) scales one disc retardation time
-for every mode (SCALE VISCOUS), which gives each disc an axial damping
-(A/h) d2 about twelve times the largest that Izambert et al. (2003) measured
-on whole lumbar discs (32-2094 N s/m, 5-30 Hz; S13 of
-reference/parameters.md). Here the model deck's SCALE VISCOUS card becomes
-two (SCALE VBEND: shear, bending and torsion, the same bounds as VISCOUS;
-SCALE VAXIAL: axial alone, bounded so that every disc's (A/h) d2 stays in
-Izambert's range) and `hhneck --calibrate` runs on input/calibrate_nbdl.inp
-so changed, once per FIT card below, the last with the axial damping
-capped lower, at the value that puts the x-acceleration peak on time
-with everything else as shipped (copies in a temporary directory;
-nothing in input/ is changed). One row per fit: J, the fitted axial damping
-and retardation time, and per severity the rating, the head peaks within
-1 SD and their times within 10 ms (the goal's counts), and the largest real
-part at rest. Release build; about 12 minutes on two cores.
+The shipped calibration (input/calibrate_nbdl.inp) fits the discs' axial
+damping (SCALE VAXIAL) within the range Izambert et al. (2003) measured on
+whole lumbar discs (32-2094 N s/m; S13 of reference/parameters.md), the
+damping of shear, bending and torsion apart (SCALE VBEND) and the discs'
+axial stiffness in tension as a fraction of that in compression (SCALE
+ETENSION, DISC card 3 F7), and it rejects parameter sets whose neck stands
+without its muscles (PASSIVE card; S14). This runs `hhneck --calibrate` on
+copies of that deck (in a temporary directory; nothing in input/ is
+changed), the FIT card as shipped, two at a time:
+  - the tension fraction held at 1 (the paper's linear eq 1: PARAM ETENSION
+    removed, SCALE ETENSION 1 in the model deck), with and without PASSIVE;
+  - the tension fraction fitted, without PASSIVE;
+  - the shipped deck itself.
+One row per fit: J, the fitted axial damping, the retardation time of the
+other modes, the tension fraction, and per severity the rating, the head
+peaks within 1 SD and their times within 10 ms (the goal's counts), and
+the largest real parts at rest with and without the muscles. Release
+build; about 15 minutes on two cores.
 """
 import os
 import re
@@ -31,17 +34,13 @@ from deck_fields import field, is_card, set_field  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 CALIBRATION = "input/calibrate_nbdl.inp"
-IZAMBERT = (32.0, 2094.0)    # N s/m, whole lumbar discs, 5-30 Hz (S13)
-TAU0 = 0.005                 # s: the retardation time SCALE VISCOUS and VBEND multiply (make_head_neck_deck.py)
-# (label, FIT card fields F2-F7: evaluations, starting points, seed, w, wt, m;
-#  the largest axial damping allowed, N s/m: IZAMBERT[1] or lower)
+TAU0 = 0.005                 # s: the retardation time SCALE VBEND multiplies (make_head_neck_deck.py)
+# (label, tension fraction held at 1, PASSIVE card kept)
 FITS = [
-    ("as shipped", (500, 12, 13, 5.0, 1.0, 0.05), IZAMBERT[1]),
-    ("40 starting points, 800 evaluations", (800, 40, 13, 5.0, 1.0, 0.05), IZAMBERT[1]),
-    ("60 starting points, seed 7, 800 evaluations", (800, 60, 7, 5.0, 1.0, 0.05), IZAMBERT[1]),
-    ("60 starting points, wt 5, 800 evaluations", (800, 60, 13, 5.0, 5.0, 0.05), IZAMBERT[1]),
-    # at most the value that puts the peak on time with the rest as shipped (probe_x_trough.py, x 0.05)
-    ("axial damping at most 1250 N s/m, 40 starting points, 800 evaluations", (800, 40, 13, 5.0, 1.0, 0.05), 1250.0),
+    ("tension fraction 1 (linear eq 1), PASSIVE", True, True),
+    ("tension fraction 1 (linear eq 1), no PASSIVE", True, False),
+    ("tension fraction fitted, no PASSIVE", False, False),
+    ("tension fraction fitted, PASSIVE (the shipped deck)", False, True),
 ]
 
 
@@ -51,39 +50,28 @@ def axial_damping(model):
             for l in model.splitlines() if is_card(l, "DISC")]
 
 
-def split_model(model):
-    """The model deck with SCALE VISCOUS as SCALE VBEND (its value) and a SCALE VAXIAL (fitted)."""
-    out = []
-    for l in model.splitlines():
-        if is_card(l, "SCALE", "VISCOUS"):
-            v = field(l, 4)
-            out += ["%-10s%-10s%-10s%-10s%s" % ("SCALE", "VBEND", "DISCS", "VBEND", v),
-                    "%-10s%-10s%-10s%-10s%s" % ("SCALE", "VAXIAL", "DISCS", "VAXIAL", v)]
-        else:
-            out.append(l)
-    return "\n".join(out) + "\n"
+def linear_model(model):
+    """The model deck with the tension fraction held at 1 (SCALE ETENSION 1)."""
+    return "\n".join(set_field(l, 4, "1.0") if is_card(l, "SCALE", "ETENSION") else l
+                     for l in model.splitlines()) + "\n"
 
 
-def split_calibration(deck, cases, bounds, fit):
-    """The calibration deck on the case copies, PARAM VISCOUS as VBEND and VAXIAL, the FIT card given."""
+def variant(deck, cases, hold_tension, passive):
+    """The calibration deck on the given case copies, without PARAM ETENSION
+    when the tension fraction is held and without the PASSIVE card if asked."""
     out = []
     for l in deck.splitlines():
         if is_card(l, "CASE"):
             l = "%-10s%s" % ("CASE", cases[l[10:].strip()])
-        elif is_card(l, "FIT"):
-            for n, v in enumerate(fit, start=2):
-                l = set_field(l, n, "%g" % v)
-        elif is_card(l, "PARAM", "VISCOUS"):
-            out.append(set_field(set_field(l, 1, "VBEND"), 4, "VBEND"))
-            l = set_field(set_field(set_field(set_field(l, 1, "VAXIAL"), 4, "VAXIAL"), 5, "%.4g" % bounds[0]),
-                          6, "%.4g" % bounds[1])
+        elif (is_card(l, "PARAM", "ETENSION") and hold_tension) or (is_card(l, "PASSIVE") and not passive):
+            continue
         out.append(l)
     return "\n".join(out) + "\n"
 
 
 def summary(path, c0):
     """One table row's numbers from the calibration listing at `path`; None
-    when the search met no parameter set that stands at rest (J = 2 or more)."""
+    when the search met no parameter set that passes the checks at rest (J = 2 or more)."""
     listing = open(path).read()
     j = float(re.search(r"^OBJECTIVE J =\s+(\S+)", listing, re.M).group(1))
     if j >= 2.0:
@@ -101,9 +89,12 @@ def summary(path, c0):
                                              " (%s)" % ", ".join(miss) if miss else "")
         cases.append("%s | %s | %s" % (rating_text(rating), count(off), count(late)))
     lmax = float(re.search(r"LARGEST REAL PART AT REST\s+(\S+)", listing).group(1))
+    m = re.search(r"LARGEST REAL PART AT REST WITHOUT MUSCLES\s+(\S+)", listing)
+    lp = "%.2f" % float(m.group(1)) if m else "not checked"
     vaxial, vbend = float(par["VAXIAL"]), float(par["VBEND"])
-    return "%.3f | %s | %.1f | %s | %.2f" % (j, span(vaxial * min(c0), vaxial * max(c0)), 1e3 * TAU0 * vbend,
-                                             " | ".join(cases), lmax)
+    ft = "%.3g" % float(par["ETENSION"]) if "ETENSION" in par else "1 (held)"
+    return "%.3f | %s | %.1f | %s | %s | %.2f | %s" % (j, span(vaxial * min(c0), vaxial * max(c0)),
+                                                      1e3 * TAU0 * vbend, ft, " | ".join(cases), lmax, lp)
 
 
 def span(lo, hi):
@@ -116,40 +107,38 @@ def main():
                          text=True, check=True).stdout.split()[-1]
     model = open(MODEL).read()
     c0 = axial_damping(model)
-    bounds = lambda cap: (IZAMBERT[0] / min(c0), cap / max(c0))
-    shipped = [float(field(l, 4)) for l in model.splitlines() if is_card(l, "SCALE", "VISCOUS")][0]
     tmp = tempfile.mkdtemp()
-    open(os.path.join(tmp, "model.inp"), "w").write(split_model(model))
-    cases = {}
+    open(os.path.join(tmp, "linear.inp"), "w").write(linear_model(model))
+    linear, shipped = {}, {}
     for sev in ("15g", "12g"):
+        case = "input/nbdl%s.inp" % sev
         path = os.path.join(tmp, "nbdl%s.inp" % sev)
-        open(path, "w").write(open("input/nbdl%s.inp" % sev).read().replace(MODEL, os.path.join(tmp, "model.inp")))
-        cases["input/nbdl%s.inp" % sev] = path
+        open(path, "w").write(open(case).read().replace(MODEL, os.path.join(tmp, "linear.inp")))
+        linear[case], shipped[case] = path, case
     deck = open(CALIBRATION).read()
     runs = []
-    for k, (label, fit, cap) in enumerate(FITS):
+    for k, (label, hold, passive) in enumerate(FITS):
         path = os.path.join(tmp, "fit%d" % k)
-        open(path + ".inp", "w").write(split_calibration(deck, cases, bounds(cap), fit))
-        runs.append((label, fit, path))
-    print("Disc axial damping (A/h) d2 of the model deck, every disc: %s N s/m; times the shipped SCALE VISCOUS "
-          "%g: %s N s/m, against %g to %g N s/m (Izambert et al. 2003). VAXIAL bounds: %.4g to %.4g.\n"
-          % (span(min(c0), max(c0)), shipped, span(shipped * min(c0), shipped * max(c0)), *IZAMBERT,
-             *bounds(IZAMBERT[1])))
-    print("| fit (FIT card) | J | axial damping (N s/m) | retardation time of shear, bending, torsion (ms) |"
-          " 15 g rating | 15 g peaks in 1 SD | 15 g times in 10 ms | 12 g rating | 12 g peaks in 1 SD |"
-          " 12 g times in 10 ms | largest real part at rest (1/s) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+        open(path + ".inp", "w").write(variant(deck, linear if hold else shipped, hold, passive))
+        runs.append((label, path))
+    print("Disc axial damping (A/h) d2 of the model deck before its SCALE cards, every disc: %s N s/m.\n"
+          % span(min(c0), max(c0)))
+    print("| fit | J | axial damping (N s/m) | retardation time of shear, bending, torsion (ms) |"
+          " tension fraction | 15 g rating | 15 g peaks in 1 SD | 15 g times in 10 ms | 12 g rating |"
+          " 12 g peaks in 1 SD | 12 g times in 10 ms | largest real part at rest (1/s) |"
+          " without muscles (1/s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for first in range(0, len(runs), 2):       # two at a time: one per core
-        procs = [(label, fit, path, subprocess.Popen([exe, "--calibrate"], stdin=open(path + ".inp"),
-                                                     stdout=open(path + ".out", "w"), stderr=subprocess.DEVNULL))
-                 for label, fit, path in runs[first:first + 2]]
-        for label, fit, path, p in procs:
+        procs = [(label, path, subprocess.Popen([exe, "--calibrate"], stdin=open(path + ".inp"),
+                                                stdout=open(path + ".out", "w"), stderr=subprocess.DEVNULL))
+                 for label, path in runs[first:first + 2]]
+        for label, path, p in procs:
             if p.wait():
                 print("| %s | the calibration failed (exit %d) |" % (label, p.returncode))
                 continue
             row = summary(path + ".out", c0)
-            print("| %s (%s) | %s |" % (label, " ".join("%g" % v for v in fit), row or
-                                        "every point the search met fails the check at rest (J = 2 or more)"))
+            print("| %s | %s |" % (label, row or "every point the search met fails a check at rest (J = 2 or more)"),
+                  flush=True)
 
 
 if __name__ == "__main__":

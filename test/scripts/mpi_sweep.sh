@@ -20,7 +20,7 @@ cat > "$tmp/sweep.inp" <<DECK
 TITLE     TEST SWEEP: LATIN HYPERCUBE WITH DIVERGING MEMBERS
 BASE      $tmp/base.inp
 DESIGN    LHS       12        7
-PARAM     DISC_E    FAMILY    DISCS     E         0.5       1500.0    LOG
+PARAM     DISC_E    FAMILY    DISCS     E         0.5       1.0E4     LOG
 PARAM     MUSC_K    FAMILY    MUSCLES   M1        0.5       2.0
 PARAM     HEAD_M    FIELD3    BODY      HEAD      3.0       4.5
 DECK
