@@ -533,7 +533,7 @@ contains
         if (present(passive_growth)) passive_growth = huge(one)
         if (lmax > rest_margin) then
             ok = .false.
-            j = min(failed_objective, unstable_objective + unstable_slope*(lmax - rest_margin))
+            j = rest_penalty(lmax - rest_margin)
             return
         end if
         if (cal%passive) then
@@ -541,7 +541,7 @@ contains
             if (present(passive_growth)) passive_growth = lp
             if (lp < cal%passive_limit) then
                 ok = .false.
-                j = min(failed_objective, unstable_objective + unstable_slope*(cal%passive_limit - lp))
+                j = rest_penalty(cal%passive_limit - lp)
                 return
             end if
         end if
@@ -559,6 +559,14 @@ contains
         end do
         j = (one - rsum/size(cal%sw)) + (cal%peak_weight*psum + cal%time_weight*tsum)/size(cal%sw)
     end subroutine evaluate
+
+    !> J of a parameter set that fails a check at rest by `excess` [1/s]:
+    !! 2 + 0.1 s excess, worse than any set that passes, and decreasing
+    !! towards the check's limit.
+    pure real(wp) function rest_penalty(excess) result(j)
+        real(wp), intent(in) :: excess
+        j = min(failed_objective, unstable_objective + unstable_slope*excess)
+    end function rest_penalty
 
     !> Nelder-Mead on the unit cube from u0 with initial steps `step`;
     !! points clamped to [0, 1]; stops after max_evals evaluations or when
