@@ -486,28 +486,38 @@ contains
 
     !> Largest real part of the eigenvalues at rest (hn_rest_modes: the
     !! start state of every case, posture held as the case holds it) over
-    !! the cases at parameter values v [1/s], with the muscles or without
-    !! them; huge when a case cannot be built or analysed.
-    function rest_growth(cal, v, muscles_off) result(lmax)
+    !! the cases at parameter values v [1/s], with the muscles (lmax) and,
+    !! for a PASSIVE card, without them (lp; huge without the card); each
+    !! case is built once for both. Huge when a case cannot be built or
+    !! analysed.
+    subroutine rest_growth(cal, v, lmax, lp)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
-        logical, intent(in) :: muscles_off           !! the muscle family switched off
-        real(wp) :: lmax
+        real(wp), intent(out) :: lmax                !! with the muscles [1/s]
+        real(wp), intent(out) :: lp                  !! without them [1/s]
         type(case_t) :: cs
         type(rest_mode_t), allocatable :: modes(:)
         integer :: c, stat
         character(len=msglen) :: msg
         lmax = -huge(one)
+        lp = merge(-huge(one), huge(one), cal%passive)
         do c = 1, size(cal%sw)
             call sweep_member_case(cal%sw(c), v, cs, stat, msg)
-            if (muscles_off) cs%model%family_on(fam_muscles) = .false.
             if (stat == stat_ok) call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
             if (stat /= stat_ok) then
                 lmax = huge(one); return
             end if
             if (size(modes) > 0) lmax = max(lmax, modes(1)%re)
+            if (.not. cal%passive) cycle
+            cs%model%family_on(fam_muscles) = .false.
+            call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
+            if (stat /= stat_ok) then
+                lp = huge(one)
+            else if (size(modes) > 0 .and. lp < huge(one)) then
+                lp = max(lp, modes(1)%re)
+            end if
         end do
-    end function rest_growth
+    end subroutine rest_growth
 
     !> Objective J and the scores of every case for parameter values v. A
     !! parameter set whose model is not stable at rest with the margin
@@ -528,7 +538,7 @@ contains
         real(wp), allocatable :: y(:, :, :)
         real(wp) :: rsum, psum, tsum, lmax, lp
         integer :: c
-        lmax = rest_growth(cal, v, .false.)
+        call rest_growth(cal, v, lmax, lp)
         if (present(growth)) growth = lmax
         if (present(passive_growth)) passive_growth = huge(one)
         if (lmax > rest_margin) then
@@ -537,7 +547,6 @@ contains
             return
         end if
         if (cal%passive) then
-            lp = rest_growth(cal, v, .true.)
             if (present(passive_growth)) passive_growth = lp
             if (lp < cal%passive_limit) then
                 ok = .false.
