@@ -19,7 +19,7 @@ program hhneck
     use hn_sweep_report, only: sweep_finish
     use hn_calibrate, only: calibration_t, read_calibration, calibrate
     use hn_signals, only: catch_signals, defer_signals
-    use hn_progress, only: progress_off, progress_auto, progress_on
+    use hn_progress, only: progress_off, progress_auto, progress_on, run_budget
     use hn_posix, only: is_terminal, stdin_kind, kind_char_device, exit_now
     implicit none
     type(case_t) :: cs
@@ -27,7 +27,7 @@ program hhneck
     type(run_state_t) :: run
     character(len=path_len) :: h5name, arg, deck, source
     character(len=path_len), allocatable :: search(:)
-    character(len=msglen) :: msg
+    character(len=msglen) :: msg, budget_warning
     logical :: h5_given, no_h5, check_only, sweep, calib
     integer :: i, stat, nargs, progress, max_steps
     real(wp) :: sample, rtol, max_wall
@@ -105,6 +105,12 @@ program hhneck
     do i = 1, size(cs%warnings)
         write (error_unit, '(a)') 'hhneck: warning: '//trim(cs%warnings(i))
     end do
+    if (max_wall > 0.0_wp) cs%wall_limit = max_wall
+    if (max_steps > 0) cs%step_limit = max_steps
+    ! a fixed-step run beyond its step limit is refused, a very long one named, before it starts
+    call run_budget(cs, stat, msg, budget_warning)
+    call stop_on_deck_error('')
+    if (len_trim(budget_warning) > 0) write (error_unit, '(a)') 'hhneck: warning: '//trim(budget_warning)
     if (check_only) then
         write (error_unit, '(a)') 'hhneck: deck is valid: '//trim(cs%model%title)
         stop 0, quiet=.true.
@@ -117,8 +123,6 @@ program hhneck
         cs%rtol = rtol
         cs%atol = rtol*1.0e-3_wp
     end if
-    if (max_wall > 0.0_wp) cs%wall_limit = max_wall
-    if (max_steps > 0) cs%step_limit = max_steps
     cs%progress = progress
     if (.not. h5_given) h5name = cs%h5file
     if (no_h5) h5name = ''
@@ -191,6 +195,10 @@ contains
         integer :: n
         call read_calibration(trim(deck), trim(source), cal, stat, msg)
         call stop_on_deck_error('calibration ')
+        if (check_only) then
+            write (error_unit, '(a)') 'hhneck: calibration deck is valid: '//trim(cal%title)
+            stop 0, quiet=.true.
+        end if
         allocate (v(size(cal%sw(1)%params)))
         call calibrate(cal, output_unit, v, j, n)
         write (error_unit, '(a,i0,a,f8.5)') 'hhneck: calibration finished after ', n, ' evaluations; objective ', j

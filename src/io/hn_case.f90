@@ -31,6 +31,7 @@ module hn_case
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
         real(wp) :: wall_limit = zero               !! RUNLIMIT: stop after this wall time [s] (0 = none)
         integer :: step_limit = 0                   !! RUNLIMIT: stop after this many steps (0 = none)
+        character(len=400) :: control_at = ''       !! where the CONTROL card's step is, for messages
         integer :: progress = 0                     !! progress on stderr: 0 off, 1 on a terminal, 2 always (hn_progress)
         real(wp), allocatable :: dump_times(:)      !! times of the cross-checking dump
         type(deck_line_t), allocatable :: deck(:)   !! the cards as read

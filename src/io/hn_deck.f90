@@ -48,6 +48,7 @@ module hn_deck
         integer, allocatable :: new(:)
         real(wp), allocatable :: shift(:, :)
         integer, allocatable :: merged_by(:)
+        integer, allocatable :: locked_by(:, :)   !! (coordinate, deck body): the LOCK or SCENE card line that locked it (0: none)
     end type body_map_t
 
     !> A named table of the deck.
@@ -124,6 +125,7 @@ contains
             call read_changes(rd, first, changes)
         end if
         if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
+        if (.not. rd%failed()) call check_repeats(rd, cards)
         if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call control_cards(rd, cards, cs)
         if (.not. rd%failed()) call table_cards(rd, cards, tabs)
@@ -285,6 +287,81 @@ contains
         if (ic == 0 .and. required) call rd%fail(rd%top//': the deck has no '//key//' card; expected one')
     end function single
 
+    !> Cards that must not say again what an earlier card said
+    !! (docs/deck-format.md, "Cards that must not repeat"): a name used twice
+    !! in one namespace, a second card for the same body and coordinate, an
+    !! INITIAL card for a prescribed coordinate. Refused at the later card,
+    !! with the earlier card's location.
+    subroutine check_repeats(rd, cards)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        character(len=8), parameter :: elements(5) = [character(len=8) :: 'DISC', 'LIGAMENT', 'MUSCLE', 'HILL', &
+                                                                            'SPRING']
+        character(len=*), parameter :: per_coordinate = 'one per body and coordinate'
+        call unique_fields(rd, cards, elements, 1, 'element name', 'a name no other element card uses')
+        call unique_fields(rd, cards, ['TABLE'], 1, 'table name', 'a new name')
+        call unique_fields(rd, cards, ['ACTIVATE'], 1, 'history name', 'a new name')
+        call unique_fields(rd, cards, ['SCALE'], 1, 'factor name', 'a new name')
+        call unique_fields(rd, cards, ['JOINT'], 1, 'body', 'one JOINT card per body')
+        call unique_fields(rd, cards, ['BODYPI'], 1, 'body', 'one BODYPI card per body')
+        call unique_fields(rd, cards, ['NEUTRAL'], 2, 'body and coordinate', per_coordinate)
+        call unique_fields(rd, cards, ['INITIAL'], 2, 'body and coordinate', per_coordinate)
+        call unique_fields(rd, cards, ['PRESCRIB'], 2, 'body and coordinate', per_coordinate)
+        call unique_fields(rd, cards, ['LIMIT'], 2, 'body and coordinate', per_coordinate)
+        call unique_fields(rd, cards, ['ROM'], 2, 'body and coordinate', per_coordinate)
+        call unique_fields(rd, cards, [character(len=8) :: 'INITIAL', 'PRESCRIB'], 2, 'body and coordinate', &
+                           'no INITIAL card for a prescribed coordinate (the PRESCRIB card gives its motion; '// &
+                           'with ACCEL also its initial value and rate, F5 and F6)', across=.true.)
+    end subroutine check_repeats
+
+    !> Refuse a card of one of `keys` whose fields F1..F`nf` (upper case)
+    !! equal those of an earlier card of `keys`; `across`: only pairs of
+    !! cards of different keys (the same-key pairs have their own call).
+    subroutine unique_fields(rd, cards, keys, nf, what, expected, across)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        character(len=*), intent(in) :: keys(:)      !! the card names that share the namespace
+        integer, intent(in) :: nf                    !! fields F1..Fnf identify the card
+        character(len=*), intent(in) :: what         !! what the fields hold (messages)
+        character(len=*), intent(in) :: expected     !! what the rule expects (messages)
+        logical, intent(in), optional :: across      !! only pairs of different keys (default: all pairs)
+        integer, allocatable :: idx(:)
+        character(len=21), allocatable :: ident(:)
+        integer :: k, n, j, f
+        character(len=:), allocatable :: found, place
+        if (rd%failed()) return
+        idx = pack([(k, k=1, size(cards))], [(any(keys == cards(k)%key), k=1, size(cards))])
+        n = size(idx)
+        allocate (ident(n))
+        do k = 1, n
+            ident(k) = ''
+            do f = 1, nf
+                ident(k) = trim(ident(k))//' '//upper(rd%raw(cards(idx(k))%first, f))
+            end do
+        end do
+        do k = 2, n
+            do j = 1, k - 1
+                if (ident(j) /= ident(k)) cycle
+                if (present(across)) then
+                    if (across .and. cards(idx(j))%key == cards(idx(k))%key) cycle
+                end if
+                found = trim(adjustl(ident(k)))
+                place = rd%where(cards(idx(k))%first)//', columns 11-'//trim(int_str(10 + 10*nf))//' ('// &
+                        trim(cards(idx(k))%key)//' card, '//what//')'
+                if (cards(idx(j))%key == cards(idx(k))%key) then
+                    call rd%fail(place//': found "'//found//'" again; expected '// &
+                                 expected//' (the '//trim(cards(idx(j))%key)//' card at '// &
+                                 rd%where(cards(idx(j))%first)//' has it)')
+                else
+                    call rd%fail(place//': found "'//found//'", which the '// &
+                                 trim(cards(idx(j))%key)//' card at '//rd%where(cards(idx(j))%first)// &
+                                 ' names too; expected '//expected)
+                end if
+                return
+            end do
+        end do
+    end subroutine unique_fields
+
     !> TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT, H5FILE, DUMP, HOLD.
     subroutine control_cards(rd, cards, cs)
         type(deck_reader_t), intent(inout) :: rd
@@ -313,6 +390,7 @@ contains
         span = cs%t_end - cs%t_start
         call rd%real(i, 2, 'step', 's', cs%h, 1.0e-12_wp, 1.0e4_wp)
         if (rd%failed()) return
+        cs%control_at = rd%context(i, 2, 'step')
         if (span/cs%h > 1.0e8_wp) then
             call rd%fail(rd%context(i, 2, 'step')//': found '// &
                          trim(rd%raw(i, 2))//' s; a step this small needs more than 1E8 steps for the run; '// &
@@ -430,7 +508,6 @@ contains
         integer :: nb, k, kb, i, f, p, m, stat, bad
         character(len=msglen) :: msg
         real(wp) :: v
-        logical, allocatable :: joint_given(:)
         type(body_tree_t) :: tree
 
         nb = count(cards%key == 'BODY')
@@ -438,8 +515,8 @@ contains
             call rd%fail(rd%top//': the deck has no BODY card; expected at least one body')
             return
         end if
-        allocate (bnames(nb), pnames(nb), bline(nb), joint_given(nb))
-        joint_given = .false.
+        allocate (bnames(nb), pnames(nb), bline(nb), bmap%locked_by(6, nb))
+        bmap%locked_by = 0
         call tree_allocate(cs%model%tree, nb)
         kb = 0
         do k = 1, size(cards)
@@ -490,12 +567,6 @@ contains
             case ('JOINT')
                 kb = body_ref(rd, i, 1, 'body', bnames, .false.)
                 if (rd%failed()) return
-                if (joint_given(kb)) then
-                    call rd%fail(rd%where(i)//', columns 11-20 (JOINT card): body "'//trim(bnames(kb))// &
-                                 '" has a second JOINT card; expected one')
-                    return
-                end if
-                joint_given(kb) = .true.
                 do f = 1, 3
                     call rd%real(i, 1 + f, 'joint point in parent', 'm', v, -big_length, big_length)
                     cs%model%tree%joint_parent(f, kb) = v
@@ -503,7 +574,7 @@ contains
                     cs%model%tree%joint_child(f, kb) = v
                 end do
             case ('LOCK')
-                call lock_card(rd, i, bnames, cs)
+                call lock_card(rd, i, bnames, cs, bmap%locked_by)
             case ('NEUTRAL')
                 kb = body_ref(rd, i, 1, 'body', bnames, .false.)
                 m = coord_ref(rd, i, 2)
@@ -649,6 +720,9 @@ contains
             if (rd%failed()) return
             if (s == 'SAGITTAL') then
                 call lock_sagittal(cs%model%tree)
+                do f = 2, 6, 2
+                    where (bmap%locked_by(f, :) == 0) bmap%locked_by(f, :) = cards(ic)%first
+                end do
                 call add_note('SCENE SAGITTAL: TY, RX, RZ OF EVERY BODY LOCKED AT NEUTRAL')
             end if
         end if
@@ -701,11 +775,12 @@ contains
     end subroutine scene_cards
 
     !> LOCK body|ALL coordinate ...: lock coordinates at their neutral value.
-    subroutine lock_card(rd, i, bnames, cs)
+    subroutine lock_card(rd, i, bnames, cs, locked_by)
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i
         character(len=10), intent(in) :: bnames(:)
         type(case_t), intent(inout) :: cs
+        integer, intent(inout) :: locked_by(:, :)    !! (coordinate, body): the card that locked it first
         character(len=10) :: s
         integer :: kb, f, m, nset
         call rd%name(i, 1, 'body', s)
@@ -719,8 +794,10 @@ contains
             if (rd%failed()) return
             if (kb == 0) then
                 cs%model%tree%active(m, :) = .false.
+                where (locked_by(m, :) == 0) locked_by(m, :) = i
             else
                 cs%model%tree%active(m, kb) = .false.
+                if (locked_by(m, kb) == 0) locked_by(m, kb) = i
             end if
             nset = nset + 1
         end do
@@ -747,11 +824,6 @@ contains
             tabs(nt)%line = i
             call rd%name(i, 1, 'table name', tabs(nt)%name)
             if (rd%failed()) return
-            if (any(tabs(1:nt - 1)%name == tabs(nt)%name)) then
-                call rd%fail(rd%context(i, 1, 'table name')//': table "'// &
-                             trim(tabs(nt)%name)//'" is defined twice; expected a new name')
-                return
-            end if
             call rd%int(i, 2, 'number of points', npts, 1, max_table_points)
             call rd%real(i, 3, 'time scale', 's per unit', tscale, 1.0e-9_wp, 1.0e3_wp, default=one)
             call rd%real(i, 4, 'value scale', 'per unit', yscale, -1.0e9_wp, 1.0e9_wp, default=one)
@@ -856,12 +928,10 @@ contains
         real(wp) :: v, vd, fac, amp, freq, phase
         character(len=10) :: s
         character(len=100) :: note
-        logical, allocatable :: seen(:)
 
-        allocate (cs%x0(cs%model%tree%ndof), cs%xd0(cs%model%tree%ndof), seen(cs%model%tree%ndof))
+        allocate (cs%x0(cs%model%tree%ndof), cs%xd0(cs%model%tree%ndof))
         cs%x0 = neutral_coordinates(cs%model)
         cs%xd0 = zero
-        seen = .false.
         ndrop = 0
         do k = 1, size(cards)
             i = cards(k)%first
@@ -874,7 +944,7 @@ contains
                                  default=cs%model%tree%q_ref(m, kb)/unit_factor(m))
                     call rd%real(i, 4, 'initial rate', unit_of(m)//'/s', vd, -1.0e5_wp, 1.0e5_wp, default=zero)
                     if (abs(v*unit_factor(m) - cs%model%tree%q_ref(m, kb)) > 1.0e-12_wp .or. vd /= zero) then
-                        call locked_error(rd, i, bnames, k_old(rd, i, bnames), m)
+                        call locked_error(rd, i, bnames, bmap, k_old(rd, i, bnames), m)
                         return
                     end if
                     ndrop = ndrop + 1
@@ -896,18 +966,12 @@ contains
                                                       default=v)
                     if (rd%failed()) return
                     if (s /= 'CONSTANT' .or. abs(v*unit_factor(m) - cs%model%tree%q_ref(m, kb)) > 1.0e-12_wp) then
-                        call locked_error(rd, i, bnames, k_old(rd, i, bnames), m)
+                        call locked_error(rd, i, bnames, bmap, k_old(rd, i, bnames), m)
                         return
                     end if
                     ndrop = ndrop + 1
                     cycle
                 end if
-                if (seen(j)) then
-                    call rd%fail(rd%where(i)//' (PRESCRIB card): coordinate '//trim(bnames(kb))//'.'// &
-                                 coord_names(m)//' is prescribed twice; expected one PRESCRIB card')
-                    return
-                end if
-                seen(j) = .true.
                 fac = unit_factor(m)
                 call rd%name(i, 3, 'kind', s)
                 if (rd%failed()) return
@@ -970,12 +1034,19 @@ contains
         k = body_ref(rd, i, 1, 'body', bnames, .false.)
     end function k_old
 
-    subroutine locked_error(rd, i, bnames, kold, m)
+    !> Error: card i addresses coordinate m of deck body kold, which a LOCK
+    !! or SCENE card locked (named with its location).
+    subroutine locked_error(rd, i, bnames, bmap, kold, m)
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i, kold, m
         character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        character(len=:), allocatable :: by
+        by = ' (LOCK or SCENE card)'
+        if (bmap%locked_by(m, kold) > 0) by = ' by the '//trim(rd%key(bmap%locked_by(m, kold)))//' card at '// &
+                                             rd%where(bmap%locked_by(m, kold))
         call rd%fail(rd%context(i, 2, 'coordinate')//': '//trim(bnames(kold))//'.'//coord_names(m)// &
-                     ' is locked (LOCK or SCENE card); expected an active coordinate, or the neutral value')
+                     ' is locked'//by//'; expected an active coordinate, or the neutral value')
     end subroutine locked_error
 
     !> Body (in the reduced tree) and coordinate of an INITIAL/PRESCRIB/LIMIT
@@ -1002,7 +1073,7 @@ contains
         end if
         kb = bmap%new(kold)
         j = cs%model%tree%dof_index(m, kb)
-        if (j == 0 .and. .not. allow_locked) call locked_error(rd, i, bnames, kold, m)
+        if (j == 0 .and. .not. allow_locked) call locked_error(rd, i, bnames, bmap, kold, m)
     end subroutine active_ref
 
     !> DISC, LIGAMENT, MUSCLE, LIMIT, SPRING, FAMILY cards. Elements are
@@ -1215,18 +1286,13 @@ contains
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
         type(activation_t) :: ah
-        integer :: k, i, k2
+        integer :: k, i
         do k = 1, size(cards)
             if (cards(k)%key /= 'ACTIVATE') cycle
             i = cards(k)%first
             ah = activation_t()
             call rd%name(i, 1, 'history name', ah%name)
             if (rd%failed()) return
-            if (any([(cs%model%activations(k2)%name == ah%name, k2=1, size(cs%model%activations))])) then
-                call rd%fail(rd%context(i, 1, 'history name')//': activation history "'//trim(ah%name)// &
-                             '" is defined twice; expected a new name')
-                return
-            end if
             call rd%real(i, 2, 'pre-activation u0', '-', ah%u0, zero, one)
             call rd%real(i, 3, 'reflex activation u1', '-', ah%u1, zero, one)
             if (rd%is_blank(i, 4)) then

@@ -14,21 +14,24 @@
 module hn_progress
     use, intrinsic :: iso_fortran_env, only: error_unit
     use hn_kinds, only: wp, zero, msglen, i8
-    use hn_status, only: stat_ok, stat_step_failed
+    use hn_status, only: stat_ok, stat_step_failed, stat_bad_input
     use hn_posix, only: is_terminal
-    use hn_dynamics, only: model_ode_t
+    use hn_dynamics, only: model_ode_t, dyn_workspace_t, dynamics_setup, dynamics_evaluate
+    use hn_case, only: case_t
+    use hn_sorting, only: sort_index
     use hn_integrators, only: spectral_radius
     use hn_tree, only: dof_label
     implicit none
     private
 
-    public :: progress_t, limit_diagnosis
+    public :: progress_t, limit_diagnosis, fixed_steps, run_budget
 
     integer, parameter, public :: progress_off = 0, progress_auto = 1, progress_on = 2
 
     real(wp), parameter :: first_after = 2.0_wp     !! automatic progress only for runs longer than this [s wall]
     real(wp), parameter :: tty_every = 0.5_wp       !! terminal refresh [s wall]
     real(wp), parameter :: log_every = 5.0_wp       !! one line this often when not a terminal [s wall]
+    real(wp), parameter :: many_steps = 1.0e6_wp    !! a fixed-step run of more steps is named before it starts
 
     !> Progress display and run limits of one run.
     type :: progress_t
@@ -161,6 +164,87 @@ contains
         end if
         me%printed = .false.
     end subroutine progress_finish
+
+    !> Steps a fixed-step method (RK4, ABM4) takes for the case's run, as
+    !! a real number (it may exceed the integer range); 0 for the
+    !! error-controlled methods, whose step count is not known in advance.
+    pure real(wp) function fixed_steps(cs) result(n)
+        type(case_t), intent(in) :: cs   !! the case (CONTROL card: span, step, integrator)
+        n = zero
+        if (cs%integrator /= 'RK4' .and. cs%integrator /= 'ABM4') return
+        n = real(ceiling((cs%t_end - cs%t_start)/cs%h*(1 - 1.0e-12_wp), i8), wp)
+    end function fixed_steps
+
+    !> A run that cannot finish, named before it starts: a fixed-step run
+    !! of more steps than the step limit (RUNLIMIT card or --max-steps) is
+    !! refused (stat_bad_input, located at the CONTROL card's step);
+    !! one of more than 1E6 steps gets a warning with the step and
+    !! evaluation count and the wall time they take at the cost of one
+    !! dynamics evaluation measured now, in this build, on this machine.
+    subroutine run_budget(cs, stat, errmsg, warning)
+        type(case_t), intent(in) :: cs                 !! the case as it will run (limits from the command line included)
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input beyond the step limit
+        character(len=msglen), intent(out) :: errmsg   !! the refusal, located at the CONTROL card
+        character(len=msglen), intent(out) :: warning  !! '' or the warning of a long fixed-step run
+        real(wp) :: n, evals, t_eval, wall
+        character(len=200) :: buf
+        stat = stat_ok
+        errmsg = ''
+        warning = ''
+        n = fixed_steps(cs)
+        if (n <= zero) return
+        if (cs%step_limit > 0 .and. n > cs%step_limit) then
+            stat = stat_bad_input
+            write (buf, '(a,es9.2,a,i0,a,es9.2,a)') ' takes ', n, ' fixed steps for the run, more than its step '// &
+                'limit of ', cs%step_limit, ' (RUNLIMIT card or --max-steps); expected a step of at least ', &
+                (cs%t_end - cs%t_start)/cs%step_limit, ' s, a higher step limit, or an error-controlled method'
+            errmsg = trim(cs%control_at)//': '//trim(cs%integrator)//trim(buf)
+            return
+        end if
+        if (n <= many_steps) return
+        evals = n*merge(4, 2, cs%integrator == 'RK4')      ! RK4: 4 per step; ABM4: PECE, 2 per step
+        t_eval = evaluation_seconds(cs)
+        wall = evals*t_eval
+        write (buf, '(a,es9.2,a,es9.2,a,f0.1,a)') ' takes ', n, ' fixed steps and ', evals, &
+            ' dynamics evaluations for the run: about '//duration(wall)//' of wall time at the ', t_eval*1.0e6_wp, &
+            ' us per evaluation measured now'
+        warning = trim(cs%control_at)//': '//trim(cs%integrator)//trim(buf)
+        if (cs%wall_limit > zero .and. wall > cs%wall_limit) then
+            warning = trim(warning)//'; its wall-time limit of '//duration(cs%wall_limit)//' stops it first'
+        else
+            warning = trim(warning)//'; expected at most 1E6 steps: a longer step, an error-controlled '// &
+                      'method (ROS34PW2), or a RUNLIMIT card'
+        end if
+    end subroutine run_budget
+
+    !> Wall time [s] of one dynamics evaluation of the case's model at its
+    !! initial state: the median of 15 rounds of a few evaluations.
+    function evaluation_seconds(cs) result(t_eval)
+        type(case_t), intent(in) :: cs
+        real(wp) :: t_eval
+        integer, parameter :: rounds = 15, per_round = 4
+        type(dyn_workspace_t) :: ws
+        real(wp), allocatable :: xf(:), xdf(:), xddf(:)
+        real(wp) :: times(rounds)
+        integer(i8) :: c0, c1, rate
+        integer :: r, k, st
+        integer, allocatable :: idx(:)
+        character(len=msglen) :: m
+        call dynamics_setup(cs%model, ws)
+        xf = cs%x0(ws%ifree)
+        xdf = cs%xd0(ws%ifree)
+        allocate (xddf(ws%nfree))
+        do r = 1, rounds
+            call system_clock(c0, rate)
+            do k = 1, per_round
+                call dynamics_evaluate(cs%model, ws, cs%t_start, xf, xdf, xddf, st, m)
+            end do
+            call system_clock(c1)
+            times(r) = real(c1 - c0, wp)/real(rate, wp)/per_round
+        end do
+        idx = sort_index(times)
+        t_eval = times(idx((rounds + 1)/2))
+    end function evaluation_seconds
 
     !> "12 s", "3.5 min", "2.1 h", "4.0 days".
     function duration(s) result(txt)
