@@ -191,6 +191,10 @@ contains
         integer :: n
         call read_calibration(trim(deck), trim(source), cal, stat, msg)
         call stop_on_deck_error('calibration ')
+        if (check_only) then
+            write (error_unit, '(a)') 'hhneck: calibration deck is valid: '//trim(cal%title)
+            stop 0, quiet=.true.
+        end if
         allocate (v(size(cal%sw(1)%params)))
         call calibrate(cal, output_unit, v, j, n)
         write (error_unit, '(a,i0,a,f8.5)') 'hhneck: calibration finished after ', n, ' evaluations; objective ', j
