@@ -20,6 +20,10 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare_nbdl import stop  # noqa: E402
+from deck_fields import CardError, field_text, write_deck  # noqa: E402
+
 FITS = [("15 g alone", "15g"), ("12 g alone", "12g"), ("both", "both")]
 
 
@@ -32,15 +36,28 @@ def params(listing):
     return out
 
 
-def score(sev, values):
+def score_deck(sev, values):
+    """The calibration deck of `sev` scoring the parameter values (text)
+    instead of fitting (FIT NELDER 0, VALUES cards); CardError when a value
+    is wider than its field."""
     deck = open("input/calibrate_nbdl%s.inp" % sev).read().splitlines()
     # scored as a run, not fitted: the PASSIVE condition is the fit's, so it is left out
     deck = [("FIT       NELDER    0         2         1" if l.startswith("FIT") else l) for l in deck
             if not l.startswith("PASSIVE")]
     for i in range(0, len(values), 7):
-        deck.append("VALUES    " + "".join("%-10s" % v for v in values[i:i + 7]))
+        deck.append("VALUES    " + "".join(field_text(v) for v in values[i:i + 7]))
+    return deck
+
+
+def score(sev, values):
+    """The parameter values scored on the calibration of `sev` (score_deck(),
+    run from a temporary file): (mean rating, head peaks within 1 SD, head
+    peaks, peak times within 10 ms, largest real part at rest)."""
     path = os.path.join(tempfile.mkdtemp(), "score.inp")
-    open(path, "w").write("\n".join(deck) + "\n")
+    try:
+        write_deck(path, score_deck(sev, values))
+    except CardError as e:
+        stop("the calibration deck of %s: %s" % (sev, e))
     with open(path) as f:
         out = subprocess.run(["fpm", "run", "--profile", "release", "--", "--calibrate"], stdin=f,
                              capture_output=True, text=True, check=True).stdout

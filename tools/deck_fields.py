@@ -1,6 +1,79 @@
-"""Fixed-format deck fields for the tools that edit copies of the decks
-(docs/deck-format.md: columns 1-10 the card name, field Fn columns
-10n+1 .. 10n+10)."""
+"""Fixed-format deck cards for the tools that write decks or edit copies of
+them (docs/deck-format.md: 80-column card images; columns 1-10 the card
+name, field Fn columns 10n+1 .. 10n+10; a comment card starts with `*`).
+
+Every deck a tool writes goes through check_cards() (write_decks() does it
+for decks written to files): a card beyond column 80 is refused, since the
+program refuses it too. Comments that hold text of any length (a path, a
+name) are made with comment_cards(), which wraps them over continuation
+comment cards instead of losing any of the text."""
+
+COLUMNS = 80     # the width of a card image
+FIELD = 10       # the width of a field
+
+
+class CardError(ValueError):
+    """A card that does not fit its columns (the deck is not written)."""
+
+
+def comment_cards(text):
+    """Comment cards '* ' + text, within 80 columns: one card when the text
+    fits, else as many as needed, each card after the first continuing the
+    text of the one above. A card ends before a blank or after a '/' (a path
+    is broken between its directories), failing that at column 80 exactly; no
+    character is dropped, so ''.join(card[2:] for card in cards) == text."""
+    width = COLUMNS - 2
+    cards = []
+    while len(text) > width:
+        k = _break(text, width)
+        cards.append("* " + text[:k])
+        text = text[k:]
+    return cards + ["* " + text]
+
+
+def _break(text, width):
+    """Where comment_cards() ends a card on `text` (longer than `width`):
+    the most characters, at most width, that end before a blank (the first of
+    a run of blanks) or after a '/' and hold more than blanks; width when no
+    such place exists."""
+    for k in range(width, 0, -1):
+        at_blank = text[k] == " " and text[k - 1] != " "
+        if (at_blank or text[k - 1] == "/") and text[:k].strip():
+            return k
+    return width
+
+
+def check_cards(lines, deck="the deck"):
+    """`lines` (card images, one per item) unchanged when each is within 80
+    columns; else CardError naming the deck, the first longer line (numbered
+    from 1), its card and its length. A data card cannot be wrapped: the
+    writer must give it shorter contents (a shorter path or name)."""
+    for n, line in enumerate(lines, 1):
+        if len(line) > COLUMNS:
+            kind = "comment card" if line.startswith("*") else "%s card" % (field(line, 0) or "continuation")
+            raise CardError("%s, line %d: the %s has %d columns, a card at most %d (docs/deck-format.md): %s"
+                            % (deck, n, kind, len(line), COLUMNS, line))
+    return lines
+
+
+def write_decks(decks):
+    """Write each deck of `decks` ({path: card images, a list of lines or one
+    text}) to its path, one card a line, after check_cards() on all of them:
+    when a card of any of them passes column 80, none is written
+    (CardError)."""
+    texts = {}
+    for path, lines in decks.items():
+        if isinstance(lines, str):
+            lines = lines.splitlines()
+        texts[path] = "\n".join(check_cards(lines, path)) + "\n"
+    for path, text in texts.items():
+        with open(path, "w") as f:
+            f.write(text)
+
+
+def write_deck(path, lines):
+    """Write one deck (write_decks())."""
+    write_decks({path: lines})
 
 
 def field(line, n):
@@ -8,10 +81,22 @@ def field(line, n):
     return line[10 * n:10 * n + 10].strip()
 
 
+def field_text(value, where="a field"):
+    """`value` (text, or a number as %s prints it) as a field: left-aligned
+    in its 10 columns; CardError naming `where` when it is wider (it would
+    shift the fields after it)."""
+    value = str(value)
+    if len(value) > FIELD:
+        raise CardError("%r is wider than the %d columns of %s" % (value, FIELD, where))
+    return "%-10s" % value
+
+
 def set_field(line, n, value):
-    """The card image with field n replaced by `value` (text, left-aligned)."""
+    """The card image with field n replaced by `value` (text, left-aligned;
+    field_text())."""
+    text = field_text(value, "field F%d of %s" % (n, line.rstrip()))
     line = line.ljust(80)
-    return (line[:10 * n] + "%-10s" % value + line[10 * n + 10:]).rstrip()
+    return (line[:10 * n] + text + line[10 * n + 10:]).rstrip()
 
 
 def is_card(line, card, item=None):

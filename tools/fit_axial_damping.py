@@ -29,8 +29,9 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare_nbdl import stop  # noqa: E402
 from cross_severity import params, rating_text  # noqa: E402
-from deck_fields import field, is_card, set_field  # noqa: E402
+from deck_fields import CardError, field, is_card, set_field, write_decks  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 CALIBRATION = "input/calibrate_nbdl.inp"
@@ -67,6 +68,28 @@ def variant(deck, cases, hold_tension, passive):
             continue
         out.append(l)
     return "\n".join(out) + "\n"
+
+
+def fit_decks(model, tmp):
+    """Write the calibration decks of FITS in `tmp` (fitK.inp, with the
+    linear model deck and the case decks that include it): [(label, path
+    without .inp)]. CardError, and nothing written, when a card would pass
+    column 80 (a CASE or INCLUDE card, with a long `tmp` path)."""
+    decks = {os.path.join(tmp, "linear.inp"): linear_model(model)}
+    linear, shipped = {}, {}
+    for sev in ("15g", "12g"):
+        case = "input/nbdl%s.inp" % sev
+        path = os.path.join(tmp, "nbdl%s.inp" % sev)
+        decks[path] = open(case).read().replace(MODEL, os.path.join(tmp, "linear.inp"))
+        linear[case], shipped[case] = path, case
+    deck = open(CALIBRATION).read()
+    runs = []
+    for k, (label, hold, passive) in enumerate(FITS):
+        path = os.path.join(tmp, "fit%d" % k)
+        decks[path + ".inp"] = variant(deck, linear if hold else shipped, hold, passive)
+        runs.append((label, path))
+    write_decks(decks)
+    return runs
 
 
 def summary(path, c0):
@@ -107,20 +130,10 @@ def main():
                          text=True, check=True).stdout.split()[-1]
     model = open(MODEL).read()
     c0 = axial_damping(model)
-    tmp = tempfile.mkdtemp()
-    open(os.path.join(tmp, "linear.inp"), "w").write(linear_model(model))
-    linear, shipped = {}, {}
-    for sev in ("15g", "12g"):
-        case = "input/nbdl%s.inp" % sev
-        path = os.path.join(tmp, "nbdl%s.inp" % sev)
-        open(path, "w").write(open(case).read().replace(MODEL, os.path.join(tmp, "linear.inp")))
-        linear[case], shipped[case] = path, case
-    deck = open(CALIBRATION).read()
-    runs = []
-    for k, (label, hold, passive) in enumerate(FITS):
-        path = os.path.join(tmp, "fit%d" % k)
-        open(path + ".inp", "w").write(variant(deck, linear if hold else shipped, hold, passive))
-        runs.append((label, path))
+    try:
+        runs = fit_decks(model, tempfile.mkdtemp())
+    except CardError as e:
+        stop("%s (a shorter TMPDIR fits)" % e)
     print("Disc axial damping (A/h) d2 of the model deck before its SCALE cards, every disc: %s N s/m.\n"
           % span(min(c0), max(c0)))
     print("| fit | J | axial damping (N s/m) | retardation time of shear, bending, torsion (ms) |"

@@ -11,7 +11,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from deck_fields import held  # noqa: E402
+from deck_fields import CardError, held, write_decks  # noqa: E402
 
 def fmt(v):
     s = "%.6g" % v
@@ -44,6 +44,7 @@ CASES = {
     "6-5": ("triangle, peak 2.5 kN, rise 2 ms, fall 4 ms (stiff face)", triangle(5.0, 2.0, 4.0, 2500.0)),
 }
 
+DECKS = {}   # path: card images, written together at the end
 for case, (pulse, pts) in CASES.items():
     L = [
         "* SEATED CADAVER, FRONTAL PENDULUM IMPACT TO THE FOREHEAD, CASE %s" % case,
@@ -69,10 +70,7 @@ for case, (pulse, pts) in CASES.items():
         "*         point of application, head frame from its mass centre (m)",
         "          0.095     0.0       0.030",
     ]
-    for line in L:
-        assert len(line) <= 80, line
-    with open("input/case%s.inp" % case, "w") as f:
-        f.write("\n".join(L) + "\n")
+    DECKS["input/case%s.inp" % case] = L
 
 # ---------------------------------------------------------------- Hybrid III
 G = 9.80665
@@ -108,7 +106,8 @@ L = [
 L += [held("T1", q) for q in ("TY", "TZ", "RX", "RY", "RZ")]
 L += ["* pendulum acceleration [g] against time [ms] (a deceleration: negative)"]
 L += table("PENDULUM", [(t, a) for (t, a) in pend], vscale="-9.80665")
-for line in L:
-    assert len(line) <= 80, line
-with open("input/hybrid3_flexion.inp", "w") as f:
-    f.write("\n".join(L) + "\n")
+DECKS["input/hybrid3_flexion.inp"] = L
+try:
+    write_decks(DECKS)   # none written if a card passes column 80
+except CardError as e:
+    sys.exit("make_case_decks.py: %s" % e)

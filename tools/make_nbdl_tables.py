@@ -39,7 +39,10 @@ the deck holds that coordinate (PRESCRIB ... CONSTANT, printed); the tables
 are written every 1 ms over the runs' span whatever their sampling step. Runs
 whose pulse starts more than 10 ms away from the shipped runs' (their mean T1
 x-acceleration first below -1 g at about 52 ms) get a warning that says how
-far to shift their time_ms.
+far to shift their time_ms. The comments that name DIR and the deck go on
+continuation comment cards when they pass column 80 (tools/deck_fields.py);
+an INCLUDE card (--into) or H5FILE card (--name) that would pass it is
+refused, and neither deck is written.
 """
 import os
 import re
@@ -50,7 +53,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import compare_nbdl  # noqa: E402
 from compare_nbdl import cfc, has_channel, peak, runs  # noqa: E402
-from deck_fields import hold  # noqa: E402
+from deck_fields import CardError, check_cards, comment_cards, hold, write_decks  # noqa: E402
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
@@ -124,12 +127,11 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
     """The lines of input/nbdlSEV_t1.inp, the z-acceleration filtered CFC
     z_cfc, the x-acceleration CFC x_cfc (the shipped tables: 60)."""
     c = CASES[sev]
-    lines = [
-        "* T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (label(sev), c["runs"]),
+    lines = comment_cards("T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (label(sev), c["runs"])) + [
         "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
         "* (the z-acceleration CFC %d: its runs are out of phase above about" % z_cfc,
         "* 20 Hz), mean over the runs, every 1 ms. Written by",
-        "* tools/make_nbdl_tables.py from reference/nbdl_%s (Ewing & Thomas" % sev,
+    ] + comment_cards("tools/make_nbdl_tables.py from reference/nbdl_%s (Ewing & Thomas" % sev) + [
         "* 1972, NHTSA Biomechanics Test Database, via IMMC-UWaterloo/ARCGen).",
         "* Time in ms (scale 0.001 s).",
     ]
@@ -143,9 +145,7 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
         dt = (t[1] - t[0]) * 1e-3
         mean = np.mean([cfc(r, cls, dt) for r in data], axis=0)
         lines += table(name, t, mean, scale)
-    for line in lines:
-        assert len(line) <= 80, line
-    return lines
+    return check_cards(lines, "the T1 tables of %s" % label(sev))
 
 
 def new_case(folder, name, rot_unit=None, into="input"):
@@ -177,14 +177,13 @@ def new_case(folder, name, rot_unit=None, into="input"):
                        rot_scale="57.2958" if rot_unit == "rad" else "1.0",
                        rot_unit="rad, scaled to deg" if rot_unit == "rad" else "deg")
     tables = os.path.join(into, name + "_t1.inp")
-    with open(tables, "w") as f:
-        f.write("\n".join(t1_tables(name)) + "\n")
     deck = open(os.path.join("input", "nbdl12g.inp")).read().splitlines()
-    out = ["* %s: the 54-DOF head/neck model with T1 driven by the mean of the %d runs" % (name, len(cols)),
-           "* in %s (T1 tables by tools/make_nbdl_tables.py --data)." % folder,
-           "* Compare: python3 tools/compare_nbdl.py --case X --out OUT",
-           "*   --data X=%s" % folder,
-           "*   --deck X=%s" % os.path.join(into, name + ".inp")]
+    out = (comment_cards("%s: the 54-DOF head/neck model with T1 driven by the mean of the %d runs"
+                         % (name, len(cols)))
+           + comment_cards("in %s (T1 tables by tools/make_nbdl_tables.py --data)." % folder)
+           + ["* Compare: python3 tools/compare_nbdl.py --case X --out OUT"]
+           + comment_cards("  --data X=%s" % folder)
+           + comment_cards("  --deck X=%s" % os.path.join(into, name + ".inp")))
     for line in deck:
         if line.startswith("*") and not any(l.startswith("TITLE") for l in out):
             continue                      # the 12 g deck's own header
@@ -193,8 +192,13 @@ def new_case(folder, name, rot_unit=None, into="input"):
         elif line.startswith("H5FILE"):
             line = "%-10s%s.h5" % ("H5FILE", name)
         out.append(line.replace("input/nbdl12g_t1.inp", tables))
-    with open(os.path.join(into, name + ".inp"), "w") as f:
-        f.write("\n".join(hold(out, "T1", held)) + "\n")
+    try:
+        # both checked before either is written: a card beyond column 80 (the
+        # INCLUDE card of a long --into path, the H5FILE card of a long name)
+        # leaves no file behind
+        write_decks({tables: t1_tables(name), os.path.join(into, name + ".inp"): hold(out, "T1", held)})
+    except CardError as e:
+        compare_nbdl.stop("%s; not written (a shorter --into directory or --name fits)" % e)
     return tables
 
 
@@ -207,11 +211,9 @@ def main():
             sys.exit("usage: make_nbdl_tables.py [--data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]]")
         new_case(opts["--data"], opts["--name"], opts.get("--rot-unit"), opts.get("--into", "input"))
         return
-    for sev in CASES:
-        with open(os.path.join("input", "nbdl%s_t1.inp" % sev), "w") as f:
-            f.write("\n".join(t1_tables(sev)) + "\n")
-    with open(os.path.join("input", "nbdl8g_t1.inp"), "w") as f:
-        f.write("\n".join(t1_tables_8g()) + "\n")
+    decks = {os.path.join("input", "nbdl%s_t1.inp" % sev): t1_tables(sev) for sev in CASES}
+    decks[os.path.join("input", "nbdl8g_t1.inp")] = t1_tables_8g()
+    write_decks(decks)
 
 
 if __name__ == "__main__":

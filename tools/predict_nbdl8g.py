@@ -31,8 +31,8 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import cfc, peak, run_deck, s3  # noqa: E402
-from deck_fields import field, is_card, set_field  # noqa: E402
+from compare_nbdl import cfc, peak, run_deck, s3, stop  # noqa: E402
+from deck_fields import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
 
 SEVERITIES = ("8g", "12g", "15g")
 # (row label of reference-data.md section 3, model channel, sign of the peak)
@@ -105,6 +105,17 @@ def with_values(model, values, bind):
     return "\n".join(lines) + "\n"
 
 
+def fit_deck(model, listing, bind, inc):
+    """The 8 g case deck for standard input with the parameters of the
+    calibration listing set on the model deck text `model` (bindings()),
+    that copy written to `inc` and named on its INCLUDE card; CardError when
+    a card would pass column 80 (that INCLUDE card, with a long path)."""
+    deck = open("input/nbdl8g.inp").read().replace("input/head_neck_54dof.inp", inc)
+    check_cards(deck.splitlines(), "the 8 g case deck of %s" % listing)
+    write_deck(inc, with_values(model, fitted_values(listing), bind))
+    return deck
+
+
 def fits_table(fits, vol):
     """One row of 8 g peaks per calibration listing (label, path)."""
     exe = subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"], capture_output=True, text=True,
@@ -115,9 +126,10 @@ def fits_table(fits, vol):
     rows = ["| fitted on | " + " | ".join(r[0].replace("peak ", "") for r in ROWS[1:]) + " | head peaks in 1 SD |",
             "|---" * (len(ROWS) + 1) + "|"]
     for label, listing in fits:
-        inc = os.path.join(tmp, "model_%d.inp" % len(rows))
-        open(inc, "w").write(with_values(model, fitted_values(listing), bind))
-        deck = open("input/nbdl8g.inp").read().replace("input/head_neck_54dof.inp", inc)
+        try:
+            deck = fit_deck(model, listing, bind, os.path.join(tmp, "model_%d.inp" % len(rows)))
+        except CardError as e:
+            stop("%s (a shorter TMPDIR fits)" % e)
         h5 = os.path.join(tmp, "r%d.h5" % len(rows))
         subprocess.run([exe, "-I", os.getcwd(), "--h5", h5], input=deck, text=True, capture_output=True, check=True)
         pk = model_peaks(h5)

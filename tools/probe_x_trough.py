@@ -47,9 +47,9 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import cfc, runs, volunteer_channels, peak  # noqa: E402
+from compare_nbdl import cfc, runs, volunteer_channels, peak, stop  # noqa: E402
 import make_nbdl_tables  # noqa: E402
-from deck_fields import field, held, is_card, set_field  # noqa: E402
+from deck_fields import CardError, check_cards, field, held, is_card, set_field, write_deck  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 HISTORIES = ("FLEX", "EXT")  # the model deck's ACTIVATE cards
@@ -114,7 +114,7 @@ def joint_point(body, x, z):
 
 def t1_drive(sev, deck, path, lines):
     """The case deck reading its T1 tables from `path`, written with `lines`."""
-    open(path, "w").write("\n".join(lines) + "\n")
+    write_deck(path, lines)
     return deck.replace("input/nbdl%s_t1.inp" % sev, path)
 
 
@@ -252,6 +252,20 @@ PROBES = [
 ]
 
 
+def probe_deck(k, sev, model, edit_model, edit_deck, tmp):
+    """The case deck of probe k (PROBES) for standard input, its model deck
+    and any T1 tables written in `tmp` and named on its INCLUDE cards;
+    CardError when a card would pass column 80 (an INCLUDE card, with a long
+    `tmp` path)."""
+    inc = os.path.join(tmp, "model%d.inp" % k)
+    write_deck(inc, edit_model(model) if edit_model else model)
+    deck = open("input/nbdl%s.inp" % sev).read().replace(MODEL, inc)
+    if edit_deck:
+        deck = edit_deck(deck, sev, tmp)
+    check_cards(deck.splitlines(), "the case deck of probe %d" % k)
+    return deck
+
+
 def x_accelerations(sev, h5):
     """Head and T1 x-acceleration (g, CFC 60) on the volunteers' times:
     (t, volunteers' mean head, their mean T1, model head, model T1)."""
@@ -313,11 +327,10 @@ def main():
           " head angular acc. at 110 ms (rad/s2) |" % sev.replace("g", " g"))
     print("|---|---|---|---|---|---|")
     for k, (label, edit_model, edit_deck) in enumerate(PROBES):
-        inc = os.path.join(tmp, "model%d.inp" % k)
-        open(inc, "w").write(edit_model(model) if edit_model else model)
-        deck = open("input/nbdl%s.inp" % sev).read().replace(MODEL, inc)
-        if edit_deck:
-            deck = edit_deck(deck, sev, tmp)
+        try:
+            deck = probe_deck(k, sev, model, edit_model, edit_deck, tmp)
+        except CardError as e:
+            stop("%s (a shorter TMPDIR fits)" % e)
         h5 = os.path.join(tmp, "r%d.h5" % k)
         r = subprocess.run([exe, "-I", os.getcwd(), "--h5", h5], input=deck, capture_output=True, text=True)
         if r.returncode:

@@ -18,9 +18,9 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import compare, s3  # noqa: E402
+from compare_nbdl import compare, s3, stop  # noqa: E402
 from make_nbdl_tables import t1_tables  # noqa: E402
-from deck_fields import hold, is_card  # noqa: E402
+from deck_fields import CardError, hold, is_card, write_decks  # noqa: E402
 
 # (label, T1 coordinates held instead of driven, CFC class of the z table or None as shipped)
 VARIANTS = [
@@ -32,14 +32,19 @@ VARIANTS = [
 
 
 def deck_variant(sev, held, z_cfc, path):
+    """The case deck of `sev` at `path` with T1's `held` coordinates held
+    and, when z_cfc is given, its T1 tables (z filtered CFC z_cfc) at
+    path + ".t1", named on its INCLUDE card; CardError, and nothing written,
+    when a card would pass column 80 (that INCLUDE card, with a long path)."""
     out = open("input/nbdl%s.inp" % sev).read().splitlines()
+    decks = {}
     if z_cfc is not None:
         table = path + ".t1"
-        with open(table, "w") as f:
-            f.write("\n".join(t1_tables(sev, z_cfc)) + "\n")
+        decks[table] = t1_tables(sev, z_cfc)
         out = [line.replace("input/nbdl%s_t1.inp" % sev, table) if is_card(line, "INCLUDE") else line
                for line in out]
-    open(path, "w").write("\n".join(hold(out, "T1", held)) + "\n")
+    decks[path] = hold(out, "T1", held)
+    write_decks(decks)
 
 
 def sd(z):
@@ -58,7 +63,10 @@ def main():
     for sev in ("15g", "12g"):
         for label, held, z_cfc in variants:
             deck = os.path.join(tmp, "d.inp")
-            deck_variant(sev, held, z_cfc, deck)
+            try:
+                deck_variant(sev, held, z_cfc, deck)
+            except CardError as e:
+                stop("%s (a shorter TMPDIR fits)" % e)
             h5 = os.path.join(tmp, "r.h5")
             with open(deck) as f:
                 subprocess.run(["fpm", "run", "--profile", "release", "--", "--h5", h5], stdin=f,

@@ -115,4 +115,48 @@ python3 tools/compare_nbdl.py --data b="$tmp/broken" --case b --h5 b="$tmp/shipp
 rc=$?
 check "an empty value in a run: refused (exit $rc), naming the file" sh -c \
     "[ $rc -ne 0 ] && grep -q 'Head_ZAccel.csv: a run has an empty or non-numeric value' '$tmp/b2.err' && ! grep -q Traceback '$tmp/b2.err'"
+
+# A data folder path of more than 120 characters: the comments that name it
+# (or its last directory) go on continuation comment cards, every card within
+# 80 columns, nothing of the path lost, and the deck is valid. An --into
+# directory too long for the INCLUDE card, or a name too long for the H5FILE
+# card: refused, naming the line, and nothing written.
+long=$tmp/volunteer_runs_kept_in_a_deep_folder/of_the_sled_tests_at_twelve_g
+data=$long/the_runs_1607_to_1617_copied_from_the_shipped_twelve_g_set
+mkdir -p "$long"
+cp -r reference/nbdl_12g "$data"
+check "the data folder path has ${#data} characters (at least 120)" [ ${#data} -ge 120 ]
+python3 tools/make_nbdl_tables.py --data "$data" --name long12 --into "$tmp" 2> "$tmp/long.err"
+check "its decks written (exit $?)" [ $? -eq 0 ]
+check "every card of both decks within 80 columns" \
+    sh -c "[ -z \"\$(awk 'length > 80' '$tmp/long12.inp' '$tmp/long12_t1.inp')\" ]"
+"$HHNECK" --check < "$tmp/long12.inp" > "$tmp/long.check" 2>&1
+check "hhneck --check passes on the deck, with its T1 tables (exit $?)" [ $? -eq 0 ]
+check "the comments hold the whole path (deck: the runs, --data and --deck; tables: the runs' folder)" \
+    python3 - "$tmp/long12.inp" "$tmp/long12_t1.inp" "$data" "$tmp" <<'PY'
+import os
+import sys
+deck, tables = (open(f).read().splitlines() for f in sys.argv[1:3])
+data, into = sys.argv[3:5]
+text = lambda lines: "".join(l[2:] for l in lines if l.startswith("* "))
+def wrapped(lines, wanted):
+    """Each wanted text in the comment cards' text joined, and on no one card."""
+    return all(w in text(lines) and not any(w in l for l in lines) for w in wanted)
+sys.exit(0 if wrapped(deck, ["in %s (T1 tables" % data, "--data X=%s" % data])
+         and "--deck X=%s/long12.inp" % into in text(deck)
+         and wrapped(tables, ["runs of %s (n = 10)" % os.path.basename(data)]) else 1)
+PY
+check "its T1 tables equal the shipped 12 g ones" sh -c \
+    "grep -v '^\*' '$tmp/long12_t1.inp' | cmp -s - '$tmp/shipped12.txt'"
+python3 tools/make_nbdl_tables.py --data "$data" --name long12 --into "$long" 2> "$tmp/into.err"
+rc=$?
+check "an --into directory too long for the INCLUDE card: refused (exit $rc), naming the line, nothing written" sh -c \
+    "[ $rc -ne 0 ] && grep -q 'long12.inp, line [0-9]*: the INCLUDE card has [0-9]* columns' '$tmp/into.err' &&
+     ! grep -q Traceback '$tmp/into.err' && [ ! -e '$long/long12.inp' ] && [ ! -e '$long/long12_t1.inp' ]"
+name=runs_of_a_volunteer_series_with_a_name_long_enough_to_pass_column_80
+python3 tools/make_nbdl_tables.py --data "$data" --name "$name" --into "$tmp" 2> "$tmp/name.err"
+rc=$?
+check "a name too long for the H5FILE card: refused (exit $rc), naming the line, nothing written" sh -c \
+    "[ $rc -ne 0 ] && grep -q 'line [0-9]*: the H5FILE card has [0-9]* columns' '$tmp/name.err' &&
+     ! grep -q Traceback '$tmp/name.err' && [ ! -e '$tmp/$name.inp' ] && [ ! -e '$tmp/${name}_t1.inp' ]"
 finish

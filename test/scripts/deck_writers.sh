@@ -1,0 +1,269 @@
+#!/bin/sh
+# Every deck the tools write is a deck the program takes (issue 25): each card
+# within 80 columns, comment cards too (a long path in a comment goes on
+# continuation comment cards, tools/deck_fields.py), and `hhneck --check`
+# passes on it, with the tools' files under a directory path of more than 120
+# characters. A data card that a long path would push beyond column 80 (an
+# INCLUDE or CASE card naming a file there) is refused with a message naming
+# the line. The shipped decks are what their writers write
+# (make_head_neck_deck.py, make_case_decks.py, make_nbdl_tables.py).
+# make_nbdl_tables.py --data with a long data folder: new_nbdl_case.sh.
+. test/scripts/lib/checks.sh
+root=$(pwd)
+
+# within80 FILE...: no line of the files is longer than 80 characters
+within80() {
+    [ -z "$(awk 'length > 80 { print FILENAME ": line " FNR ": " length " columns" }' "$@" | tee /dev/stderr)" ]
+}
+
+# written FILE SHIPPED: FILE within 80 columns and the same as SHIPPED
+written() {
+    within80 "$1" && cmp "$1" "$2"
+}
+
+# valid DIR DECK: hhneck --check passes on DECK read from standard input in
+# the working directory DIR (where its relative INCLUDEs are found); its
+# message shown when it does not
+valid() {
+    (cd "$1" && "$HHNECK" --check < "$2") > "$tmp/check.out" 2>&1 || { cat "$tmp/check.out"; return 1; }
+}
+
+# The unit checks of the helper every writer uses.
+py_checks - <<'PY'
+import sys
+sys.path.insert(0, "tools")
+from deck_fields import CardError, check_cards, comment_cards, field_text, set_field
+
+def check(ok, what):
+    print(("PASS  " if ok else "FAIL  ") + what)
+
+def joined(cards):
+    return "".join(c[2:] for c in cards)
+
+path = "/" + "/".join("level%02d_of_the_folders" % k for k in range(9))
+path = (path + "/runs")[:200]
+cards = comment_cards(path)
+check(len(path) == 200 and len(cards) > 1 and all(len(c) <= 80 and c.startswith("* ") for c in cards)
+      and joined(cards) == path,
+      "comment_cards: a 200-character path on %d comment cards within 80 columns, joined the path again"
+      % len(cards))
+check(all(c.endswith("/") for c in cards[:-1]), "comment_cards: the path is broken after a '/'")
+flat = "x" * 200
+cards = comment_cards(flat)
+check([len(c) for c in cards] == [80, 80, 46] and joined(cards) == flat,
+      "comment_cards: a text without a blank or '/' broken at column 80 exactly")
+text = "the runs in %s (T1 tables by tools/make_nbdl_tables.py --data)." % path
+cards = comment_cards(text)
+check(all(len(c) <= 80 and not c.endswith(" ") for c in cards) and joined(cards) == text,
+      "comment_cards: a sentence around the path, no card ending in a blank, joined the sentence again")
+short = "Time in ms (scale 0.001 s)."
+check(comment_cards(short) == ["* " + short] and comment_cards("y" * 78) == ["* " + "y" * 78],
+      "comment_cards: a text that fits gives the one card '* ' + text")
+ok = ["TITLE     A", "*" + "z" * 79]
+check(check_cards(ok) is ok, "check_cards: cards of 80 columns pass")
+try:
+    check_cards(ok + ["INCLUDE   " + "/d" * 40], "deck.inp")
+    check(False, "check_cards: a card beyond column 80 refused")
+except ValueError as e:
+    check(isinstance(e, CardError) and "deck.inp, line 3: the INCLUDE card has 90 columns" in str(e),
+          "check_cards: a card of 90 columns refused, naming the deck, the line, the card and its length (%s)"
+          % str(e)[:60])
+try:
+    set_field("SCALE     SIGMA     MUSCLES   F0        1.0", 4, "1.23456e-05")
+    check(False, "set_field: a value wider than its field refused")
+except CardError as e:
+    check("field F4 of SCALE" in str(e) and field_text("1.2345e-05") == "1.2345e-05",
+          "set_field: a value of 11 characters refused (it would shift the fields after it); 10 fit")
+PY
+
+# a directory path of more than 120 characters
+long=$tmp/the_first_directory_level_with_a_long_name/the_second_directory_level_with_a_long_name
+long=$long/the_third_level_where_the_tools_write
+mkdir -p "$long/proj/input"
+check "the long directory path has ${#long} characters (at least 120)" [ ${#long} -ge 120 ]
+
+# The input/ writers run in a project directory under the long path: the
+# shipped decks again, each valid with the others it includes.
+ln -s "$root/reference" "$long/proj/reference"
+cp input/nbdl15g.inp input/nbdl12g.inp input/nbdl8g.inp "$long/proj/input/"
+(cd "$long/proj" && python3 "$root/tools/make_head_neck_deck.py" > input/head_neck_54dof.inp &&
+     python3 "$root/tools/make_case_decks.py" && python3 "$root/tools/make_nbdl_tables.py")
+check "make_head_neck_deck.py, make_case_decks.py and make_nbdl_tables.py run (exit $?)" [ $? -eq 0 ]
+for f in head_neck_54dof case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g_t1 nbdl12g_t1 nbdl8g_t1; do
+    check "input/$f.inp as written: within 80 columns, the shipped deck" written "$long/proj/input/$f.inp" "input/$f.inp"
+done
+for f in case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g nbdl12g nbdl8g; do
+    check "input/$f.inp with the written decks it includes: hhneck --check passes" valid "$long/proj" "input/$f.inp"
+done
+
+# make_head_neck_deck.py's other postures, and --fit with a listing under the
+# long path (the shipped values: the shipped deck)
+for opt in "--posture straight" "--posture seated-held" "--t1-slope 20 --lordosis 10"; do
+    # shellcheck disable=SC2086
+    python3 tools/make_head_neck_deck.py $opt > "$long/proj/input/head_neck_54dof.inp"
+    check "make_head_neck_deck.py $opt: within 80 columns" within80 "$long/proj/input/head_neck_54dof.inp"
+    check "make_head_neck_deck.py $opt: hhneck --check passes on case 6-2 with it" valid "$long/proj" input/case6-2.inp
+done
+# a calibration listing's PARAM lines, in the order of the calibration's
+# PARAM cards, with the values of the shipped model deck
+python3 - input/head_neck_54dof.inp input/calibrate_nbdl.inp "$long/fit listing.txt" <<'PY'
+import sys
+sys.path.insert(0, "tools")
+from deck_fields import field, is_card
+deck = open(sys.argv[1]).read().splitlines()
+par = {field(l, 1): field(l, 4) for l in deck if is_card(l, "SCALE")}
+for hist, s in (("FLEX", "F"), ("EXT", "E")):
+    a = [l for l in deck if is_card(l, "ACTIVATE", hist)][0]
+    par.update({"BRACE" + s: field(a, 2), "REFLEX" + s: field(a, 3), "DELAY" + s: field(a, 5)})
+names = [field(l, 1) for l in open(sys.argv[2]).read().splitlines() if is_card(l, "PARAM")]
+open(sys.argv[3], "w").write("".join("PARAM %-10s= %s\n" % (n, par[n]) for n in names))
+PY
+python3 tools/make_head_neck_deck.py --fit "$long/fit listing.txt" > "$long/proj/input/head_neck_54dof.inp"
+check "make_head_neck_deck.py --fit LISTING (shipped values): the shipped deck" \
+    cmp -s "$long/proj/input/head_neck_54dof.inp" input/head_neck_54dof.inp
+
+# The tools that write decks into a temporary directory to run them: valid
+# decks in a short directory; in the long one, valid where no card names a
+# file there, else refused with the line named (t1_drive_effect.py and
+# fit_axial_damping.py then write nothing).
+mkdir "$tmp/t1" "$long/t1"
+check "t1_drive_effect.py: every variant's deck and T1 tables within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$tmp/t1" "$long/t1" <<'PY'
+import os, subprocess, sys
+sys.path.insert(0, "tools")
+from deck_fields import CardError
+import t1_drive_effect as t
+hhneck, short, long = sys.argv[1:4]
+bad = []
+for sev in ("15g", "12g"):
+    for k, (label, held, z) in enumerate(t.VARIANTS + [("z CFC 30", (), 30)]):
+        for d in (short, long) if z is None else (short,):
+            path = os.path.join(d, "d%s_%d.inp" % (sev, k))
+            t.deck_variant(sev, held, z, path)
+            files = [path] + ([path + ".t1"] if z is not None else [])
+            if any(len(l) > 80 for f in files for l in open(f).read().splitlines()):
+                bad.append("%s beyond column 80" % path)
+            r = subprocess.run([hhneck, "--check"], stdin=open(path), capture_output=True, text=True)
+            if r.returncode:
+                bad.append("%s: %s" % (path, r.stderr.strip()))
+try:
+    t.deck_variant("15g", (), 60, os.path.join(long, "z60.inp"))
+    bad.append("a T1 table under the long path named on the INCLUDE card: written")
+except CardError as e:
+    if "line" not in str(e) or "INCLUDE card" not in str(e) or os.path.exists(os.path.join(long, "z60.inp.t1")):
+        bad.append("the long INCLUDE card: %s; files %s" % (e, os.listdir(long)))
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+
+check "probe_x_trough.py: every probe's deck, model deck and T1 tables within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$tmp/probe" "$long/probe" <<'PY'
+import os, subprocess, sys
+sys.path.insert(0, "tools")
+from deck_fields import CardError
+import probe_x_trough as p
+hhneck, short, long = sys.argv[1:4]
+os.makedirs(short)
+os.makedirs(long)
+model = open(p.MODEL).read()
+bad = []
+for sev in ("15g", "12g"):
+    for k, (label, edit_model, edit_deck) in enumerate(p.PROBES):
+        deck = p.probe_deck(k, sev, model, edit_model, edit_deck, short)
+        if any(len(l) > 80 for l in deck.splitlines()):
+            bad.append("probe %d beyond column 80" % k)
+        r = subprocess.run([hhneck, "--check"], input=deck, capture_output=True, text=True)
+        if r.returncode:
+            bad.append("%s %s: %s" % (sev, label, r.stderr.strip()))
+for f in os.listdir(short):
+    if any(len(l) > 80 for l in open(os.path.join(short, f)).read().splitlines()):
+        bad.append("%s beyond column 80" % f)
+try:
+    p.probe_deck(0, "15g", model, None, None, long)
+    bad.append("a model deck under the long path named on the INCLUDE card: passed")
+except CardError as e:
+    if "line" not in str(e) or "INCLUDE card" not in str(e):
+        bad.append("the long INCLUDE card: %s" % e)
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+
+check "predict_nbdl8g.py --fit LISTING (under the long path): the 8 g deck and its model deck within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$long/fit listing.txt" "$tmp" "$long" <<'PY'
+import os, subprocess, sys
+sys.path.insert(0, "tools")
+from deck_fields import CardError
+import predict_nbdl8g as p
+hhneck, listing, short, long = sys.argv[1:5]
+model = open("input/head_neck_54dof.inp").read()
+inc = os.path.join(short, "model_2.inp")
+deck = p.fit_deck(model, listing, p.bindings(), inc)
+bad = [f for f, text in (("deck", deck), ("model", open(inc).read()))
+       if any(len(l) > 80 for l in text.splitlines())]
+r = subprocess.run([hhneck, "--check"], input=deck, capture_output=True, text=True)
+if r.returncode:
+    bad.append(r.stderr.strip())
+if open(inc).read() != model:
+    bad.append("the shipped values did not give the shipped model deck")
+try:
+    p.fit_deck(model, listing, p.bindings(), os.path.join(long, "model_2.inp"))
+    bad.append("a model deck under the long path named on the INCLUDE card: passed")
+except CardError as e:
+    if "line" not in str(e) or "INCLUDE card" not in str(e):
+        bad.append("the long INCLUDE card: %s" % e)
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+
+mkdir "$tmp/fits" "$long/fits"
+check "fit_axial_damping.py: the calibration decks and their case and model decks within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$tmp/fits" "$long/fits" <<'PY'
+import os, subprocess, sys
+sys.path.insert(0, "tools")
+from deck_fields import CardError
+import fit_axial_damping as f
+hhneck, short, long = sys.argv[1:4]
+model = open(f.MODEL).read()
+runs = f.fit_decks(model, short)
+bad = ["%s beyond column 80" % n for n in os.listdir(short)
+       if any(len(l) > 80 for l in open(os.path.join(short, n)).read().splitlines())]
+checks = [(["--calibrate", "--check"], path + ".inp") for _, path in runs]
+checks += [(["--check"], os.path.join(short, "nbdl%s.inp" % s)) for s in ("15g", "12g")]
+for opts, path in checks:
+    r = subprocess.run([hhneck] + opts, stdin=open(path), capture_output=True, text=True, timeout=120)
+    if r.returncode:
+        bad.append("%s: %s" % (path, r.stderr.strip()))
+if len(runs) != len(f.FITS):
+    bad.append("%d calibration decks for %d fits" % (len(runs), len(f.FITS)))
+try:
+    f.fit_decks(model, long)
+    bad.append("case decks under the long path named on CASE cards: written")
+except CardError as e:
+    if "line" not in str(e) or os.listdir(long):
+        bad.append("the long CASE or INCLUDE card: %s; files %s" % (e, os.listdir(long)))
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+
+check "cross_severity.py: the scoring decks of a listing under the long path, written there, within 80 columns, hhneck --calibrate --check passes" \
+    python3 - "$HHNECK" "$long/fit listing.txt" "$long" <<'PY'
+import os, subprocess, sys
+sys.path.insert(0, "tools")
+from deck_fields import CardError, write_deck
+import cross_severity as c
+hhneck, listing, long = sys.argv[1:4]
+values = [v for _, v in c.params(listing)]
+bad = []
+for sev in ("15g", "12g"):
+    path = os.path.join(long, "score%s.inp" % sev)
+    write_deck(path, c.score_deck(sev, values))
+    if any(len(l) > 80 for l in open(path).read().splitlines()):
+        bad.append("%s beyond column 80" % path)
+    r = subprocess.run([hhneck, "--calibrate", "--check"], stdin=open(path), capture_output=True, text=True,
+                       timeout=120)
+    if r.returncode:
+        bad.append("%s: %s" % (path, r.stderr.strip()))
+try:
+    c.score_deck("15g", values[:-1] + ["0.123456789"])
+    bad.append("a value of 11 characters on a VALUES card: passed")
+except CardError:
+    pass
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+finish
