@@ -3,8 +3,8 @@
 # there: gfortran, LAPACK/BLAS, the Fortran HDF5 library, pkg-config (Debian
 # packages), Open MPI for parameter sweeps on many cores (openmpi-bin,
 # libopenmpi-dev), cmake and make (to build pFUnit for the tests, once, in
-# tools/pfunit.sh), fpm (from PyPI) and numpy, h5py, matplotlib for the
-# report tools. Run as root on Debian or Ubuntu. Safe to run again.
+# tools/pfunit.sh), fpm (from PyPI), numpy, h5py, matplotlib for the
+# report tools and pytest for their tests. Run as root on Debian or Ubuntu. Safe to run again.
 set -eu
 
 missing=""
@@ -33,6 +33,7 @@ python3 -c "import numpy, h5py, matplotlib" >/dev/null 2>&1 || {
     echo "setup: installing numpy h5py matplotlib from PyPI" >&2
     pip_install numpy h5py matplotlib
 }
+python3 -c "import pytest" >/dev/null 2>&1 || { echo "setup: installing pytest from PyPI" >&2; pip_install pytest; }
 command -v fpm >/dev/null 2>&1 || { echo "setup: fpm is not on PATH after installing it" >&2; exit 1; }
 
 # the release executable, built here so that its build progress goes to

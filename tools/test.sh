@@ -8,7 +8,8 @@
 #   3. every whole-program check test/scripts/*.sh, with HHNECK set to the
 #      debug build's executable (and to the checking build's too for a
 #      script with a line "# builds: debug checking"; to the release
-#      build's for one with "# builds: release").
+#      build's for one with "# builds: release"),
+#   4. the Python tests of the tools, test/python (pytest).
 # The test programs of a build run $TEST_JOBS at a time (default: the
 # number of cores); each one's output is shown whole when all are done.
 # Each test program and script ends its output with "N passed, N failed";
@@ -134,6 +135,10 @@ for script in test/scripts/*.sh; do
         step "$script ($build build)" sh "$script"
     done
 done
+
+# the Python tests of the tools (test/python, pytest; conftest.py prints
+# the closing line)
+step "Python tests (pytest test/python)" python3 -m pytest -q -p no:cacheprovider test/python
 
 summary='^[0-9][0-9]* passed, [0-9][0-9]* failed$'
 passed=$(grep "$summary" "$log" | awk '{s += $1} END {print s + 0}')
