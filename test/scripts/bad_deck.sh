@@ -5,6 +5,7 @@
 # one name in an included deck, a second NEUTRAL card, an INITIAL card on a
 # prescribed coordinate, a fixed-step run of 1E8 steps, a fixed-step run
 # beyond its step limit; a calibration deck checked, not run.
+# builds: debug checking
 . test/scripts/lib/checks.sh
 
 sed 's/^CONTROL   0.1  /CONTROL   -0.1 /' input/case6-2.inp > "$tmp/bad.inp"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Every deck the tools write is a deck the program takes (issue 25): each card
+# Every deck the tools write is a deck the program takes: each card
 # within 80 columns, comment cards too (a long path in a comment goes on
 # continuation comment cards, tools/deck_fields.py), and `hhneck --check`
 # passes on it, with the tools' files under a directory path of more than 120
@@ -8,6 +8,7 @@
 # the line. The shipped decks are what their writers write
 # (make_head_neck_deck.py, make_case_decks.py, make_nbdl_tables.py).
 # make_nbdl_tables.py --data with a long data folder: new_nbdl_case.sh.
+# builds: debug checking
 . test/scripts/lib/checks.sh
 root=$(pwd)
 
