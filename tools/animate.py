@@ -36,6 +36,14 @@ def text(v):
     return str(v).strip()
 
 
+def text_list(v):
+    """A list attribute as a list of str: an array of strings (schema 2) or
+    one space-separated text (files before schema 2)."""
+    if isinstance(v, (str, bytes)):
+        return text(v).split()
+    return [text(x) for x in v]
+
+
 class Family:
     """One element family: names, bodies (0 = R), attachment points in body
     frames, and the force history (nt, ne) where the file has a channel."""
@@ -71,7 +79,7 @@ class Result:
             # h5py index [t, k, j, i] is S_ij: swap to a matrix S[t, k][i, j]
             self.rot = np.swapaxes(f["bodies/rotation"][:], -1, -2)
             m = f["model"]
-            self.bodies = text(m.attrs["bodies"]).split()
+            self.bodies = text_list(m.attrs["bodies"])
             self.parent = m["parent"][:].astype(int)
             self.mass = m["mass"][:]
             self.inertia = np.swapaxes(m["inertia"][:], -1, -2)

@@ -37,7 +37,7 @@ def main(argv):
         x, y = a[path][()], b[path][()]
         check(x.shape == y.shape and np.array_equal(x, y), f"{path} identical", f"shape {x.shape}")
     ranks = sorted(set(b["runs/rank"][()].tolist()))
-    nranks = int(b.attrs["ranks"][0])
+    nranks = int(np.ravel(b.attrs["ranks"])[0])    # a scalar integer; an array of one real before schema 2
     nrun = b["runs/status"].shape[0]
     check(ranks == list(range(min(nranks, nrun))) if nrun >= nranks else set(ranks) <= set(range(nranks)),
           f"the work was spread over the {nranks} rank(s) of the second file",

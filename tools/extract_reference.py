@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Copies /time and every channel of a result file into a compact reference
 file: /time (nt,), /channels (nt, nch) with attributes `names` and `units`
-(space separated), and the code, title and status attributes.
+(arrays of nch UTF-8 strings, channels in name order), and the code, title
+and status attributes, and schema_version 2 (docs/output-format.md). Files
+before schema version 2 had `names` and `units` as one space-separated
+text each (units with '_' for blanks); test/test_regression.f90 reads both.
     extract_reference.py IN OUT"""
 import sys
 import h5py
@@ -17,5 +20,6 @@ with h5py.File(sys.argv[2], "w") as dst:
         dst.attrs[k] = src.attrs[k]
     dst.create_dataset("time", data=src["time"][:])
     d = dst.create_dataset("channels", data=data, compression="gzip", shuffle=True)
-    d.attrs["names"] = np.bytes_(" ".join(names))
-    d.attrs["units"] = np.bytes_(" ".join(u.replace(" ", "_") for u in units))
+    dst.attrs["schema_version"] = np.int32(2)
+    d.attrs["names"] = np.array(names, dtype=h5py.string_dtype("utf-8"))
+    d.attrs["units"] = np.array(units, dtype=h5py.string_dtype("utf-8"))

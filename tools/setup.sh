@@ -3,8 +3,9 @@
 # there: gfortran, LAPACK/BLAS, the Fortran HDF5 library, pkg-config (Debian
 # packages), Open MPI for parameter sweeps on many cores (openmpi-bin,
 # libopenmpi-dev), cmake and make (to build pFUnit for the tests, once, in
-# tools/pfunit.sh), fpm (from PyPI), numpy, h5py, matplotlib for the
-# report tools and pytest for their tests. Run as root on Debian or Ubuntu. Safe to run again.
+# tools/pfunit.sh), fpm (from PyPI) and numpy, h5py, matplotlib, pandas
+# for the report and export tools and pytest for their tests. Run as root
+# on Debian or Ubuntu. Safe to run again.
 set -eu
 
 missing=""
@@ -29,11 +30,10 @@ pip_install() {
     python3 -m pip install -q "$@" >&2 2>/dev/null || python3 -m pip install -q --break-system-packages "$@" >&2
 }
 command -v fpm >/dev/null 2>&1 || { echo "setup: installing fpm from PyPI" >&2; pip_install fpm; }
-python3 -c "import numpy, h5py, matplotlib" >/dev/null 2>&1 || {
-    echo "setup: installing numpy h5py matplotlib from PyPI" >&2
-    pip_install numpy h5py matplotlib
+python3 -c "import numpy, h5py, matplotlib, pandas, pytest" >/dev/null 2>&1 || {
+    echo "setup: installing numpy h5py matplotlib pandas pytest from PyPI" >&2
+    pip_install numpy h5py matplotlib pandas pytest
 }
-python3 -c "import pytest" >/dev/null 2>&1 || { echo "setup: installing pytest from PyPI" >&2; pip_install pytest; }
 command -v fpm >/dev/null 2>&1 || { echo "setup: fpm is not on PATH after installing it" >&2; exit 1; }
 
 # the release executable, built here so that its build progress goes to

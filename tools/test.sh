@@ -136,9 +136,11 @@ for script in test/scripts/*.sh; do
     done
 done
 
-# the Python tests of the tools (test/python, pytest; conftest.py prints
-# the closing line)
-step "Python tests (pytest test/python)" python3 -m pytest -q -p no:cacheprovider test/python
+# the Python tests of the tools (test/python/conftest.py prints the
+# closing line), on the debug build's executable
+HHNECK=$(fpm run --flag "$DEBUG_FLAGS $PF_INC" --runner echo 2>/dev/null | tail -n 1)
+export HHNECK
+step "test/python (pytest)" python3 -m pytest -q -p no:cacheprovider test/python
 
 summary='^[0-9][0-9]* passed, [0-9][0-9]* failed$'
 passed=$(grep "$summary" "$log" | awk '{s += $1} END {print s + 0}')

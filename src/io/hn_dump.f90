@@ -26,7 +26,7 @@ contains
         type(model_t), intent(in) :: model     !! the model (body tables, coordinates)
         integer, intent(in), optional :: nrec  !! number of dump times
         integer :: nb, n, j, nr
-        character(len=:), allocatable :: labels
+        character(len=32), allocatable :: labels(:)
         nb = model%tree%nbody
         n = model%tree%ndof
         nr = 8
@@ -37,11 +37,11 @@ contains
         call h5%write_real('/dump/inertia', model%tree%inertia, [3, 3, nb])
         call h5%attr_string('/dump/inertia', 'units', 'kg m^2')
         call h5%attr_string('/dump/inertia', 'description', 'centroidal inertia matrix in body axes')
-        labels = ''
+        allocate (labels(n))
         do j = 1, n
-            labels = labels//trim(dof_label(model%tree, j))//' '
+            labels(j) = dof_label(model%tree, j)
         end do
-        call h5%attr_string('/dump', 'coordinates', trim(labels))
+        call h5%attr_strings('/dump', 'coordinates', labels)
         call series('time', [integer ::], 's')
         call series('rotation', [3, 3, nb], '1')
         call series('position', [3, nb], 'm')

@@ -18,7 +18,11 @@
 !! for the new run's result.
 !!
 !! Text attributes are variable-length UTF-8 strings (h5py reads them as
-!! str). Time is the last Fortran dimension of a series, hence the first one
+!! str); lists (names, labels, units) are one-dimensional attributes of
+!! such strings (attr_strings; h5py reads a numpy array of str), and
+!! h5_read_string_list_attr reads such a list back, or an older file's
+!! single space-separated text as its words. Integer attributes are
+!! integers (attr_int). Time is the last Fortran dimension of a series, hence the first one
 !! seen from h5py (C order): a series of records of shape (3, nb) reads in
 !! h5py as an array of shape (nt, nb, 3).
 module hn_h5
@@ -32,7 +36,7 @@ module hn_h5
     implicit none
     private
 
-    public :: h5_file_t, h5_read_real, h5_dims, h5_read_string_attr, h5_quiet
+    public :: h5_file_t, h5_read_real, h5_dims, h5_read_string_attr, h5_read_string_list_attr, h5_quiet
 
     integer, parameter :: max_rank = 8
 
@@ -67,6 +71,10 @@ module hn_h5
         procedure :: write_strings => h5_write_strings
         procedure :: attr_string => h5_attr_string
         procedure :: attr_real => h5_attr_real
+        procedure :: attr_strings => h5_attr_strings
+        procedure :: attr_int => h5_attr_int
+        procedure :: attr_real_scalar => h5_attr_real_scalar
+        procedure :: write_text => h5_write_text
         procedure :: series => h5_series
         procedure :: append => h5_append
         procedure :: flush => h5_flush
@@ -78,6 +86,11 @@ module hn_h5
         integer(c_int) :: line
         type(c_ptr) :: func_name, file_name, desc
     end type h5e_error2_t
+
+    !> One text of a list being read.
+    type :: text_t
+        character(len=:), allocatable :: s
+    end type text_t
 
     !> What the error-stack walk collects.
     type :: stack_text_t
@@ -431,6 +444,60 @@ contains
         call h5tclose_f(stype, err)
     end subroutine h5_write_strings
 
+    !> Write a one-dimensional dataset of variable-length UTF-8 strings, each
+    !! without its trailing blanks (h5py: `ds.asstr()[:]` gives str, `ds[:]`
+    !! bytes).
+    subroutine h5_write_text(me, path, strings)
+        class(h5_file_t), intent(inout) :: me
+        character(len=*), intent(in) :: path            !! dataset
+        character(len=*), intent(in) :: strings(:)      !! one string per element
+        character(kind=c_char), allocatable, target :: cbuf(:)
+        type(c_ptr), allocatable, target :: ptr(:)
+        integer(hid_t) :: stype
+        integer :: err
+        if (me%stat /= stat_ok) return
+        call vlen_buffers(strings, cbuf, ptr)
+        call vlen_utf8_type(me, stype)
+        if (me%stat /= stat_ok) return
+        call write_any(me, path, stype, c_loc(ptr), [size(strings)])
+        call h5tclose_f(stype, err)
+    end subroutine h5_write_text
+
+    !> A variable-length UTF-8 string type (to be closed by the caller).
+    subroutine vlen_utf8_type(me, stype)
+        class(h5_file_t), intent(inout) :: me
+        integer(hid_t), intent(out) :: stype
+        integer :: err
+        call h5tcopy_f(H5T_STRING, stype, err)
+        call check(me, err, 'string type')
+        if (me%stat /= stat_ok) return
+        call h5tset_cset_f(stype, H5T_CSET_UTF8_F, err)
+        call check(me, err, 'string type')
+    end subroutine vlen_utf8_type
+
+    !> The strings without trailing blanks, NUL-terminated one after the
+    !! other in cbuf, and a pointer to each (what HDF5 writes as
+    !! variable-length strings). ptr has at least one element.
+    subroutine vlen_buffers(strings, cbuf, ptr)
+        character(len=*), intent(in) :: strings(:)
+        character(kind=c_char), allocatable, target, intent(out) :: cbuf(:)
+        type(c_ptr), allocatable, intent(out) :: ptr(:)
+        integer :: k, j, pos, n
+        allocate (cbuf(sum(len_trim(strings)) + size(strings) + 1), ptr(max(1, size(strings))))
+        pos = 1
+        do k = 1, size(strings)
+            n = len_trim(strings(k))
+            do j = 1, n
+                cbuf(pos + j - 1) = strings(k)(j:j)
+            end do
+            cbuf(pos + n) = c_null_char
+            ptr(k) = c_loc(cbuf(pos))
+            pos = pos + n + 1
+        end do
+        cbuf(pos) = c_null_char
+        if (size(strings) == 0) ptr(1) = c_loc(cbuf(pos))
+    end subroutine vlen_buffers
+
     subroutine write_any(me, path, dtype, ptr, dims)
         class(h5_file_t), intent(inout) :: me
         integer(hid_t), intent(in) :: dtype
@@ -502,6 +569,76 @@ contains
         call h5aclose_f(attr, err)
         call h5sclose_f(space, err)
     end subroutine h5_attr_real
+
+    !> List attribute on the object `path`: a one-dimensional array of
+    !! variable-length UTF-8 strings, each without its trailing blanks
+    !! (h5py reads a numpy array of str); an attribute of that name is
+    !! replaced.
+    subroutine h5_attr_strings(me, path, name, values)
+        class(h5_file_t), intent(inout) :: me
+        character(len=*), intent(in) :: path        !! the object (group or dataset)
+        character(len=*), intent(in) :: name        !! attribute name
+        character(len=*), intent(in) :: values(:)   !! the list, in order
+        character(kind=c_char), allocatable, target :: cbuf(:)
+        type(c_ptr), allocatable, target :: ptr(:)
+        integer(hid_t) :: stype, space, attr
+        integer :: err
+        if (me%stat /= stat_ok) return
+        call vlen_buffers(values, cbuf, ptr)
+        call vlen_utf8_type(me, stype)
+        if (me%stat /= stat_ok) return
+        call new_attribute(me, path, name, stype, [size(values)], attr, space)
+        if (me%stat == stat_ok) then
+            if (size(values) > 0) then
+                call h5awrite_f(attr, stype, c_loc(ptr), err)
+                call check(me, err, 'writing attribute '//name//' of '//path)
+            end if
+            call h5aclose_f(attr, err)
+            call h5sclose_f(space, err)
+        end if
+        call h5tclose_f(stype, err)
+    end subroutine h5_attr_strings
+
+    !> Scalar integer attribute on the object `path` (h5py reads a numpy
+    !! integer); an attribute of that name is replaced.
+    subroutine h5_attr_int(me, path, name, value)
+        class(h5_file_t), intent(inout) :: me
+        character(len=*), intent(in) :: path         !! the object (group or dataset)
+        character(len=*), intent(in) :: name         !! attribute name
+        integer, intent(in) :: value                 !! the value
+        integer(hid_t) :: space, attr
+        integer :: err
+        integer, target :: v
+        if (me%stat /= stat_ok) return
+        v = value
+        call new_attribute(me, path, name, H5T_NATIVE_INTEGER, [integer ::], attr, space)
+        if (me%stat /= stat_ok) return
+        call h5awrite_f(attr, H5T_NATIVE_INTEGER, c_loc(v), err)
+        call check(me, err, 'writing attribute '//name//' of '//path)
+        call h5aclose_f(attr, err)
+        call h5sclose_f(space, err)
+    end subroutine h5_attr_int
+
+    !> Scalar real attribute on the object `path` (h5py reads a float, not
+    !! an array of one as from attr_real); an attribute of that name is
+    !! replaced.
+    subroutine h5_attr_real_scalar(me, path, name, value)
+        class(h5_file_t), intent(inout) :: me
+        character(len=*), intent(in) :: path         !! the object (group or dataset)
+        character(len=*), intent(in) :: name         !! attribute name
+        real(wp), intent(in) :: value                !! the value
+        integer(hid_t) :: space, attr
+        integer :: err
+        real(wp), target :: v
+        if (me%stat /= stat_ok) return
+        v = value
+        call new_attribute(me, path, name, H5T_NATIVE_DOUBLE, [integer ::], attr, space)
+        if (me%stat /= stat_ok) return
+        call h5awrite_f(attr, H5T_NATIVE_DOUBLE, c_loc(v), err)
+        call check(me, err, 'writing attribute '//name//' of '//path)
+        call h5aclose_f(attr, err)
+        call h5sclose_f(space, err)
+    end subroutine h5_attr_real_scalar
 
     !> A dataspace of shape dims (scalar when dims is empty).
     subroutine new_space(me, dims, space, what)
@@ -787,5 +924,142 @@ contains
         call h5fclose_f(f, err)
         call h5eclear_f(err)
     end subroutine h5_read_string_attr
+
+    !> Read a list attribute of object `path`: a one-dimensional array of
+    !! strings (variable- or fixed-length, any character set; trailing
+    !! blanks and NULs dropped), or one text whose blank-separated words are
+    !! the items (how files before schema version 2 wrote lists). stat /= 0
+    !! when the file, the object or the attribute is missing or the
+    !! attribute is not text of rank 0 or 1.
+    subroutine h5_read_string_list_attr(fname, path, name, items, stat)
+        character(len=*), intent(in) :: fname                     !! HDF5 file name
+        character(len=*), intent(in) :: path                      !! the object (group or dataset)
+        character(len=*), intent(in) :: name                      !! attribute name
+        character(len=:), allocatable, intent(out) :: items(:)    !! the list, in order
+        integer, intent(out) :: stat                              !! 0 on success
+        integer(hid_t) :: f, attr
+        type(text_t), allocatable :: texts(:)
+        integer :: err, k, lmax, rank
+        allocate (character(len=1) :: items(0))
+        call h5_quiet()
+        call h5fopen_f(fname, H5F_ACC_RDONLY_F, f, stat)
+        if (stat /= 0) then
+            call h5eclear_f(err); return
+        end if
+        call h5aopen_by_name_f(f, path, name, attr, stat)
+        if (stat == 0) then
+            call read_attr_texts(attr, texts, rank, stat)
+            call h5aclose_f(attr, err)
+        end if
+        call h5fclose_f(f, err)
+        call h5eclear_f(err)
+        if (stat /= 0) return
+        if (rank == 0) texts = words(texts(1)%s)
+        lmax = 1
+        do k = 1, size(texts)
+            lmax = max(lmax, len(texts(k)%s))
+        end do
+        deallocate (items)
+        allocate (character(len=lmax) :: items(size(texts)))
+        do k = 1, size(texts)
+            items(k) = texts(k)%s
+        end do
+    end subroutine h5_read_string_list_attr
+
+    !> The texts of a string attribute of rank 0 or 1 (stat /= 0 otherwise).
+    subroutine read_attr_texts(attr, texts, rank, stat)
+        integer(hid_t), intent(in) :: attr
+        type(text_t), allocatable, intent(out) :: texts(:)
+        integer, intent(out) :: rank, stat
+        integer(hid_t) :: ftype, mtype, space
+        integer(hsize_t) :: npts, dims(1), maxdims(1)
+        integer(size_t) :: tsize
+        integer :: err, k, j, n, cls, m
+        logical :: is_var
+        type(c_ptr), allocatable, target :: ptr(:)
+        character(kind=c_char), allocatable, target :: cbuf(:)
+        type(c_ptr) :: cp
+        allocate (texts(0))
+        rank = -1
+        call h5aget_space_f(attr, space, stat)
+        if (stat /= 0) return
+        call h5sget_simple_extent_ndims_f(space, rank, stat)
+        ! the extent, not H5Sget_simple_extent_npoints: its Fortran wrapper
+        ! reports an empty dataspace as a failure
+        npts = 1
+        if (stat >= 0 .and. rank == 1) call h5sget_simple_extent_dims_f(space, dims, maxdims, stat)
+        if (stat >= 0 .and. rank == 1) npts = dims(1)
+        call h5sclose_f(space, err)
+        if (stat < 0 .or. rank > 1) then
+            stat = -1; return
+        end if
+        stat = 0
+        n = int(npts)
+        call h5aget_type_f(attr, ftype, stat)
+        if (stat /= 0) return
+        call h5tget_class_f(ftype, cls, stat)
+        if (stat == 0 .and. cls /= H5T_STRING_F) stat = -1
+        if (stat == 0) call h5tis_variable_str_f(ftype, is_var, stat)
+        if (stat == 0) call h5tcopy_f(ftype, mtype, stat)     ! as stored: same character set and padding
+        if (stat /= 0) then
+            call h5tclose_f(ftype, err); return
+        end if
+        deallocate (texts)
+        allocate (texts(n))
+        if (is_var) then
+            allocate (ptr(max(1, n)))
+            cp = c_loc(ptr)
+            if (n > 0) call h5aread_f(attr, mtype, cp, stat)
+            do k = 1, n
+                if (stat == 0) texts(k)%s = c_text(ptr(k))
+                if (stat == 0) err = c_h5free_memory(ptr(k))
+            end do
+        else
+            call h5tget_size_f(ftype, tsize, stat)
+            m = int(tsize)
+            allocate (cbuf(max(1, m*n)))
+            cp = c_loc(cbuf)
+            if (stat == 0 .and. n > 0) call h5aread_f(attr, mtype, cp, stat)
+            do k = 1, n
+                texts(k)%s = repeat(' ', m)
+                do j = 1, m
+                    texts(k)%s(j:j) = cbuf((k - 1)*m + j)
+                end do
+                j = index(texts(k)%s, achar(0))
+                if (j > 0) texts(k)%s = texts(k)%s(1:j - 1)
+                texts(k)%s = trim(texts(k)%s)
+            end do
+        end if
+        if (stat == 0) then
+            do k = 1, n
+                if (.not. allocated(texts(k)%s)) texts(k)%s = ''
+                texts(k)%s = trim(texts(k)%s)
+            end do
+        end if
+        call h5tclose_f(mtype, err)
+        call h5tclose_f(ftype, err)
+    end subroutine read_attr_texts
+
+    !> The blank-separated words of s.
+    function words(s) result(w)
+        character(len=*), intent(in) :: s
+        type(text_t), allocatable :: w(:)
+        integer :: k, n, start
+        allocate (w(0))
+        n = len(s)
+        k = 1
+        do while (k <= n)
+            if (s(k:k) == ' ') then
+                k = k + 1
+                cycle
+            end if
+            start = k
+            do while (k <= n)
+                if (s(k:k) == ' ') exit
+                k = k + 1
+            end do
+            w = [w, text_t(s(start:k - 1))]
+        end do
+    end function words
 
 end module hn_h5

@@ -28,6 +28,9 @@ module hn_results
     public :: results_t
 
     integer, parameter :: block = 1024              !! samples per written block (and chunk)
+    !> Version of the file's layout (root attribute schema_version; the
+    !! rules for changing it in docs/output-format.md).
+    integer, parameter, public :: results_schema_version = 2
     real(wp), parameter :: flush_wall = 2.0_wp      !! at most this long between flushes at print times [s]
 
     !> Result file and its sample buffers.
@@ -72,12 +75,17 @@ contains
         n = cs%model%tree%ndof
         associate (h => me%h5)
             call h%attr_string('/', 'code', 'HHNECK '//code_version)
+            call h%attr_int('/', 'schema_version', results_schema_version)
             call h%attr_string('/', 'title', trim(cs%model%title))
             call h%attr_string('/', 'status', 'incomplete')
             call h%attr_string('/', 'message', 'the run has not closed this file: it is running, or was killed')
             call write_deck(h, cs)
             call write_model(h, cs)
             call h%group('/channels')
+            call h%attr_strings('/channels', 'names', ch%name(1:ch%n))
+            call h%attr_strings('/channels', 'units', ch%units(1:ch%n))
+            call h%attr_string('/channels', 'description', 'one dataset per channel; attributes names and '// &
+                               'units list them in the order of the listing')
             nexp = max(1, min(block, nint((cs%t_end - cs%t_start)/cs%sample_dt) + 1))
             do k = 1, ch%n
                 call h%series('/channels/'//trim(ch%name(k)), [integer ::], nexp)
@@ -98,13 +106,13 @@ contains
             call h%series('/coordinates/x', [n], nexp)
             call h%attr_string('/coordinates/x', 'units', 'm for translations (tx, ty, tz), rad for rotations '// &
                                '(rx, ry, rz); per column in column_units')
-            call h%attr_string('/coordinates/x', 'column_units', coord_units(cs, ''))
-            call h%attr_string('/coordinates/x', 'columns', coord_labels(cs))
+            call h%attr_strings('/coordinates/x', 'column_units', coord_units(cs, ''))
+            call h%attr_strings('/coordinates/x', 'columns', coord_labels(cs))
             call h%series('/coordinates/xd', [n], nexp)
             call h%attr_string('/coordinates/xd', 'units', 'm/s for translations, rad/s for rotations; '// &
                                'per column in column_units')
-            call h%attr_string('/coordinates/xd', 'column_units', coord_units(cs, '/s'))
-            call h%attr_string('/coordinates/xd', 'columns', coord_labels(cs))
+            call h%attr_strings('/coordinates/xd', 'column_units', coord_units(cs, '/s'))
+            call h%attr_strings('/coordinates/xd', 'columns', coord_labels(cs))
             if (size(cs%dump_times) > 0) call dump_open(h, cs%model, size(cs%dump_times))
             call h%flush()
             stat = h%stat
@@ -163,17 +171,12 @@ contains
     subroutine write_model(h, cs)
         type(h5_file_t), intent(inout) :: h
         type(case_t), intent(in) :: cs
-        character(len=:), allocatable :: names
-        integer :: k, nb, n
+        integer :: nb, n
         nb = cs%model%tree%nbody
         n = cs%model%tree%ndof
         call h%group('/model')
-        names = ''
-        do k = 1, nb
-            names = names//trim(cs%model%tree%name(k))//' '
-        end do
-        call h%attr_string('/model', 'bodies', trim(names))
-        call h%attr_string('/model', 'coordinates', coord_labels(cs))
+        call h%attr_strings('/model', 'bodies', cs%model%tree%name(1:nb))
+        call h%attr_strings('/model', 'coordinates', coord_labels(cs))
         call h%write_int('/model/parent', cs%model%tree%parent, [nb])
         call h%attr_string('/model/parent', 'units', '1')
         call h%attr_string('/model/parent', 'description', 'parent body number, 1-based (0 = the inertial frame R)')
@@ -196,33 +199,29 @@ contains
         call write_element_tables(h, cs%model)
     end subroutine write_model
 
-    !> Labels of the active coordinates, e.g. "T1.tx T1.ty ...".
+    !> Labels of the active coordinates, e.g. ["T1.tx", "T1.ty", ...].
     function coord_labels(cs) result(s)
         type(case_t), intent(in) :: cs
-        character(len=:), allocatable :: s
+        character(len=32) :: s(cs%model%tree%ndof)
         integer :: j
-        s = ''
         do j = 1, cs%model%tree%ndof
-            s = s//trim(dof_label(cs%model%tree, j))//' '
+            s(j) = dof_label(cs%model%tree, j)
         end do
-        s = trim(s)
     end function coord_labels
 
-    !> Unit of each active coordinate ("m" or "rad", then `suffix`), space separated.
+    !> Unit of each active coordinate ("m" or "rad", then `suffix`).
     function coord_units(cs, suffix) result(s)
         type(case_t), intent(in) :: cs
         character(len=*), intent(in) :: suffix
-        character(len=:), allocatable :: s
+        character(len=8) :: s(cs%model%tree%ndof)
         integer :: j
-        s = ''
         do j = 1, cs%model%tree%ndof
             if (cs%model%tree%dof_local(j) <= 3) then
-                s = s//'m'//suffix//' '
+                s(j) = 'm'//suffix
             else
-                s = s//'rad'//suffix//' '
+                s(j) = 'rad'//suffix
             end if
         end do
-        s = trim(s)
     end function coord_units
 
     !> Buffer one sample; writes a block when the buffer is full.
@@ -346,7 +345,7 @@ contains
             call h%group('/injury/nij')
             call scalar(h, '/injury/nij/value', a%nij_max, '1', 'peak Nij in each mode, in the order of modes')
             call scalar(h, '/injury/nij/time', a%nij_time, 's', 'time of each peak')
-            call h%attr_string('/injury/nij', 'modes', 'NTE NTF NCE NCF')
+            call h%attr_strings('/injury/nij', 'modes', [character(len=3) :: 'NTE', 'NTF', 'NCE', 'NCF'])
             call h%attr_string('/injury/nij', 'description', 'Nij at the occipital condyle (CFC 600): tension-'// &
                                'extension, tension-flexion, compression-extension, compression-flexion')
             call peak(h, 'nic', 'peak NIC (T1 and head x-accelerations, CFC 60)', a%nic_max, a%nic_time, 'm^2/s^2')

@@ -67,7 +67,7 @@ contains
                          'disc: lower plate centre (a, on body a) and upper plate centre (b, on body b)')
         call write_via_points(h5, model)
         call h5%write_real('/model/elements/discs/plate_frame', plate, [3, 3, 2, n])
-        call h5%attr_string('/model/elements/discs/plate_frame', 'units', 'none')
+        call h5%attr_string('/model/elements/discs/plate_frame', 'units', '1')
         call h5%attr_string('/model/elements/discs/plate_frame', 'description', &
                             'plate frames (lower, upper) in their body frames: h5py [e, plate, j, i] is R_ij')
         call h5%write_real('/model/elements/discs/area', area, [n])
@@ -102,11 +102,11 @@ contains
         integer :: e, n
         n = size(model%muscles)
         call h5%write_int(path//'/via_count', [(model%muscles(e)%nvia, e=1, n)], [n])
-        call h5%attr_string(path//'/via_count', 'units', 'none')
+        call h5%attr_string(path//'/via_count', 'units', '1')
         call h5%attr_string(path//'/via_count', 'description', &
                             'via points of each muscle path, in order from point a to point b')
         call h5%write_int(path//'/via_body', [(model%muscles(e)%via_body, e=1, n)], [max_via, n])
-        call h5%attr_string(path//'/via_body', 'units', 'none')
+        call h5%attr_string(path//'/via_body', 'units', '1')
         call h5%attr_string(path//'/via_body', 'description', &
                             'bodies of the via points (0 = R, else /model order; unused slots 0)')
         call h5%write_real(path//'/via_point', [(model%muscles(e)%via_point, e=1, n)], [3, max_via, n])
@@ -125,10 +125,9 @@ contains
         ne = size(t%name)
         call h5%group(path)
         call h5%attr_string(path, 'description', description)
-        call h5%write_strings(path//'/name', t%name)
-        call h5%attr_string(path//'/name', 'units', 'none')
+        call h5%write_text(path//'/name', t%name)
         call h5%write_int(path//'/body', t%body, [2, ne])
-        call h5%attr_string(path//'/body', 'units', 'none')
+        call h5%attr_string(path//'/body', 'units', '1')
         call h5%attr_string(path//'/body', 'description', 'body numbers of ends a and b (0 = R, else /model order)')
         call h5%write_real(path//'/point', t%point, [3, 2, ne])
         call h5%attr_string(path//'/point', 'units', 'm')

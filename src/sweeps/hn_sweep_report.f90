@@ -15,6 +15,10 @@ module hn_sweep_report
 
     public :: sweep_finish, sweep_sensitivities, param_label
 
+    !> Version of the sweep file's layout (root attribute schema_version;
+    !! the rules for changing it in docs/output-format.md).
+    integer, parameter :: sweep_schema_version = 2
+
     !> Outputs shown in the listing's run and sensitivity tables.
     integer, parameter :: shown(8) = [1, 2, 4, 6, 8, 9, 10, 12]
 
@@ -264,6 +268,7 @@ contains
             call h5%create(fname, stat, errmsg)
             if (stat /= 0) return
             call h5%attr_string('/', 'code', 'HHNECK '//version)
+            call h5%attr_int('/', 'schema_version', sweep_schema_version)
             call h5%attr_string('/', 'title', trim(sw%title))
             call h5%attr_string('/', 'base', trim(sw%base))
             call h5%attr_string('/', 'design', trim(design_name(sw%design)))
@@ -277,16 +282,16 @@ contains
                 deck = deck//sw%base_lines(k)%text//new_line('a')
             end do
             call h5%attr_string('/', 'base_deck', deck)
-            call h5%attr_real('/', 'ranks', [real(nranks, wp)])
-            call h5%attr_real('/', 'wall_time', [wall])
-            call h5%attr_real('/', 'failed_runs', [real(count(recs%status /= 0), wp)])
+            call h5%attr_int('/', 'ranks', nranks)
+            call h5%attr_real_scalar('/', 'wall_time', wall)
+            call h5%attr_int('/', 'failed_runs', count(recs%status /= 0))
             call h5%group('/params')
             do k = 1, np
                 names(k) = sw%params(k)%name
                 labels(k) = param_label(sw, k)
             end do
-            call h5%write_strings('/params/name', names)
-            call h5%write_strings('/params/what', labels)
+            call h5%write_text('/params/name', names)
+            call h5%write_text('/params/what', labels)
             pcol = sw%params%low
             call h5%write_real('/params/low', pcol, [np])
             pcol = sw%params%high
@@ -301,12 +306,12 @@ contains
                 outs(:, k) = recs(k)%outputs
             end do
             call h5%write_real('/runs/outputs', outs, [nout, nrun])
-            call h5%write_strings('/runs/output_names', output_names)
-            call h5%write_strings('/runs/output_units', output_units)
+            call h5%write_text('/runs/output_names', output_names)
+            call h5%write_text('/runs/output_units', output_units)
             icol = recs%status
             call h5%write_int('/runs/status', icol, [nrun])
             msgs = recs%message
-            call h5%write_strings('/runs/message', msgs)
+            call h5%write_text('/runs/message', msgs)
             icol = recs%rank
             call h5%write_int('/runs/rank', icol, [nrun])
             col = recs%wall
@@ -316,8 +321,11 @@ contains
             col = recs%t_reached
             call h5%write_real('/runs/t_reached', col, [nrun])
             call h5%group('/sensitivity')
-            call h5%attr_string('/sensitivity', 'method', merge('OAT elasticity                   ', &
-                                                                'standardised regression (SRC)    ', sw%design == design_oat))
+            if (sw%design == design_oat) then
+                call h5%attr_string('/sensitivity', 'method', 'OAT elasticity')
+            else
+                call h5%attr_string('/sensitivity', 'method', 'standardised regression (SRC)')
+            end if
             call h5%write_real('/sensitivity/coefficient', s, [np, nout])
             call h5%write_int('/sensitivity/valid', merge(1, 0, valid), [np, nout])
             call h5%write_real('/sensitivity/r2', r2, [nout])

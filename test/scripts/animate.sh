@@ -64,10 +64,11 @@ counts = [len(want[k]) for k in want]
 print(("PASS" if ok and min(counts) > 0 else "FAIL") +
       "  /model/elements: %d ligaments, %d muscles, %d discs with the deck's names, bodies and points" % tuple(counts))
 units = []
-f["model/elements"].visititems(lambda n, o: units.append((n, o.attrs.get("units"))) if isinstance(o, h5py.Dataset) else None)
+f["model/elements"].visititems(lambda n, o: units.append((n, o.attrs.get("units")))
+                               if isinstance(o, h5py.Dataset) and o.dtype.kind in "fiu" else None)
 missing = [n for n, u in units if u is None]
 print(("PASS" if units and not missing else "FAIL") +
-      "  every dataset of /model/elements has a units attribute (%d datasets; missing: %s)" % (len(units), missing))
+      "  every numeric dataset of /model/elements has a units attribute (%d datasets; missing: %s)" % (len(units), missing))
 EOF
 
 # --- a small GIF (6 frames: 0 to 100 ms every 20 ms) and a key-frame strip
