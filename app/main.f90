@@ -11,7 +11,7 @@ program hhneck
     use hn_kinds, only: msglen, wp, i8
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
-    use hn_deck_reader, only: parse_real, stdin_path
+    use hn_deck_reader, only: parse_real, stdin_path, add_environment_path
     use hn_version, only: code_version
     use hn_run, only: run_state_t, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
                       exit_members_failed, exit_interrupted
@@ -88,7 +88,7 @@ program hhneck
         end select
         i = i + 1
     end do
-    call environment_path()
+    call add_environment_path(search)   ! HHNECK_PATH after the -I directories
     if (len_trim(deck) == 0 .or. deck == '-') then
         if (is_terminal(0) .and. stdin_kind() == kind_char_device) &
             call usage('no deck: give a deck file (hhneck DECK) or redirect standard input (hhneck < DECK)')
@@ -153,7 +153,7 @@ contains
         real(wp), allocatable :: v(:, :)
         integer(i8) :: c0, c1, rate
         integer :: r
-        call read_sweep(trim(deck), trim(source), sw, stat, msg)
+        call read_sweep(trim(deck), trim(source), sw, stat, msg, search)
         call stop_on_deck_error('sweep ')
         if (check_only) then
             write (error_unit, '(a)') 'hhneck: sweep deck is valid: '//trim(sw%title)
@@ -236,25 +236,6 @@ contains
         if (.not. (v >= lo .and. v <= hi)) call usage(problem//', found "'//trim(arg)//'"')
     end function real_argument
 
-    !> Directories of HHNECK_PATH (colon separated) after those given with -I.
-    subroutine environment_path()
-        character(len=4096) :: env
-        integer :: n, st, a, b
-        call get_environment_variable('HHNECK_PATH', env, n, st)
-        if (st /= 0 .or. n == 0) return
-        a = 1
-        do while (a <= n)
-            b = index(env(a:n), ':')
-            if (b == 0) then
-                b = n + 1
-            else
-                b = a + b - 1
-            end if
-            if (b > a) search = [character(len=path_len) :: search, env(a:b - 1)]
-            a = b + 1
-        end do
-    end subroutine environment_path
-
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
         write (error_unit, '(a)') 'hhneck: '//problem
@@ -284,8 +265,9 @@ contains
             '  --sweep            the deck is a parameter-sweep deck (docs/sweeps.md)', &
             '  --calibrate        the deck is a calibration deck: fit its parameters (docs/sweeps.md)', &
             '  -I DIR, --include-path DIR', &
-            '                     look for INCLUDE files in DIR too (repeatable); after the', &
-            '                     including file''s directory and the working directory, and', &
+            '                     look for INCLUDE files (and a sweep''s BASE deck) in DIR too', &
+            '                     (repeatable); after the including file''s directory and the', &
+            '                     working directory, and', &
             '                     before the directories of the environment variable HHNECK_PATH', &
             '                     (colon separated), e.g. the project directory of the shipped decks', &
             '  --progress         show progress on standard error (simulated and wall time, step,', &

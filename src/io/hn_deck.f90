@@ -84,14 +84,18 @@ contains
 
     !> Interpret card images already read (INCLUDE expanded), as kept in
     !! `case_t%deck`: a deck edited in memory, e.g. one member of a sweep.
-    subroutine read_case_lines(lines, source, cs, stat, errmsg)
+    !! `include_path` is searched for the data files of TABLE ... CSV cards
+    !! as when the deck was read.
+    subroutine read_case_lines(lines, source, cs, stat, errmsg, include_path)
         type(deck_line_t), intent(in) :: lines(:)      !! card images, INCLUDE cards expanded
         character(len=*), intent(in) :: source         !! name of the deck in messages
         type(case_t), intent(out) :: cs                !! the run case (model and run control)
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
         character(len=msglen), intent(out) :: errmsg   !! the first error, located in the deck
+        character(len=*), intent(in), optional :: include_path(:)  !! directories searched for data files
         type(deck_reader_t) :: rd
         rd%top = source
+        if (present(include_path)) rd%search = include_path
         rd%lines = lines
         rd%nlines = size(lines)
         if (rd%nlines == 0) call rd%fail(source//': the deck is empty (no cards); expected a TITLE card first')

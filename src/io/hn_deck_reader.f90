@@ -25,7 +25,7 @@ module hn_deck_reader
     private
 
     public :: deck_line_t, deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
-    public :: field_text, field_value, locate_field, read_data_file, next_line
+    public :: field_text, field_value, locate_field, read_data_file, next_line, add_environment_path
 
     integer, parameter, public :: path_len = 256   !! longest file path
 
@@ -79,6 +79,7 @@ module hn_deck_reader
         procedure :: where => reader_where
         procedure :: context
         procedure :: read_data_file
+        procedure :: find_file => resolve_include
     end type deck_reader_t
 
 contains
@@ -679,9 +680,10 @@ contains
     !! with a message when there is no such regular file.
     subroutine resolve_include(me, name, including, found, errmsg)
         class(deck_reader_t), intent(in) :: me
-        character(len=*), intent(in) :: name, including
-        character(len=:), allocatable, intent(out) :: found
-        character(len=*), intent(out) :: errmsg
+        character(len=*), intent(in) :: name                  !! the path as written on the card
+        character(len=*), intent(in) :: including             !! the file holding the card (stdin_path: none)
+        character(len=:), allocatable, intent(out) :: found   !! where it was found ('' when not)
+        character(len=*), intent(out) :: errmsg               !! why not ('' when found)
         character(len=:), allocatable :: tried
         integer :: k, kind
         found = ''
@@ -853,6 +855,29 @@ contains
             stat = stat_bad_input
         end if
     end subroutine read_data_file
+
+    !> Append the directories of the environment variable HHNECK_PATH (colon
+    !! separated, empty entries skipped) to the include path `search`: the
+    !! place of the shipped decks for an installed hhneck, after -I DIR.
+    subroutine add_environment_path(search)
+        character(len=path_len), allocatable, intent(inout) :: search(:)  !! the include path, extended
+        character(len=4096) :: env
+        integer :: n, st, a, b
+        if (.not. allocated(search)) allocate (search(0))
+        call get_environment_variable('HHNECK_PATH', env, n, st)
+        if (st /= 0 .or. n == 0) return
+        a = 1
+        do while (a <= n)
+            b = index(env(a:n), ':')
+            if (b == 0) then
+                b = n + 1
+            else
+                b = a + b - 1
+            end if
+            if (b > a) search = [character(len=path_len) :: search, env(a:b - 1)]
+            a = b + 1
+        end do
+    end subroutine add_environment_path
 
     pure function int_str(i) result(s)
         integer, intent(in) :: i   !! the integer
