@@ -21,7 +21,7 @@ module hn_deck
     use hn_rotation, only: norm3
     use hn_scene, only: merge_bodies, lock_sagittal
     use hn_plausibility, only: plausibility_warnings
-    use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes
+    use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
     use hn_csv, only: read_two_columns
     implicit none
     private
@@ -128,8 +128,13 @@ contains
             end do
             call read_changes(rd, first, changes)
         end if
-        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
+        ! cards that repeat one another are refused before a change can be ambiguous, and again
+        ! when a change rewrote a field that identifies a card (F1, F2)
         if (.not. rd%failed()) call check_repeats(rd, cards)
+        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
+        if (.not. rd%failed()) then
+            if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, cards)
+        end if
         if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call control_cards(rd, cards, cs)
         if (.not. rd%failed()) call table_cards(rd, cards, tabs)

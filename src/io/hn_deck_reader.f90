@@ -798,12 +798,13 @@ contains
     end function field_value
 
     !> The card `key` whose field F1 holds `name` (any such card when name
-    !! is blank) among `lines`: how many there are, and for exactly one the
-    !! line holding field number `field` counted across the card and its
-    !! continuation cards (F8 is F1 of the first continuation card), with
-    !! that field's columns. line = 0 when the card has no continuation card
-    !! for the field.
-    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2)
+    !! is blank) and, when `name2` is given and not blank, whose field F2
+    !! holds `name2`, among `lines`: how many there are (and which, in
+    !! `matches`), and for exactly one the line holding field number `field`
+    !! counted across the card and its continuation cards (F8 is F1 of the
+    !! first continuation card), with that field's columns. line = 0 when the
+    !! card has no continuation card for the field.
+    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2, name2, matches)
         type(deck_line_t), intent(in) :: lines(:)  !! card images
         character(len=*), intent(in) :: key        !! card name (columns 1-8)
         character(len=*), intent(in) :: name       !! name in field F1, or blank
@@ -812,18 +813,28 @@ contains
         integer, intent(out) :: line               !! index in lines of the field's card image (0: none)
         integer, intent(out) :: c1                 !! the field's first column
         integer, intent(out) :: c2                 !! the field's last column
+        character(len=*), intent(in), optional :: name2          !! text in field F2 too (absent or blank: any)
+        integer, allocatable, intent(out), optional :: matches(:) !! the matching card images, in deck order
         integer :: i, k
+        logical :: second
         nfound = 0
         k = 0
         line = 0
+        second = .false.
+        if (present(name2)) second = len_trim(name2) > 0
+        if (present(matches)) allocate (matches(0))
         call field_columns(1 + mod(field - 1, nfields), c1, c2)
         do i = 1, size(lines)
             if (upper(lines(i)%text(1:8)) /= upper(key)) cycle
             if (len_trim(name) > 0) then
                 if (upper(adjustl(lines(i)%text(11:20))) /= upper(name)) cycle
             end if
+            if (second) then
+                if (upper(adjustl(lines(i)%text(21:30))) /= upper(name2)) cycle
+            end if
             nfound = nfound + 1
             k = i
+            if (present(matches)) matches = [matches, i]
         end do
         if (nfound /= 1) return
         line = k + (field - 1)/nfields
