@@ -27,9 +27,10 @@ program hhneck
     type(run_state_t) :: run
     character(len=path_len) :: h5name, arg, deck, source
     character(len=path_len), allocatable :: search(:)
+    character(len=path_len), allocatable :: change_cards(:)   ! --change card images
     character(len=msglen) :: msg, budget_warning
     logical :: h5_given, no_h5, check_only, sweep, calib
-    integer :: i, stat, nargs, progress, max_steps
+    integer :: i, stat, nargs, progress, max_steps, n
     real(wp) :: sample, rtol, max_wall
 
     ! until the deck is read there is nothing to close: a signal ends the program at once
@@ -42,7 +43,7 @@ program hhneck
     progress = progress_auto
     h5name = ''
     deck = ''
-    allocate (search(0))
+    allocate (search(0), change_cards(0))
     nargs = command_argument_count()
     i = 1
     do while (i <= nargs)
@@ -69,6 +70,13 @@ program hhneck
             i = i + 1
             call get_command_argument(i, arg)
             search = [character(len=path_len) :: search, arg]
+        case ('--change')
+            if (i == nargs) call usage('--change needs a CHANGE card image, e.g. --change ''CHANGE    HEADM     '// &
+                                       'BODY      HEAD      MASS      SCALE     1.1''')
+            i = i + 1
+            call get_command_argument(i, arg, length=n)
+            if (n > len(arg)) call usage('--change: found a card image of more than 80 columns')
+            change_cards = [character(len=path_len) :: change_cards, arg]
         case ('--check')
             check_only = .true.
         case ('--sweep')
@@ -98,9 +106,12 @@ program hhneck
         source = deck
     end if
 
+    if ((sweep .or. calib) .and. size(change_cards) > 0) &
+        call usage('--change changes the deck of a single run; a sweep or calibration varies its parameters '// &
+                   'through its own PARAM cards')
     if (sweep) call run_sweep()
     if (calib) call run_calibration()
-    call read_case(trim(deck), trim(source), cs, stat, msg, search)
+    call read_case(trim(deck), trim(source), cs, stat, msg, search, change_cards)
     call stop_on_deck_error('')
     do i = 1, size(cs%warnings)
         write (error_unit, '(a)') 'hhneck: warning: '//trim(cs%warnings(i))
@@ -261,6 +272,10 @@ contains
             '  --sample SECONDS   HDF5 sampling interval (instead of the OUTPUT card)', &
             '  --rtol TOL         relative tolerance of the error-controlled integrators', &
             '                     (instead of CONTROL F5; the absolute tolerance becomes TOL/1000)', &
+            '  --change ''CARD''    add the CHANGE card CARD (an 80-column card image as in a deck,', &
+            '                     e.g. ''CHANGE    E12       FAMILY    DISCS     E         SCALE     1.2'')', &
+            '                     after the deck''s own cards (repeatable; docs/deck-format.md);', &
+            '                     the listing and the result file note it as "--change N"', &
             '  --check            read and check the deck (warnings included), do not run', &
             '  --sweep            the deck is a parameter-sweep deck (docs/sweeps.md)', &
             '  --calibrate        the deck is a calibration deck: fit its parameters (docs/sweeps.md)', &

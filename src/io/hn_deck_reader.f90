@@ -108,11 +108,19 @@ contains
     end subroutine reader_fail
 
     !> "stdin line 12" for deck line i; a line of an included file adds
-    !! where it was included: "a.inp line 3 (included from stdin line 12)".
+    !! where it was included: "a.inp line 3 (included from stdin line 12)";
+    !! a card image of a command-line option: "--change 2".
     function reader_where(me, i) result(s)
         class(deck_reader_t), intent(in) :: me
         integer, intent(in) :: i   !! card image number
         character(len=:), allocatable :: s
+        if (len(me%lines(i)%source) > 2) then
+            if (me%lines(i)%source(1:2) == '--') then
+                ! a card image given on the command line: "--change 2"
+                s = me%lines(i)%source//' '//trim(int_str(me%lines(i)%line))
+                return
+            end if
+        end if
         s = me%lines(i)%source//' line '//trim(int_str(me%lines(i)%line))
         if (allocated(me%vias) .and. me%lines(i)%via > 0) then
             if (me%lines(i)%via <= me%nvias) s = s//trim(me%vias(me%lines(i)%via))
