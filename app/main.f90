@@ -11,7 +11,7 @@ program hhneck
     use hn_kinds, only: msglen, wp, i8
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
-    use hn_deck_reader, only: parse_real, stdin_path
+    use hn_deck_reader, only: parse_real, stdin_path, add_environment_path
     use hn_version, only: code_version
     use hn_run, only: run_state_t, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
                       exit_members_failed, exit_interrupted
@@ -27,9 +27,10 @@ program hhneck
     type(run_state_t) :: run
     character(len=path_len) :: h5name, arg, deck, source
     character(len=path_len), allocatable :: search(:)
+    character(len=path_len), allocatable :: change_cards(:)   ! --change card images
     character(len=msglen) :: msg, budget_warning
     logical :: h5_given, no_h5, check_only, sweep, calib
-    integer :: i, stat, nargs, progress, max_steps
+    integer :: i, stat, nargs, progress, max_steps, n
     real(wp) :: sample, rtol, max_wall
 
     ! until the deck is read there is nothing to close: a signal ends the program at once
@@ -42,7 +43,7 @@ program hhneck
     progress = progress_auto
     h5name = ''
     deck = ''
-    allocate (search(0))
+    allocate (search(0), change_cards(0))
     nargs = command_argument_count()
     i = 1
     do while (i <= nargs)
@@ -69,6 +70,13 @@ program hhneck
             i = i + 1
             call get_command_argument(i, arg)
             search = [character(len=path_len) :: search, arg]
+        case ('--change')
+            if (i == nargs) call usage('--change needs a CHANGE card image, e.g. --change ''CHANGE    HEADM     '// &
+                                       'BODY      HEAD      MASS      SCALE     1.1''')
+            i = i + 1
+            call get_command_argument(i, arg, length=n)
+            if (n > len(arg)) call usage('--change: found a card image of more than 80 columns')
+            change_cards = [character(len=path_len) :: change_cards, arg]
         case ('--check')
             check_only = .true.
         case ('--sweep')
@@ -88,7 +96,7 @@ program hhneck
         end select
         i = i + 1
     end do
-    call environment_path()
+    call add_environment_path(search)   ! HHNECK_PATH after the -I directories
     if (len_trim(deck) == 0 .or. deck == '-') then
         if (is_terminal(0) .and. stdin_kind() == kind_char_device) &
             call usage('no deck: give a deck file (hhneck DECK) or redirect standard input (hhneck < DECK)')
@@ -98,9 +106,12 @@ program hhneck
         source = deck
     end if
 
+    if ((sweep .or. calib) .and. size(change_cards) > 0) &
+        call usage('--change changes the deck of a single run; a sweep or calibration varies its parameters '// &
+                   'through its own PARAM cards')
     if (sweep) call run_sweep()
     if (calib) call run_calibration()
-    call read_case(trim(deck), trim(source), cs, stat, msg, search)
+    call read_case(trim(deck), trim(source), cs, stat, msg, search, change_cards)
     call stop_on_deck_error('')
     do i = 1, size(cs%warnings)
         write (error_unit, '(a)') 'hhneck: warning: '//trim(cs%warnings(i))
@@ -153,7 +164,7 @@ contains
         real(wp), allocatable :: v(:, :)
         integer(i8) :: c0, c1, rate
         integer :: r
-        call read_sweep(trim(deck), trim(source), sw, stat, msg)
+        call read_sweep(trim(deck), trim(source), sw, stat, msg, search)
         call stop_on_deck_error('sweep ')
         if (check_only) then
             write (error_unit, '(a)') 'hhneck: sweep deck is valid: '//trim(sw%title)
@@ -236,25 +247,6 @@ contains
         if (.not. (v >= lo .and. v <= hi)) call usage(problem//', found "'//trim(arg)//'"')
     end function real_argument
 
-    !> Directories of HHNECK_PATH (colon separated) after those given with -I.
-    subroutine environment_path()
-        character(len=4096) :: env
-        integer :: n, st, a, b
-        call get_environment_variable('HHNECK_PATH', env, n, st)
-        if (st /= 0 .or. n == 0) return
-        a = 1
-        do while (a <= n)
-            b = index(env(a:n), ':')
-            if (b == 0) then
-                b = n + 1
-            else
-                b = a + b - 1
-            end if
-            if (b > a) search = [character(len=path_len) :: search, env(a:b - 1)]
-            a = b + 1
-        end do
-    end subroutine environment_path
-
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
         write (error_unit, '(a)') 'hhneck: '//problem
@@ -280,12 +272,17 @@ contains
             '  --sample SECONDS   HDF5 sampling interval (instead of the OUTPUT card)', &
             '  --rtol TOL         relative tolerance of the error-controlled integrators', &
             '                     (instead of CONTROL F5; the absolute tolerance becomes TOL/1000)', &
+            '  --change ''CARD''    add the CHANGE card CARD (an 80-column card image as in a deck,', &
+            '                     e.g. ''CHANGE    E12       FAMILY    DISCS     E         SCALE     1.2'')', &
+            '                     after the deck''s own cards (repeatable; docs/deck-format.md);', &
+            '                     the listing and the result file note it as "--change N"', &
             '  --check            read and check the deck (warnings included), do not run', &
             '  --sweep            the deck is a parameter-sweep deck (docs/sweeps.md)', &
             '  --calibrate        the deck is a calibration deck: fit its parameters (docs/sweeps.md)', &
             '  -I DIR, --include-path DIR', &
-            '                     look for INCLUDE files in DIR too (repeatable); after the', &
-            '                     including file''s directory and the working directory, and', &
+            '                     look for INCLUDE files (and a sweep''s BASE deck) in DIR too', &
+            '                     (repeatable); after the including file''s directory and the', &
+            '                     working directory, and', &
             '                     before the directories of the environment variable HHNECK_PATH', &
             '                     (colon separated), e.g. the project directory of the shipped decks', &
             '  --progress         show progress on standard error (simulated and wall time, step,', &

@@ -6,6 +6,10 @@
 !!   mpirun -np 4 $(FPM_FC=mpifort fpm run --profile release --flag -DHHNECK_MPI \
 !!          --example sweep_mpi --runner echo) input/sweep_nbdl_oat.inp --h5 oat.h5
 !!
+!! The base deck and the INCLUDE files are looked for as by hhneck: next to
+!! the including file, in the working directory, then in the directories of
+!! -I DIR (repeatable) and of the environment variable HHNECK_PATH.
+!!
 !! (as root add --allow-run-as-root; more ranks than cores: --oversubscribe).
 !! The deck is named on the command line because mpirun gives standard
 !! input to rank 0 only. Every rank takes the next member number from a
@@ -24,6 +28,7 @@ program sweep_mpi
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use hn_kinds, only: wp, msglen, i8
     use hn_case, only: path_len
+    use hn_deck_reader, only: add_environment_path
     use hn_version, only: code_version
     use hn_run, only: exit_deck, exit_usage, exit_output, exit_members_failed
     use hn_sweep, only: sweep_t, member_record_t, read_sweep, sweep_design, run_member, nout
@@ -33,6 +38,7 @@ program sweep_mpi
     type(member_record_t), allocatable :: recs(:)
     real(wp), allocatable :: v(:, :)
     character(len=path_len) :: deck, h5name, arg
+    character(len=path_len), allocatable :: search(:)
     character(len=msglen) :: msg
     integer :: rank, nranks, stat, r, nrun, i, code
     logical :: h5_given, no_h5
@@ -57,6 +63,7 @@ program sweep_mpi
     h5name = ''
     h5_given = .false.
     no_h5 = .false.
+    allocate (search(0))
     i = 1
     do while (i <= command_argument_count())
         call get_command_argument(i, arg)
@@ -67,17 +74,22 @@ program sweep_mpi
             h5_given = .true.
         case ('--no-h5')
             no_h5 = .true.
+        case ('-I', '--include-path')
+            i = i + 1
+            call get_command_argument(i, arg)
+            if (len_trim(arg) > 0) search = [character(len=path_len) :: search, arg]
         case default
             deck = arg
         end select
         i = i + 1
     end do
     if (len_trim(deck) == 0) then
-        if (rank == 0) write (error_unit, '(a)') 'usage: sweep_mpi SWEEP_DECK [--h5 FILE | --no-h5]'
+        if (rank == 0) write (error_unit, '(a)') 'usage: sweep_mpi SWEEP_DECK [--h5 FILE | --no-h5] [-I DIR]...'
         call finish(exit_usage)
     end if
 
-    call read_sweep(trim(deck), trim(deck), sw, stat, msg)
+    call add_environment_path(search)   ! HHNECK_PATH after the -I directories, as hhneck
+    call read_sweep(trim(deck), trim(deck), sw, stat, msg, search)
     if (stat /= 0) then
         if (rank == 0) write (error_unit, '(a)') 'sweep_mpi: sweep deck error: '//trim(msg)
         call finish(exit_deck)

@@ -38,6 +38,7 @@ module hn_case
         character(len=100), allocatable :: scene(:)  !! what the scene cards did (listing summary)
         character(len=160), allocatable :: warnings(:)  !! physical plausibility warnings
         character(len=160), allocatable :: changes(:)   !! what the CHANGE cards did (listing, result file)
+        character(len=80), allocatable :: subtitles(:)  !! titles of INCLUDEd case decks, in deck order (listing header)
     end type case_t
 
 end module hn_case

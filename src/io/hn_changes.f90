@@ -4,7 +4,13 @@
 !!
 !!   CHANGE  name  FAMILY  family  item           SCALE       factor
 !!   CHANGE  name  BODY    body    MASS|INERTIA   SCALE|SET   value
-!!   CHANGE  name  FIELDn  card    name-in-F1     SCALE|SET   value
+!!   CHANGE  name  FIELDn  card    name-in-F1     SCALE|SET   value   [F2 of the card]
+!!
+!! A FIELD change addresses its card by the card name, the name in its
+!! field F1 and, for cards that F1 alone does not tell apart (LIMIT, ROM,
+!! NEUTRAL, INITIAL, PRESCRIB: body and coordinate), the text of its field
+!! F2 in the CHANGE card's F7. A change that finds no card, or more than
+!! one, names the candidates with their locations.
 !!
 !! A FIELD change rewrites the field before the cards are interpreted, so
 !! that the deck's own checks and units apply to the new value; FAMILY and
@@ -13,7 +19,7 @@
 !! file.
 module hn_changes
     use hn_kinds, only: wp, zero, msglen
-    use hn_deck_reader, only: deck_reader_t, locate_field, field_text, int_str, nfields, parse_real
+    use hn_deck_reader, only: deck_reader_t, locate_field, field_text, int_str, nfields, parse_real, upper
     use hn_model, only: model_t, family_name, family_items, family_items_text, scale_family, max_family_items
     use hn_tree, only: tree_build
     implicit none
@@ -33,6 +39,7 @@ module hn_changes
         integer :: kind = 0                !! kind_family, kind_body or kind_field
         character(len=10) :: target = ''   !! family, body or card name (F3)
         character(len=10) :: item = ''     !! property, or the name in field F1 of the card (F4)
+        character(len=10) :: key2 = ''     !! FIELDn: the text of field F2 of the card (F7; blank: any)
         integer :: field = 0               !! field number across the card (FIELDn)
         logical :: set = .false.           !! SET (else SCALE)
         real(wp) :: value = zero           !! factor or new value (F6)
@@ -70,6 +77,13 @@ contains
                 call rd%real(i, 6, 'factor', '-', changes(k)%value, 1.0e-6_wp, 1.0e6_wp)
             end if
             if (rd%failed()) return
+            call rd%name(i, 7, 'second key', changes(k)%key2, optional_blank=.true.)
+            if (rd%failed()) return
+            if (changes(k)%kind /= kind_field .and. len_trim(changes(k)%key2) > 0) then
+                call rd%fail(rd%context(i, 7, 'second key')//': found "'//trim(changes(k)%key2)// &
+                             '"; expected a blank field (F7 names field F2 of the card a FIELDn change addresses)')
+                return
+            end if
             if (changes(k)%kind == kind_field .and. changes(k)%target == 'CHANGE') then
                 call rd%fail(rd%context(i, 3, 'target')//': found "CHANGE"; expected the card whose field '// &
                              'changes (a CHANGE card cannot change another)')
@@ -114,17 +128,17 @@ contains
         type(change_t), intent(in) :: changes(:)                   !! the changes
         character(len=note_len), allocatable, intent(inout) :: notes(:)  !! one line per change made
         integer :: k, nfound, line, c1, c2
+        integer, allocatable :: cands(:)
         real(wp) :: old, new
         logical :: ok
         character(len=note_len) :: note
         do k = 1, size(changes)
             associate (c => changes(k), i => changes(k)%line)
                 if (c%kind /= kind_field) cycle
-                call locate_field(rd%lines(1:rd%nlines), c%target, c%item, c%field, nfound, line, c1, c2)
+                call locate_field(rd%lines(1:rd%nlines), c%target, c%item, c%field, nfound, line, c1, c2, &
+                                  name2=c%key2, matches=cands)
                 if (nfound /= 1) then
-                    call rd%fail(rd%where(i)//' (CHANGE '//trim(c%name)//'): found '//trim(int_str(nfound))//' '// &
-                                 trim(c%target)//' cards'//trim(merge(' named '//c%item, repeat(' ', 17), &
-                                 len_trim(c%item) > 0))//' in the deck; expected exactly one')
+                    call rd%fail(rd%where(i)//' (CHANGE '//trim(c%name)//'): '//not_one(rd, c, cands))
                     return
                 end if
                 if (line == 0) then
@@ -143,6 +157,7 @@ contains
                 if (.not. c%set) new = c%value*old
                 rd%lines(line)%text(c1:c2) = field_text(new)
                 write (note, '(6a)') trim(c%name), ': ', trim(c%target), ' ', trim(c%item), &
+                    trim(merge(' '//c%key2, repeat(' ', 11), len_trim(c%key2) > 0))// &
                     ' field F'//trim(int_str(c%field))//' '
                 if (ok) then
                     note = trim(note)//' '//trim(adjustl(field_text(old)))//' -> '//trim(adjustl(field_text(new)))
@@ -153,6 +168,107 @@ contains
             end associate
         end do
     end subroutine apply_field_changes
+
+    !> Why a FIELD change does not address exactly one card: none (with the
+    !! cards of that name under other card names or other second keys), or
+    !! several, listed with their locations and what would tell them apart.
+    function not_one(rd, c, cands) result(s)
+        type(deck_reader_t), intent(in) :: rd
+        type(change_t), intent(in) :: c
+        integer, intent(in) :: cands(:)
+        character(len=:), allocatable :: s, what, second
+        integer, allocatable :: others(:)
+        integer :: j, n, line, c1, c2
+        logical :: distinct
+        character(len=10), allocatable :: keys(:)
+        what = trim(c%target)//' card'
+        if (len_trim(c%item) > 0) what = what//'s named '//trim(c%item)
+        if (len_trim(c%item) == 0) what = what//'s'
+        if (len_trim(c%key2) > 0) what = what//' with '//trim(c%key2)//' in F2'
+        second = 'field F2 of the card'
+        if (any(c%target == [character(len=10) :: 'NEUTRAL', 'INITIAL', 'PRESCRIB', 'LIMIT', 'ROM'])) &
+            second = 'the coordinate'
+        if (size(cands) == 0) then
+            s = 'found 0 '//what//' in the deck; expected exactly one'
+            if (len_trim(c%key2) > 0) then
+                ! that card name and F1, other F2s
+                call locate_field(rd%lines(1:rd%nlines), c%target, c%item, c%field, n, line, c1, c2, matches=others)
+                if (n > 0) s = s//' (the '//trim(c%target)//' cards named '//trim(c%item)//': '// &
+                               candidates(rd, others, 2)//'; '//second//' goes in F7)'
+            else if (len_trim(c%item) > 0) then
+                ! other cards of that name in F1
+                allocate (others(0))
+                do j = 1, rd%nlines
+                    if (any(upper(rd%lines(j)%text(1:8)) == [character(len=8) :: '', 'CHANGE'])) cycle
+                    if (upper(adjustl(rd%lines(j)%text(11:20))) == c%item) others = [others, j]
+                end do
+                if (size(others) > 0) s = s//' (cards named '//trim(c%item)//': '//candidates(rd, others, 0)//')'
+            end if
+            return
+        end if
+        s = 'found '//trim(int_str(size(cands)))//' '//what//' ('
+        if (len_trim(c%item) > 0) then
+            s = s//candidates(rd, cands, 2)//'); expected '
+        else
+            s = s//candidates(rd, cands, 1)//'); expected '
+        end if
+        if (len_trim(c%item) == 0) then
+            s = s//'the name in field F1 of the card in F4'
+            return
+        end if
+        keys = f2(rd, cands)
+        distinct = len_trim(c%key2) == 0
+        do j = 2, size(cands)
+            if (any(keys(1:j - 1) == keys(j))) distinct = .false.
+        end do
+        if (distinct) then
+            s = s//second//' too, in F7: '//trim(rd%lines(c%line)%text(1:70)//keys(1))
+        else
+            s = s//'one card: these cards are not told apart by the card name, F1 and F2 (cards that combine '// &
+                'cannot be changed one by one)'
+        end if
+    end function not_one
+
+    !> Field F2 of card images idx, upper case, left-adjusted.
+    pure function f2(rd, idx) result(t)
+        type(deck_reader_t), intent(in) :: rd
+        integer, intent(in) :: idx(:)
+        character(len=10) :: t(size(idx))
+        integer :: j
+        do j = 1, size(idx)
+            t(j) = upper(adjustl(rd%lines(idx(j))%text(21:30)))
+        end do
+    end function f2
+
+    !> The card images idx as "stdin line 290 RX, line 291 RY, ...": the
+    !! place in full when it differs from the one before, with its fields F2
+    !! (show = 2), F1 and F2 (show = 1) or its card name (show = 0); at most 6.
+    function candidates(rd, idx, show) result(s)
+        type(deck_reader_t), intent(in) :: rd
+        integer, intent(in) :: idx(:), show
+        character(len=:), allocatable :: s
+        integer :: j, i, p
+        s = ''
+        do j = 1, min(size(idx), 6)
+            i = idx(j)
+            if (j > 1) s = s//', '
+            if (show == 0) s = s//'the '//trim(upper(rd%lines(i)%text(1:8)))//' card at '
+            if (j > 1) then
+                p = idx(j - 1)
+                if (rd%lines(p)%source == rd%lines(i)%source .and. rd%lines(p)%via == rd%lines(i)%via .and. &
+                    show /= 0) then
+                    s = s//'line '//trim(int_str(rd%lines(i)%line))
+                else
+                    s = s//rd%where(i)
+                end if
+            else
+                s = s//rd%where(i)
+            end if
+            if (show == 1) s = s//' '//trim(upper(adjustl(rd%lines(i)%text(11:20))))
+            if (show >= 1) s = s//' '//trim(upper(adjustl(rd%lines(i)%text(21:30))))
+        end do
+        if (size(idx) > 6) s = s//', ... ('//trim(int_str(size(idx)))//' in all)'
+    end function candidates
 
     !> Apply the FAMILY and BODY changes to the model: family properties
     !! scaled, body masses and inertias scaled or set (the tree's derived

@@ -21,7 +21,7 @@ module hn_deck
     use hn_rotation, only: norm3
     use hn_scene, only: merge_bodies, lock_sagittal
     use hn_plausibility, only: plausibility_warnings
-    use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes
+    use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
     use hn_csv, only: read_two_columns
     implicit none
     private
@@ -64,34 +64,87 @@ contains
     !> Read the deck in file `path` ('/dev/stdin' for standard input, named
     !! `source` in messages) into `cs`. INCLUDE files are looked for next to
     !! the including file, in the working directory, then in `include_path`.
-    subroutine read_case(path, source, cs, stat, errmsg, include_path)
+    !! `change_cards` (the command line's --change options) are CHANGE card
+    !! images put after the deck's own cards, located as "--change N".
+    subroutine read_case(path, source, cs, stat, errmsg, include_path, change_cards)
         character(len=*), intent(in) :: path                       !! file to read
         character(len=*), intent(in) :: source                     !! its name in messages
         type(case_t), intent(out) :: cs                            !! the run case (model and run control)
         integer, intent(out) :: stat                               !! stat_ok, or stat_bad_input (the first error)
         character(len=msglen), intent(out) :: errmsg               !! the first error, located in the deck
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE files
+        character(len=*), intent(in), optional :: change_cards(:)  !! CHANGE card images added after the deck's cards
         type(deck_reader_t) :: rd
         rd%top = source
         if (present(include_path)) rd%search = include_path
         call read_card_images(rd, path, source)
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the deck is empty (no cards); expected a TITLE card first')
+        if (present(change_cards) .and. .not. rd%failed()) call add_option_cards(rd, change_cards)
         call interpret(rd, cs)
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_case
 
+    !> CHANGE card images from the command line (--change), checked as deck
+    !! lines are (80 columns, plain ASCII) and put after the deck's own cards,
+    !! before its END card; each is located as "--change N" in messages.
+    subroutine add_option_cards(rd, images)
+        type(deck_reader_t), intent(inout) :: rd
+        character(len=*), intent(in) :: images(:)
+        type(deck_line_t), allocatable :: extra(:)
+        character(len=:), allocatable :: here
+        integer :: k, j, c, n, iend
+        allocate (extra(size(images)))
+        do k = 1, size(images)
+            here = '--change '//trim(int_str(k))
+            n = len_trim(images(k))
+            do j = 1, n
+                c = iachar(images(k)(j:j))
+                if (c >= 32 .and. c <= 126) cycle
+                call rd%fail(here//', column '//trim(int_str(j))//': found a tab, control or non-ASCII '// &
+                             'character; expected a card image of plain ASCII text')
+                return
+            end do
+            if (n > 80) then
+                call rd%fail(here//', columns 81-'//trim(int_str(n))//': found text beyond column 80; '// &
+                             'card images have 80 columns')
+                return
+            end if
+            if (upper(images(k)(1:min(n, 8))) /= 'CHANGE' .or. n < 11) then
+                call rd%fail(here//', columns 1-8: found "'//trim(images(k)(1:min(n, 8)))//'"; expected a '// &
+                             'CHANGE card image, e.g. --change ''CHANGE    HEADM     BODY      HEAD      MASS'// &
+                             '      SCALE     1.1''')
+                return
+            end if
+            extra(k)%text = images(k)(1:n)
+            extra(k)%source = '--change'
+            extra(k)%line = k
+        end do
+        iend = rd%nlines + 1
+        do j = 1, rd%nlines
+            if (rd%key(j) /= 'END') cycle
+            iend = j
+            exit
+        end do
+        rd%lines = [rd%lines(1:iend - 1), extra, rd%lines(iend:rd%nlines)]
+        rd%nlines = rd%nlines + size(extra)
+    end subroutine add_option_cards
+
     !> Interpret card images already read (INCLUDE expanded), as kept in
     !! `case_t%deck`: a deck edited in memory, e.g. one member of a sweep.
-    subroutine read_case_lines(lines, source, cs, stat, errmsg)
+    !! `include_path` is searched for the data files of TABLE ... CSV cards
+    !! as when the deck was read.
+    subroutine read_case_lines(lines, source, cs, stat, errmsg, include_path)
         type(deck_line_t), intent(in) :: lines(:)      !! card images, INCLUDE cards expanded
         character(len=*), intent(in) :: source         !! name of the deck in messages
         type(case_t), intent(out) :: cs                !! the run case (model and run control)
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
         character(len=msglen), intent(out) :: errmsg   !! the first error, located in the deck
+        character(len=*), intent(in), optional :: include_path(:)  !! directories searched for data files
         type(deck_reader_t) :: rd
         rd%top = source
+        if (present(include_path)) rd%search = include_path
         rd%lines = lines
         rd%nlines = size(lines)
         if (rd%nlines == 0) call rd%fail(source//': the deck is empty (no cards); expected a TITLE card first')
@@ -115,7 +168,7 @@ contains
             cs%deck = rd%lines(1:rd%nlines)
             call group_cards(rd, cards)
         end if
-        allocate (cs%scene(0), cs%changes(0))
+        allocate (cs%scene(0), cs%changes(0), cs%subtitles(0))
         ! CHANGE cards: fields rewritten in rd's images (cs%deck keeps the deck as read)
         if (.not. rd%failed()) then
             allocate (first(0))
@@ -124,8 +177,13 @@ contains
             end do
             call read_changes(rd, first, changes)
         end if
-        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
+        ! cards that repeat one another are refused before a change can be ambiguous, and again
+        ! when a change rewrote a field that identifies a card (F1, F2)
         if (.not. rd%failed()) call check_repeats(rd, cards)
+        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
+        if (.not. rd%failed()) then
+            if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, cards)
+        end if
         if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call control_cards(rd, cards, cs)
         if (.not. rd%failed()) call table_cards(rd, cards, tabs)
@@ -362,6 +420,41 @@ contains
         end do
     end subroutine unique_fields
 
+    !> TITLE: the deck's first card is its title. A deck that INCLUDEs a
+    !! case deck (a variant of it) meets that deck's TITLE too: the first
+    !! TITLE card of an INCLUDEd file is a subtitle, in deck order. A second
+    !! TITLE card in one file is refused.
+    subroutine title_cards(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        type(case_t), intent(inout) :: cs
+        integer :: k, j, first, earlier, i
+        first = 0
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'TITLE') cycle
+            i = cards(k)%first
+            if (first == 0) then
+                first = k
+                cs%model%title = rd%text(i, 11)
+                cycle
+            end if
+            earlier = 0
+            if (rd%lines(i)%via == 0) earlier = first
+            do j = first, k - 1
+                if (earlier /= 0) exit
+                if (cards(j)%key == 'TITLE' .and. rd%lines(cards(j)%first)%via == rd%lines(i)%via) earlier = j
+            end do
+            if (earlier /= 0) then
+                call rd%fail(rd%where(i)//', columns 1-8: found a second TITLE card; expected only one (the '// &
+                             'first is at '//rd%where(cards(earlier)%first)//'; the TITLE of an INCLUDEd deck '// &
+                             'is a subtitle)')
+                return
+            end if
+            cs%subtitles = [character(len=80) :: cs%subtitles, rd%text(i, 11)]
+        end do
+        if (first == 0) call rd%fail(rd%top//': the deck has no TITLE card; expected one')
+    end subroutine title_cards
+
     !> TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT, H5FILE, DUMP, HOLD.
     subroutine control_cards(rd, cards, cs)
         type(deck_reader_t), intent(inout) :: rd
@@ -372,9 +465,8 @@ contains
         real(wp) :: v, span
         real(wp), allocatable :: tmp(:)
 
-        ic = single(rd, cards, 'TITLE', .true.)
+        call title_cards(rd, cards, cs)
         if (rd%failed()) return
-        cs%model%title = rd%text(cards(ic)%first, 11)
 
         ic = single(rd, cards, 'CONTROL', .true.)
         if (rd%failed()) return

@@ -25,7 +25,7 @@ module hn_deck_reader
     private
 
     public :: deck_line_t, deck_reader_t, read_card_images, field_columns, int_str, upper, parse_real
-    public :: field_text, field_value, locate_field, read_data_file, next_line
+    public :: field_text, field_value, locate_field, read_data_file, next_line, add_environment_path
 
     integer, parameter, public :: path_len = 256   !! longest file path
 
@@ -79,6 +79,7 @@ module hn_deck_reader
         procedure :: where => reader_where
         procedure :: context
         procedure :: read_data_file
+        procedure :: find_file => resolve_include
     end type deck_reader_t
 
 contains
@@ -107,11 +108,19 @@ contains
     end subroutine reader_fail
 
     !> "stdin line 12" for deck line i; a line of an included file adds
-    !! where it was included: "a.inp line 3 (included from stdin line 12)".
+    !! where it was included: "a.inp line 3 (included from stdin line 12)";
+    !! a card image of a command-line option: "--change 2".
     function reader_where(me, i) result(s)
         class(deck_reader_t), intent(in) :: me
         integer, intent(in) :: i   !! card image number
         character(len=:), allocatable :: s
+        if (len(me%lines(i)%source) > 2) then
+            if (me%lines(i)%source(1:2) == '--') then
+                ! a card image given on the command line: "--change 2"
+                s = me%lines(i)%source//' '//trim(int_str(me%lines(i)%line))
+                return
+            end if
+        end if
         s = me%lines(i)%source//' line '//trim(int_str(me%lines(i)%line))
         if (allocated(me%vias) .and. me%lines(i)%via > 0) then
             if (me%lines(i)%via <= me%nvias) s = s//trim(me%vias(me%lines(i)%via))
@@ -679,9 +688,10 @@ contains
     !! with a message when there is no such regular file.
     subroutine resolve_include(me, name, including, found, errmsg)
         class(deck_reader_t), intent(in) :: me
-        character(len=*), intent(in) :: name, including
-        character(len=:), allocatable, intent(out) :: found
-        character(len=*), intent(out) :: errmsg
+        character(len=*), intent(in) :: name                  !! the path as written on the card
+        character(len=*), intent(in) :: including             !! the file holding the card (stdin_path: none)
+        character(len=:), allocatable, intent(out) :: found   !! where it was found ('' when not)
+        character(len=*), intent(out) :: errmsg               !! why not ('' when found)
         character(len=:), allocatable :: tried
         integer :: k, kind
         found = ''
@@ -796,12 +806,13 @@ contains
     end function field_value
 
     !> The card `key` whose field F1 holds `name` (any such card when name
-    !! is blank) among `lines`: how many there are, and for exactly one the
-    !! line holding field number `field` counted across the card and its
-    !! continuation cards (F8 is F1 of the first continuation card), with
-    !! that field's columns. line = 0 when the card has no continuation card
-    !! for the field.
-    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2)
+    !! is blank) and, when `name2` is given and not blank, whose field F2
+    !! holds `name2`, among `lines`: how many there are (and which, in
+    !! `matches`), and for exactly one the line holding field number `field`
+    !! counted across the card and its continuation cards (F8 is F1 of the
+    !! first continuation card), with that field's columns. line = 0 when the
+    !! card has no continuation card for the field.
+    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2, name2, matches)
         type(deck_line_t), intent(in) :: lines(:)  !! card images
         character(len=*), intent(in) :: key        !! card name (columns 1-8)
         character(len=*), intent(in) :: name       !! name in field F1, or blank
@@ -810,18 +821,28 @@ contains
         integer, intent(out) :: line               !! index in lines of the field's card image (0: none)
         integer, intent(out) :: c1                 !! the field's first column
         integer, intent(out) :: c2                 !! the field's last column
+        character(len=*), intent(in), optional :: name2          !! text in field F2 too (absent or blank: any)
+        integer, allocatable, intent(out), optional :: matches(:) !! the matching card images, in deck order
         integer :: i, k
+        logical :: second
         nfound = 0
         k = 0
         line = 0
+        second = .false.
+        if (present(name2)) second = len_trim(name2) > 0
+        if (present(matches)) allocate (matches(0))
         call field_columns(1 + mod(field - 1, nfields), c1, c2)
         do i = 1, size(lines)
             if (upper(lines(i)%text(1:8)) /= upper(key)) cycle
             if (len_trim(name) > 0) then
                 if (upper(adjustl(lines(i)%text(11:20))) /= upper(name)) cycle
             end if
+            if (second) then
+                if (upper(adjustl(lines(i)%text(21:30))) /= upper(name2)) cycle
+            end if
             nfound = nfound + 1
             k = i
+            if (present(matches)) matches = [matches, i]
         end do
         if (nfound /= 1) return
         line = k + (field - 1)/nfields
@@ -853,6 +874,29 @@ contains
             stat = stat_bad_input
         end if
     end subroutine read_data_file
+
+    !> Append the directories of the environment variable HHNECK_PATH (colon
+    !! separated, empty entries skipped) to the include path `search`: the
+    !! place of the shipped decks for an installed hhneck, after -I DIR.
+    subroutine add_environment_path(search)
+        character(len=path_len), allocatable, intent(inout) :: search(:)  !! the include path, extended
+        character(len=4096) :: env
+        integer :: n, st, a, b
+        if (.not. allocated(search)) allocate (search(0))
+        call get_environment_variable('HHNECK_PATH', env, n, st)
+        if (st /= 0 .or. n == 0) return
+        a = 1
+        do while (a <= n)
+            b = index(env(a:n), ':')
+            if (b == 0) then
+                b = n + 1
+            else
+                b = a + b - 1
+            end if
+            if (b > a) search = [character(len=path_len) :: search, env(a:b - 1)]
+            a = b + 1
+        end do
+    end subroutine add_environment_path
 
     pure function int_str(i) result(s)
         integer, intent(in) :: i   !! the integer

@@ -25,6 +25,7 @@ module hn_listing
         integer :: page = 0
         integer :: line = page_lines
         character(len=80) :: title = ''
+        character(len=117) :: subtitle = ''   !! the titles of INCLUDEd case decks ('' when none)
         character(len=20) :: stamp = ''
         character(len=16) :: version = ''
     contains
@@ -43,17 +44,32 @@ module hn_listing
 
 contains
 
-    !> Set the header fields; the date and time are taken now.
-    subroutine listing_start(me, unit, title, version)
+    !> Set the header fields; the date and time are taken now. Subtitles
+    !! (the titles of the case decks a variant deck INCLUDEs) make a second
+    !! title line on every page: "INCLUDES: title; title".
+    subroutine listing_start(me, unit, title, version, subtitles)
         class(listing_t), intent(inout) :: me
         integer, intent(in) :: unit               !! output unit of the listing (6: stdout)
         character(len=*), intent(in) :: title     !! deck title for the page headers (80 characters kept)
         character(len=*), intent(in) :: version   !! program version for the page headers
+        character(len=*), intent(in), optional :: subtitles(:)  !! titles of INCLUDEd decks (none: one title line)
         character(len=8) :: d
         character(len=10) :: t
+        character(len=:), allocatable :: sub
+        integer :: k
         me%unit = unit
         me%title = title
         me%version = version
+        me%subtitle = ''
+        if (present(subtitles)) then
+            if (size(subtitles) > 0) then
+                sub = 'INCLUDES: '//trim(subtitles(1))
+                do k = 2, size(subtitles)
+                    sub = sub//'; '//trim(subtitles(k))
+                end do
+                me%subtitle = sub
+            end if
+        end if
         call date_and_time(date=d, time=t)
         me%stamp = d(1:4)//'-'//d(5:6)//'-'//d(7:8)//' '//t(1:2)//':'//t(3:4)//':'//t(5:6)
         me%line = page_lines
@@ -67,8 +83,12 @@ contains
         write (me%unit, '(a,a,t24,a,t88,a,t109,a,i5)') ' HHNECK ', trim(me%version), &
             '3-D HEAD/NECK MODEL AFTER HUSTON, HUSTON & HARLOW (1978)', trim(me%stamp), 'PAGE', me%page
         write (me%unit, '(1x,a)') trim(me%title)
-        write (me%unit, '(a)') repeat('=', 118)
         me%line = 4
+        if (len_trim(me%subtitle) > 0) then
+            write (me%unit, '(1x,a)') trim(me%subtitle)
+            me%line = 5
+        end if
+        write (me%unit, '(a)') repeat('=', 118)
     end subroutine listing_new_page
 
     !> Start a new page unless n more lines fit on this one.

@@ -158,6 +158,13 @@ contains
         call h%write_strings('/deck/source', sources)
         call h%write_int('/deck/line', lines, [n])
         call h%attr_string('/deck/line', 'units', '1')
+        if (allocated(cs%subtitles)) then
+            if (size(cs%subtitles) > 0) then
+                call h%write_strings('/deck/subtitles', cs%subtitles)
+                call h%attr_string('/deck/subtitles', 'description', 'the titles of the INCLUDEd case decks, '// &
+                                   'in deck order (the root attribute title is the deck''s own)')
+            end if
+        end if
         if (allocated(cs%changes)) then
             if (size(cs%changes) > 0) then
                 call h%write_strings('/deck/changes', cs%changes)

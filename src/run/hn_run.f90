@@ -171,7 +171,11 @@ contains
         me%cs = cs
         me%keep = .false.
         if (present(keep_samples)) me%keep = keep_samples
-        call me%lst%start(lu, me%cs%model%title, code_version)
+        if (allocated(me%cs%subtitles)) then
+            call me%lst%start(lu, me%cs%model%title, code_version, me%cs%subtitles)
+        else
+            call me%lst%start(lu, me%cs%model%title, code_version)
+        end if
         call me%lst%echo_deck(me%cs%deck)
         call channels_define(me%cs, me%ch)
         call model_ode_init(me%sys, me%cs%model)

@@ -8,7 +8,7 @@ module hn_sweep
     use hn_kinds, only: wp, zero, one, msglen
     use hn_case, only: case_t, deck_line_t, path_len
     use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper, field_text, &
-                              field_value, locate_field
+                              field_value, locate_field, stdin_path
     use hn_deck, only: read_case_lines
     use hn_changes, only: read_param_kind, kind_family, kind_body, kind_field
     use hn_tree, only: tree_build
@@ -57,7 +57,9 @@ module hn_sweep
     !> A sweep: base deck, parameters, design.
     type :: sweep_t
         character(len=80) :: title = ''
-        character(len=path_len) :: base = ''      !! base deck path
+        character(len=path_len) :: base = ''      !! base deck path as the BASE card gives it
+        character(len=path_len) :: base_path = '' !! where it was found (as an INCLUDE file is)
+        character(len=path_len), allocatable :: search(:)  !! include path of the base deck and its data files
         character(len=path_len) :: h5file = ''    !! result file named in the sweep deck
         type(deck_line_t), allocatable :: base_lines(:)
         integer :: design = design_oat
@@ -82,52 +84,70 @@ module hn_sweep
 contains
 
     !> Read the sweep deck `path` (named `source` in messages), the base
-    !! deck it names, and check every parameter against the base deck.
-    subroutine read_sweep(path, source, sw, stat, errmsg)
+    !! deck it names, and check every parameter against the base deck. The
+    !! base deck and the INCLUDE files of both decks are looked for as a
+    !! single run looks for INCLUDE files: next to the including file, in
+    !! the working directory, then in `include_path` (-I, HHNECK_PATH).
+    subroutine read_sweep(path, source, sw, stat, errmsg, include_path)
         character(len=*), intent(in) :: path           !! sweep deck file, or stdin_path
         character(len=*), intent(in) :: source         !! its name in messages
         type(sweep_t), intent(out) :: sw               !! the sweep (base deck lines, parameters, design)
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
         character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
+        character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE and BASE files
         type(deck_reader_t) :: rd
         rd%top = source
+        allocate (rd%search(0))
+        if (present(include_path)) rd%search = include_path
         call read_card_images(rd, path, source, 0)
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the sweep deck is empty; expected a TITLE card first')
-        call parse_sweep(rd, source, sw)
+        call parse_sweep(rd, source, path, sw)
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_sweep
 
     !> A sweep deck already read into card images (INCLUDE expanded), e.g.
     !! one assembled in memory by the calibration for each of its cases.
-    subroutine read_sweep_lines(lines, source, sw, stat, errmsg)
+    !! Its BASE deck is looked for as in read_sweep, next to `path` when given.
+    subroutine read_sweep_lines(lines, source, sw, stat, errmsg, include_path, path)
         type(deck_line_t), intent(in) :: lines(:)      !! card images
         character(len=*), intent(in) :: source         !! name of the deck in messages
         type(sweep_t), intent(out) :: sw               !! the sweep (base deck lines, parameters, design)
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
         character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
+        character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE and BASE files
+        character(len=*), intent(in), optional :: path !! the file the lines came from (absent: none, as stdin)
         type(deck_reader_t) :: rd
         rd%top = source
         rd%lines = lines
         rd%nlines = size(lines)
-        call parse_sweep(rd, source, sw)
+        allocate (rd%search(0))
+        if (present(include_path)) rd%search = include_path
+        if (present(path)) then
+            call parse_sweep(rd, source, path, sw)
+        else
+            call parse_sweep(rd, source, stdin_path, sw)
+        end if
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_sweep_lines
 
     !> The cards of a sweep deck, the base deck they name, and every
     !! parameter checked against the base deck.
-    subroutine parse_sweep(rd, source, sw)
+    subroutine parse_sweep(rd, source, path, sw)
         type(deck_reader_t), intent(inout) :: rd
         character(len=*), intent(in) :: source
+        character(len=*), intent(in) :: path       ! the sweep deck's file (stdin_path: none)
         type(sweep_t), intent(out) :: sw
         type(deck_reader_t) :: bd
         type(case_t) :: base
         character(len=10) :: s
         character(len=msglen) :: errmsg
+        character(len=:), allocatable :: found
         integer :: i, np, ntitle, nbase, ndesign, p, stat
         allocate (sw%params(0))
+        sw%search = rd%search
         ntitle = 0; nbase = 0; ndesign = 0
         do i = 1, rd%nlines
             if (rd%failed()) exit
@@ -150,9 +170,21 @@ contains
                 if (len_trim(sw%base) == 0) call rd%fail(rd%where(i)//', columns 11-80 (BASE card): found no '// &
                                                         'file name; expected the path of the base case deck')
                 if (.not. rd%failed()) then
-                    bd%top = trim(sw%base)
-                    call read_card_images(bd, trim(sw%base), trim(sw%base), 0)
-                    if (bd%failed()) call rd%fail('base deck named at '//rd%where(i)//': '//trim(bd%errmsg))
+                    ! found as an INCLUDE file is: next to the file holding the card, here, the include path
+                    if (rd%lines(i)%via > 0) then
+                        call rd%find_file(trim(sw%base), rd%lines(i)%source, found, errmsg)
+                    else
+                        call rd%find_file(trim(sw%base), path, found, errmsg)
+                    end if
+                    if (len(found) == 0) then
+                        call rd%fail(rd%where(i)//', columns 11-80 (BASE card): '//trim(errmsg))
+                    else
+                        sw%base_path = found
+                        bd%top = found
+                        bd%search = rd%search
+                        call read_card_images(bd, found, found, 0)
+                        if (bd%failed()) call rd%fail('base deck named at '//rd%where(i)//': '//trim(bd%errmsg))
+                    end if
                     if (.not. rd%failed()) sw%base_lines = bd%lines(1:bd%nlines)
                 end if
             case ('H5FILE')
@@ -200,7 +232,7 @@ contains
         if (.not. rd%failed()) sw%deck = rd%lines(1:rd%nlines)
         ! the base deck as it is, then every parameter against it
         if (.not. rd%failed()) then
-            call read_case_lines(sw%base_lines, trim(sw%base), base, stat, errmsg)
+            call read_case_lines(sw%base_lines, trim(sw%base), base, stat, errmsg, sw%search)
             if (stat /= 0) call rd%fail('base deck '//trim(sw%base)//': '//trim(errmsg))
         end if
         if (.not. rd%failed()) then
@@ -466,7 +498,7 @@ contains
             call field_columns(1 + mod(sw%params(p)%field - 1, nfields), c1, c2)
             lines(sw%params(p)%line)%text(c1:c2) = field_text(v(p))
         end do
-        call read_case_lines(lines, trim(sw%base), cs, stat, errmsg)
+        call read_case_lines(lines, trim(sw%base), cs, stat, errmsg, sw%search)
         if (stat /= 0) return
         rebuild_tree = .false.
         do p = 1, size(sw%params)
