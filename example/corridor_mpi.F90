@@ -21,13 +21,13 @@ program corridor_mpi
     use hn_kinds, only: wp, msglen
     use hn_case, only: path_len
     use hn_sweep, only: sweep_design
-    use hn_calibrate, only: calibration_t, read_calibration, member_histories, nrated, rated_channels
+    use hn_calibrate, only: calibration_t, read_calibration, member_histories
     implicit none
     type(calibration_t) :: cal
     character(len=path_len) :: deck, prefix
     character(len=msglen) :: msg
     real(wp), allocatable :: v(:, :), y(:, :, :, :), ysum(:, :, :, :), ok(:), oksum(:), mean(:, :), sd(:, :)
-    integer :: rank, nranks, ierr, stat, r, c, k, nt, nc, nm, u, i, nok, nwin
+    integer :: rank, nranks, ierr, stat, r, c, k, nt, nc, nm, u, i, nok, nwin, nrated
     logical :: good, inside(1)
     real(wp) :: cover
     rank = 0; nranks = 1
@@ -48,7 +48,7 @@ program corridor_mpi
         call finish(2)
     end if
     v = sweep_design(cal%sw(1))                    ! LHS: FIT members and seed
-    nm = size(v, 2); nc = size(cal%sw); nt = size(cal%vol(1)%t)
+    nm = size(v, 2); nc = size(cal%sw); nt = size(cal%vol(1)%t); nrated = size(cal%channels)
     allocate (y(nt, nrated, nc, nm), ok(nm))
     y = 0; ok = 0
     do r = 1 + rank, nm, nranks
@@ -79,9 +79,9 @@ program corridor_mpi
                   action='write')
             write (u, '(a)', advance='no') 'time_ms'
             do k = 1, nrated
-                write (u, '(4(a))', advance='no') ','//trim(rated_channels(k))//'_model_mean', &
-                    ','//trim(rated_channels(k))//'_model_sd', ','//trim(rated_channels(k))//'_vol_mean', &
-                    ','//trim(rated_channels(k))//'_vol_sd'
+                write (u, '(4(a))', advance='no') ','//trim(cal%channels(k)%name)//'_model_mean', &
+                    ','//trim(cal%channels(k)%name)//'_model_sd', ','//trim(cal%channels(k)%name)//'_vol_mean', &
+                    ','//trim(cal%channels(k)%name)//'_vol_sd'
             end do
             write (u, '(a)') ''
             do i = 1, nt
@@ -92,13 +92,14 @@ program corridor_mpi
             do k = 1, nrated
                 nwin = 0; cover = 0
                 do i = 1, nt
-                    if (cal%vol(c)%t(i) < 30.0_wp .or. cal%vol(c)%t(i) > 250.0_wp) cycle
+                    if (cal%vol(c)%t(i) < cal%window(1) .or. cal%vol(c)%t(i) > cal%window(2)) cycle
                     nwin = nwin + 1
                     inside = abs(cal%vol(c)%mean(i, k) - mean(i, k)) <= sd(i, k)
                     if (inside(1)) cover = cover + 1
                 end do
-                write (output_unit, '(a,a,a10,a,f6.1,a)') trim(case_tag(cal%decks(c))), ' ', rated_channels(k), &
-                    ': volunteer mean inside the model mean +- 1 SD ', 100*cover/nwin, ' % of 30-250 ms'
+                write (output_unit, '(a,a,a10,a,f6.1,a,i0,a,i0,a)') trim(case_tag(cal%decks(c))), ' ', &
+                    cal%channels(k)%name, ': volunteer mean inside the model mean +- 1 SD ', 100*cover/nwin, &
+                    ' % of ', nint(cal%window(1)), '-', nint(cal%window(2)), ' ms'
             end do
         end do
     end if

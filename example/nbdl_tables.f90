@@ -8,7 +8,7 @@
 program nbdl_tables
     use hn_kinds, only: wp, msglen
     use hn_filters, only: cfc_filter
-    use hn_calibrate, only: read_runs_csv
+    use hn_volunteer_data, only: read_runs_csv
     implicit none
     character(len=512) :: dir, outfile
     integer :: out

@@ -1,12 +1,13 @@
 !> Time tables: piecewise-linear interpolation, exact integrals of a
-!! piecewise-linear table, and natural cubic splines.
+!! piecewise-linear table, and natural cubic splines; and two operations on
+!! sampled curves: linear resampling and the central-difference derivative.
 module hn_tables
     use hn_kinds, only: wp, zero, one
     use hn_status, only: stat_ok, stat_bad_table
     implicit none
     private
 
-    public :: table_t, table_set, table_value, table_segment, spline_t, spline_set, spline_eval
+    public :: table_t, table_set, table_value, table_segment, spline_t, spline_set, spline_eval, resample, gradient
 
     !> A sampled function y(t), t strictly increasing.
     type :: table_t
@@ -155,5 +156,41 @@ contains
             ydd = zero
         end if
     end subroutine spline_eval
+
+    !> Linear interpolation of the samples (xp, fp) at x, the end values
+    !! held outside [xp(1), xp(n)] (numpy.interp); x and xp increasing.
+    pure function resample(x, xp, fp) result(f)
+        real(wp), intent(in) :: x(:)    !! where the values are wanted, increasing
+        real(wp), intent(in) :: xp(:)   !! sample abscissae, increasing
+        real(wp), intent(in) :: fp(:)   !! sample values at xp
+        real(wp) :: f(size(x))
+        integer :: i, j
+        j = 1
+        do i = 1, size(x)
+            if (x(i) <= xp(1)) then
+                f(i) = fp(1)
+            else if (x(i) >= xp(size(xp))) then
+                f(i) = fp(size(fp))
+            else
+                do while (xp(j + 1) < x(i))
+                    j = j + 1
+                end do
+                f(i) = fp(j) + (fp(j + 1) - fp(j))*(x(i) - xp(j))/(xp(j + 1) - xp(j))
+            end if
+        end do
+    end function resample
+
+    !> Derivative of samples x taken every dt: central differences inside,
+    !! one-sided at the two ends (numpy.gradient); at least two samples.
+    pure function gradient(x, dt) result(d)
+        real(wp), intent(in) :: x(:)    !! the samples
+        real(wp), intent(in) :: dt      !! sample interval
+        real(wp) :: d(size(x))
+        integer :: n
+        n = size(x)
+        d(2:n - 1) = (x(3:n) - x(1:n - 2))/(2*dt)
+        d(1) = (x(2) - x(1))/dt
+        d(n) = (x(n) - x(n - 1))/dt
+    end function gradient
 
 end module hn_tables

@@ -16,7 +16,7 @@ module hn_sweep
     use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
-    use hn_random, only: rng_t
+    use hn_optimize, only: latin_hypercube
     implicit none
     private
 
@@ -415,9 +415,7 @@ contains
         type(sweep_t), intent(in) :: sw   !! the sweep (parameters and design)
         real(wp), allocatable :: v(:, :)
         integer :: np, n, r, p, idx, lev
-        integer, allocatable :: perm(:)
-        real(wp) :: u
-        type(rng_t) :: rng
+        real(wp), allocatable :: lhs(:, :)
         np = size(sw%params)
         n = design_runs(sw)
         allocate (v(np, n))
@@ -435,13 +433,10 @@ contains
                 end do
             end do
         case (design_lhs)
-            call rng%seed(sw%seed)
-            allocate (perm(n))
+            lhs = latin_hypercube(np, n, sw%seed)
             do p = 1, np
-                call rng%permutation(perm)
                 do r = 1, n
-                    u = rng%uniform(zero, one)
-                    v(p, r) = spread_value(sw%params(p), (real(perm(r) - 1, wp) + u)/real(n, wp))
+                    v(p, r) = spread_value(sw%params(p), lhs(p, r))
                 end do
             end do
         case (design_oat)

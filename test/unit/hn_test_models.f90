@@ -16,6 +16,26 @@ module hn_test_models
     public :: write_lines, delete_file, read_deck_lines, parser_check_deck
     public :: three_body_neck, control_card, run_lines, kept_run_t
 
+    !> The study cards of the shipped NBDL calibration decks (RATING,
+    !! CHANNEL and PEAK, with their comment cards; docs/sweeps.md), for the
+    !! calibration decks the tests write.
+    character(len=80), parameter, public :: nbdl_study_cards(15) = [character(len=80) :: &
+        '*         rated window (ms)   CFC class peak-time tolerance (ms)', &
+        'RATING    30.0      250.0     60        10.0', &
+        '*         channel   from file conversion file of its runs in each DATA directory', &
+        'CHANNEL   HEAD_AX   VALUE               Head_XAccel.csv', &
+        'CHANNEL   HEAD_AZ   VALUE               Head_ZAccel.csv', &
+        'CHANNEL   HEAD_ALPHYVALUE               Head_YrotAccel.csv', &
+        'CHANNEL   HEAD_OMEGYRATE      DEG-RAD   Head_YrotDisp.csv', &
+        'CHANNEL   HEAD_THETYVALUE               Head_YrotDisp.csv', &
+        '*         channel   extreme   window (ms)         name in the listing', &
+        'PEAK      HEAD_AX   MIN       30.0      250.0     X-ACCEL', &
+        'PEAK      HEAD_AZ   MIN       30.0      125.0     Z-ACCEL DIP', &
+        'PEAK      HEAD_AZ   MAX       125.0     250.0     Z-ACCEL REBOUND', &
+        'PEAK      HEAD_ALPHYMAX       30.0      250.0     ANG. ACCEL', &
+        'PEAK      HEAD_OMEGYMAX       30.0      250.0     ANG. VELOCITY', &
+        'PEAK      HEAD_THETYMAX       30.0      250.0     ROTATION']
+
     !> A run kept for several tests: a suite makes an expensive run once,
     !! the first time a test asks for it (pFUnit has no once-per-suite
     !! fixture), and its tests look at the result.

@@ -1,0 +1,265 @@
+!> Volunteer data: the runs of a test series as CSV files (a header line,
+!! then one row per time: the time in ms, then one column per run, as in
+!! reference/nbdl_15g), read with errors that name the file, the line and
+!! the column; and the corridor of a case's volunteers: each channel's
+!! file read, every run filtered (SAE J211/1 CFC), converted and
+!! differentiated as its `data_channel_t` says, then the point-wise mean
+!! and SD and the peaks' mean and SD (hn_rating). Which files, channels
+!! and peaks: the calibration deck (docs/sweeps.md).
+module hn_volunteer_data
+    use hn_kinds, only: wp, zero, one, msglen
+    use hn_status, only: stat_ok, stat_bad_input
+    use hn_posix, only: file_kind, kind_name, kind_regular, kind_missing
+    use hn_deck_reader, only: parse_real, next_line, int_str, path_len
+    use hn_tables, only: gradient
+    use hn_filters, only: cfc_filter
+    use hn_rating, only: peak_t, corridor_t, runs_corridor
+    implicit none
+    private
+
+    public :: data_channel_t, read_runs_csv, read_volunteers
+
+    !> One channel of the volunteers: the file of its runs and what is
+    !! done to each run after the CFC filter.
+    type :: data_channel_t
+        character(len=10) :: name = ''             !! the channel (the model channel it is compared with)
+        character(len=path_len) :: file = ''       !! the file of its runs, in the data directory
+        logical :: deg_to_rad = .false.            !! the file holds degrees, the channel radians
+        logical :: derivative = .false.            !! the channel is the time derivative of the file's runs
+    end type data_channel_t
+
+    real(wp), parameter :: spacing_tolerance = 1.0e-6_wp   !! relative departure of a time step from the first
+
+contains
+
+    !> Read a CSV file of runs: a header line (its items are counted, not
+    !! read), then rows of numbers separated by commas, the first the time
+    !! [ms], then one per run; blank lines are skipped. At least two rows
+    !! and two runs, times evenly spaced. Errors name the file, the line and
+    !! the column (the item number) and what was found.
+    subroutine read_runs_csv(file, t, runs, stat, errmsg)
+        character(len=*), intent(in) :: file               !! the file
+        real(wp), allocatable, intent(out) :: t(:)         !! first column: times [ms]
+        real(wp), allocatable, intent(out) :: runs(:, :)   !! (row, run) the other columns
+        integer, intent(out) :: stat                       !! stat_ok or stat_bad_input
+        character(len=msglen), intent(out) :: errmsg       !! the file, line and column at fault and why
+        character(len=:), allocatable :: text, line
+        integer :: p, q, lineno, ncol, nrow, k, kind, i
+        real(wp), allocatable :: row(:)
+        integer, allocatable :: rowline(:)
+        stat = stat_bad_input; errmsg = ''
+        kind = file_kind(file)
+        if (kind /= kind_regular) then
+            if (kind == kind_missing) then
+                errmsg = 'volunteer data '//file//': no such file'
+            else
+                errmsg = 'volunteer data '//file//' is '//kind_name(kind)//'; expected a regular file'
+            end if
+            return
+        end if
+        call read_text(file, text, stat, errmsg)
+        if (stat /= stat_ok) return
+        stat = stat_bad_input
+        ! the header
+        p = 1; lineno = 0; ncol = 0
+        do while (p <= len(text))
+            call next_line(text, p, line)
+            lineno = lineno + 1
+            line = strip_cr(line)
+            if (len_trim(line) == 0) cycle
+            ncol = 1 + count([(line(k:k) == ',', k=1, len_trim(line))])
+            exit
+        end do
+        if (ncol == 0) then
+            errmsg = 'volunteer data '//file//': empty; expected a header line, then a time and one value per run '// &
+                     'on each line'
+            return
+        end if
+        if (ncol < 3) then
+            errmsg = 'volunteer data '//file//' line '//trim(int_str(lineno))//': the header has '// &
+                     trim(int_str(ncol))//' columns; expected the time and at least two runs'
+            return
+        end if
+        nrow = 0
+        q = p
+        do while (q <= len(text))
+            call next_line(text, q, line)
+            if (len_trim(strip_cr(line)) > 0) nrow = nrow + 1
+        end do
+        allocate (t(nrow), runs(nrow, ncol - 1), row(ncol), rowline(nrow))
+        nrow = 0
+        do while (p <= len(text))
+            call next_line(text, p, line)
+            lineno = lineno + 1
+            line = strip_cr(line)
+            if (len_trim(line) == 0) cycle
+            call parse_row(line, row, errmsg)
+            if (len_trim(errmsg) > 0) then
+                errmsg = 'volunteer data '//file//' line '//trim(int_str(lineno))//trim(errmsg)
+                return
+            end if
+            nrow = nrow + 1
+            t(nrow) = row(1)
+            runs(nrow, :) = row(2:)
+            rowline(nrow) = lineno
+        end do
+        if (nrow < 2) then
+            errmsg = 'volunteer data '//file//': '//trim(int_str(nrow))//' rows of numbers; expected at least two'
+            return
+        end if
+        do i = 2, nrow
+            if (.not. (t(i) > t(i - 1)) .or. abs((t(i) - t(i - 1)) - (t(2) - t(1))) > &
+                spacing_tolerance*(t(2) - t(1))) then
+                errmsg = 'volunteer data '//file//' line '//trim(int_str(rowline(i)))//', column 1: found the time '// &
+                         num_text(t(i))//' ms after '//num_text(t(i - 1))//' ms (line '// &
+                         trim(int_str(rowline(i - 1)))//'); expected times evenly spaced as those of the first two rows'
+                return
+            end if
+        end do
+        stat = stat_ok
+    contains
+        !> The numbers of one row into row; errmsg ', column K: ...' when one is not a number or too few or many.
+        subroutine parse_row(line, row, errmsg)
+            character(len=*), intent(in) :: line
+            real(wp), intent(out) :: row(:)
+            character(len=*), intent(out) :: errmsg
+            integer :: a, b, n
+            logical :: ok
+            errmsg = ''
+            row = 0
+            a = 1; n = 0
+            do
+                b = index(line(a:), ',')
+                b = merge(len(line) + 1, a + b - 1, b == 0)
+                n = n + 1
+                if (n <= size(row)) then
+                    call parse_real(trim(adjustl(line(a:b - 1))), row(n), ok)
+                    if (.not. ok) then
+                        errmsg = ', column '//trim(int_str(n))//': found "'// &
+                                 trim(adjustl(line(a:min(b - 1, a + 40))))//'"; expected a number'
+                        return
+                    end if
+                end if
+                if (b > len(line)) exit
+                a = b + 1
+            end do
+            if (n /= size(row)) errmsg = ': found '//trim(int_str(n))//' items; expected '// &
+                                         trim(int_str(size(row)))//' (the time and one value per run, as the '// &
+                                         'header has)'
+        end subroutine parse_row
+    end subroutine read_runs_csv
+
+    !> Read the volunteers of directory `dir`: for each channel its file
+    !! (read_runs_csv; every file of the case with the times and runs of
+    !! the first), each run filtered with class `cfc`, converted to radians
+    !! and differentiated as the channel says; then their corridor with
+    !! the peaks (hn_rating's runs_corridor), each peak's window holding at
+    !! least one of the times.
+    subroutine read_volunteers(dir, channels, cfc, peaks, vol, stat, errmsg, bad_channel, bad_peak)
+        character(len=*), intent(in) :: dir                !! data directory
+        type(data_channel_t), intent(in) :: channels(:)    !! the channels, at least one
+        real(wp), intent(in) :: cfc                        !! CFC class of the filter: 60, 180, 600 or 1000 [Hz]
+        type(peak_t), intent(in) :: peaks(:)               !! the peaks (curve: a channel number)
+        type(corridor_t), intent(out) :: vol               !! the volunteers' corridor
+        integer, intent(out) :: stat                       !! stat_ok, or stat_bad_input for a missing or bad file
+        character(len=msglen), intent(out) :: errmsg       !! the file, line and column at fault and why
+        integer, intent(out), optional :: bad_channel      !! the channel whose file is at fault (0: none)
+        integer, intent(out), optional :: bad_peak         !! the peak whose window holds no time (0: none)
+        real(wp), allocatable :: t(:), t1(:), runs(:, :), ch(:, :, :)
+        real(wp) :: dt
+        integer :: k, r, nrun
+        character(len=:), allocatable :: file, first
+        if (present(bad_channel)) bad_channel = 0
+        if (present(bad_peak)) bad_peak = 0
+        do k = 1, size(channels)
+            if (present(bad_channel)) bad_channel = k
+            file = trim(dir)//'/'//trim(channels(k)%file)
+            call read_runs_csv(file, t, runs, stat, errmsg)
+            if (stat /= stat_ok) return
+            if (k == 1) then
+                t1 = t; nrun = size(runs, 2); first = file
+                allocate (ch(size(t), nrun, size(channels)))
+                dt = (t(2) - t(1))*1.0e-3_wp
+            else if (size(t) /= size(t1) .or. size(runs, 2) /= nrun) then
+                stat = stat_bad_input
+                write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a)') 'volunteer data '//file//': ', size(runs, 2), ' runs at ', &
+                    size(t), ' times; expected those of '//first//' (', nrun, ' runs at ', size(t1), ' times)'
+                return
+            else if (any(abs(t - t1) > zero)) then
+                stat = stat_bad_input
+                errmsg = 'volunteer data '//file//': times other than those of '//first//'; expected the same times'
+                return
+            end if
+            do r = 1, nrun
+                call cfc_filter(runs(:, r), dt, cfc, ch(:, r, k))
+                if (channels(k)%deg_to_rad) ch(:, r, k) = ch(:, r, k)*acos(-one)/180.0_wp
+                if (channels(k)%derivative) ch(:, r, k) = gradient(ch(:, r, k), dt)
+            end do
+        end do
+        if (present(bad_channel)) bad_channel = 0
+        do k = 1, size(peaks)
+            if (.not. any(t1 >= peaks(k)%window(1) .and. t1 <= peaks(k)%window(2))) then
+                if (present(bad_peak)) bad_peak = k
+                stat = stat_bad_input
+                errmsg = 'found the window '//num_text(peaks(k)%window(1))//' to '//num_text(peaks(k)%window(2))// &
+                         ' ms of peak '//trim(peaks(k)%name)//', which holds no time of the volunteer data '//first// &
+                         ' (times '//num_text(t1(1))//' to '//num_text(t1(size(t1)))// &
+                         ' ms); expected a window within the data'
+                return
+            end if
+        end do
+        vol = runs_corridor(t1, ch, peaks)
+        stat = stat_ok; errmsg = ''
+    end subroutine read_volunteers
+
+    !> The whole of a file as text.
+    subroutine read_text(file, text, stat, errmsg)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable, intent(out) :: text
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: u, ios, n
+        stat = stat_bad_input
+        open (newunit=u, file=file, status='old', action='read', access='stream', form='unformatted', iostat=ios)
+        if (ios /= 0) then
+            errmsg = 'volunteer data '//file//': cannot be opened'
+            return
+        end if
+        inquire (unit=u, size=n)
+        allocate (character(len=max(n, 0)) :: text)
+        if (n > 0) read (u, iostat=ios) text
+        close (u)
+        if (ios /= 0) then
+            errmsg = 'volunteer data '//file//': cannot be read'
+            return
+        end if
+        stat = stat_ok
+    end subroutine read_text
+
+    !> x as short text: g0 without the trailing zeros of its fraction.
+    pure function num_text(x) result(s)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: s
+        character(len=40) :: buf
+        integer :: n
+        write (buf, '(g0)') x
+        s = trim(adjustl(buf))
+        if (index(s, '.') == 0 .or. scan(s, 'EeDd') > 0) return
+        n = len(s)
+        do while (s(n:n) == '0')
+            n = n - 1
+        end do
+        if (s(n:n) == '.') n = n - 1
+        s = s(1:n)
+    end function num_text
+
+    pure function strip_cr(line) result(s)
+        character(len=*), intent(in) :: line
+        character(len=:), allocatable :: s
+        s = line
+        if (len(s) > 0) then
+            if (s(len(s):len(s)) == achar(13)) s = s(1:len(s) - 1)
+        end if
+    end function strip_cr
+
+end module hn_volunteer_data
