@@ -606,17 +606,9 @@ contains
         character(len=*), intent(in) :: path         !! the object (group or dataset)
         character(len=*), intent(in) :: name         !! attribute name
         integer, intent(in) :: value                 !! the value
-        integer(hid_t) :: space, attr
-        integer :: err
         integer, target :: v
-        if (me%stat /= stat_ok) return
         v = value
-        call new_attribute(me, path, name, H5T_NATIVE_INTEGER, [integer ::], attr, space)
-        if (me%stat /= stat_ok) return
-        call h5awrite_f(attr, H5T_NATIVE_INTEGER, c_loc(v), err)
-        call check(me, err, 'writing attribute '//name//' of '//path)
-        call h5aclose_f(attr, err)
-        call h5sclose_f(space, err)
+        call scalar_attribute(me, path, name, H5T_NATIVE_INTEGER, c_loc(v))
     end subroutine h5_attr_int
 
     !> Scalar real attribute on the object `path` (h5py reads a float, not
@@ -627,18 +619,27 @@ contains
         character(len=*), intent(in) :: path         !! the object (group or dataset)
         character(len=*), intent(in) :: name         !! attribute name
         real(wp), intent(in) :: value                !! the value
+        real(wp), target :: v
+        v = value
+        call scalar_attribute(me, path, name, H5T_NATIVE_DOUBLE, c_loc(v))
+    end subroutine h5_attr_real_scalar
+
+    !> A scalar attribute of type dtype from the value at buf.
+    subroutine scalar_attribute(me, path, name, dtype, buf)
+        class(h5_file_t), intent(inout) :: me
+        character(len=*), intent(in) :: path, name
+        integer(hid_t), intent(in) :: dtype
+        type(c_ptr), intent(in) :: buf
         integer(hid_t) :: space, attr
         integer :: err
-        real(wp), target :: v
         if (me%stat /= stat_ok) return
-        v = value
-        call new_attribute(me, path, name, H5T_NATIVE_DOUBLE, [integer ::], attr, space)
+        call new_attribute(me, path, name, dtype, [integer ::], attr, space)
         if (me%stat /= stat_ok) return
-        call h5awrite_f(attr, H5T_NATIVE_DOUBLE, c_loc(v), err)
+        call h5awrite_f(attr, dtype, buf, err)
         call check(me, err, 'writing attribute '//name//' of '//path)
         call h5aclose_f(attr, err)
         call h5sclose_f(space, err)
-    end subroutine h5_attr_real_scalar
+    end subroutine scalar_attribute
 
     !> A dataspace of shape dims (scalar when dims is empty).
     subroutine new_space(me, dims, space, what)
