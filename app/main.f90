@@ -204,7 +204,7 @@ contains
         real(wp), allocatable :: v(:)
         real(wp) :: j
         integer :: n
-        call read_calibration(trim(deck), trim(source), cal, stat, msg)
+        call read_calibration(trim(deck), trim(source), cal, stat, msg, search)
         call stop_on_deck_error('calibration ')
         if (check_only) then
             write (error_unit, '(a)') 'hhneck: calibration deck is valid: '//trim(cal%title)

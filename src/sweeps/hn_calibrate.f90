@@ -93,12 +93,13 @@ contains
     !! values). Each case's parameters are bound to its own deck through a
     !! sweep (same checks); every CHANNEL must be a channel of every case
     !! deck, and every volunteer file is read (docs/sweeps.md).
-    subroutine read_calibration(path, source, cal, stat, errmsg)
+    subroutine read_calibration(path, source, cal, stat, errmsg, include_path)
         character(len=*), intent(in) :: path     !! the calibration deck's file
         character(len=*), intent(in) :: source   !! its name in messages
         type(calibration_t), intent(out) :: cal  !! the calibration
         integer, intent(out) :: stat             !! stat_ok, or stat_bad_input
         character(len=msglen), intent(out) :: errmsg !! the deck line, columns and what was expected
+        character(len=*), intent(in), optional :: include_path(:)  !! directories searched for CASE decks and INCLUDE files
         type(deck_reader_t) :: rd
         type(deck_line_t), allocatable :: params(:), sl(:)
         type(data_channel_t) :: dc
@@ -241,7 +242,11 @@ contains
         do c = 1, size(cal%decks)
             sl = [line_of('TITLE     '//cal%title), line_of('BASE      '//trim(cal%decks(c))), &
                   line_of('DESIGN    LHS       '//int_field(cal%nstart)//int_field(cal%seed)), params]
-            call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg)
+            if (present(include_path)) then
+                call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, include_path, path)
+            else
+                call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, path=path)
+            end if
             if (stat /= stat_ok) return
             ! every rated channel is one of the case's channels
             v0 = cal%sw(c)%params%nominal
