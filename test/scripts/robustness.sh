@@ -273,10 +273,17 @@ check $? "a table scale of 4.9E-324: accepted with a warning that the table is z
 # 10. runs that cannot finish in reasonable time stop (exit 3), files kept, with the cause
 "$HHNECK" --max-wall 6 --progress --h5 "$T/stiff.h5" < "$T/stiff.inp" > "$T/stiff.out" 2> "$T/stiff.err"
 rc=$?
-[ "$rc" -eq 3 ] && has "$T/stiff.err" 'the wall-time limit of 6 s' && has "$T/stiff.err" 'held down by stiffness' \
+[ "$rc" -eq 3 ] && has "$T/stiff.err" 'the wall-time limit of 6 s' && has "$T/stiff.err" 'The fastest mode has' \
     && has "$T/stiff.err" 'about .* to go' && has "$T/stiff.out" 'RUN INCOMPLETE' \
     && python3 tools/check_incomplete.py "$T/stiff.h5" 0.25 > /dev/null
-check $? "a stiff deck on DOPRI5 with --max-wall 6 --progress: progress shown, exit 3 ($rc), the stiffness named, file kept"
+check $? "a stiff deck on DOPRI5 with --max-wall 6 --progress: progress shown, exit 3 ($rc), the fastest mode named, file kept"
+# where a wall-time limit stops a run depends on the machine's load; a step
+# limit stops it at the same state on every machine: the diagnosis there
+"$HHNECK" --max-steps 3000 --no-h5 < "$T/stiff.inp" > /dev/null 2> "$T/stiff3000.err"
+rc=$?
+[ "$rc" -eq 3 ] && has "$T/stiff3000.err" 'the step limit of 3000 steps' \
+    && has "$T/stiff3000.err" 'mostly in C2.ry (h |lambda| = 3.' && has "$T/stiff3000.err" 'held down by stiffness'
+check $? "the same deck stopped after 3000 steps: exit 3 ($rc), the step held down by stiffness in C2.ry"
 { cat "$T/stiff.inp"; echo 'RUNLIMIT            200'; } > "$T/steps.inp"
 "$HHNECK" --no-h5 < "$T/steps.inp" > /dev/null 2> "$T/steps.err"
 rc=$?
