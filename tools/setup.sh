@@ -4,7 +4,8 @@
 # packages), Open MPI for parameter sweeps on many cores (openmpi-bin,
 # libopenmpi-dev), cmake and make (to build pFUnit for the tests, once, in
 # tools/pfunit.sh), fpm (from PyPI), numpy, h5py, matplotlib for the
-# report tools and pytest for their tests. Run as root on Debian or Ubuntu. Safe to run again.
+# report tools, objective-rating-metrics (the ISO/TS 18571 rating of
+# tools/iso18571.py) and pytest for their tests. Run as root on Debian or Ubuntu. Safe to run again.
 set -eu
 
 missing=""
@@ -34,6 +35,10 @@ python3 -c "import numpy, h5py, matplotlib" >/dev/null 2>&1 || {
     pip_install numpy h5py matplotlib
 }
 python3 -c "import pytest" >/dev/null 2>&1 || { echo "setup: installing pytest from PyPI" >&2; pip_install pytest; }
+python3 -c "import objective_rating_metrics.rating" >/dev/null 2>&1 || {
+    echo "setup: installing objective-rating-metrics (ISO/TS 18571) from PyPI" >&2
+    pip_install objective-rating-metrics
+}
 command -v fpm >/dev/null 2>&1 || { echo "setup: fpm is not on PATH after installing it" >&2; exit 1; }
 
 # the release executable, built here so that its build progress goes to
