@@ -123,6 +123,14 @@ def test_expected_file_is_the_packages_scores():
             assert float(a) == pytest.approx(float(b), abs=1e-12), "%s %s" % (s[0], col)
 
 
+def test_expected_file_has_the_cases_the_fortran_test_rates():
+    stored = read_expected()
+    assert len(stored) >= 6
+    pf = open(os.path.join(ROOT, "test", "unit", "test_iso18571.pf")).read()
+    for row in stored:
+        assert "'%s'" % row[0] in pf, row[0]
+
+
 def test_the_cases_are_not_all_alike():
     """Every score takes values well away from 1 in some case."""
     stored = read_expected()
