@@ -4,8 +4,9 @@
 # packages), Open MPI for parameter sweeps on many cores (openmpi-bin,
 # libopenmpi-dev), cmake and make (to build pFUnit for the tests, once, in
 # tools/pfunit.sh), fpm (from PyPI) and numpy, h5py, matplotlib, pandas
-# for the report and export tools and pytest for their tests. Run as root
-# on Debian or Ubuntu. Safe to run again.
+# for the report and export tools, objective-rating-metrics (the ISO/TS
+# 18571 rating of tools/iso18571.py) and pytest for their tests. Run as
+# root on Debian or Ubuntu. Safe to run again.
 set -eu
 
 missing=""
@@ -33,6 +34,10 @@ command -v fpm >/dev/null 2>&1 || { echo "setup: installing fpm from PyPI" >&2; 
 python3 -c "import numpy, h5py, matplotlib, pandas, pytest" >/dev/null 2>&1 || {
     echo "setup: installing numpy h5py matplotlib pandas pytest from PyPI" >&2
     pip_install numpy h5py matplotlib pandas pytest
+}
+python3 -c "import objective_rating_metrics.rating" >/dev/null 2>&1 || {
+    echo "setup: installing objective-rating-metrics (ISO/TS 18571) from PyPI" >&2
+    pip_install objective-rating-metrics
 }
 command -v fpm >/dev/null 2>&1 || { echo "setup: fpm is not on PATH after installing it" >&2; exit 1; }
 
