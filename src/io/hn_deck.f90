@@ -23,6 +23,8 @@ module hn_deck
     use hn_plausibility, only: plausibility_warnings
     use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
     use hn_csv, only: read_two_columns
+    use hn_pulses, only: pulse_shapes, pulse_code, pulse_dv_factor, pulse_knots, pulse_triangle, pulse_trapezoid, &
+                         pulse_halfsine
     implicit none
     private
 
@@ -186,7 +188,7 @@ contains
         end if
         if (.not. rd%failed()) call body_cards(rd, cards, cs, bnames, bmap)
         if (.not. rd%failed()) call control_cards(rd, cards, cs)
-        if (.not. rd%failed()) call table_cards(rd, cards, tabs)
+        if (.not. rd%failed()) call table_cards(rd, cards, tabs, cs)
         if (.not. rd%failed()) call coordinate_cards(rd, cards, cs, bnames, bmap, tabs)
         if (.not. rd%failed()) call element_cards(rd, cards, cs, bnames, bmap, tabs)
         if (.not. rd%failed()) call load_cards(rd, cards, cs, bnames, bmap, tabs)
@@ -259,11 +261,11 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(36) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(37) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
             'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM', 'SCALE', &
-            'RUNLIMIT', 'CHANGE', 'VIA']
+            'RUNLIMIT', 'CHANGE', 'VIA', 'PULSE']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -357,7 +359,7 @@ contains
                                                                             'SPRING']
         character(len=*), parameter :: per_coordinate = 'one per body and coordinate'
         call unique_fields(rd, cards, elements, 1, 'element name', 'a name no other element card uses')
-        call unique_fields(rd, cards, ['TABLE'], 1, 'table name', 'a new name')
+        call unique_fields(rd, cards, [character(len=8) :: 'TABLE', 'PULSE'], 1, 'table name', 'a new name')
         call unique_fields(rd, cards, ['ACTIVATE'], 1, 'history name', 'a new name')
         call unique_fields(rd, cards, ['SCALE'], 1, 'factor name', 'a new name')
         call unique_fields(rd, cards, ['JOINT'], 1, 'body', 'one JOINT card per body')
@@ -897,19 +899,27 @@ contains
                                     'expected one to six of TX TY TZ RX RY RZ')
     end subroutine lock_card
 
-    !> TABLE cards with their data continuation cards.
-    subroutine table_cards(rd, cards, tabs)
+    !> TABLE cards with their data continuation cards, and PULSE cards
+    !! (tables of the same namespace, in deck order).
+    subroutine table_cards(rd, cards, tabs, cs)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(named_table_t), allocatable, intent(out) :: tabs(:)
+        type(case_t), intent(inout) :: cs
         integer :: k, nt, i, npts, c, stat, bad
         character(len=12) :: v1, v2
         real(wp) :: tscale, yscale
         real(wp), allocatable :: t(:), y(:)
-        nt = count(cards%key == 'TABLE')
+        nt = count(cards%key == 'TABLE' .or. cards%key == 'PULSE')
         allocate (tabs(nt))
         nt = 0
         do k = 1, size(cards)
+            if (cards(k)%key == 'PULSE') then
+                nt = nt + 1
+                call pulse_card(rd, cards(k)%first, tabs(nt), cs)
+                if (rd%failed()) return
+                cycle
+            end if
             if (cards(k)%key /= 'TABLE') cycle
             nt = nt + 1
             i = cards(k)%first
@@ -944,6 +954,123 @@ contains
             deallocate (t, y)
         end do
     end subroutine table_cards
+
+    !> PULSE name shape peak dv duration onset f: a table of a named
+    !! shape (hn_pulses), given its peak or its velocity change.
+    subroutine pulse_card(rd, i, tab, cs)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i                   !! the PULSE card image
+        type(named_table_t), intent(inout) :: tab  !! the table (name, knots, line)
+        type(case_t), intent(inout) :: cs          !! the case (the listing's note of the pulse)
+        character(len=10) :: s
+        character(len=:), allocatable :: note, shape_text
+        character(len=12) :: v
+        real(wp) :: peak, dv, duration, onset, frac, factor
+        real(wp), allocatable :: t(:), a(:)
+        integer :: code, stat
+        tab%line = i
+        call rd%name(i, 1, 'table name', tab%name)
+        call rd%choice(i, 2, 'shape', pulse_shapes, s)
+        if (rd%failed()) return
+        code = pulse_code(s)
+        if (rd%is_blank(i, 3) .eqv. rd%is_blank(i, 4)) then
+            call rd%fail(rd%where(i)//', columns 31-50 (PULSE card, peak and velocity change): found '// &
+                         trim(merge('both   ', 'neither', .not. rd%is_blank(i, 3)))//'; expected either the peak (F3) '// &
+                         'or the velocity change (F4), the other blank')
+            return
+        end if
+        call rd%real(i, 5, 'duration', 's', duration, 1.0e-6_wp, 1.0e3_wp)
+        call rd%real(i, 6, 'onset', 's', onset, zero, 1.0e3_wp, default=zero)
+        frac = 0.5_wp
+        select case (code)
+        case (pulse_triangle)
+            call rd%real(i, 7, 'time of the peak', 'fraction of the duration', frac, 0.001_wp, 0.999_wp, &
+                         default=0.5_wp)
+        case (pulse_trapezoid)
+            call rd%real(i, 7, 'rise time', 'fraction of the duration', frac, 0.001_wp, 0.499_wp, default=0.25_wp)
+        case default
+            if (.not. rd%is_blank(i, 7)) then
+                call rd%fail(rd%context(i, 7, 'fraction')//': found "'//trim(rd%raw(i, 7))//'"; expected blank '// &
+                             '(F7 is the time of the peak of a TRIANGLE or the rise time of a TRAPEZOID)')
+                return
+            end if
+        end select
+        if (rd%failed()) return
+        factor = pulse_dv_factor(code, duration, frac)
+        if (.not. rd%is_blank(i, 3)) then
+            call rd%real(i, 3, 'peak', 'table unit', peak, -1.0e9_wp, 1.0e9_wp)
+            if (rd%failed()) return
+            if (peak == zero) call rd%fail(rd%context(i, 3, 'peak')//': found 0; expected a non-zero peak')
+            dv = peak*factor
+        else
+            call rd%real(i, 4, 'velocity change', 'table unit x s', dv, -1.0e9_wp, 1.0e9_wp)
+            if (rd%failed()) return
+            if (dv == zero) call rd%fail(rd%context(i, 4, 'velocity change')// &
+                                         ': found 0; expected a non-zero velocity change')
+            peak = dv/factor
+        end if
+        if (rd%failed()) return
+        call pulse_knots(code, peak, duration, onset, frac, t, a)
+        call table_set(tab%tab, t, a, stat)
+        if (stat /= 0) then
+            call rd%fail(rd%where(i)//' (PULSE '//trim(tab%name)//'): the pulse makes no table')
+            return
+        end if
+        select case (code)
+        case (pulse_halfsine); shape_text = 'HALF-SINE'
+        case (pulse_triangle); write (v, '(f0.2)') frac; shape_text = 'TRIANGLE (PEAK AT '//trim(zero_lead(v))//' T)'
+        case (pulse_trapezoid); write (v, '(f0.2)') frac; shape_text = 'TRAPEZOID (RISE '//trim(zero_lead(v))//' T)'
+        case default; shape_text = trim(pulse_shapes(code))
+        end select
+        write (v, '(f0.2)') peak/g_std
+        note = 'PULSE '//trim(tab%name)//': '//shape_text//', PEAK '//three_digits(peak)//' ('// &
+               '9.80665 M/S2 = 1 G: '//trim(zero_lead(v))//' G), DV '//three_digits(dv)//', '// &
+               ms(duration)//' MS FROM '//ms(onset)//' MS'
+        if (len(note) > 100) note = 'PULSE '//trim(tab%name)//': '//shape_text//', PEAK '//three_digits(peak)// &
+                                    ' ('//trim(zero_lead(v))//' G), DV '//three_digits(dv)//', '// &
+                                    ms(duration)//' MS FROM '//ms(onset)//' MS'
+        call add_scene_note(cs, note)
+    contains
+        !> x with three significant digits (E format outside 0.01 .. 1E5).
+        function three_digits(x) result(r)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: r
+            character(len=16) :: b
+            integer :: e
+            if (abs(x) >= 0.01_wp .and. abs(x) < 1.0e5_wp) then
+                e = floor(log10(abs(x)))
+                write (b, '(f0.'//achar(48 + max(0, 2 - e))//')') x
+                b = zero_lead(b)
+                if (max(0, 2 - e) == 0) b = trim(b)//'.0'
+            else
+                write (b, '(es10.2)') x
+            end if
+            r = trim(adjustl(b))
+        end function three_digits
+        !> A time [s] in ms with one decimal.
+        function ms(x) result(r)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: r
+            character(len=16) :: b
+            write (b, '(f0.1)') 1000*x
+            r = trim(zero_lead(b))
+        end function ms
+    end subroutine pulse_card
+
+    !> A number written with f0.d, with its leading zero (".5" -> "0.5").
+    pure function zero_lead(b) result(r)
+        character(len=*), intent(in) :: b
+        character(len=len(b) + 1) :: r
+        character(len=len(b)) :: c
+        c = adjustl(b)
+        if (c(1:1) == '.') then
+            r = '0'//c
+        else if (c(1:2) == '-.') then
+            r = '-0'//c(2:)
+        else
+            r = c
+        end if
+    end function zero_lead
 
     !> The npts (time, value) points of a TABLE on its continuation cards:
     !! three pairs per card, fields after the last point blank.
@@ -1823,7 +1950,7 @@ contains
             if (tabs(k)%name == s) it = k
         end do
         if (it == 0) then
-            call rd%fail(rd%context(i, f, 'table')//': found "'//trim(s)//'"; expected the name of a TABLE card')
+            call rd%fail(rd%context(i, f, 'table')//': found "'//trim(s)//'"; expected the name of a TABLE or PULSE card')
             it = 1
         end if
     end function table_ref
