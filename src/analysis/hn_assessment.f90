@@ -2,11 +2,13 @@
 !! regulations prescribe: HIC15 and HIC36 of the head resultant acceleration
 !! (CFC 1000), Nij in its four modes at the occipital condyle (CFC 600), NIC
 !! (CFC 60), and the peak upper-neck tension, compression, shear and moments
-!! (CFC 600). Limits from reference/reference-data.md.
+!! (CFC 600). Reference values (of the chosen occupant's dummy, not limits
+!! of this human model) from hn_injury's `occupants`. NIC from the
+!! x-accelerations in inertial axes (default) or along the head's x axis.
 module hn_assessment
     use hn_kinds, only: wp, zero, g_std
     use hn_filters, only: cfc_filter
-    use hn_injury, only: hic, nij, nic, nij_intercepts_t
+    use hn_injury, only: hic, nij, nic, nij_intercepts_t, occupants, occupant_index
     implicit none
     private
 
@@ -21,6 +23,8 @@ module hn_assessment
         real(wp), allocatable :: oc_fx(:)     !! occipital-condyle shear force [N] (OC_FX)
         real(wp), allocatable :: oc_fz(:)     !! occipital-condyle axial force, tension positive [N] (OC_FZ)
         real(wp), allocatable :: oc_my(:)     !! occipital-condyle moment, flexion positive [N m] (OC_MY)
+        real(wp), allocatable :: head_axh(:)  !! head mass-centre acceleration along the head's x axis [g] (HEAD_AXL)
+        real(wp), allocatable :: t1_axh(:)    !! T1 mass-centre acceleration along the head's x axis [g]
     end type criteria_input_t
 
     !> Criteria values, where they occur, and their time histories.
@@ -38,6 +42,9 @@ module hn_assessment
         real(wp), allocatable :: nij_t(:, :)                       !! (nt, 4) Nij modes
         real(wp), allocatable :: nic_t(:)                          !! NIC [m^2/s^2]
         real(wp), allocatable :: fx(:), fz(:), my(:)               !! CFC 600 OC loads
+        real(wp), allocatable :: nic_head(:), nic_t1(:)            !! CFC 60 x-accelerations NIC is computed from [m/s^2]
+        integer :: occupant = 1                                    !! index in hn_injury's occupants (Nij, neck loads)
+        character(len=8) :: nic_frame = 'INERTIAL'                 !! INERTIAL (global x) or HEAD (head x axis)
     end type assessment_t
 
 contains
@@ -47,21 +54,39 @@ contains
         type(criteria_input_t), intent(out) :: hist   !! the columns
         integer, intent(in) :: n                      !! number of samples
         allocate (hist%head_ax(n), hist%head_ay(n), hist%head_az(n), hist%t1_ax(n), hist%oc_fx(n), &
-                  hist%oc_fz(n), hist%oc_my(n))
+                  hist%oc_fz(n), hist%oc_my(n), hist%head_axh(n), hist%t1_axh(n))
         hist%head_ax = zero; hist%head_ay = zero; hist%head_az = zero; hist%t1_ax = zero
-        hist%oc_fx = zero; hist%oc_fz = zero; hist%oc_my = zero
+        hist%oc_fx = zero; hist%oc_fz = zero; hist%oc_my = zero; hist%head_axh = zero; hist%t1_axh = zero
     end subroutine criteria_input_allocate
 
     !> Assess from the first n samples of hist, every dt [s] from t0.
-    subroutine assess(t0, dt, hist, n, a)
+    subroutine assess(t0, dt, hist, n, a, occupant, nic_frame)
         real(wp), intent(in) :: t0                    !! time of the first sample [s]
         real(wp), intent(in) :: dt                    !! sampling interval [s]
         type(criteria_input_t), intent(in) :: hist    !! the sampled input channels
         integer, intent(in) :: n                      !! number of samples taken
         type(assessment_t), intent(out) :: a          !! criteria (a%computed false with a%note when impossible)
-        real(wp), allocatable :: ax(:), ay(:), az(:), t1x(:)
+        character(len=*), intent(in), optional :: occupant    !! code in hn_injury's occupants (default H50M)
+        character(len=*), intent(in), optional :: nic_frame   !! NIC's x axis: INERTIAL (default) or HEAD
+        real(wp), allocatable :: ax(:), ay(:), az(:)
         type(nij_intercepts_t) :: crit
         integer :: m, k
+        if (present(occupant)) then
+            a%occupant = occupant_index(occupant)
+            if (a%occupant == 0) then
+                a%occupant = 1
+                a%note = 'not computed: unknown occupant "'//trim(occupant)//'"'
+                return
+            end if
+        end if
+        if (present(nic_frame)) then
+            if (nic_frame /= 'INERTIAL' .and. nic_frame /= 'HEAD') then
+                a%note = 'not computed: unknown NIC frame "'//trim(nic_frame)//'"'
+                return
+            end if
+            a%nic_frame = nic_frame
+        end if
+        crit = occupants(a%occupant)%crit
         if (n < 3) then
             a%note = 'not computed: fewer than 3 samples'
             return
@@ -71,7 +96,8 @@ contains
             return
         end if
         a%computed = .true.
-        allocate (ax(n), ay(n), az(n), t1x(n), a%head_ar(n), a%nij_t(n, 4), a%nic_t(n), a%fx(n), a%fz(n), a%my(n))
+        allocate (ax(n), ay(n), az(n), a%head_ar(n), a%nij_t(n, 4), a%nic_t(n), a%fx(n), a%fz(n), a%my(n), &
+                  a%nic_head(n), a%nic_t1(n))
         call cfc_filter(hist%head_ax(1:n), dt, 1000.0_wp, ax)
         call cfc_filter(hist%head_ay(1:n), dt, 1000.0_wp, ay)
         call cfc_filter(hist%head_az(1:n), dt, 1000.0_wp, az)
@@ -96,9 +122,14 @@ contains
         call peak(a%my, .true., a%flexion, a%flexion_t)
         call peak(a%my, .false., a%extension, a%extension_t)
 
-        call cfc_filter(hist%head_ax(1:n)*g_std, dt, 60.0_wp, ax)
-        call cfc_filter(hist%t1_ax(1:n)*g_std, dt, 60.0_wp, t1x)
-        call nic(t1x, ax, dt, a%nic_t)
+        if (a%nic_frame == 'HEAD') then
+            call cfc_filter(hist%head_axh(1:n)*g_std, dt, 60.0_wp, a%nic_head)
+            call cfc_filter(hist%t1_axh(1:n)*g_std, dt, 60.0_wp, a%nic_t1)
+        else
+            call cfc_filter(hist%head_ax(1:n)*g_std, dt, 60.0_wp, a%nic_head)
+            call cfc_filter(hist%t1_ax(1:n)*g_std, dt, 60.0_wp, a%nic_t1)
+        end if
+        call nic(a%nic_t1, a%nic_head, dt, a%nic_t)
         m = maxloc(a%nic_t, dim=1)
         a%nic_max = a%nic_t(m)
         a%nic_time = t0 + (m - 1)*dt

@@ -4,16 +4,20 @@
 !!      resultant head acceleration in g, t in s;
 !!  Nij (S6.6): Fz/Fzc + My/Myc at the occipital condyle in each of the four
 !!      modes tension-extension, tension-flexion, compression-extension,
-!!      compression-flexion (Hybrid III 50th intercepts by default);
-!!  NIC: 0.2 a_rel + v_rel^2, a_rel = a_x,T1 - a_x,head [m/s^2],
-!!      v_rel = int a_rel dt.
+!!      compression-flexion (Hybrid III 50th intercepts by default; the
+!!      other occupants' sets in `occupants`);
+!!  NIC (Bostrom et al. 1996, a rear-impact criterion): 0.2 a_rel + v_rel^2,
+!!      a_rel = a_x,T1 - a_x,head [m/s^2], v_rel = int a_rel dt.
 !! Filtering (CFC 1000 for HIC, 600 for Nij, 60 for NIC) is the caller's.
+!!
+!! The values compared with are injury assessment reference values of
+!! crash-test dummies in a regulation, not limits of this human model.
 module hn_injury
     use hn_kinds, only: wp, zero
     implicit none
     private
 
-    public :: hic, nij, nic, nij_intercepts_t
+    public :: hic, nij, nic, nij_intercepts_t, occupant_t, occupants, occupant_index
 
     !> Critical intercepts of Nij [N, N m]; defaults: Hybrid III 50th male.
     type :: nij_intercepts_t
@@ -23,7 +27,43 @@ module hn_injury
         real(wp) :: my_extension = 135.0_wp
     end type nij_intercepts_t
 
+    !> An occupant size of 49 CFR 571.208 (FMVSS 208): its Nij intercepts and
+    !! the reference values of peak upper-neck tension and compression.
+    type :: occupant_t
+        character(len=4) :: code = ''              !! CRITERIA card name
+        character(len=40) :: label = ''            !! the dummy, for listings
+        type(nij_intercepts_t) :: crit             !! Nij intercepts (in position)
+        real(wp) :: tension = zero                 !! peak tension reference value [N]
+        real(wp) :: compression = zero             !! peak compression reference value [N], positive
+        character(len=60) :: source = ''           !! where the values are set
+        logical :: verified = .false.              !! values checked against the regulation text
+    end type occupant_t
+
+    !> The occupants selectable on the CRITERIA card; the first is the default.
+    !! H50M and the H05F intercepts are those of reference-data.md and the
+    !! issue; the others were not checked against the CFR text here
+    !! (`verified` false; docs/output-format.md says so).
+    type(occupant_t), parameter :: occupants(6) = [ &
+        occupant_t('H50M', 'HYBRID III 50TH MALE', nij_intercepts_t(6806.0_wp, 6160.0_wp, 310.0_wp, 135.0_wp), &
+                   4170.0_wp, 4000.0_wp, '49 CFR 571.208 S6.6', .true.), &
+        occupant_t('H05F', 'HYBRID III 5TH FEMALE', nij_intercepts_t(4287.0_wp, 3880.0_wp, 155.0_wp, 67.0_wp), &
+                   2620.0_wp, 2520.0_wp, '49 CFR 571.208 S15.3.6', .false.), &
+        occupant_t('H95M', 'HYBRID III 95TH MALE', nij_intercepts_t(8216.0_wp, 7440.0_wp, 415.0_wp, 179.0_wp), &
+                   5440.0_wp, 5200.0_wp, 'NHTSA 1999 (Eppinger et al.), not in FMVSS 208', .false.), &
+        occupant_t('H6YO', 'HYBRID III 6-YEAR-OLD', nij_intercepts_t(2800.0_wp, 2800.0_wp, 93.0_wp, 37.0_wp), &
+                   1490.0_wp, 1820.0_wp, '49 CFR 571.208 S23.5.5', .false.), &
+        occupant_t('H3YO', 'HYBRID III 3-YEAR-OLD', nij_intercepts_t(2120.0_wp, 2120.0_wp, 68.0_wp, 27.0_wp), &
+                   1130.0_wp, 1380.0_wp, '49 CFR 571.208 S21.5.5', .false.), &
+        occupant_t('C12M', 'CRABI 12-MONTH-OLD', nij_intercepts_t(1460.0_wp, 1460.0_wp, 43.0_wp, 17.0_wp), &
+                   780.0_wp, 960.0_wp, '49 CFR 571.208 S19.4.4', .false.)]
+
 contains
+
+    !> Index in `occupants` of the occupant called `code`, 0 when none is.
+    pure integer function occupant_index(code) result(k)
+        character(len=*), intent(in) :: code   !! an occupant code (H50M, H05F, ...)
+        k = findloc(occupants%code, code, dim=1)
+    end function occupant_index
 
     !> HIC over windows up to `window` seconds of the resultant acceleration
     !! a [g] sampled every dt [s]; t1, t2 are the sample times (from 0) of

@@ -28,6 +28,8 @@ module hn_case
         character(len=8) :: events = 'TIME'         !! NONE, TIME (table breakpoints) or STATE (also one-way switches)
         integer :: head = 0                         !! body reported as the head
         integer :: t1 = 0                           !! body reported as T1 (NIC, relative motion)
+        character(len=4) :: occupant = 'H50M'       !! CRITERIA: occupant whose Nij intercepts and neck reference values apply
+        character(len=8) :: nic_frame = 'INERTIAL'  !! CRITERIA: NIC's x-accelerations, INERTIAL (global x) or HEAD (head x axis)
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
         real(wp) :: wall_limit = zero               !! RUNLIMIT: stop after this wall time [s] (0 = none)
         integer :: step_limit = 0                   !! RUNLIMIT: stop after this many steps (0 = none)

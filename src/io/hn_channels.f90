@@ -74,6 +74,9 @@ module hn_channels
         real(wp) :: head_r0(3) = zero      !! head mass centre relative to T1's origin at the start [m]
         real(wp) :: t1_r0(3) = zero        !! T1's mass centre at the start [m]
         real(wp) :: e0 = zero              !! total energy at the start [J]
+        !> head and T1 mass-centre accelerations along the head's x axis [g]
+        !! (NIC in head axes; not channels)
+        real(wp) :: head_x_acc(2) = zero
     end type channel_set_t
 
     !> The fixed channels, in listing order.
@@ -211,6 +214,7 @@ contains
         type(head_state_t) :: hs
         integer :: k
         hs = head_state(cs, ws, t, ch%head_r0)
+        ch%head_x_acc = [dot_product(hs%s(:, 1), hs%acc), dot_product(hs%s(:, 1), hs%t1_acc)]/g_std
         do k = 1, ch%n
             ch%value(k) = channel_value(ch%list(k), cs, ws, hs, en, ch)
         end do

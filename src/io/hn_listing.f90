@@ -10,6 +10,8 @@ module hn_listing
     use hn_model, only: family_name, nfamilies, family_count
     use hn_linsolve, only: solver_name
     use hn_assessment, only: assessment_t
+    use hn_injury, only: occupants
+    use hn_deck_reader, only: upper
     use hn_history, only: history_t
     implicit none
     private
@@ -357,14 +359,16 @@ contains
         end do
     end subroutine listing_peaks
 
-    !> Injury criteria with their limits (reference-data.md, section 4).
+    !> Injury criteria with the reference values of the chosen occupant's
+    !! dummy (hn_injury's occupants) and, under the table, each criterion's
+    !! source and where it applies.
     subroutine listing_criteria(me, a)
         class(listing_t), intent(inout) :: me
         type(assessment_t), intent(in) :: a   !! the run's injury assessment
         character(len=120) :: s
         character(len=3), parameter :: modes(4) = ['NTE', 'NTF', 'NCE', 'NCF']
         integer :: k
-        call me%need(22)
+        call me%need(32)
         call me%put('')
         call me%put(' INJURY CRITERIA (HEAD ACCELERATION CFC 1000, UPPER-NECK LOADS CFC 600, NIC CFC 60)')
         call me%put('')
@@ -372,32 +376,55 @@ contains
             call me%put('   '//trim(a%note))
             return
         end if
-        write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC15                  ', a%hic15, '   FROM', 1000*a%hic15_t1, &
-            ' TO', 1000*a%hic15_t2, ' MS          LIMIT   700'
-        call me%put(s)
-        write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC36                  ', a%hic36, '   FROM', 1000*a%hic36_t1, &
-            ' TO', 1000*a%hic36_t2, ' MS          LIMIT  1000'
-        call me%put(s)
-        do k = 1, 4
-            write (s, '(a,a,a,f10.3,a,f8.2,a)') '   NIJ ', modes(k), '                ', a%nij_max(k), '   AT ', &
-                1000*a%nij_time(k), ' MS                          LIMIT   1.0'
+        associate (occ => occupants(a%occupant))
+            write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC15                  ', a%hic15, '   FROM', 1000*a%hic15_t1, &
+                ' TO', 1000*a%hic15_t2, ' MS          REF     700  [1]'
             call me%put(s)
-        end do
-        write (s, '(a,f10.2,a,f8.2,a)') '   NIC (M2/S2)            ', a%nic_max, '   AT ', 1000*a%nic_time, &
-            ' MS                          OFTEN CITED 15'
-        call me%put(s)
-        write (s, '(a,f10.1,a,f8.2,a)') '   UPPER NECK TENSION (N) ', a%tension, '   AT ', 1000*a%tension_t, &
-            ' MS                          LIMIT  4170'
-        call me%put(s)
-        write (s, '(a,f10.1,a,f8.2,a)') '   COMPRESSION (N)        ', a%compression, '   AT ', 1000*a%compression_t, &
-            ' MS                          LIMIT -4000'
-        call me%put(s)
-        write (s, '(a,f10.1,a,f8.2,a)') '   SHEAR |FX| (N)         ', a%shear, '   AT ', 1000*a%shear_t, ' MS'
-        call me%put(s)
-        write (s, '(a,f10.1,a,f8.2,a)') '   FLEXION MOMENT (N M)   ', a%flexion, '   AT ', 1000*a%flexion_t, ' MS'
-        call me%put(s)
-        write (s, '(a,f10.1,a,f8.2,a)') '   EXTENSION MOMENT (N M) ', a%extension, '   AT ', 1000*a%extension_t, ' MS'
-        call me%put(s)
+            write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC36                  ', a%hic36, '   FROM', 1000*a%hic36_t1, &
+                ' TO', 1000*a%hic36_t2, ' MS          REF    1000  [1]'
+            call me%put(s)
+            do k = 1, 4
+                write (s, '(a,a,a,f10.3,a,f8.2,a)') '   NIJ ', modes(k), '                ', a%nij_max(k), '   AT ', &
+                    1000*a%nij_time(k), ' MS                          REF     1.0  [2]'
+                call me%put(s)
+            end do
+            write (s, '(a,f10.2,a,f8.2,a)') '   NIC (M2/S2)            ', a%nic_max, '   AT ', 1000*a%nic_time, &
+                ' MS                          REF      15  [3] (REAR-IMPACT CRITERION)'
+            call me%put(s)
+            write (s, '(a,f10.1,a,f8.2,a,i7,a)') '   UPPER NECK TENSION (N) ', a%tension, '   AT ', &
+                1000*a%tension_t, ' MS                          REF ', nint(occ%tension), '  [4]'
+            call me%put(s)
+            write (s, '(a,f10.1,a,f8.2,a,i7,a)') '   COMPRESSION (N)        ', a%compression, '   AT ', &
+                1000*a%compression_t, ' MS                          REF ', -nint(occ%compression), '  [4]'
+            call me%put(s)
+            write (s, '(a,f10.1,a,f8.2,a)') '   SHEAR |FX| (N)         ', a%shear, '   AT ', 1000*a%shear_t, ' MS'
+            call me%put(s)
+            write (s, '(a,f10.1,a,f8.2,a)') '   FLEXION MOMENT (N M)   ', a%flexion, '   AT ', 1000*a%flexion_t, ' MS'
+            call me%put(s)
+            write (s, '(a,f10.1,a,f8.2,a)') '   EXTENSION MOMENT (N M) ', a%extension, '   AT ', 1000*a%extension_t, &
+                ' MS'
+            call me%put(s)
+            call me%put('')
+            call me%put('   REF: INJURY ASSESSMENT REFERENCE VALUE OF A CRASH-TEST DUMMY IN A STANDARD, NOT A LIMIT OF '// &
+                        'THIS HUMAN MODEL')
+            call me%put('   [1] 49 CFR 571.208 S6.2 (FMVSS 208): HEAD MASS-CENTRE RESULTANT ACCELERATION, CFC 1000')
+            call me%put('   [2] '//trim(upper(occ%source))//': UPPER NECK (OCCIPITAL CONDYLE), CFC 600; '// &
+                        'INTERCEPTS OF THE '//trim(occ%label))
+            write (s, '(a,i0,a,i0,a,i0,a,i0,a)') '       FZC ', nint(occ%crit%fz_tension), ' N TENSION, ', &
+                nint(occ%crit%fz_compression), ' N COMPRESSION; MYC ', nint(occ%crit%my_flexion), ' N M FLEXION, ', &
+                nint(occ%crit%my_extension), ' N M EXTENSION'
+            call me%put(s)
+            call me%put('   [3] BOSTROM ET AL. 1996: REAR IMPACT ONLY, NOT A CRITERION FOR FRONTAL OR LATERAL LOADING; '// &
+                        'CFC 60')
+            if (a%nic_frame == 'HEAD') then
+                call me%put('       X-ACCELERATIONS OF T1 AND THE HEAD ALONG THE HEAD''S X AXIS')
+            else
+                call me%put('       X-ACCELERATIONS OF T1 AND THE HEAD ALONG THE INERTIAL X AXIS')
+            end if
+            call me%put('   [4] '//trim(upper(occ%source))//': UPPER NECK, CFC 600; '//trim(occ%label))
+            if (.not. occ%verified) &
+                call me%put('       ('//trim(occ%code)//' VALUES NOT VERIFIED AGAINST THE REGULATION TEXT)')
+        end associate
     end subroutine listing_criteria
 
 end module hn_listing

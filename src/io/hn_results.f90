@@ -20,6 +20,7 @@ module hn_results
     use hn_h5, only: h5_file_t
     use hn_dump, only: dump_open
     use hn_assessment, only: assessment_t
+    use hn_injury, only: occupants
     use hn_posix, only: file_kind, kind_regular
     use hn_results_model, only: write_element_tables
     implicit none
@@ -346,19 +347,50 @@ contains
             end if
             call h%attr_string('/injury', 'description', 'injury criteria of the head and upper neck; each '// &
                                'group holds a value and where or when it occurs; histories share /time')
-            call window(h, 'hic15', 'HIC over the worst window of at most 15 ms, head resultant acceleration '// &
-                        'CFC 1000', a%hic15, a%hic15_t1, a%hic15_t2)
-            call window(h, 'hic36', 'HIC over the worst window of at most 36 ms', a%hic36, a%hic36_t1, a%hic36_t2)
-            call h%group('/injury/nij')
+            call h%attr_string('/injury', 'reference_values', 'the reference_value attributes are injury '// &
+                               'assessment reference values of crash-test dummies in standards, not limits of '// &
+                               'this human model')
+            associate (occ => occupants(a%occupant))
+                call h%attr_string('/injury', 'occupant', trim(occ%code))
+                call h%attr_string('/injury', 'occupant_label', trim(occ%label))
+                call h%attr_string('/injury', 'occupant_source', trim(occ%source))
+                call h%attr_string('/injury', 'occupant_verified', trim(merge('yes', 'no ', occ%verified)))
+                call window(h, 'hic15', 'HIC over the worst window of at most 15 ms, head resultant acceleration '// &
+                            'CFC 1000', a%hic15, a%hic15_t1, a%hic15_t2)
+                call label(h, 'hic15', '49 CFR 571.208 S6.2 (FMVSS 208)', 'head mass-centre resultant '// &
+                           'acceleration, CFC 1000; any impact direction', [700.0_wp], '1')
+                call window(h, 'hic36', 'HIC over the worst window of at most 36 ms', a%hic36, a%hic36_t1, &
+                            a%hic36_t2)
+                call label(h, 'hic36', '49 CFR 571.208 S6.2 (FMVSS 208)', 'head mass-centre resultant '// &
+                           'acceleration, CFC 1000; any impact direction', [1000.0_wp], '1')
+                call h%group('/injury/nij')
+                call label(h, 'nij', trim(occ%source), 'upper neck (occipital condyle), CFC 600; '// &
+                           'intercepts of the '//trim(occ%label), [1.0_wp], '1')
+                call h%write_real('/injury/nij/intercepts', [occ%crit%fz_tension, occ%crit%fz_compression, &
+                                  occ%crit%my_flexion, occ%crit%my_extension], [4])
+                call h%attr_string('/injury/nij/intercepts', 'units', 'N, N, N m, N m')
+                call h%attr_string('/injury/nij/intercepts', 'description', 'Fzc tension, Fzc compression, '// &
+                                   'Myc flexion, Myc extension ('//trim(occ%source)//')')
+            end associate
             call scalar(h, '/injury/nij/value', a%nij_max, '1', 'peak Nij in each mode, in the order of modes')
             call scalar(h, '/injury/nij/time', a%nij_time, 's', 'time of each peak')
             call h%attr_strings('/injury/nij', 'modes', [character(len=3) :: 'NTE', 'NTF', 'NCE', 'NCF'])
             call h%attr_string('/injury/nij', 'description', 'Nij at the occipital condyle (CFC 600): tension-'// &
                                'extension, tension-flexion, compression-extension, compression-flexion')
             call peak(h, 'nic', 'peak NIC (T1 and head x-accelerations, CFC 60)', a%nic_max, a%nic_time, 'm^2/s^2')
+            call label(h, 'nic', 'Bostrom et al. 1996', 'rear impact only (not a criterion for frontal or '// &
+                       'lateral loading); x-accelerations CFC 60 along '// &
+                       trim(merge('the head''s x axis  ', 'the inertial x axis', a%nic_frame == 'HEAD')), [15.0_wp], 'm^2/s^2')
+            call h%attr_string('/injury/nic', 'frame', trim(a%nic_frame))
             call peak(h, 'tension', 'highest OC_FZ (tension positive), CFC 600', a%tension, a%tension_t, 'N')
             call peak(h, 'compression', 'lowest OC_FZ (compression negative), CFC 600', a%compression, &
                       a%compression_t, 'N')
+            associate (occ => occupants(a%occupant))
+                call label(h, 'tension', trim(occ%source), 'upper neck, CFC 600; '//trim(occ%label), &
+                           [occ%tension], 'N')
+                call label(h, 'compression', trim(occ%source), 'upper neck, CFC 600; '//trim(occ%label), &
+                           [-occ%compression], 'N')
+            end associate
             call peak(h, 'shear', 'highest |OC_FX|, CFC 600', a%shear, a%shear_t, 'N')
             call peak(h, 'flexion_moment', 'highest OC_MY (flexion positive), CFC 600', a%flexion, a%flexion_t, &
                       'N m')
@@ -374,6 +406,12 @@ contains
             call series(h, 'oc_fx_cfc600', a%fx, [n], 'N', 'OC_FX, CFC 600')
             call series(h, 'oc_fz_cfc600', a%fz, [n], 'N', 'OC_FZ, CFC 600')
             call series(h, 'oc_my_cfc600', a%my, [n], 'N m', 'OC_MY, CFC 600')
+            call series(h, 'nic_head_ax_cfc60', a%nic_head, [n], 'm/s^2', 'head mass-centre x-acceleration '// &
+                        'NIC is computed from, CFC 60, along the '// &
+                        trim(merge('head''s x axis  ', 'inertial x axis', a%nic_frame == 'HEAD')))
+            call series(h, 'nic_t1_ax_cfc60', a%nic_t1, [n], 'm/s^2', 'T1 mass-centre x-acceleration '// &
+                        'NIC is computed from, CFC 60, along the '// &
+                        trim(merge('head''s x axis  ', 'inertial x axis', a%nic_frame == 'HEAD')))
         end associate
     contains
         subroutine scalar(h, path, v, units, description)
@@ -388,6 +426,17 @@ contains
             call h%attr_string(path, 'units', units)
             call h%attr_string(path, 'description', description)
         end subroutine scalar
+        subroutine label(h, name, source, applicability, ref, units)
+            type(h5_file_t), intent(inout) :: h
+            character(len=*), intent(in) :: name, source, applicability, units
+            real(wp), intent(in) :: ref(:)
+            call h%attr_string('/injury/'//name, 'source', source)
+            call h%attr_string('/injury/'//name, 'applicability', applicability)
+            call h%write_real('/injury/'//name//'/reference_value', ref, [integer ::])
+            call h%attr_string('/injury/'//name//'/reference_value', 'units', units)
+            call h%attr_string('/injury/'//name//'/reference_value', 'description', 'injury assessment '// &
+                               'reference value of the dummy in the standard, not a limit of this model')
+        end subroutine label
         subroutine window(h, name, description, v, t1, t2)
             type(h5_file_t), intent(inout) :: h
             character(len=*), intent(in) :: name, description

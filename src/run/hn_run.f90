@@ -85,7 +85,7 @@ module hn_run
 
     !> Columns of the run's store of assessment inputs (one per criteria_input_t field).
     integer, parameter :: col_head_ax = 1, col_head_ay = 2, col_head_az = 3, col_t1_ax = 4, col_oc_fx = 5, &
-                          col_oc_fz = 6, col_oc_my = 7, ncrit_cols = 7
+                          col_oc_fz = 6, col_oc_my = 7, col_head_axh = 8, col_t1_axh = 9, ncrit_cols = 9
 
     !> Which channels feed the injury assessment (indices into the channel set).
     type :: criteria_columns_t
@@ -418,6 +418,7 @@ contains
             row(col_head_ax) = v(c%head_ax); row(col_head_ay) = v(c%head_ay); row(col_head_az) = v(c%head_az)
             row(col_t1_ax) = v(c%t1_ax); row(col_oc_fx) = v(c%oc_fx); row(col_oc_fz) = v(c%oc_fz)
             row(col_oc_my) = v(c%oc_my)
+            row(col_head_axh) = me%ch%head_x_acc(1); row(col_t1_axh) = me%ch%head_x_acc(2)
             call me%crit%add(row)
         end associate
         if (me%keep) then
@@ -613,8 +614,10 @@ contains
             hist%head_az = me%crit%column(col_head_az); hist%t1_ax = me%crit%column(col_t1_ax)
             hist%oc_fx = me%crit%column(col_oc_fx); hist%oc_fz = me%crit%column(col_oc_fz)
             hist%oc_my = me%crit%column(col_oc_my)
+            hist%head_axh = me%crit%column(col_head_axh); hist%t1_axh = me%crit%column(col_t1_axh)
             call me%crit%clear()
-            call assess(me%cs%t_start, me%cs%sample_dt, hist, me%ks, me%res%criteria)
+            call assess(me%cs%t_start, me%cs%sample_dt, hist, me%ks, me%res%criteria, me%cs%occupant, &
+                        me%cs%nic_frame)
             call me%lst%histories(me%ch, me%rows)
             call me%rows%clear()
             call me%lst%peaks(me%ch, me%peaks%vmax, me%peaks%tmax, me%peaks%vmin, me%peaks%tmin)
