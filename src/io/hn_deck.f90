@@ -23,6 +23,7 @@ module hn_deck
     use hn_plausibility, only: plausibility_warnings
     use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
     use hn_csv, only: read_two_columns
+    use hn_criteria_card, only: criteria_card
     use hn_pulses, only: pulse_shapes, pulse_code, pulse_dv_factor, pulse_knots, pulse_triangle, pulse_trapezoid, &
                          pulse_halfsine
     implicit none
@@ -261,11 +262,11 @@ contains
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(37) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
+        character(len=8), parameter :: known(38) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
             'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
             'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
             'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM', 'SCALE', &
-            'RUNLIMIT', 'CHANGE', 'VIA', 'PULSE']
+            'RUNLIMIT', 'CHANGE', 'VIA', 'CRITERIA', 'PULSE']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -1875,6 +1876,8 @@ contains
             if (.not. rd%is_blank(cards(ic)%first, 2)) &
                 cs%t1 = bmap%new(body_ref(rd, cards(ic)%first, 2, 'T1 body', bnames, .false.))
         end if
+        ic = single(rd, cards, 'CRITERIA', .false.)
+        if (ic > 0) call criteria_card(rd, cards(ic)%first, cs)
     end subroutine report_cards
 
     !> Attachment points on a continuation card: F1-F3 on body a, F4-F6 on body b.
