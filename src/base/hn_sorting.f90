@@ -1,11 +1,12 @@
-!> Sorting of small real arrays: the permutation that orders them (the
-!! Nelder-Mead simplex of the calibration, medians of the benchmarks).
+!> Sorting: the permutation that orders small real arrays (the
+!! Nelder-Mead simplex of the calibration, medians of the benchmarks) and
+!! texts of any number (the deck's names, to find repeats in n log n).
 module hn_sorting
     use hn_kinds, only: wp
     implicit none
     private
 
-    public :: sort_index
+    public :: sort_index, sort_index_text
 
 contains
 
@@ -27,5 +28,37 @@ contains
             idx(j + 1) = k
         end do
     end function sort_index
+
+    !> Indices that sort the texts v ascending (merge sort: stable, n log n):
+    !! v(sort_index_text(v)) is v in ascending order, equal texts in their
+    !! original order.
+    pure function sort_index_text(v) result(idx)
+        character(len=*), intent(in) :: v(:)    !! the texts
+        integer :: idx(size(v))
+        integer :: tmp(size(v))
+        integer :: n, width, lo, mid, hi, i, j, k
+        logical :: take_left
+        n = size(v)
+        idx = [(i, i=1, n)]
+        width = 1
+        do while (width < n)
+            do lo = 1, n, 2*width
+                mid = min(lo + width - 1, n)
+                hi = min(lo + 2*width - 1, n)
+                i = lo; j = mid + 1
+                do k = lo, hi
+                    take_left = i <= mid      ! (no short-circuit in Fortran: j is tested apart)
+                    if (take_left .and. j <= hi) take_left = lle(v(idx(i)), v(idx(j)))
+                    if (take_left) then
+                        tmp(k) = idx(i); i = i + 1
+                    else
+                        tmp(k) = idx(j); j = j + 1
+                    end if
+                end do
+            end do
+            idx = tmp
+            width = 2*width
+        end do
+    end function sort_index_text
 
 end module hn_sorting

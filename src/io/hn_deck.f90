@@ -23,6 +23,7 @@ module hn_deck
     use hn_plausibility, only: plausibility_warnings
     use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
     use hn_csv, only: read_two_columns
+    use hn_sorting, only: sort_index_text
     use hn_criteria_card, only: criteria_card
     use hn_pulses, only: pulse_shapes, pulse_code, pulse_dv_factor, pulse_knots, pulse_triangle, pulse_trapezoid, &
                          pulse_halfsine
@@ -386,9 +387,10 @@ contains
         character(len=*), intent(in) :: what         !! what the fields hold (messages)
         character(len=*), intent(in) :: expected     !! what the rule expects (messages)
         logical, intent(in), optional :: across      !! only pairs of different keys (default: all pairs)
-        integer, allocatable :: idx(:)
+        integer, allocatable :: idx(:), ord(:)
         character(len=21), allocatable :: ident(:)
-        integer :: k, n, j, f
+        integer :: k, n, j, f, r0, r1, m, q, kbad, jbad
+        logical :: cross
         character(len=:), allocatable :: found, place
         if (rd%failed()) return
         idx = pack([(k, k=1, size(cards))], [(any(keys == cards(k)%key), k=1, size(cards))])
@@ -400,27 +402,47 @@ contains
                 ident(k) = trim(ident(k))//' '//upper(rd%raw(cards(idx(k))%first, f))
             end do
         end do
-        do k = 2, n
-            do j = 1, k - 1
-                if (ident(j) /= ident(k)) cycle
-                if (present(across)) then
-                    if (across .and. cards(idx(j))%key == cards(idx(k))%key) cycle
-                end if
-                found = trim(adjustl(ident(k)))
-                place = rd%where(cards(idx(k))%first)//', columns 11-'//trim(int_str(10 + 10*nf))//' ('// &
-                        trim(cards(idx(k))%key)//' card, '//what//')'
-                if (cards(idx(j))%key == cards(idx(k))%key) then
-                    call rd%fail(place//': found "'//found//'" again; expected '// &
-                                 expected//' (the '//trim(cards(idx(j))%key)//' card at '// &
-                                 rd%where(cards(idx(j))%first)//' has it)')
-                else
-                    call rd%fail(place//': found "'//found//'", which the '// &
-                                 trim(cards(idx(j))%key)//' card at '//rd%where(cards(idx(j))%first)// &
-                                 ' names too; expected '//expected)
-                end if
-                return
+        ! equal identifiers adjacent, each run in deck order (a stable sort: n log n
+        ! for decks of many thousand cards); the first card that repeats an
+        ! earlier one of its run, over all runs, is refused
+        cross = .false.
+        if (present(across)) cross = across
+        ord = sort_index_text(ident)
+        kbad = 0; jbad = 0
+        r0 = 1
+        do while (r0 <= n)
+            r1 = r0
+            do while (r1 < n)
+                if (ident(ord(r1 + 1)) /= ident(ord(r0))) exit
+                r1 = r1 + 1
             end do
+            runs: do m = r0 + 1, r1
+                k = ord(m)
+                do q = r0, m - 1
+                    j = ord(q)
+                    if (cross .and. cards(idx(j))%key == cards(idx(k))%key) cycle
+                    if (kbad == 0 .or. k < kbad) then
+                        kbad = k; jbad = j
+                    end if
+                    exit runs
+                end do
+            end do runs
+            r0 = r1 + 1
         end do
+        if (kbad == 0) return
+        k = kbad; j = jbad
+        found = trim(adjustl(ident(k)))
+        place = rd%where(cards(idx(k))%first)//', columns 11-'//trim(int_str(10 + 10*nf))//' ('// &
+                trim(cards(idx(k))%key)//' card, '//what//')'
+        if (cards(idx(j))%key == cards(idx(k))%key) then
+            call rd%fail(place//': found "'//found//'" again; expected '// &
+                         expected//' (the '//trim(cards(idx(j))%key)//' card at '// &
+                         rd%where(cards(idx(j))%first)//' has it)')
+        else
+            call rd%fail(place//': found "'//found//'", which the '// &
+                         trim(cards(idx(j))%key)//' card at '//rd%where(cards(idx(j))%first)// &
+                         ' names too; expected '//expected)
+        end if
     end subroutine unique_fields
 
     !> TITLE: the deck's first card is its title. A deck that INCLUDEs a
