@@ -870,6 +870,25 @@ contains
         call h5eclear_f(err)
     end subroutine h5_read_real
 
+    !> Open file fname read-only (HDF5's messages off) and attribute `name`
+    !! of object `path` in it: f < 0 when the file cannot be opened (stat /= 0,
+    !! the error stack cleared); else stat /= 0 when the attribute cannot be
+    !! opened, and the caller closes f.
+    subroutine open_attribute(fname, path, name, f, attr, stat)
+        character(len=*), intent(in) :: fname, path, name
+        integer(hid_t), intent(out) :: f, attr
+        integer, intent(out) :: stat
+        integer :: err
+        attr = -1
+        call h5_quiet()
+        call h5fopen_f(fname, H5F_ACC_RDONLY_F, f, stat)
+        if (stat /= 0) then
+            f = -1
+            call h5eclear_f(err); return
+        end if
+        call h5aopen_by_name_f(f, path, name, attr, stat)
+    end subroutine open_attribute
+
     !> Read a text attribute of object `path`, fixed-length or variable-length.
     subroutine h5_read_string_attr(fname, path, name, value, stat)
         character(len=*), intent(in) :: fname               !! HDF5 file name
@@ -886,12 +905,8 @@ contains
         character(len=len(value) + 1), target :: buf
         character(len=:), allocatable :: txt
         value = ''
-        call h5_quiet()
-        call h5fopen_f(fname, H5F_ACC_RDONLY_F, f, stat)
-        if (stat /= 0) then
-            call h5eclear_f(err); return
-        end if
-        call h5aopen_by_name_f(f, path, name, attr, stat)
+        call open_attribute(fname, path, name, f, attr, stat)
+        if (f < 0) return
         if (stat == 0) then
             call h5aget_type_f(attr, ftype, stat)
             if (stat == 0) call h5tis_variable_str_f(ftype, is_var, stat)
@@ -942,12 +957,8 @@ contains
         type(text_t), allocatable :: texts(:)
         integer :: err, k, lmax, rank
         allocate (character(len=1) :: items(0))
-        call h5_quiet()
-        call h5fopen_f(fname, H5F_ACC_RDONLY_F, f, stat)
-        if (stat /= 0) then
-            call h5eclear_f(err); return
-        end if
-        call h5aopen_by_name_f(f, path, name, attr, stat)
+        call open_attribute(fname, path, name, f, attr, stat)
+        if (f < 0) return
         if (stat == 0) then
             call read_attr_texts(attr, texts, rank, stat)
             call h5aclose_f(attr, err)
