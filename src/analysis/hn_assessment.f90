@@ -12,7 +12,16 @@ module hn_assessment
     implicit none
     private
 
-    public :: assessment_t, assess, criteria_input_t, criteria_input_allocate
+    public :: assessment_t, assess, criteria_input_t, criteria_input_allocate, criteria_input_from
+    public :: criteria_channels, ncriteria_columns
+
+    !> The channels of a run the assessment reads, by name: the first columns
+    !! of criteria_input_from, in this order (the only list of them).
+    character(len=8), parameter :: criteria_channels(7) = [character(len=8) :: 'HEAD_AX', 'HEAD_AY', 'HEAD_AZ', &
+                                                           'T1_AX', 'OC_FX', 'OC_FZ', 'OC_MY']
+    !> Columns of criteria_input_from: the criteria_channels, then the head's
+    !! and T1's x-accelerations along the head's x axis.
+    integer, parameter :: ncriteria_columns = size(criteria_channels) + 2
 
     !> The sampled channels the assessment reads, by name.
     type :: criteria_input_t
@@ -58,6 +67,17 @@ contains
         hist%head_ax = zero; hist%head_ay = zero; hist%head_az = zero; hist%t1_ax = zero
         hist%oc_fx = zero; hist%oc_fz = zero; hist%oc_my = zero; hist%head_axh = zero; hist%t1_axh = zero
     end subroutine criteria_input_allocate
+
+    !> The input columns from one array of samples: cols(:, k) is the k-th of
+    !! the criteria_channels, then the head's and T1's x-accelerations along the
+    !! head's x axis (ncriteria_columns columns).
+    pure function criteria_input_from(cols) result(hist)
+        real(wp), intent(in) :: cols(:, :)   !! (samples, ncriteria_columns), units as criteria_input_t
+        type(criteria_input_t) :: hist
+        hist%head_ax = cols(:, 1); hist%head_ay = cols(:, 2); hist%head_az = cols(:, 3)
+        hist%t1_ax = cols(:, 4); hist%oc_fx = cols(:, 5); hist%oc_fz = cols(:, 6); hist%oc_my = cols(:, 7)
+        hist%head_axh = cols(:, 8); hist%t1_axh = cols(:, 9)
+    end function criteria_input_from
 
     !> Assess from the first n samples of hist, every dt [s] from t0.
     subroutine assess(t0, dt, hist, n, a, occupant, nic_frame)

@@ -1,5 +1,5 @@
 !> Named status codes of the library's procedures (`stat` arguments) and
-!! their short meanings. Index information (which row, body or point)
+!! their meanings (the doc comment of each). Index information (which row, body or point)
 !! travels in separate arguments, never in `stat`. Program exit codes are
 !! separate (hn_run); these are the reasons behind them.
 module hn_status
@@ -7,7 +7,7 @@ module hn_status
     private
 
     public :: stat_ok, stat_bad_input, stat_bad_model, stat_bad_table, stat_singular, stat_ill_conditioned, &
-              stat_gimbal, stat_not_finite, stat_energy_lost, stat_step_failed, stat_io, status_text
+              stat_gimbal, stat_not_finite, stat_energy_lost, stat_step_failed, stat_io
 
     integer, parameter :: stat_ok = 0               !! success
     integer, parameter :: stat_bad_input = 1        !! a deck, card, option or argument is not acceptable
@@ -21,25 +21,4 @@ module hn_status
     integer, parameter :: stat_step_failed = 9      !! the integrator could not take a step
     integer, parameter :: stat_io = 10              !! a file could not be read or written
 
-contains
-
-    !> Short meaning of a status code, for messages and logs.
-    pure function status_text(code) result(s)
-        integer, intent(in) :: code   !! a stat_* value
-        character(len=:), allocatable :: s
-        select case (code)
-        case (stat_ok); s = 'success'
-        case (stat_bad_input); s = 'bad input'
-        case (stat_bad_model); s = 'inconsistent model'
-        case (stat_bad_table); s = 'bad table'
-        case (stat_singular); s = 'singular matrix'
-        case (stat_ill_conditioned); s = 'ill-conditioned matrix'
-        case (stat_gimbal); s = 'Bryant-angle singularity'
-        case (stat_not_finite); s = 'state not finite'
-        case (stat_energy_lost); s = 'energy balance lost'
-        case (stat_step_failed); s = 'integration step failed'
-        case (stat_io); s = 'file error'
-        case default; s = 'unknown status'
-        end select
-    end function status_text
 end module hn_status

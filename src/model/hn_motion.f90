@@ -8,7 +8,7 @@ module hn_motion
     private
 
     public :: motion_t, motion_constant, motion_accel_table, motion_position_table
-    public :: motion_harmonic, motion_eval, motion_breakpoints
+    public :: motion_harmonic, motion_eval
 
     integer, parameter, public :: motion_kind_constant = 1, motion_kind_accel = 2, &
                                   motion_kind_position = 3, motion_kind_harmonic = 4
@@ -122,19 +122,5 @@ contains
             x = m%x0; xd = zero; xdd = zero
         end select
     end subroutine motion_eval
-
-    !> Times where the motion's acceleration has a kink (table knots).
-    pure function motion_breakpoints(m) result(tb)
-        type(motion_t), intent(in) :: m   !! the motion
-        real(wp), allocatable :: tb(:)
-        select case (m%kind)
-        case (motion_kind_accel)
-            tb = m%acc%t
-        case (motion_kind_position)
-            tb = m%pos%t([1, size(m%pos%t)])
-        case default
-            allocate (tb(0))
-        end select
-    end function motion_breakpoints
 
 end module hn_motion

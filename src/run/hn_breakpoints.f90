@@ -18,6 +18,7 @@ module hn_breakpoints
     use hn_kinds, only: wp, zero
     use hn_case, only: case_t
     use hn_motion, only: motion_kind_accel
+    use hn_sorting, only: sort_index
     implicit none
     private
 
@@ -53,15 +54,7 @@ contains
             all = [all, table_corners(cs%model%tables(e)%t, cs%model%tables(e)%y)]
         end do
         all = pack(all, all > cs%t_start .and. all < cs%t_end)
-        ! insertion sort, then drop repeats
-        do i = 2, size(all)
-            j = i
-            do while (j > 1)
-                if (all(j - 1) <= all(j)) exit
-                all([j - 1, j]) = all([j, j - 1])
-                j = j - 1
-            end do
-        end do
+        all = all(sort_index(all))   ! ascending, then drop repeats
         allocate (tb(size(all)))
         n = 0
         do i = 1, size(all)

@@ -21,7 +21,8 @@ module hn_run
     use hn_dump, only: dump_record
     use hn_breakpoints, only: case_breakpoints
     use hn_tree, only: dof_label
-    use hn_assessment, only: assessment_t, assess, criteria_input_t, criteria_input_allocate
+    use hn_assessment, only: assessment_t, assess, criteria_input_t, criteria_input_from, criteria_channels, &
+                             ncriteria_columns
     use hn_signals, only: signal_received
     use hn_progress, only: progress_t, limit_diagnosis
     use hn_history, only: history_t
@@ -83,15 +84,6 @@ module hn_run
         real(wp), allocatable :: vmax(:), vmin(:), tmax(:), tmin(:)
     end type peaks_t
 
-    !> Columns of the run's store of assessment inputs (one per criteria_input_t field).
-    integer, parameter :: col_head_ax = 1, col_head_ay = 2, col_head_az = 3, col_t1_ax = 4, col_oc_fx = 5, &
-                          col_oc_fz = 6, col_oc_my = 7, col_head_axh = 8, col_t1_axh = 9, ncrit_cols = 9
-
-    !> Which channels feed the injury assessment (indices into the channel set).
-    type :: criteria_columns_t
-        integer :: head_ax = 0, head_ay = 0, head_az = 0, t1_ax = 0, oc_fx = 0, oc_fz = 0, oc_my = 0
-    end type criteria_columns_t
-
     !> A run in progress.
     type :: run_state_t
         private
@@ -105,7 +97,7 @@ module hn_run
         type(run_result_t) :: res
         type(peaks_t) :: peaks
         real(wp), allocatable :: rom_peak(:), rom_time(:)   !! largest excess beyond each joint range [rad], when [s]
-        type(criteria_columns_t) :: icol
+        integer :: icol(size(criteria_channels)) = 0  !! the criteria_channels' indices in the channel set
         type(history_t) :: rows                     !! listing rows (t, every channel), memory bounded
         type(history_t) :: crit                     !! assessment inputs at every sample, memory bounded
         type(progress_t) :: prog                    !! progress display and run limits
@@ -191,6 +183,10 @@ contains
         end if
         call me%lst%model_summary(me%cs)
         call new_integrator(me%cs%integrator, me%integ, stat)
+        if (stat /= stat_ok) then
+            call me%fail(exit_deck, 'unknown integrator "'//trim(me%cs%integrator)//'"')
+            return
+        end if
         call me%integ%set_step(me%cs%h)
         call me%integ%set_tolerances(me%cs%rtol, me%cs%atol)
         call me%integ%init(me%sys, me%cs%t_start, y, stat, msg)
@@ -239,16 +235,13 @@ contains
     !! switching functions.
     subroutine init_outputs(me)
         class(run_state_t), intent(inout) :: me
-        integer :: nsample
+        integer :: nsample, k
         associate (cs => me%cs)
             nsample = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
             call me%rows%init(1 + me%ch%n)
             if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample))
-            call me%crit%init(ncrit_cols)
-            me%icol = criteria_columns_t(channel_index(me%ch, 'HEAD_AX'), channel_index(me%ch, 'HEAD_AY'), &
-                                         channel_index(me%ch, 'HEAD_AZ'), channel_index(me%ch, 'T1_AX'), &
-                                         channel_index(me%ch, 'OC_FX'), channel_index(me%ch, 'OC_FZ'), &
-                                         channel_index(me%ch, 'OC_MY'))
+            call me%crit%init(ncriteria_columns)
+            me%icol = [(channel_index(me%ch, criteria_channels(k)), k = 1, size(criteria_channels))]
             allocate (me%peaks%vmax(me%ch%n), me%peaks%vmin(me%ch%n), me%peaks%tmax(me%ch%n), &
                       me%peaks%tmin(me%ch%n))
             me%peaks%vmax = -huge(one); me%peaks%vmin = huge(one)
@@ -307,6 +300,10 @@ contains
             if (me%pending_restart) then
                 call me%integ%restart(me%sys, stat, msg)
                 me%pending_restart = .false.
+                if (stat /= stat_ok) then
+                    call me%fail(exit_diverged, 'run stopped at a restart: '//trim(msg)//me%diagnosis())
+                    return
+                end if
             end if
             call me%integ%step(me%sys, tstop, stat, msg)
             if (signal_received() /= 0) then
@@ -409,18 +406,11 @@ contains
         class(run_state_t), intent(inout) :: me
         real(wp), intent(in) :: t
         integer :: k
-        real(wp) :: row(ncrit_cols)
         call me%out%sample(t, me%ch, me%sys%ws)
         if (me%out%failed()) call me%fail(exit_output, me%out%error())
         me%ks = me%ks + 1
         k = me%ks
-        associate (v => me%ch%value, c => me%icol)
-            row(col_head_ax) = v(c%head_ax); row(col_head_ay) = v(c%head_ay); row(col_head_az) = v(c%head_az)
-            row(col_t1_ax) = v(c%t1_ax); row(col_oc_fx) = v(c%oc_fx); row(col_oc_fz) = v(c%oc_fz)
-            row(col_oc_my) = v(c%oc_my)
-            row(col_head_axh) = me%ch%head_x_acc(1); row(col_t1_axh) = me%ch%head_x_acc(2)
-            call me%crit%add(row)
-        end associate
+        call me%crit%add([me%ch%value(me%icol), me%ch%head_x_acc(1:2)])
         if (me%keep) then
             me%res%samples_t(k) = t
             me%res%samples(:, k) = me%ch%value
@@ -593,6 +583,8 @@ contains
         integer :: st
         integer(i8) :: c1, rate
         type(criteria_input_t) :: hist
+        real(wp), allocatable :: cols(:, :)
+        integer :: k
         call me%prog%finish()
         call system_clock(c1, rate)
         if (me%clock0 > 0) me%res%wall = real(c1 - me%clock0, wp)/real(rate, wp)
@@ -609,12 +601,11 @@ contains
             me%res%samples = me%res%samples(:, 1:me%ks)
         end if
         if (me%rows%m > 0) then
-            call criteria_input_allocate(hist, me%crit%n)
-            hist%head_ax = me%crit%column(col_head_ax); hist%head_ay = me%crit%column(col_head_ay)
-            hist%head_az = me%crit%column(col_head_az); hist%t1_ax = me%crit%column(col_t1_ax)
-            hist%oc_fx = me%crit%column(col_oc_fx); hist%oc_fz = me%crit%column(col_oc_fz)
-            hist%oc_my = me%crit%column(col_oc_my)
-            hist%head_axh = me%crit%column(col_head_axh); hist%t1_axh = me%crit%column(col_t1_axh)
+            allocate (cols(me%crit%n, ncriteria_columns))
+            do k = 1, ncriteria_columns
+                cols(:, k) = me%crit%column(k)
+            end do
+            hist = criteria_input_from(cols)
             call me%crit%clear()
             call assess(me%cs%t_start, me%cs%sample_dt, hist, me%ks, me%res%criteria, me%cs%occupant, &
                         me%cs%nic_frame)
