@@ -19,7 +19,7 @@ module hn_deck_reader
     use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_double, c_null_char, c_null_ptr
     use hn_kinds, only: wp, msglen, i8
     use hn_status, only: stat_bad_input
-    use hn_posix, only: file_kind, stdin_kind, kind_name, kind_missing, kind_regular, kind_fifo, kind_socket, &
+    use hn_posix, only: file_kind, stdin_kind, kind_name, kind_missing, kind_regular, kind_directory, kind_fifo, kind_socket, &
                         parent_directory, is_absolute, join_path, read_stdin_block
     implicit none
     private
@@ -685,15 +685,21 @@ contains
     !> The file an INCLUDE card names: an absolute path as it is; a relative
     !! one looked for next to the including file, then in the working
     !! directory, then in each directory of the include path. `found` is ''
-    !! with a message when there is no such regular file.
-    subroutine resolve_include(me, name, including, found, errmsg)
+    !! with a message when there is no such regular file (no such directory,
+    !! with `directory`: a calibration deck's DATA directory).
+    subroutine resolve_include(me, name, including, found, errmsg, directory)
         class(deck_reader_t), intent(in) :: me
         character(len=*), intent(in) :: name                  !! the path as written on the card
         character(len=*), intent(in) :: including             !! the file holding the card (stdin_path: none)
         character(len=:), allocatable, intent(out) :: found   !! where it was found ('' when not)
         character(len=*), intent(out) :: errmsg               !! why not ('' when found)
+        logical, intent(in), optional :: directory            !! look for a directory instead of a file
         character(len=:), allocatable :: tried
-        integer :: k, kind
+        integer :: k, kind, wanted
+        wanted = kind_regular
+        if (present(directory)) then
+            if (directory) wanted = kind_directory
+        end if
         found = ''
         errmsg = ''
         tried = ''
@@ -711,7 +717,8 @@ contains
             end if
         end if
         if (len(found) == 0 .and. len_trim(errmsg) == 0) &
-            errmsg = 'file "'//name//'" not found (looked for '//tried//'; an installed hhneck finds '// &
+            errmsg = trim(merge('file     ', 'directory', wanted == kind_regular))//' "'//name// &
+                     '" not found (looked for '//tried//'; an installed hhneck finds '// &
                      'shipped decks through -I DIR or HHNECK_PATH)'
     contains
         subroutine try(p)
@@ -721,8 +728,10 @@ contains
             if (len(tried) > 0) tried = tried//', '
             tried = tried//p
             kind = file_kind(p)
-            if (kind == kind_regular) then
+            if (kind == wanted) then
                 found = p
+            else if (kind /= kind_missing .and. wanted == kind_directory) then
+                errmsg = '"'//p//'" is '//kind_name(kind)//'; expected a directory'
             else if (kind /= kind_missing) then
                 errmsg = '"'//p//'" is '//kind_name(kind)//', which '//trim(why_not(kind))// &
                          '; expected a regular deck file'

@@ -107,13 +107,15 @@ contains
         type(case_t) :: cs
         type(channel_set_t) :: chs
         character(len=10) :: s, opt
-        character(len=:), allocatable :: ctext
+        character(len=:), allocatable :: ctext, found
+        character(len=msglen) :: msg
         character(len=10), allocatable :: peak_channel(:)
         integer, allocatable :: channel_line(:), peak_line(:), data_line(:)
         integer :: i, c, k, nfit, f, rating_line, cfc, bad_peak, bad_channel, nwin, nmin
         real(wp) :: x
         real(wp), allocatable :: v0(:)
         rd%top = source
+        if (present(include_path)) rd%search = include_path
         call read_card_images(rd, path, source, 0)
         allocate (cal%decks(0), cal%data(0), params(0), cal%values(0), cal%channels(0), cal%peaks(0))
         allocate (channel_line(0), peak_line(0), data_line(0), peak_channel(0))
@@ -128,7 +130,15 @@ contains
                     call rd%fail(rd%where(i)//' (DATA card): expected one DATA card after each CASE card')
                     exit
                 end if
-                cal%data = [character(len=path_len) :: cal%data, adjustl(rd%lines(i)%text(11:80))]
+                ! found as an INCLUDE file is: next to the calibration deck, in the
+                ! working directory, then on the include path (-I, HHNECK_PATH)
+                call rd%find_file(trim(adjustl(rd%lines(i)%text(11:80))), rd%lines(i)%source, found, msg, &
+                                  directory=.true.)
+                if (len(found) == 0) then
+                    call rd%fail(rd%where(i)//' (DATA card): '//trim(msg))
+                    exit
+                end if
+                cal%data = [character(len=path_len) :: cal%data, found]
                 data_line = [data_line, i]
             case ('FIT')
                 nfit = nfit + 1
