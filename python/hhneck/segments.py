@@ -1,0 +1,347 @@
+"""Quasi-static segment tests of the catalogue: Panjabi et al. 2001 (single
+functional spinal units C0-C1 ... C6-C7, pure moments to 1 N m in
+flexion-extension, lateral bending and axial rotation) and Nightingale et
+al. 2007 (OC-C2, C4-C5, C6-C7, flexion and extension to 3.5 N m); data in
+shared/data/pmhs_neck (its README gives sources, signs and the decisions
+taken below).
+
+The set-up, as the labs tested (README "Ambiguities" 9): the lower body of
+the segment is fixed (its six coordinates locked, its frame the lab's), the
+upper body (for OC-C2: C1 and the head) is free in all six coordinates, a
+pure moment about one of the lower body's axes is ramped on the upper body
+(COUPLE card, frame R), no gravity, no muscles (the specimens were cleaned
+of them), and only the elements joining the specimen's bodies: the discs,
+ligaments, joint-limit dampers and range-of-motion resistance of the model
+deck, with its fitted SCALE factors of those families. The deck is written
+from the model deck (input/head_neck_54dof.inp) card for card, nothing
+retyped, so a change of the model is a change of every segment test.
+
+Moment protocol (one run per segment and axis): 0 -> +M over 20 s, held
+2 s, -> 0 at 42 s, -> -M at 62 s, held to 64 s. The rotation at a moment
+level is read on the loading ramps (t = RAMP level/M and T_NEG + RAMP
+|level|/M). Quasi-static enough: the discs' viscous terms (bending
+relaxation time d2b/d1 = 0.062 s with the model's VBEND factor) lag the
+rotation by 0.3 % on a 20 s ramp (on a 1 s ramp the rotation still grew
+5.5 % during the hold), and the slowest segment mode (the head on C1) has a
+period near 0.2 s; the tests check the closed form within 1 %.
+
+Signs of the data (README): flexion +, extension -; lateral bending and
+axial rotation "(+)L". In the project's axes (x forward, y left, z up) a
+flexion is +RY of the upper body, a left lateral bending -RX, a left axial
+rotation +RZ; the moment vector of the positive direction is (0, 1, 0),
+(-1, 0, 0) and (0, 0, 1). The rotation is the upper body's Bryant angle
+relative to the lower one minus its neutral value (for OC-C2 the sum of the
+C1 and head angles about the same axis, exact for a planar motion).
+
+API: write_deck, run_case, rotation_curve, rotations_at, data_branches,
+rate_curve, catalogue (all cases), write_report (markdown + figures).
+Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--report MD].
+"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MODEL_DECK = os.path.join(ROOT, "input", "head_neck_54dof.inp")
+DATA_DIR = os.path.join(os.path.dirname(ROOT), "shared", "data", "pmhs_neck")
+
+#: the lab's name of a segment -> (lower body, upper bodies)
+SEGMENTS = {
+    "C0_C1": ("C1", ("HEAD",)),
+    "C1_C2": ("C2", ("C1",)),
+    "C2_C3": ("C3", ("C2",)),
+    "C3_C4": ("C4", ("C3",)),
+    "C4_C5": ("C5", ("C4",)),
+    "C5_C6": ("C6", ("C5",)),
+    "C6_C7": ("C7", ("C6",)),
+    "OC_C2": ("C2", ("C1", "HEAD")),
+}
+#: motion -> (coordinate, sign of the data's positive direction, moment vector)
+MOTIONS = {
+    "flexion_extension": ("RY", +1.0, (0.0, 1.0, 0.0)),
+    "lateral_bending": ("RX", -1.0, (-1.0, 0.0, 0.0)),
+    "axial_rotation": ("RZ", +1.0, (0.0, 0.0, 1.0)),
+}
+RAMP, HOLD = 20.0, 2.0                # [s] the protocol of the module docstring
+T_NEG = 2.0 * RAMP + HOLD              # start of the negative loading ramp
+T_END = 3.0 * RAMP + 2.0 * HOLD
+#: element and coordinate cards of the model deck a segment deck takes
+ELEMENT_CARDS = ("DISC", "LIGAMENT")
+UPPER_CARDS = ("JOINT", "BODYPI", "NEUTRAL", "LIMIT", "ROM")
+SCALED_FAMILIES = ("DISCS", "LIGAMENTS", "LIMITS")
+
+
+def _fields(line):
+    return [line[i:i + 10].strip() for i in range(0, 80, 10)]
+
+
+def card_blocks(path):
+    """The data cards of a deck as blocks: a card and its continuation
+    cards (lines starting with a blank), comments and blank lines dropped."""
+    blocks = []
+    with open(path) as f:
+        for line in f.read().splitlines():
+            if not line.strip() or line.startswith("*"):
+                continue
+            if line[0] == " ":
+                if not blocks:
+                    raise ValueError("%s: a continuation card before any card" % path)
+                blocks[-1].append(line)
+            else:
+                blocks.append([line])
+    return blocks
+
+
+def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None):
+    """Write the deck of one segment test (module docstring) to `path`:
+    `segment` a key of SEGMENTS, `motion` of MOTIONS, `peak` the moment [N m].
+    disc_only keeps the discs alone (the closed-form check of the tests).
+    Returns the channel names of the upper bodies' rotation coordinate."""
+    lower, uppers = SEGMENTS[segment]
+    coord, _, vec = MOTIONS[motion]
+    bodies = (lower,) + uppers
+    kept = []
+    for b in card_blocks(model):
+        f = _fields(b[0])
+        card = f[0]
+        if card == "BODY" and f[1] in bodies:
+            line = b[0]
+            if f[1] == lower:              # the fixed lower body: the root, its frame the lab's
+                line = line[:20] + "R".ljust(10) + line[30:]
+            kept.append([line])
+        elif card in UPPER_CARDS and f[1] in uppers:
+            if disc_only and card in ("LIMIT", "ROM"):
+                continue
+            kept.append(b)
+        elif card in ELEMENT_CARDS and f[2] in bodies and f[3] in bodies:
+            if disc_only and card != "DISC":
+                continue
+            kept.append(b)
+        elif card == "SCALE" and f[2] in SCALED_FAMILIES:
+            if disc_only and f[2] != "DISCS":
+                continue
+            kept.append(b)
+    if not any(_fields(b[0])[0] == "DISC" for b in kept):
+        raise ValueError("%s: no disc joins %s in %s" % (segment, " ".join(bodies), model))
+    table = [(0.0, 0.0), (RAMP, peak), (RAMP + HOLD, peak), (T_NEG, 0.0), (T_NEG + RAMP, -peak), (T_END, -peak)]
+    pts = "".join("%-10s%-10s" % ("%.6g" % t, "%.6g" % m) for t, m in table)
+    head = [
+        "TITLE     %s" % (title or "SEGMENT TEST %s %s TO %.3g N M" % (segment, motion.upper(), peak))[:70],
+        "*         end (s)   step (s)  print (s) method    rtol      atol",
+        "CONTROL   %-10s1.0E-4    1.0       ROS34PW2  1.0E-5    1.0E-8" % ("%.6g" % T_END),
+        "OUTPUT    1.0E-2",
+        "H5FILE    %s" % (os.path.splitext(os.path.basename(path))[0] + ".h5"),
+        "GRAVITY   0.0       0.0       0.0",
+        "HEADNECK  %-10s%-10s" % (uppers[-1], lower),
+        "LOCK      %-10sTX        TY        TZ        RX        RY        RZ" % lower,
+        "*         the pure moment: %s about the lower body's axes" % motion,
+        "TABLE     MOMENT    %d" % len(table),
+        "          " + pts[:60],
+        "          " + pts[60:],
+        "COUPLE    %-10sR         MOMENT    %-10s%-10s%-10s" % ((uppers[-1],) + tuple("%.1f" % v for v in vec)),
+    ]
+    if len(uppers) > 1:                    # the moment acts on the top body; say so
+        head.insert(1, "* %s: the moment on %s, %s free between" % (segment, uppers[-1], " ".join(uppers[:-1])))
+    lines = [line.rstrip() for line in head + [line for b in kept for line in b]]
+    for k, line in enumerate(lines):
+        if len(line) > 80:
+            raise ValueError("%s: card %d is %d columns long" % (path, k + 1, len(line)))
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return ["%s_%s" % (u, coord) for u in uppers]
+
+
+def default_executable():
+    """$HHNECK, else fpm's release build of the project (built if needed)."""
+    exe = os.environ.get("HHNECK")
+    if not exe:
+        out = subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"], cwd=ROOT,
+                             capture_output=True, text=True)
+        lines = out.stdout.strip().splitlines()
+        exe = lines[-1] if out.returncode == 0 and lines else ""
+        if exe and not os.path.isabs(exe):
+            exe = os.path.join(ROOT, exe)
+    if not exe or not os.access(exe, os.X_OK):
+        raise RuntimeError("no hhneck executable (set HHNECK or build with fpm): %r" % exe)
+    return exe
+
+
+def run_case(segment, motion, peak, workdir, exe=None, disc_only=False):
+    """Write and run one segment test in `workdir`; returns (t [s], rotation
+    [deg] of the upper body relative to the lower, in the data's sign)."""
+    name = "%s_%s_%gNm%s" % (segment, motion, peak, "_disc" if disc_only else "")
+    deck = os.path.join(workdir, name + ".inp")
+    channels = write_deck(deck, segment, motion, peak, disc_only=disc_only)
+    exe = exe or default_executable()
+    with open(deck) as fin, open(os.path.join(workdir, name + ".txt"), "w") as fout:
+        res = subprocess.run([exe], stdin=fin, stdout=fout, stderr=subprocess.PIPE, text=True, cwd=workdir)
+    if res.returncode != 0:
+        raise RuntimeError("%s: hhneck exit %d: %s" % (deck, res.returncode, res.stderr.strip()[-400:]))
+    return rotation_curve(os.path.join(workdir, name + ".h5"), channels, MOTIONS[motion][1])
+
+
+def rotation_curve(h5path, channels, sign):
+    """Time [s] and the summed rotation channels minus their start values
+    [deg], times `sign` (the data's positive direction)."""
+    import h5py
+    with h5py.File(h5path, "r") as f:
+        t = np.asarray(f["time"][:], dtype=float)
+        total = np.zeros_like(t)
+        for c in channels:
+            v = np.asarray(f["channels"][c][:], dtype=float)
+            total += v - v[0]
+    return t, sign * total
+
+
+def rotations_at(t, rot, peak, levels):
+    """The rotation at each moment level (signed, |level| <= peak) on the
+    loading ramp of its sign."""
+    out = []
+    for m in levels:
+        tm = m / peak * RAMP if m >= 0 else T_NEG - m / peak * RAMP
+        out.append(float(np.interp(tm, t, rot)))
+    return np.array(out)
+
+
+def load_panjabi(data_dir=DATA_DIR):
+    """{(segment, motion): (moment [N m], rotation [deg]) in digitised order}."""
+    rows = {}
+    with open(os.path.join(data_dir, "panjabi2001_moment_rotation.csv")) as f:
+        for r in csv.DictReader(f):
+            rows.setdefault((r["segment"], r["motion"]), []).append(
+                (int(r["point"]), float(r["moment_Nm"]), float(r["rotation_deg"])))
+    return {k: (np.array([p[1] for p in sorted(v)]), np.array([p[2] for p in sorted(v)])) for k, v in rows.items()}
+
+
+def load_nightingale(data_dir=DATA_DIR):
+    """{segment: {stat: (moment, rotation)}}, flexion and extension joined
+    into one curve from -3.5 to +3.5 N m (moment ascending)."""
+    rows = {}
+    with open(os.path.join(data_dir, "nightingale2007_moment_rotation.csv")) as f:
+        for r in csv.DictReader(f):
+            rows.setdefault((r["segment"], r["stat"]), []).append(
+                (float(r["moment_Nm"]), float(r["rotation_deg"])))
+    out = {}
+    for (seg, stat), pts in rows.items():
+        pts = sorted(pts)
+        out.setdefault(seg, {})[stat] = (np.array([p[0] for p in pts]), np.array([p[1] for p in pts]))
+    return out
+
+
+def data_branches(moment, rotation, zero=0.05):
+    """Split a Panjabi curve (digitised from +M through the neutral zone to
+    -M) into its positive and negative loading branches, each with moment
+    ascending in magnitude: the points up to the first |M| < zero, and from
+    the last |M| < zero on (the ends of the neutral zone, README)."""
+    small = np.flatnonzero(np.abs(moment) < zero)
+    if small.size == 0:
+        raise ValueError("no zero-moment point in the curve")
+    pos = slice(0, small[0] + 1)
+    neg = slice(small[-1], moment.size)
+    mp, rp = moment[pos][::-1], rotation[pos][::-1]
+    mn, rn = -moment[neg], rotation[neg]
+    return (np.maximum(mp, 0.0), rp), (np.maximum(mn, 0.0), rn)
+
+
+def reference_on(grid, moment, rotation):
+    """A Panjabi curve as a function of the signed moment on `grid`."""
+    (mp, rp), (mn, rn) = data_branches(moment, rotation)
+    return np.where(grid >= 0, np.interp(grid, mp, rp), np.interp(-grid, mn, rn))
+
+
+def _iso():
+    try:
+        from hhneck import iso18571
+    except ImportError:                    # the project's tools before the package is installed
+        sys.path.insert(0, os.path.join(ROOT, "tools"))
+        import iso18571
+    return iso18571
+
+
+#: [s per N m] the moment as the rating's abscissa: the 0.01 N m grid of the
+#: curves becomes the 0.1 ms step the rating samples at, so a curve keeps its
+#: 201 (Panjabi) or 701 (Nightingale) samples; the rating's windows are
+#: fractions of the curve's length, so the scale changes nothing else
+MOMENT_AS_TIME = 0.01
+
+
+def rate_curve(grid, reference, model):
+    """ISO/TS 18571 of a moment-rotation curve: rotation as a function of
+    the moment (in place of time, MOMENT_AS_TIME), on the 0.01 N m grid."""
+    return _iso().rate(np.asarray(grid) * MOMENT_AS_TIME, reference, model)
+
+
+def _run_timed(args):
+    import time
+    seg, motion, peak, work, exe = args
+    t0 = time.perf_counter()
+    t, rot = run_case(seg, motion, peak, work, exe)
+    return t, rot, time.perf_counter() - t0
+
+
+def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None):
+    """Run and rate every segment case; returns a list of dicts, one per
+    (source, segment, motion), with the case's wall time [s] (its run, in
+    `jobs` parallel processes, default the number of cores). quick: C4-C5
+    only (one segment per source and motion)."""
+    from concurrent.futures import ThreadPoolExecutor
+    panjabi, night = load_panjabi(data_dir), load_nightingale(data_dir)
+    work = workdir or tempfile.mkdtemp(prefix="hhneck-segments-")
+    os.makedirs(work, exist_ok=True)
+    exe = exe or default_executable()
+    cases = [("Panjabi 2001", seg, motion, 1.0) for (seg, motion) in sorted(panjabi)]
+    cases += [("Nightingale 2007", seg, "flexion_extension", 3.5) for seg in sorted(night)]
+    if quick:
+        cases = [c for c in cases if c[1] == "C4_C5"]
+    with ThreadPoolExecutor(max_workers=jobs or os.cpu_count() or 1) as pool:
+        runs = list(pool.map(_run_timed, [(seg, motion, peak, work, exe) for _, seg, motion, peak in cases]))
+    results = []
+    for (src, seg, motion, peak), (t, rot, wall) in zip(cases, runs):
+        grid = np.round(np.arange(-peak, peak + 1e-9, 0.01), 10)
+        model = rotations_at(t, rot, peak, grid)
+        r = dict(source=src, segment=seg, motion=motion, peak=peak, grid=grid, curve=model, t=t, rot=rot,
+                 wall=wall, lower=None, upper=None)
+        if src.startswith("Panjabi"):
+            m, rr = panjabi[(seg, motion)]
+            r["levels"] = np.array([1.0, 0.67, 0.33, -0.33, -0.67, -1.0])
+            r["reference"] = reference_on(grid, m, rr)
+            r["data"] = reference_on(r["levels"], m, rr)
+        else:
+            stats = night[seg]
+            mm, rm = stats["mean"]
+            r["levels"] = np.array([3.5, 2.5, 1.5, 1.0, 0.5, -0.5, -1.0, -1.5, -2.5, -3.5])
+            r["reference"] = np.interp(grid, mm, rm)
+            r["data"] = np.interp(r["levels"], mm, rm)
+            bounds = [np.interp(r["levels"], *stats[s]) for s in ("lower", "upper")]
+            r["lower"], r["upper"] = np.minimum(*bounds), np.maximum(*bounds)
+        r["model"] = rotations_at(t, rot, peak, r["levels"])
+        r["iso"] = rate_curve(grid, r["reference"], model)
+        results.append(r)
+    return results
+
+
+def main(argv=None):
+    """hhneck-segments: run and rate the segment cases, print one line each
+    (the catalogue command, hhneck-catalogue, writes them into
+    docs/catalogue.md)."""
+    p = argparse.ArgumentParser(prog="hhneck-segments", description=__doc__.split("\n\n")[0])
+    p.add_argument("--quick", action="store_true", help="C4-C5 only (the test suite's form)")
+    p.add_argument("--exe", help="the hhneck executable (default $HHNECK, else fpm's release build)")
+    p.add_argument("--data", default=DATA_DIR, help="the pmhs_neck data folder")
+    p.add_argument("--out", help="working directory for the decks, listings and result files")
+    p.add_argument("--jobs", type=int, help="runs at a time (default: the number of cores)")
+    a = p.parse_args(argv)
+    for r in catalogue(a.exe, a.quick, a.data, a.out, a.jobs):
+        print("%-17s %-6s %-18s ISO 18571 %.3f  model/data at +peak %.2f, -peak %.2f  (%.2f s)" % (
+            r["source"], r["segment"], r["motion"], r["iso"]["overall"],
+            r["model"][0] / r["data"][0], r["model"][-1] / r["data"][-1], r["wall"]))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,121 @@
+"""The segment-test set-up of the catalogue (python/hhneck/segments.py)
+against closed forms: a functional spinal unit with its disc alone under a
+pure moment turns by M/K, K the disc's bending stiffness d1 Iy/h (or its
+torsional G J/h) as the deck's DISC card and SCALE factors give it; with
+every element, the deck takes exactly the cards of the model deck joining
+the segment's bodies; the data are split into their loading branches as the
+README of the data describes."""
+import os
+import sys
+
+import numpy as np
+import pytest
+
+from conftest import ROOT, hhneck_executable
+
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from hhneck import segments  # noqa: E402
+
+
+def _disc_card(deck, name):
+    """(d1, h, G, Ix, Iy, J) of the DISC card `name` of a deck, times its
+    SCALE factors of E (d1) and G."""
+    lines = open(deck).read().splitlines()
+    k = next(i for i, l in enumerate(lines) if l.startswith("DISC") and l[10:20].strip() == name)
+    f = lambda line, j: float(line[10 * j:10 * j + 10])      # noqa: E731
+    h, d1 = f(lines[k], 5), f(lines[k], 6)
+    g, ix, iy, j = (f(lines[k + 2], i) for i in range(1, 5))
+    scale = {l[30:40].strip(): float(l[40:50]) for l in lines if l.startswith("SCALE") and "DISCS" in l}
+    return d1 * scale.get("E", 1.0), h, g * scale.get("G", 1.0), ix, iy, j
+
+
+@pytest.fixture(scope="module")
+def exe():
+    return hhneck_executable()
+
+
+@pytest.mark.parametrize("motion", ["flexion_extension", "lateral_bending", "axial_rotation"])
+def test_disc_alone_turns_by_moment_over_stiffness(tmp_path, exe, motion):
+    t, rot = segments.run_case("C4_C5", motion, 1.0, str(tmp_path), exe, disc_only=True)
+    d1, h, g, ix, iy, j = _disc_card(str(tmp_path / ("C4_C5_%s_1Nm_disc.inp" % motion)), "C5C4")
+    k = {"flexion_extension": d1 * iy / h, "lateral_bending": d1 * ix / h, "axial_rotation": g * j / h}[motion]
+    expect = np.degrees(np.array([1.0, 0.5, -0.5, -1.0]) / k)
+    got = segments.rotations_at(t, rot, 1.0, [1.0, 0.5, -0.5, -1.0])
+    # the loading ramp lags the static rotation by the discs' viscous terms
+    # (0.3 % at the module's 20 s ramp); a wrong axis, sign or stiffness is
+    # off by far more
+    assert np.allclose(got, expect, rtol=0.01), (got, expect)
+    # at the end of the hold the rotation is the static one: to 1e-4 in
+    # bending; a twist of 3.3 deg turns 0.16 % further than the linear
+    # G J/h (the disc's finite-rotation terms, of order theta^2/2 = 0.17 %)
+    hold_end = np.interp(segments.RAMP + segments.HOLD - 1e-6, t, rot)
+    assert hold_end == pytest.approx(expect[0], rel=3e-3 if motion == "axial_rotation" else 1e-4)
+
+
+def test_deck_takes_the_segment_cards_of_the_model_deck(tmp_path):
+    deck = str(tmp_path / "c01.inp")
+    channels = segments.write_deck(deck, "C0_C1", "lateral_bending", 1.0)
+    assert channels == ["HEAD_RX"]
+    cards = [l for l in open(deck).read().splitlines() if l[:1] not in ("*", " ")]
+    names = [(l[:10].strip(), l[10:20].strip()) for l in cards]
+    # the two bodies, C1 the root fixed in the lab, and nothing of the others
+    assert [c for c in cards if c.startswith("BODY")][0][10:30].split() == ["C1", "R"]
+    assert sorted(n for k, n in names if k == "BODY") == ["C1", "HEAD"]
+    model = segments.card_blocks(segments.MODEL_DECK)
+    want = [b[0][10:20].strip() for b in model
+            if b[0][:10].strip() in ("DISC", "LIGAMENT") and {b[0][20:30].strip(), b[0][30:40].strip()} == {"C1", "HEAD"}]
+    assert sorted(n for k, n in names if k in ("DISC", "LIGAMENT")) == sorted(want) and len(want) == 7
+    assert sum(1 for k, n in names if k in ("LIMIT", "ROM") and n == "HEAD") == 6
+    assert not any(k in ("HILL", "VIA", "ACTIVATE", "MUSCLE") for k, _ in names)
+    assert "GRAVITY   0.0       0.0       0.0" in cards
+    assert "COUPLE    HEAD      R         MOMENT    -1.0      0.0       0.0" in cards
+    assert all(len(l) <= 80 for l in open(deck).read().splitlines())
+
+
+def test_two_body_specimen_sums_its_joints(tmp_path):
+    deck = str(tmp_path / "oc2.inp")
+    assert segments.write_deck(deck, "OC_C2", "flexion_extension", 3.5) == ["C1_RY", "HEAD_RY"]
+    text = open(deck).read()
+    assert "LOCK      C2        TX" in text and "COUPLE    HEAD      R" in text
+
+
+def test_data_branches_split_at_the_neutral_zone():
+    data = segments.load_panjabi()
+    m, r = data[("C1_C2", "axial_rotation")]          # 9 points: +1 ... 0, 0, 0 ... -1
+    (mp, rp), (mn, rn) = segments.data_branches(m, r)
+    assert rp[0] == pytest.approx(15.22682446) and rp[-1] == pytest.approx(22.07352104)
+    assert rn[0] == pytest.approx(-23.6699628) and rn[-1] == pytest.approx(-32.72507049)
+    assert np.all(np.diff(mp) > 0) and np.all(np.diff(mn) > 0)
+    grid = np.array([1.0, 0.0, -1.0])
+    ref = segments.reference_on(grid, m, r)
+    assert ref[0] == pytest.approx(22.07352104, abs=0.05) and ref[2] == pytest.approx(-32.72507049, abs=0.05)
+    night = segments.load_nightingale()
+    mm, rm = night["C4_C5"]["mean"]
+    assert mm[0] == pytest.approx(-3.503, abs=0.01) and mm[-1] == pytest.approx(3.512, abs=0.01)
+    assert np.all(np.diff(mm) >= 0) and rm[0] < 0 < rm[-1]
+
+
+def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
+    """The catalogue command's quick form (C4-C5 of each source and motion):
+    every case in the report, its data column the data file's own values,
+    its model column the result file's rotation at the ramp times."""
+    from hhneck import catalogue
+    report = tmp_path / "catalogue.md"
+    assert catalogue.main(["--quick", "--exe", exe, "--out", str(tmp_path), "--report", str(report),
+                           "--jobs", "2"]) == 0
+    text = report.read_text()
+    rows = [l for l in text.splitlines() if l.startswith("| C4–C5 |")]
+    assert len(rows) == 4                                     # 3 Panjabi motions + Nightingale
+    flex = next(l for l in rows if "flexion extension" in l and "+0.67" in l).split("|")
+    data = [float(v) for v in flex[4].split()]
+    model = [float(v) for v in flex[5].split()]
+    # Panjabi C4-C5 flexion at +1 N m: between the digitised (1.009, 5.519)
+    # and (0.66, 4.93) points of the data file
+    assert 5.4 < data[0] < 5.52
+    import h5py
+    with h5py.File(tmp_path / "C4_C5_flexion_extension_1Nm.h5", "r") as f:
+        t = f["time"][:]
+        c4 = f["channels"]["C4_RY"][:]
+    at_peak = np.interp(segments.RAMP, t, c4) - c4[0]
+    assert model[0] == pytest.approx(at_peak, abs=0.006)     # 3 significant digits in the table
+    assert "catalogue_panjabi.png" in text and (tmp_path / "catalogue_panjabi.png").exists()
