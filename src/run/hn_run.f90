@@ -75,6 +75,7 @@ module hn_run
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
         integer :: nrows = 0                             !! rows of the listing's time histories
         real(wp), allocatable :: samples_t(:), samples(:, :)  !! (optional) every channel at every sample
+        real(wp), allocatable :: samples_head_s(:, :, :)      !! (optional) head rotation matrix (head axes -> R) at every sample
         type(assessment_t) :: criteria                   !! injury criteria of the run
     end type run_result_t
 
@@ -243,7 +244,8 @@ contains
         associate (cs => me%cs)
             nsample = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
             call me%rows%init(1 + me%ch%n)
-            if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample))
+            if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample), &
+                                   me%res%samples_head_s(3, 3, nsample))
             call me%crit%init(ncrit_cols)
             me%icol = criteria_columns_t(channel_index(me%ch, 'HEAD_AX'), channel_index(me%ch, 'HEAD_AY'), &
                                          channel_index(me%ch, 'HEAD_AZ'), channel_index(me%ch, 'T1_AX'), &
@@ -424,6 +426,7 @@ contains
         if (me%keep) then
             me%res%samples_t(k) = t
             me%res%samples(:, k) = me%ch%value
+            me%res%samples_head_s(:, :, k) = me%sys%ws%kin%s(:, :, me%cs%head)
         end if
     end subroutine record_sample
 
@@ -607,6 +610,7 @@ contains
         if (me%keep .and. allocated(me%res%samples_t)) then
             me%res%samples_t = me%res%samples_t(1:me%ks)
             me%res%samples = me%res%samples(:, 1:me%ks)
+            me%res%samples_head_s = me%res%samples_head_s(:, :, 1:me%ks)
         end if
         if (me%rows%m > 0) then
             call criteria_input_allocate(hist, me%crit%n)
