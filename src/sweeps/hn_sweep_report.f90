@@ -236,6 +236,7 @@ contains
             character(len=*), intent(in) :: title
             integer, intent(in) :: which(:)
             integer :: j
+            real(wp) :: x
             call lst%need(6 + min(size(o%recs), 10))
             call lst%put('')
             call lst%put(title)
@@ -254,7 +255,8 @@ contains
                 write (line, '(i6,i3)') r, o%recs(r)%status
                 if (o%recs(r)%status == 0) then
                     do j = 1, size(which)
-                        write (line(10 + col*(j - 1):), '(1x,g12.4)') o%recs(r)%outputs(which(j))
+                        x = o%recs(r)%outputs(which(j))
+                        write (line(10 + col*(j - 1):), '(1x,g12.4)') merge(zero, x, x == zero)   ! -0 as 0
                     end do
                 else
                     line = trim(line)//'  failed'
