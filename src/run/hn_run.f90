@@ -76,6 +76,7 @@ module hn_run
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
         integer :: nrows = 0                             !! rows of the listing's time histories
         real(wp), allocatable :: samples_t(:), samples(:, :)  !! (optional) every channel at every sample
+        real(wp), allocatable :: samples_head_s(:, :, :)      !! (optional) head rotation matrix (head axes -> R) at every sample
         type(assessment_t) :: criteria                   !! injury criteria of the run
     end type run_result_t
 
@@ -239,7 +240,8 @@ contains
         associate (cs => me%cs)
             nsample = nint((cs%t_end - cs%t_start)/cs%sample_dt) + 2
             call me%rows%init(1 + me%ch%n)
-            if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample))
+            if (me%keep) allocate (me%res%samples_t(nsample), me%res%samples(me%ch%n, nsample), &
+                                   me%res%samples_head_s(3, 3, nsample))
             call me%crit%init(ncriteria_columns)
             me%icol = [(channel_index(me%ch, criteria_channels(k)), k = 1, size(criteria_channels))]
             allocate (me%peaks%vmax(me%ch%n), me%peaks%vmin(me%ch%n), me%peaks%tmax(me%ch%n), &
@@ -414,6 +416,7 @@ contains
         if (me%keep) then
             me%res%samples_t(k) = t
             me%res%samples(:, k) = me%ch%value
+            me%res%samples_head_s(:, :, k) = me%sys%ws%kin%s(:, :, me%cs%head)
         end if
     end subroutine record_sample
 
@@ -599,6 +602,7 @@ contains
         if (me%keep .and. allocated(me%res%samples_t)) then
             me%res%samples_t = me%res%samples_t(1:me%ks)
             me%res%samples = me%res%samples(:, 1:me%ks)
+            me%res%samples_head_s = me%res%samples_head_s(:, :, 1:me%ks)
         end if
         if (me%rows%m > 0) then
             allocate (cols(me%crit%n, ncriteria_columns))

@@ -16,7 +16,13 @@ module hn_sensitivity
     implicit none
     private
 
-    public :: oat_sensitivity, regression_sensitivity
+    public :: oat_sensitivity, regression_sensitivity, roundoff_outputs
+
+    !> An output is roundoff when its largest magnitude over the members is
+    !! at most this fraction of its group's (the listing comparison's noise
+    !! level: the out-of-plane loads of a sagittal run are about 1E-14 of
+    !! the in-plane ones).
+    real(wp), parameter, public :: roundoff_level = 1.0e-8_wp
 
 contains
 
@@ -83,5 +89,32 @@ contains
         r2 = dot_product(b, rxy)
         valid = .true.
     end subroutine regression_sensitivity
+
+    !> Outputs that are only roundoff over the completed members (e.g. the
+    !! lateral outputs of a frontal sweep): the largest magnitude of output
+    !! ref(k) is at most roundoff_level times the largest magnitude of any
+    !! output of its group (itself alone for group 0); an output that is
+    !! zero in every member, or with no completed member, is roundoff too.
+    !! Their sensitivities are undefined (elasticities and regression
+    !! coefficients of roundoff would be numbers without meaning).
+    pure function roundoff_outputs(y, ok, ref, group) result(noise)
+        real(wp), intent(in) :: y(:, :)      !! (nout, nrun) outputs of every member
+        logical, intent(in) :: ok(:)         !! (nrun) run completed
+        integer, intent(in) :: ref(:)        !! (nout) the output whose magnitude decides for output k
+        integer, intent(in) :: group(:)      !! (nout) outputs of one quantity share a positive group number
+        logical :: noise(size(y, 1))
+        real(wp) :: big(size(y, 1)), scale
+        integer :: k, r
+        do k = 1, size(y, 1)
+            big(k) = maxval(abs(y(k, :)), mask=ok)
+            if (.not. any(ok)) big(k) = zero
+        end do
+        do k = 1, size(y, 1)
+            r = ref(k)
+            scale = big(r)
+            if (group(r) > 0) scale = maxval(big, mask=group == group(r))
+            noise(k) = .not. big(r) > roundoff_level*scale
+        end do
+    end function roundoff_outputs
 
 end module hn_sensitivity

@@ -5,7 +5,7 @@
 !! about MPI: a driver hands out member numbers (serially, or over ranks)
 !! and collects `member_record_t`s. The deck format is in docs/sweeps.md.
 module hn_sweep
-    use hn_kinds, only: wp, zero, one, msglen
+    use hn_kinds, only: wp, zero, one, msglen, deg
     use hn_case, only: case_t, deck_line_t, path_len
     use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper, field_text, &
                               field_value, locate_field, stdin_path
@@ -17,26 +17,44 @@ module hn_sweep
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
     use hn_optimize, only: latin_hypercube
+    use hn_head_angles, only: bryant_angles, rotation_angle, signed_extreme, extreme_index
     implicit none
     private
 
     public :: sweep_t, sweep_param_t, member_record_t, read_sweep, read_sweep_lines, sweep_design, &
               sweep_member_case, spread_value, &
               run_member, field_text
-    public :: output_names, output_units, nout
+    public :: output_names, output_units, output_ref, output_group, nout, name_len, member_summary
 
     integer, parameter, public :: par_family = kind_family, par_body = kind_body, par_field = kind_field
     integer, parameter, public :: design_factorial = 1, design_lhs = 2, design_oat = 3
     character(len=9), parameter, public :: design_name(3) = [character(len=9) :: 'FACTORIAL', 'LHS', 'OAT']
     integer, parameter :: max_params = 50, max_runs = 100000
+    character(len=1), parameter :: xyz(3) = ['X', 'Y', 'Z']
 
-    !> The summary outputs of a member run.
-    integer, parameter :: nout = 13
-    character(len=10), parameter :: output_names(nout) = [character(len=10) :: 'THETA_PEAK', 'THETA_TIME', &
-        'OMEGA_PEAK', 'ALPHA_PEAK', 'HEAD_AR', 'OC_TENSION', 'OC_COMPR', 'OC_SHEAR', 'OC_FLEX', 'OC_EXT', &
-        'HIC15', 'NIJ', 'NIC']
+    !> The summary outputs of a member run: the sagittal set (1-13, in the
+    !! order of the first sweeps) and the 3-D set (14-28); docs/sweeps.md.
+    integer, parameter :: nout = 28
+    integer, parameter :: name_len = 12   !! longest output name
+    character(len=name_len), parameter :: output_names(nout) = [character(len=name_len) :: 'THETA_PEAK', &
+        'THETA_TIME', 'OMEGA_PEAK', 'ALPHA_PEAK', 'HEAD_AR', 'OC_TENSION', 'OC_COMPR', 'OC_SHEAR', 'OC_FLEX', &
+        'OC_EXT', 'HIC15', 'NIJ', 'NIC', &
+        'HEAD_RX_PEAK', 'HEAD_RY_PEAK', 'HEAD_RZ_PEAK', 'HEAD_ANGLE', 'HEAD_ANGLE_T', 'OMEGA_X_PEAK', &
+        'OMEGA_Z_PEAK', 'OMEGA_RES', 'ALPHA_RES', 'OC_FX_PEAK', 'OC_FY_PEAK', 'OC_SHEAR_RES', 'OC_MX_PEAK', &
+        'OC_MZ_PEAK', 'OC_M_RES']
     character(len=8), parameter :: output_units(nout) = [character(len=8) :: 'deg', 'ms', 'rad/s', 'rad/s^2', &
-        'g', 'N', 'N', 'N', 'N m', 'N m', '-', '-', 'm^2/s^2']
+        'g', 'N', 'N', 'N', 'N m', 'N m', '-', '-', 'm^2/s^2', &
+        'deg', 'deg', 'deg', 'deg', 'ms', 'rad/s', 'rad/s', 'rad/s', 'rad/s^2', 'N', 'N', 'N', 'N m', 'N m', 'N m']
+    !> The output whose magnitude tells whether output k is only roundoff:
+    !! itself, or for a time the extreme it is the time of.
+    integer, parameter :: output_ref(nout) = [1, 1, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, &
+        14, 15, 16, 17, 17, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28]
+    !> Outputs of one quantity and unit share a group; an output is roundoff
+    !! when it is far below the largest output of its group (angles,
+    !! angular velocities, angular accelerations, head acceleration, neck
+    !! forces, neck moments, HIC15, Nij, NIC; times take their extreme's).
+    integer, parameter :: output_group(nout) = [1, 0, 2, 3, 4, 5, 5, 5, 6, 6, 7, 8, 9, &
+        1, 1, 1, 1, 0, 2, 2, 2, 3, 5, 5, 5, 6, 6, 6]
 
     !> One parameter of the sweep.
     type :: sweep_param_t
@@ -557,27 +575,49 @@ contains
         rec%outputs = member_summary(cs, res)
     end subroutine run_member
 
-    !> The summary outputs (output_names) of a complete run: peak head
-    !! rotation (signed value of largest magnitude) and its time, peak
-    !! angular velocity, peak angular acceleration (CFC 60), peak head
-    !! resultant acceleration (CFC 1000), upper-neck loads (CFC 600), HIC15,
-    !! the largest Nij mode and NIC.
+    !> The summary outputs (output_names) of a complete run kept with its
+    !! samples: head rotation relative to R (HEAD_THETY's signed extreme and
+    !! its time; the Bryant angles of the head's rotation matrix and the
+    !! total rotation angle), head angular velocity (R axes) and angular
+    !! acceleration (CFC 60), peak head resultant acceleration (CFC 1000),
+    !! upper-neck loads in head axes (CFC 600), HIC15, the largest Nij mode
+    !! and NIC. Extremes are signed values of largest magnitude.
     function member_summary(cs, res) result(y)
-        type(case_t), intent(in) :: cs
-        type(run_result_t), intent(in) :: res
+        type(case_t), intent(in) :: cs           !! the member's case (its channels, sampling interval)
+        type(run_result_t), intent(in) :: res    !! the complete run, samples and head matrices kept
         real(wp) :: y(nout)
         type(channel_set_t) :: ch
-        real(wp), allocatable :: alpha(:)
-        integer :: k
+        real(wp), allocatable :: a(:, :), f(:, :), m(:, :), q(:, :), ang(:)
+        integer :: k, n, i, at
         call channels_define(cs, ch)
+        n = size(res%samples_t)
+        y = zero
         k = channel(ch, 'HEAD_THETY')
-        y(1) = extreme(res%samples(k, :))
-        y(2) = 1000.0_wp*res%samples_t(maxloc(abs(res%samples(k, :)), dim=1))
-        y(3) = extreme(res%samples(channel(ch, 'HEAD_OMEGY'), :))
-        allocate (alpha(size(res%samples_t)))
-        call cfc_filter(res%samples(channel(ch, 'HEAD_ALPHY'), :), cs%sample_dt, 60.0_wp, alpha)
-        y(4) = extreme(alpha)
-        y(5:) = zero
+        at = extreme_index(res%samples(k, :))
+        y(1) = res%samples(k, at)
+        y(2) = 1000.0_wp*res%samples_t(at)
+        y(3) = signed_extreme(res%samples(channel(ch, 'HEAD_OMEGY'), :))
+        allocate (a(n, 3), f(n, 3), m(n, 3), q(n, 3), ang(n))
+        do i = 1, 3
+            call cfc_filter(res%samples(channel(ch, 'HEAD_ALPH'//xyz(i)), :), cs%sample_dt, 60.0_wp, a(:, i))
+        end do
+        y(4) = signed_extreme(a(:, 2))
+        ! head orientation in 3-D
+        do i = 1, n
+            q(i, :) = bryant_angles(res%samples_head_s(:, :, i))/deg
+            ang(i) = rotation_angle(res%samples_head_s(:, :, i))/deg
+        end do
+        do i = 1, 3
+            y(13 + i) = signed_extreme(q(:, i))
+        end do
+        at = extreme_index(ang)
+        y(17) = ang(at)
+        y(18) = 1000.0_wp*res%samples_t(at)
+        y(19) = signed_extreme(res%samples(channel(ch, 'HEAD_OMEGX'), :))
+        y(20) = signed_extreme(res%samples(channel(ch, 'HEAD_OMEGZ'), :))
+        y(21) = maxval(sqrt(res%samples(channel(ch, 'HEAD_OMEGX'), :)**2 + res%samples(channel(ch, 'HEAD_OMEGY'), :)**2 &
+                            + res%samples(channel(ch, 'HEAD_OMEGZ'), :)**2))
+        y(22) = maxval(norm2(a, dim=2))
         if (res%criteria%computed) then
             y(5) = maxval(res%criteria%head_ar)
             y(6) = res%criteria%tension
@@ -588,13 +628,19 @@ contains
             y(11) = res%criteria%hic15
             y(12) = maxval(res%criteria%nij_max)
             y(13) = res%criteria%nic_max
+            ! upper-neck loads in every direction, CFC 600 as the criteria's
+            do i = 1, 3
+                call cfc_filter(res%samples(channel(ch, 'OC_F'//xyz(i)), :), cs%sample_dt, 600.0_wp, f(:, i))
+                call cfc_filter(res%samples(channel(ch, 'OC_M'//xyz(i)), :), cs%sample_dt, 600.0_wp, m(:, i))
+            end do
+            y(23) = signed_extreme(f(:, 1))
+            y(24) = signed_extreme(f(:, 2))
+            y(25) = maxval(sqrt(f(:, 1)**2 + f(:, 2)**2))
+            y(26) = signed_extreme(m(:, 1))
+            y(27) = signed_extreme(m(:, 3))
+            y(28) = maxval(norm2(m, dim=2))
         end if
     end function member_summary
-
-    pure real(wp) function extreme(x) result(e)
-        real(wp), intent(in) :: x(:)
-        e = x(maxloc(abs(x), dim=1))
-    end function extreme
 
     pure integer function channel(ch, name) result(k)
         type(channel_set_t), intent(in) :: ch

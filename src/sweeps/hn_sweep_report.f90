@@ -4,9 +4,9 @@
 !! file with the inputs and outputs of every run. Layout in docs/sweeps.md.
 module hn_sweep_report
     use hn_kinds, only: wp, zero, msglen
-    use hn_sweep, only: sweep_t, member_record_t, output_names, output_units, nout, design_name, &
-                        design_oat, design_factorial, design_lhs, par_family, par_body
-    use hn_sensitivity, only: oat_sensitivity, regression_sensitivity
+    use hn_sweep, only: sweep_t, member_record_t, output_names, output_units, output_ref, output_group, nout, &
+                        design_name, design_oat, design_factorial, design_lhs, par_family, par_body
+    use hn_sensitivity, only: oat_sensitivity, regression_sensitivity, roundoff_outputs
     use hn_listing, only: listing_t
     use hn_h5, only: h5_file_t
     use hn_deck_reader, only: int_str
@@ -19,8 +19,13 @@ module hn_sweep_report
     !! the rules for changing it in docs/output-format.md).
     integer, parameter :: sweep_schema_version = 2
 
-    !> Outputs shown in the listing's run and sensitivity tables.
-    integer, parameter :: shown(8) = [1, 2, 4, 6, 8, 9, 10, 12]
+    !> Outputs shown in the listing's run and sensitivity tables: the
+    !! sagittal ones, then the 3-D and out-of-plane ones (eight each, so that
+    !! a table fits the 118 columns of the listing page).
+    integer, parameter :: shown_sagittal(8) = [1, 2, 4, 6, 8, 9, 10, 12]
+    integer, parameter :: shown_3d(8) = [14, 16, 17, 21, 22, 24, 26, 27]
+    integer, parameter :: max_shown_params = 9   !! parameter columns of the member table
+    integer, parameter :: col = 13               !! width of an output column
 
     !> A finished sweep: what the listing and the result file report.
     type :: sweep_outcome_t
@@ -28,6 +33,7 @@ module hn_sweep_report
         type(member_record_t), allocatable :: recs(:)   !! (nrun) what each member run gave
         real(wp), allocatable :: s(:, :)                !! (np, nout) sensitivities
         logical, allocatable :: valid(:, :)             !! (np, nout) s could be computed
+        logical, allocatable :: roundoff(:)             !! (nout) the output is roundoff in every member
         real(wp), allocatable :: r2(:)                  !! (nout) R^2 of each output's regression
         integer :: nranks = 1                           !! number of MPI ranks that ran the members
         real(wp) :: wall = zero                         !! wall time of the whole sweep [s]
@@ -53,8 +59,8 @@ contains
         o%recs = recs
         o%nranks = nranks
         o%wall = wall
-        allocate (o%s(size(v, 1), nout), o%valid(size(v, 1), nout), o%r2(nout))
-        call sweep_sensitivities(sw, v, recs, o%s, o%valid, o%r2)
+        allocate (o%s(size(v, 1), nout), o%valid(size(v, 1), nout), o%r2(nout), o%roundoff(nout))
+        call sweep_sensitivities(sw, v, recs, o%s, o%valid, o%r2, o%roundoff)
         call sweep_listing(sw, o, lu, version)
         stat = 0
         errmsg = ''
@@ -63,19 +69,26 @@ contains
 
     !> Sensitivity s(p, k) of output k to parameter p (elasticities for OAT,
     !! standardised regression coefficients otherwise), their validity, and
-    !! R^2 of each regression (1 for OAT).
-    subroutine sweep_sensitivities(sw, v, recs, s, valid, r2)
+    !! R^2 of each regression (1 for OAT). An output that is roundoff in every
+    !! completed member (hn_sensitivity's roundoff_outputs) has none: s = 0,
+    !! valid false, R^2 = 0.
+    subroutine sweep_sensitivities(sw, v, recs, s, valid, r2, roundoff)
         type(sweep_t), intent(in) :: sw                   !! the sweep (design, step, LOG spacing)
         real(wp), intent(in) :: v(:, :)                   !! (np, nrun) design
         type(member_record_t), intent(in) :: recs(:)      !! (nrun) status and summary outputs of every member
         real(wp), intent(out) :: s(size(v, 1), nout)      !! sensitivity of output k to parameter p
         logical, intent(out) :: valid(size(v, 1), nout)   !! s(p, k) could be computed
         real(wp), intent(out) :: r2(nout)                 !! R^2 of each output's regression (1 for OAT)
+        logical, intent(out), optional :: roundoff(nout)  !! the output is roundoff in every completed member
         real(wp) :: x(size(v, 1), size(v, 2))
-        logical :: ok(size(recs))
-        real(wp) :: y(size(recs))
+        logical :: ok(size(recs)), noise(nout)
+        real(wp) :: y(size(recs)), outs(nout, size(recs))
         integer :: k, p
         ok = recs%status == 0
+        do k = 1, size(recs)
+            outs(:, k) = recs(k)%outputs
+        end do
+        noise = roundoff_outputs(outs, ok, output_ref, output_group)
         if (sw%design == design_oat) then
             r2 = 1.0_wp
             do k = 1, nout
@@ -93,6 +106,13 @@ contains
                 valid(:, k) = valid(1, k)
             end do
         end if
+        do k = 1, nout
+            if (.not. noise(k)) cycle
+            s(:, k) = zero
+            valid(:, k) = .false.
+            r2(k) = zero
+        end do
+        if (present(roundoff)) roundoff = noise
     end subroutine sweep_sensitivities
 
     !> "FAMILY MUSCLES M1", "BODY HEAD MASS", "DISC C2C1 F5".
@@ -117,7 +137,7 @@ contains
         character(len=*), intent(in) :: version        !! program version for the page headers
         type(listing_t) :: lst
         character(len=400) :: line
-        integer :: p, r, k, np, nrun, nfail, kk
+        integer :: p, r, k, np, nrun, nfail
         associate (v => o%v, recs => o%recs, s => o%s, valid => o%valid, r2 => o%r2, nranks => o%nranks, &
                    wall => o%wall)
             np = size(v, 1)
@@ -155,39 +175,24 @@ contains
             end associate
             call lst%put(line)
         end do
-        ! one row per run
+        ! the members: parameter values, then the two tables of outputs
         call lst%new_page()
-        call lst%put(' MEMBER RUNS (FAMILY and BODY parameters as scale factors, FIELD parameters as values)')
-        if (np > 6) call lst%put(' (the first 6 parameters are shown; every input and output is in the HDF5 file)')
+        call lst%put(' MEMBER RUNS: PARAMETER VALUES (FAMILY and BODY parameters as scale factors, FIELD parameters '// &
+                     'as values)')
+        if (np > max_shown_params) call lst%put(' (the first '//trim(int_str(max_shown_params))// &
+                                                ' parameters are shown; every input and output is in the HDF5 file)')
         call lst%put('')
         line = '   RUN ST'
-        do p = 1, min(np, 6)
+        do p = 1, min(np, max_shown_params)
             line = trim(line)//'  '//adjustr(sw%params(p)%name)
-        end do
-        do k = 1, size(shown)
-            line = trim(line)//' '//adjustr(output_names(shown(k)))
-        end do
-        call lst%put(line)
-        line = '         '
-        do p = 1, min(np, 6)
-            line = trim(line)//'  '//repeat(' ', 10)
-        end do
-        do k = 1, size(shown)
-            line = line(1:9 + 12*min(np, 6) + 11*(k - 1))//' '//adjustr(output_units(shown(k))(1:8))
         end do
         call lst%put(line)
         do r = 1, nrun
             write (line, '(i6,i3)') r, recs(r)%status
-            do p = 1, min(np, 6)
+            do p = 1, min(np, max_shown_params)
                 write (line(len_trim(line) + 1:), '(2x,es10.3)') v(p, r)
             end do
-            if (recs(r)%status == 0) then
-                do k = 1, size(shown)
-                    write (line(len_trim(line) + 1:), '(1x,g10.4)') recs(r)%outputs(shown(k))
-                end do
-            else
-                line = trim(line)//'  FAILED (below)'
-            end if
+            if (recs(r)%status /= 0) line = trim(line)//'  FAILED (below)'
             call lst%put(line)
         end do
         if (nfail > 0) then
@@ -199,50 +204,112 @@ contains
                 call lst%put(trim(line)//' '//trim(recs(r)%message))
             end do
         end if
-        ! the sensitivity table
-        call lst%need(8 + np)
+        call output_table(' MEMBER RUNS: SAGITTAL OUTPUTS (head rotation and angular motion about y, upper-neck '// &
+                          'Fx, Fz, My)', shown_sagittal)
+        call output_table(' MEMBER RUNS: 3-D AND OUT-OF-PLANE OUTPUTS (Bryant angles x, z and total angle; '// &
+                          'resultants; Fy, Mx, Mz)', shown_3d)
+        ! the sensitivity tables
+        call sensitivity_table(' SAGITTAL OUTPUTS', shown_sagittal)
+        call sensitivity_table(' 3-D AND OUT-OF-PLANE OUTPUTS', shown_3d)
+        call lst%need(3 + nout)
         call lst%put('')
-        if (sw%design == design_oat) then
-            call lst%put(' SENSITIVITIES: percent change of the output per percent change of the parameter')
-        else
-            call lst%put(' SENSITIVITIES: standardised regression coefficients (R^2 of the linear fit below)')
-        end if
-        call lst%put('')
-        line = '   PARAMETER '
-        do k = 1, size(shown)
-            line = trim(line)//' '//adjustr(output_names(shown(k)))
-        end do
-        call lst%put(line)
-        do p = 1, np
-            line = '   '//sw%params(p)%name
-            do k = 1, size(shown)
-                kk = shown(k)
-                if (valid(p, kk)) then
-                    write (line(14 + 11*(k - 1):), '(f10.3)') s(p, kk)
-                else
-                    line(14 + 11*(k - 1):) = '       n/a'
-                end if
-            end do
-            call lst%put(line)
-        end do
-        if (sw%design /= design_oat) then
-            line = '   R^2'
-            do k = 1, size(shown)
-                write (line(14 + 11*(k - 1):), '(f10.3)') r2(shown(k))
-            end do
-            call lst%put(line)
-        end if
-        call lst%put('')
-        call lst%put(' MOST INFLUENTIAL PARAMETER PER OUTPUT')
+        call lst%put(' MOST INFLUENTIAL PARAMETER PER OUTPUT (every output; n/a: no sensitivity could be computed)')
         do k = 1, nout
-            if (.not. any(valid(:, k))) cycle
-            p = maxloc(abs(s(:, k)), mask=valid(:, k), dim=1)
-            write (line, '(3x,a10,1x,a8,2x,a10,f10.3)') output_names(k), output_units(k), sw%params(p)%name, s(p, k)
+            if (any(valid(:, k))) then
+                p = maxloc(abs(s(:, k)), mask=valid(:, k), dim=1)
+                write (line, '(3x,a12,1x,a8,2x,a10,f10.3)') output_names(k), output_units(k), sw%params(p)%name, &
+                    s(p, k)
+            else if (o%roundoff(k)) then
+                write (line, '(3x,a12,1x,a8,2x,a)') output_names(k), output_units(k), &
+                    'n/a: roundoff in every member (below 1E-8 of its group)'
+            else
+                write (line, '(3x,a12,1x,a8,2x,a)') output_names(k), output_units(k), 'n/a'
+            end if
             call lst%put(line)
         end do
         if (nfail > 0) call lst%message(trim(int_str(nfail))//' OF '//trim(int_str(nrun))// &
                                         ' MEMBER RUNS FAILED; SEE THE LIST ABOVE')
         end associate
+    contains
+        !> One row per member of the outputs `which`, under its title.
+        subroutine output_table(title, which)
+            character(len=*), intent(in) :: title
+            integer, intent(in) :: which(:)
+            integer :: j
+            real(wp) :: x
+            call lst%need(6 + min(size(o%recs), 10))
+            call lst%put('')
+            call lst%put(title)
+            call lst%put('')
+            line = '   RUN ST'
+            do j = 1, size(which)
+                line(10 + col*(j - 1):) = ' '//adjustr(output_names(which(j)))
+            end do
+            call lst%put(line)
+            line = ''
+            do j = 1, size(which)
+                line(10 + col*(j - 1):) = repeat(' ', col - 8)//adjustr(output_units(which(j)))
+            end do
+            call lst%put(line)
+            do r = 1, size(o%recs)
+                write (line, '(i6,i3)') r, o%recs(r)%status
+                if (o%recs(r)%status == 0) then
+                    do j = 1, size(which)
+                        x = o%recs(r)%outputs(which(j))
+                        write (line(10 + col*(j - 1):), '(1x,g12.4)') merge(zero, x, x == zero)   ! -0 as 0
+                    end do
+                else
+                    line = trim(line)//'  failed'
+                end if
+                call lst%put(line)
+            end do
+        end subroutine output_table
+
+        !> The sensitivities of the outputs `which` to every parameter.
+        subroutine sensitivity_table(title, which)
+            character(len=*), intent(in) :: title
+            integer, intent(in) :: which(:)
+            integer :: j, kk
+            call lst%need(8 + size(o%v, 1))
+            call lst%put('')
+            if (sw%design == design_oat) then
+                call lst%put(' SENSITIVITIES,'//title//': percent change of the output per percent change of the '// &
+                             'parameter')
+            else
+                call lst%put(' SENSITIVITIES,'//title//': standardised regression coefficients (R^2 of the linear '// &
+                             'fit below)')
+            end if
+            call lst%put('')
+            line = '   PARAMETER '
+            do j = 1, size(which)
+                line(14 + col*(j - 1):) = ' '//adjustr(output_names(which(j)))
+            end do
+            call lst%put(line)
+            do p = 1, size(o%v, 1)
+                line = '   '//sw%params(p)%name
+                do j = 1, size(which)
+                    kk = which(j)
+                    if (o%valid(p, kk)) then
+                        write (line(14 + col*(j - 1):), '(f13.3)') o%s(p, kk)
+                    else
+                        line(14 + col*(j - 1):) = '          n/a'
+                    end if
+                end do
+                call lst%put(line)
+            end do
+            if (sw%design /= design_oat) then
+                line = '   R^2'
+                do j = 1, size(which)
+                    kk = which(j)
+                    if (any(o%valid(:, kk))) then
+                        write (line(14 + col*(j - 1):), '(f13.3)') o%r2(kk)
+                    else
+                        line(14 + col*(j - 1):) = '          n/a'
+                    end if
+                end do
+                call lst%put(line)
+            end if
+        end subroutine sensitivity_table
     end subroutine sweep_listing
 
     !> Write the sweep result file (layout in docs/sweeps.md).
@@ -329,6 +396,7 @@ contains
             call h5%write_real('/sensitivity/coefficient', s, [np, nout])
             call h5%write_int('/sensitivity/valid', merge(1, 0, valid), [np, nout])
             call h5%write_real('/sensitivity/r2', r2, [nout])
+            call h5%write_int('/sensitivity/roundoff', merge(1, 0, o%roundoff), [nout])
             call h5%attr_string('/', 'status', 'complete')
             call h5%close(.true., stat, errmsg)
         end associate
