@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Reads hhneck result files (docs/output-format.md) into pandas.
 
     read_channels(path, channels=None) -> DataFrame
@@ -7,7 +6,7 @@
         column in df.attrs["units"] (a dict), and df.attrs["title"],
         df.attrs["schema_version"], df.attrs["source"]. Reads result files
         (/channels/NAME datasets) of every schema version and the compact
-        reference files of tools/extract_reference.py (/channels as one
+        reference files of dev/extract_reference.py (/channels as one
         (nt, nch) dataset).
     read_bodies(path) -> DataFrame
         one row per body, in tree order, indexed by body name: number
@@ -22,9 +21,10 @@
     schema_version(f) -> int
         a file's schema_version (1 for files written before it existed).
 
-Command line: python3 tools/hhneck_results.py RESULT.h5 prints the title,
-bodies, channel count and the injury criteria.
+Command line: hhneck-results RESULT.h5 (python3 -m hhneck.results) prints
+the title, bodies, channel count and the injury criteria.
 """
+import argparse
 import sys
 
 import h5py
@@ -152,11 +152,10 @@ def read_injury(path):
 
 def main(argv=None):
     """Print a summary of a result file."""
-    argv = sys.argv[1:] if argv is None else argv
-    if len(argv) != 1 or argv[0].startswith("-"):
-        print(__doc__, file=sys.stderr)
-        return 2
-    path = argv[0]
+    p = argparse.ArgumentParser(prog="hhneck-results",
+                                description="Summary of a hhneck result file: title, bodies, channels, injury criteria.")
+    p.add_argument("result", help="hhneck HDF5 result file")
+    path = p.parse_args(argv).result
     ch = read_channels(path)
     print("%s (schema version %d)" % (ch.attrs["title"], ch.attrs["schema_version"]))
     print("%d channels, %d samples from %g s to %g s" % (ch.shape[1], ch.shape[0], ch.index[0], ch.index[-1]))
