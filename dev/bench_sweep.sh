@@ -4,7 +4,7 @@
 # by the MPI driver on 1 and on 2 ranks, and the same 19 runs as 19
 # separate invocations of the main program on the base deck (the cost of
 # the sweep machinery itself). Release build with the Open MPI wrapper.
-#   sh tools/bench_sweep.sh [SWEEP_DECK]
+#   sh dev/bench_sweep.sh [SWEEP_DECK]
 set -eu
 cd "$(dirname "$0")/.."
 deck=${1:-input/sweep_nbdl_oat.inp}

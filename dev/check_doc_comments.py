@@ -44,7 +44,7 @@ what each is): the line is to be split, and each such dummy is listed with
 procedure's first line with "(not declared)".
 
 Usage:
-    tools/check_doc_comments.py [--skip PATH]... [--all] [PATH...]
+    dev/check_doc_comments.py [--skip PATH]... [--all] [PATH...]
 
     --skip PATH   leave out a file, or every file under a directory (may be
                   given more than once); a PATH that names no checked file

@@ -4,11 +4,11 @@
 # release profile with -march=native (fused multiply-add where the
 # processor has it, so other roundoff in nearly every expression) and fpm's
 # debug profile (-O0). Each deck runs at --rtol 1.0E-7 as the references
-# were written, and must match within tools/compare_listing.py's tolerance.
+# were written, and must match within hhneck-compare-listing's tolerance.
 # A few minutes: two builds. Not part of tools/test.sh (the builds take
 # longer than the check); run it after a change of compare_listing.py, of
 # the references or of the integrators.
-#   tools/listing_robustness.sh
+#   dev/listing_robustness.sh
 set -u
 cd "$(dirname "$0")/.."
 pass=0; fail=0
@@ -26,7 +26,7 @@ for build in native debug; do
     for c in case6-1 case6-2 case6-5 nbdl15g nbdl12g hybrid3_flexion rear8g; do
         "$exe" --no-h5 --rtol 1.0E-7 < "input/$c.inp" > "$tmp/$c.txt" 2> /dev/null
         printf '%s build: ' "$build"
-        if python3 tools/compare_listing.py "$tmp/$c.txt" "reference/outputs/$c.txt"; then
+        if python3 -m hhneck.compare_listing "$tmp/$c.txt" "reference/outputs/$c.txt"; then
             pass=$((pass + 1))
         else
             fail=$((fail + 1))

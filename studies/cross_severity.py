@@ -4,7 +4,7 @@
     fpm run --profile release -- --calibrate < input/calibrate_nbdl15g.inp > fit15.txt
     fpm run --profile release -- --calibrate < input/calibrate_nbdl12g.inp > fit12.txt
     fpm run --profile release -- --calibrate < input/calibrate_nbdl.inp    > fitboth.txt
-    python3 tools/cross_severity.py fit15.txt fit12.txt fitboth.txt
+    python3 studies/cross_severity.py fit15.txt fit12.txt fitboth.txt
 
 Each fit's parameters are scored on both severities (hhneck --calibrate with
 FIT NELDER 0 and VALUES cards); prints a Markdown table: the fitted values,
@@ -20,9 +20,9 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import stop  # noqa: E402
-from deck_fields import CardError, field_text, write_deck  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from hhneck.compare_nbdl import stop  # noqa: E402
+from hhneck.deck_fields import CardError, field_text, write_deck  # noqa: E402
 
 FITS = [("15 g alone", "15g"), ("12 g alone", "12g"), ("both", "both")]
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What the shipped calibration's disc parameters and its PASSIVE condition each bring.
 
-    python3 tools/fit_axial_damping.py
+    python3 studies/fit_axial_damping.py
 
 The shipped calibration (input/calibrate_nbdl.inp) fits the discs' axial
 damping (SCALE VAXIAL) within the range Izambert et al. (2003) measured on
@@ -29,9 +29,10 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import stop  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from hhneck.compare_nbdl import stop  # noqa: E402
 from cross_severity import params, rating_text  # noqa: E402
-from deck_fields import CardError, field, is_card, set_field, write_decks  # noqa: E402
+from hhneck.deck_fields import CardError, field, is_card, set_field, write_decks  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 CALIBRATION = "input/calibrate_nbdl.inp"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What the NBDL data say about how T1 should drive the model:
 
-    python3 tools/nbdl_t1_evidence.py
+    python3 studies/nbdl_t1_evidence.py
 
 Two Markdown tables from the volunteer runs in reference/nbdl_15g and
 reference/nbdl_12g (docs/validation.md, "How T1 drives the model"):
@@ -29,8 +29,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import cfc, runs  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from hhneck.compare_nbdl import cfc, runs  # noqa: E402
 
 MM_PER_MS2 = 9.80665e-3      # 1 g in mm/ms^2
 TIMES = (100.0, 150.0, 250.0)

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """Prediction at a severity the model was not fitted to: NBDL 8 g.
 
-    python3 tools/predict_nbdl8g.py [--h5 SEV=RESULT.h5 ...]
-    python3 tools/predict_nbdl8g.py --fit LABEL=CALIBRATION_LISTING ...
+    python3 studies/predict_nbdl8g.py [--h5 SEV=RESULT.h5 ...]
+    python3 studies/predict_nbdl8g.py --fit LABEL=CALIBRATION_LISTING ...
 
 reference/ holds no 8 g time histories, only the 8 g peaks of
 reference/reference-data.md section 3 (n = 10 runs, each CFC 60). The deck
 input/nbdl8g.inp drives T1 with the 12 g mean drive scaled to the 8 g mean T1
-peak (tools/make_nbdl_tables.py). This runs it (and the 12 g and 15 g decks,
+peak (hhneck-nbdl-tables). This runs it (and the 12 g and 15 g decks,
 whose peaks were fitted: calibration) and prints, per severity, the model's
 peaks with the same definitions as section 3 -- T1 and head x-acceleration
 (least), head angular acceleration (largest) and deceleration (least), head
@@ -17,7 +17,7 @@ column is a prediction; the T1 row shows how well the synthetic drive meets
 the one 8 g number it was scaled to.
 
 With --fit (one or more listings of `hhneck --calibrate`, as
-tools/cross_severity.py takes them) it runs the 8 g deck with each fit's
+studies/cross_severity.py takes them) it runs the 8 g deck with each fit's
 parameters instead (set on a temporary copy of the model deck, the way the
 PARAM cards of input/calibrate_nbdl.inp bind them) and prints one row of
 8 g peaks per fit: which fit carries to a third severity.
@@ -30,9 +30,9 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import cfc, peak, run_deck, s3, stop  # noqa: E402
-from deck_fields import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from hhneck.compare_nbdl import cfc, peak, run_deck, s3, stop  # noqa: E402
+from hhneck.deck_fields import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
 
 SEVERITIES = ("8g", "12g", "15g")
 # (row label of reference-data.md section 3, model channel, sign of the peak)

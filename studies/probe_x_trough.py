@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What moves the late head x-acceleration trough of the NBDL 15 g run?
 
-    python3 tools/probe_x_trough.py [--case 15g|12g]
+    python3 studies/probe_x_trough.py [--case 15g|12g]
 
 The model's head x-acceleration has a first trough near 97 ms, where the
 volunteers' peak is, and a deeper second one near 110 ms, which makes its
@@ -46,10 +46,10 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import cfc, runs, volunteer_channels, peak, stop  # noqa: E402
-import make_nbdl_tables  # noqa: E402
-from deck_fields import CardError, check_cards, field, held, is_card, set_field, write_deck  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from hhneck.compare_nbdl import cfc, runs, volunteer_channels, peak, stop  # noqa: E402
+from hhneck import nbdl_tables as make_nbdl_tables  # noqa: E402
+from hhneck.deck_fields import CardError, check_cards, field, held, is_card, set_field, write_deck  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 HISTORIES = ("FLEX", "EXT")  # the model deck's ACTIVATE cards

@@ -2,11 +2,11 @@
 """The effect of each measured T1 motion on the head: runs the NBDL decks with
 T1 driven by x only, x + sagittal rotation, x + z + rotation with the z
 acceleration filtered CFC 60 like the others (the drive before the z filter)
-and x + z + rotation as shipped (z CFC 20; tools/make_nbdl_tables.py), and
+and x + z + rotation as shipped (z CFC 20; hhneck-nbdl-tables), and
 prints a Markdown table of the overall CORA-style rating and the
-head peaks (tools/compare_nbdl.py) for both severities.
+head peaks (hhneck-compare-nbdl) for both severities.
 
-    python3 tools/t1_drive_effect.py [--z-cfc 30,10,5]     (release build; about 30 s)
+    python3 studies/t1_drive_effect.py [--z-cfc 30,10,5]     (release build; about 30 s)
 
 --z-cfc adds rows with the z table filtered at those CFC classes (the
 sensitivity to the choice of CFC 20). A distance of 1.00 SD after rounding is
@@ -17,10 +17,10 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_nbdl import compare, s3, stop  # noqa: E402
-from make_nbdl_tables import t1_tables  # noqa: E402
-from deck_fields import CardError, hold, is_card, write_decks  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from hhneck.compare_nbdl import compare, s3, stop  # noqa: E402
+from hhneck.nbdl_tables import t1_tables  # noqa: E402
+from hhneck.deck_fields import CardError, hold, is_card, write_decks  # noqa: E402
 
 # (label, T1 coordinates held instead of driven, CFC class of the z table or None as shipped)
 VARIANTS = [

@@ -5,7 +5,7 @@
 # libopenmpi-dev), cmake and make (to build pFUnit for the tests, once, in
 # tools/pfunit.sh), fpm (from PyPI) and numpy, h5py, matplotlib, pandas
 # for the report and export tools, objective-rating-metrics (the ISO/TS
-# 18571 rating of tools/iso18571.py) and pytest for their tests. Run as
+# 18571 rating of hhneck-iso18571) and pytest for their tests. Run as
 # root on Debian or Ubuntu. Safe to run again.
 set -eu
 

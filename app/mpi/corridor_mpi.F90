@@ -12,7 +12,7 @@
 !! 0 (each member's histories are nonzero on one rank only). Built without
 !! -DHHNECK_MPI it runs the members serially. Writes OUT_PREFIX_SEV.csv
 !! (t, then per channel model mean, model SD, volunteer mean, volunteer SD)
-!! for tools/plot_corridor.py and prints the coverage table.
+!! for hhneck-plot-corridor and prints the coverage table.
 program corridor_mpi
 #ifdef HHNECK_MPI
     use mpi

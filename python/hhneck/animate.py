@@ -1,13 +1,14 @@
-#!/usr/bin/env python3
 """Animate a hhneck result file: the nine bodies, discs, ligaments and muscles.
 
-    tools/animate.py RESULT.h5 OUT.gif            # GIF (matplotlib only)
-    tools/animate.py RESULT.h5 OUT.mp4            # MP4 (needs ffmpeg)
-    tools/animate.py RESULT.h5 --strip OUT.png    # key frames every 20 ms
+    hhneck-animate RESULT.h5 OUT.gif            # GIF (matplotlib only)
+    hhneck-animate RESULT.h5 OUT.mp4            # MP4 (needs ffmpeg)
+    hhneck-animate RESULT.h5 --strip OUT.png    # key frames every 20 ms
+    hhneck-animate RESULT.h5 --strip OUT.png --view front,side
 
-Each frame shows a side (sagittal) view, a front view and a 3-D view that
-follow T1's translation, with ground marks fixed in R so the sled's motion
-shows, and the head angle against time. Vertebral bodies are boxes between
+Each frame shows the views that show the head's motion relative to T1 (or
+those named by --view: side, front, top, iso), which follow T1's
+translation, with ground marks fixed in R so the sled's motion shows, and
+the head angle against time. Vertebral bodies are boxes between
 their disc plates, the head is the uniform ellipsoid with its mass and
 principal inertia, discs, ligaments and muscles (through their via points)
 are lines coloured by their force. Bodies come from /bodies/position and /bodies/rotation, elements from
@@ -21,27 +22,24 @@ import sys
 import h5py
 import numpy as np
 
+from .results import text, text_list
+
 TENSION_CMAP = "YlOrRd"     # ligaments and muscles: tension from 0 to the run's peak
 DISC_CMAP = "coolwarm"      # discs: axial force, compression blue, tension red
 SLACK_COLOUR = "0.75"       # a line element carrying no force
 GROUND_STEP = 0.05          # spacing of the ground marks fixed in R [m]
 SLED_X = (-0.12, 0.08)      # sled extent along x relative to T1's mass centre [m]
 LINE_FAMILIES = ("ligaments", "muscles", "springs")
-
-
-def text(v):
-    """h5py string (bytes or str, possibly blank-padded) as str."""
-    if isinstance(v, bytes):
-        v = v.decode()
-    return str(v).strip()
-
-
-def text_list(v):
-    """A list attribute as a list of str: an array of strings (schema 2) or
-    one space-separated text (files before schema 2)."""
-    if isinstance(v, (str, bytes)):
-        return text(v).split()
-    return [text(x) for x in v]
+# the views: a plane view draws R's axes (horizontal, vertical) and looks
+# along the third (its normal); "iso" is the 3-D view
+PLANES = {"side": (0, 2, 1), "front": (1, 2, 0), "top": (0, 1, 2)}
+VIEWS = ("side", "front", "top", "iso")
+AUTO_SHARE = 0.5            # auto: the plane views with at least this share of the largest motion
+TITLES = {"side": "side (sagittal) view, face to the right",
+          "front": "front view, subject's left to the right",
+          "top": "top view, face to the right, subject's left up",
+          "iso": "3-D view"}
+AXIS_NAMES = "xyz"
 
 
 class Family:
@@ -98,7 +96,7 @@ class Result:
                     self.discs = Family(g, chan, "_P")
                     self.disc_area = g["area"][:]
             else:
-                print("animate.py: %s has no /model/elements (written by an older hhneck): "
+                print("hhneck-animate: %s has no /model/elements (written by an older hhneck): "
                       "drawing the bodies only" % path, file=sys.stderr)
         self.nb = len(self.bodies)
         self.root = int(np.flatnonzero(self.parent == 0)[0])
@@ -117,6 +115,22 @@ class Result:
         if relative_to is not None:
             s = self.rot[i, relative_to].T @ s
         return np.degrees(np.arctan2(s[0, 2], s[2, 2]))
+
+    def view_angle(self, i, k, view, relative_to=None):
+        """Rotation of body k (0-based) about the normal of a plane view
+        [deg] (side: atan2(S13, S33), flexion positive, the channel
+        HEAD_THETY; front: about x, atan2(S32, S33); top: about z,
+        atan2(S21, S11)); the total rotation angle for the 3-D view."""
+        s = self.rot[i, k]
+        if relative_to is not None:
+            s = self.rot[i, relative_to].T @ s
+        if view == "side":
+            return np.degrees(np.arctan2(s[0, 2], s[2, 2]))
+        if view == "front":
+            return np.degrees(np.arctan2(s[2, 1], s[2, 2]))
+        if view == "top":
+            return np.degrees(np.arctan2(s[1, 0], s[0, 0]))
+        return np.degrees(np.arccos(np.clip((np.trace(s) - 1.0) / 2.0, -1.0, 1.0)))
 
     def rotation_angle(self, i, k):
         """Angle of the rotation of body k from its neutral (R-parallel) axes [deg]."""
@@ -235,7 +249,7 @@ class Geometry:
         self.shapes = body_shapes(res)
 
     def bodies(self, i):
-        """{'side': (M, 3), 'front': (M, 3), '3d': (M, 3)} outline points of each body."""
+        """{'side': (M, 3), 'front': (M, 3), 'top': (M, 3), 'iso': (M, 3)} outline points of each body."""
         out = []
         for k, sh in enumerate(self.shapes, start=1):
             if sh[0] == "ellipsoid":
@@ -243,15 +257,18 @@ class Geometry:
                 xz, yz, xy = ellipse(axes, dirs, 0, 2), ellipse(axes, dirs, 1, 2), ellipse(axes, dirs, 0, 1)
                 a = np.sqrt(np.sum((axes * dirs[0]) ** 2))   # extent along the local x axis
                 nose = [[a, 0, 0], [a + 0.025, 0, 0]]
-                side, front, d3 = [xz, nose], [yz, nose], [xz, yz, xy, nose]
+                side, front, top, d3 = [xz, nose], [yz, nose], [xy, nose], [xz, yz, xy, nose]
             else:
                 _, cx, r, lo, hi, tip = sh
                 rect_xz = [[cx - r, 0, lo], [cx + r, 0, lo], [cx + r, 0, hi], [cx - r, 0, hi], [cx - r, 0, lo]]
                 rect_yz = [[cx, -r, lo], [cx, r, lo], [cx, r, hi], [cx, -r, hi], [cx, -r, lo]]
-                proc = [[[cx - r, 0, 0.5 * (lo + hi)], tip]] if tip is not None else []
-                side, front, d3 = [rect_xz] + proc, [rect_yz], box_edges(cx, r, lo, hi) + proc
+                m = 0.5 * (lo + hi)
+                rect_xy = [[cx - r, -r, m], [cx + r, -r, m], [cx + r, r, m], [cx - r, r, m], [cx - r, -r, m]]
+                proc = [[[cx - r, 0, m], tip]] if tip is not None else []
+                side, front, top = [rect_xz] + proc, [rect_yz], [rect_xy] + proc
+                d3 = box_edges(cx, r, lo, hi) + proc
             out.append({v: self.res.world(i, k, join(s)) for v, s in
-                        (("side", side), ("front", front), ("3d", d3))})
+                        (("side", side), ("front", front), ("top", top), ("iso", d3))})
         return out
 
     def sled(self, i, zfloor, xrange):
@@ -287,7 +304,7 @@ def view_window(res, geo, first, last):
     for i in np.unique(np.linspace(first, last, 60).astype(int)):
         ref = res.pos[i, res.root]
         for b in geo.bodies(i):
-            pts.append(b["3d"] - ref)
+            pts.append(b["iso"] - ref)
         for fam in res.families.values():
             pts.append(res.line_ends(i, fam).reshape(-1, 3) - ref)
     pts = np.vstack(pts)
@@ -303,8 +320,6 @@ def view_window(res, geo, first, last):
 
 class Scene:
     """The artists of the views; update(i) sets them to sample i."""
-
-    PLANES = {"side": (0, 2), "front": (1, 2)}
 
     def __init__(self, res, frames, axes, fmax=None, history_ax=None, label_text=None):
         import matplotlib.pyplot as plt
@@ -329,7 +344,7 @@ class Scene:
 
     def make_artists(self, view, ax):
         a = {"bodies": [], "cm": {}, "lines": {}, "discs": {}}
-        is3d = view == "3d"
+        is3d = view == "iso"
 
         def line(**kw):
             return ax.plot(*([[], [], []] if is3d else [[], []]), **kw)[0]
@@ -356,19 +371,19 @@ class Scene:
             ax.set_box_aspect((1, 1, 1), zoom=1.25)
             ax.view_init(elev=15, azim=-55)
         else:
-            h, v = self.PLANES[view]
+            h, v, _ = PLANES[view]
             ax.set_aspect("equal")
             ax.tick_params(labelsize=7)
-            ax.set_xlabel("xyz"[h] + " [m]", fontsize=7)
-            ax.set_ylabel("z [m]", fontsize=7)
+            ax.set_xlabel(AXIS_NAMES[h] + " [m]", fontsize=7)
+            ax.set_ylabel(AXIS_NAMES[v] + " [m]", fontsize=7)
         return a
 
     def put(self, art, view, p):
         """Set a line artist to R points p (M, 3), projected for the view."""
-        if view == "3d":
+        if view == "iso":
             art.set_data_3d(p[:, 0], p[:, 1], p[:, 2])
         else:
-            h, v = self.PLANES[view]
+            h, v, _ = PLANES[view]
             art.set_data(p[:, h], p[:, v])
 
     def force_colour(self, f, disc=False):
@@ -402,11 +417,11 @@ class Scene:
             self.put(a["ground"], view, ground)
             self.put(a["start"], view, start)
             ax = self.axes[view]
-            if view == "3d":
+            if view == "iso":
                 lo, hi = ref + self.win["lo3"], ref + self.win["hi3"]
                 ax.set_xlim(lo[0], hi[0]); ax.set_ylim(lo[1], hi[1]); ax.set_zlim(lo[2], hi[2])
             else:
-                h, v = self.PLANES[view]
+                h, v, _ = PLANES[view]
                 lo, hi = ref + self.win["lo"], ref + self.win["hi"]
                 ax.set_xlim(lo[h], hi[h]); ax.set_ylim(lo[v], hi[v])
         if self.history_ax is not None:
@@ -435,9 +450,98 @@ def add_colourbars(fig, scene, axes):
         cb.ax.tick_params(labelsize=7)
 
 
-def build_figure(res, frames, dpi, fmax=None, rate_label=""):
-    """The animation figure: side, front and 3-D views, head angle against
-    time, colour bars; returns (fig, scene)."""
+def rotation_vector(q):
+    """The rotation vector (axis times angle [rad]) of rotation matrices q (..., 3, 3)."""
+    w = 0.5 * np.stack([q[..., 2, 1] - q[..., 1, 2], q[..., 0, 2] - q[..., 2, 0], q[..., 1, 0] - q[..., 0, 1]], -1)
+    c = np.clip((np.trace(q, axis1=-2, axis2=-1) - 1.0) / 2.0, -1.0, 1.0)
+    angle = np.arccos(c)
+    sin = np.linalg.norm(w, axis=-1)
+    scale = np.where(sin > 1e-12, angle / np.where(sin > 1e-12, sin, 1.0), 1.0)
+    return w * scale[..., None]
+
+
+def motion_components(res, first=0, last=None):
+    """The head's motion relative to T1 (the root body) from sample first to
+    last: (nt, 6) columns d_x, d_y, d_z, L phi_x, L phi_y, L phi_z [m]: d the
+    head mass centre's displacement relative to T1's since the first sample,
+    phi the rotation vector of the head's rotation relative to T1's since
+    the first sample (in R), L the head's largest semi-axis (its uniform
+    ellipsoid), so that a rotation counts as the travel of the head's rim."""
+    last = len(res.time) - 1 if last is None else last
+    h, r = res.head, res.root
+    span = slice(first, last + 1)
+    rel = res.pos[span, h] - res.pos[span, r]
+    a = np.einsum("tij,kj->tik", res.rot[span, h], res.rot[first, h])      # S_h(t) S_h(0)^T
+    b = np.einsum("tij,kj->tik", res.rot[span, r], res.rot[first, r])      # S_T1(t) S_T1(0)^T
+    phi = rotation_vector(np.einsum("tji,tjk->tik", b, a))                 # B^T A
+    size = float(np.max(ellipsoid_axes(res.mass[h], res.inertia[h])[0]))
+    return np.hstack([rel - rel[0], size * phi])
+
+
+def seen(view):
+    """Columns of motion_components a plane view shows: the displacements
+    along its two axes and the rotation about its normal."""
+    i, j, n = PLANES[view]
+    return {i, j, 3 + n}
+
+
+def peak_norm(m, cols):
+    """Peak over the samples of the norm of the columns `cols` of m."""
+    cols = sorted(cols)
+    return float(np.max(np.linalg.norm(m[:, cols], axis=1))) if cols else 0.0
+
+
+def view_motion(res, first=0, last=None):
+    """How much of the head's motion relative to T1 each plane view shows,
+    {view: metres}: the peak norm of the motion components it shows."""
+    m = motion_components(res, first, last)
+    return {v: peak_norm(m, seen(v)) for v in PLANES}
+
+
+def auto_views(res, first=0, last=None):
+    """The plane views that show the head's motion relative to T1: first the
+    one that shows the most (view_motion); then, while the components that
+    no chosen view shows reach AUTO_SHARE of what the first shows, the view
+    that shows the most of them. The side view when the head does not move."""
+    m = motion_components(res, first, last)
+    shown = {v: peak_norm(m, seen(v)) for v in PLANES}
+    best = max(PLANES, key=lambda v: shown[v])
+    if not shown[best] > 0:
+        return ["side"]
+    views, hidden = [best], set(range(6)) - seen(best)
+    while len(views) < len(PLANES) and peak_norm(m, hidden) >= AUTO_SHARE * shown[best]:
+        nxt = max((v for v in PLANES if v not in views), key=lambda v: peak_norm(m, seen(v) & hidden))
+        views.append(nxt)
+        hidden -= seen(nxt)
+    return views
+
+
+def parse_views(specs):
+    """The views asked for by --view options (each a name or a comma list;
+    'auto' anywhere means the automatic choice): a list of view names
+    without repeats, or ['auto']. Raises ValueError on an unknown name."""
+    names = [n.strip() for spec in (specs or ["auto"]) for n in spec.split(",") if n.strip()]
+    bad = [n for n in names if n not in VIEWS + ("auto",)]
+    if bad:
+        raise ValueError("unknown view %s: the views are %s and auto" % (", ".join(bad), ", ".join(VIEWS)))
+    if not names or "auto" in names:
+        return ["auto"]
+    return list(dict.fromkeys(names))
+
+
+def resolve_views(res, views, frames, animation=False):
+    """The views to draw: `views` from parse_views; 'auto' gives auto_views
+    over the frames' span, and in an animation the 3-D view after them."""
+    if views is None or list(views) == ["auto"]:
+        picked = auto_views(res, int(frames[0]), int(frames[-1]))
+        return picked + ["iso"] if animation else picked
+    return list(views)
+
+
+def build_figure(res, frames, dpi, fmax=None, rate_label="", views=("side", "front", "iso")):
+    """The animation figure: the views (side, front, top, iso) side by side,
+    the head's angle about the first plane view's normal against time,
+    colour bars; returns (fig, scene)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -446,25 +550,28 @@ def build_figure(res, frames, dpi, fmax=None, rate_label=""):
     fig = plt.figure(figsize=(w, h), dpi=dpi)
     win = view_window(res, Geometry(res), frames[0], frames[-1])
     ext = win["hi"] - win["lo"]
-    gs = fig.add_gridspec(2, 3, height_ratios=[3.3, 1], width_ratios=[ext[0], max(ext[1], 0.5 * ext[0]), ext[2]],
-                          left=0.05, right=0.98, top=0.88, bottom=0.08, wspace=0.25, hspace=0.3)
-    axes = {"side": fig.add_subplot(gs[0, 0]), "front": fig.add_subplot(gs[0, 1]),
-            "3d": fig.add_subplot(gs[0, 2], projection="3d")}
-    axes["side"].set_title("side (sagittal) view, face to the right", fontsize=8)
-    axes["front"].set_title("front view, subject's left to the right", fontsize=8)
-    axes["3d"].set_title("3-D view", fontsize=8)
-    hist = fig.add_subplot(gs[1, 0:2])
+    widths = {"side": ext[0], "front": max(ext[1], 0.5 * ext[0]), "top": ext[0], "iso": ext[2]}
+    gs = fig.add_gridspec(2, 1, height_ratios=[3.3, 1], left=0.05, right=0.98, top=0.88, bottom=0.08, hspace=0.3)
+    top = gs[0].subgridspec(1, len(views), width_ratios=[widths[v] for v in views], wspace=0.25)
+    axes = {}
+    for n, v in enumerate(views):
+        axes[v] = fig.add_subplot(top[0, n], projection="3d" if v == "iso" else None)
+        axes[v].set_title(TITLES[v], fontsize=8)
+    bottom = gs[1].subgridspec(1, 3, wspace=0.25)
+    hist = fig.add_subplot(bottom[0, 0:2])
+    plane = next((v for v in views if v != "iso"), "side")
     t = 1000 * res.time
-    hist.plot(t, [res.sagittal_angle(i, res.head) for i in range(len(t))], lw=1.2, label="head")
-    hist.plot(t, [res.sagittal_angle(i, res.root) for i in range(len(t))], lw=1.0,
+    hist.plot(t, [res.view_angle(i, res.head, plane) for i in range(len(t))], lw=1.2, label="head")
+    hist.plot(t, [res.view_angle(i, res.root, plane) for i in range(len(t))], lw=1.0,
               label=res.bodies[res.root])
     hist.set_xlim(t[frames[0]], t[frames[-1]])
     hist.set_xlabel("time [ms]", fontsize=7)
-    hist.set_ylabel("flexion [deg]", fontsize=7)
+    hist.set_ylabel({"side": "flexion [deg]", "front": "rotation about x [deg]",
+                     "top": "rotation about z [deg]"}[plane], fontsize=7)
     hist.tick_params(labelsize=7)
     hist.legend(fontsize=7, loc="best")
     hist.grid(alpha=0.3)
-    cbg = gs[1, 2].subgridspec(2, 1, hspace=2.5)
+    cbg = bottom[0, 2].subgridspec(2, 1, hspace=2.5)
     cax = [fig.add_subplot(cbg[0]), fig.add_subplot(cbg[1])]
     head = res.title + ("" if res.status in ("complete", "") else "  [run %s]" % res.status)
     fig.text(0.5, 0.975, head, ha="center", va="top", fontsize=9, weight="bold")
@@ -489,9 +596,10 @@ def write_animation(res, out, args):
     matplotlib.use("Agg")
     from matplotlib import animation
     frames = animation_frames(res, args.start, args.end, args.fps, args.slow)
+    views = resolve_views(res, args.views, frames, animation=True)
     rate = "real time" if args.slow == 1 else "slow motion %gx" % args.slow
     fig, scene = build_figure(res, frames, args.dpi, args.fmax,
-                              "%s, %g frames/s, %d frames" % (rate, args.fps, len(frames)))
+                              "%s, %g frames/s, %d frames" % (rate, args.fps, len(frames)), views=views)
     if out.lower().endswith(".gif"):
         writer = animation.PillowWriter(fps=args.fps)
     else:
@@ -502,40 +610,49 @@ def write_animation(res, out, args):
             scene.update(i)
             writer.grab_frame()
             if not args.quiet and (n % 25 == 0 or n == len(frames) - 1):
-                print("animate.py: frame %d of %d (t = %.1f ms)" % (n + 1, len(frames), 1000 * res.time[i]),
+                print("hhneck-animate: frame %d of %d (t = %.1f ms)" % (n + 1, len(frames), 1000 * res.time[i]),
                       file=sys.stderr)
-    return len(frames)
+    return len(frames), views
 
 
-def write_strip(res, out, every, dpi, fmax=None, start=None, end=None):
-    """Key-frame strip: side views every `every` seconds, in rows of up to 7."""
+def write_strip(res, out, every, dpi, fmax=None, start=None, end=None, views=None):
+    """Key-frame strip: every `every` seconds, one block of rows of up to 7
+    frames for each view (views: as resolve_views takes them, default
+    auto); returns (number of key frames, views drawn)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     t0 = res.time[0] if start is None else start
     t1 = res.time[-1] if end is None else min(end, res.time[-1])
     frames = frame_indices(res.time, np.arange(t0, t1 + 1e-9, every))
+    views = resolve_views(res, views, frames)
     ncol = min(len(frames), 7)
-    nrow = -(-len(frames) // ncol)
-    fig, axs = plt.subplots(nrow, ncol, figsize=(2.2 * ncol + 1.0, 2.7 * nrow + 0.6), dpi=dpi,
-                            squeeze=False, gridspec_kw={"wspace": 0.05, "hspace": 0.3})
-    fig.subplots_adjust(left=0.01, right=0.88, top=1 - 0.75 / (2.7 * nrow + 0.6), bottom=0.02)
+    rows = -(-len(frames) // ncol)                      # rows of one view
+    nrow = rows * len(views)
+    fig = plt.figure(figsize=(2.2 * ncol + 1.0, 2.7 * nrow + 0.6), dpi=dpi)
+    gs = fig.add_gridspec(nrow, ncol, wspace=0.05, hspace=0.3, left=0.01, right=0.88,
+                          top=1 - 0.75 / (2.7 * nrow + 0.6), bottom=0.02)
     moves = np.ptp(res.pos[:, res.root, 0]) > 1e-3
     scene = None
-    for n, i in enumerate(frames):
-        ax = axs.flat[n]
-        scene = Scene(res, frames, {"side": ax}, fmax=fmax)
-        scene.update(i)
-        ax.set_xticks([]); ax.set_yticks([]); ax.set_xlabel(""); ax.set_ylabel("")
-        title = "%.0f ms  head %+.0f deg" % (1000 * res.time[i], res.sagittal_angle(i, res.head))
-        if moves:
-            dx = round(1000 * (res.pos[i, res.root, 0] - res.pos[0, res.root, 0])) + 0.0   # no "-0"
-            title += "\n%s dx %+.0f mm" % (res.bodies[res.root], dx)
-        ax.set_title(title, fontsize=8)
-    for ax in axs.flat[len(frames):]:
-        ax.axis("off")
-    fig.suptitle(res.title + " (side views every %.0f ms, ground marks %.0f mm apart)"
-                 % (1000 * every, 1000 * GROUND_STEP), fontsize=9)
+    for b, view in enumerate(views):
+        for n, i in enumerate(frames):
+            ax = fig.add_subplot(gs[b * rows + n // ncol, n % ncol], projection="3d" if view == "iso" else None)
+            scene = Scene(res, frames, {view: ax}, fmax=fmax)
+            scene.update(i)
+            if view == "iso":
+                ax.set_xlabel(""); ax.set_ylabel(""); ax.set_zlabel("")
+            else:
+                ax.set_xticks([]); ax.set_yticks([]); ax.set_xlabel(""); ax.set_ylabel("")
+            what = {"side": "head", "front": "head x-rot", "top": "head z-rot", "iso": "head rot"}[view]
+            title = "%.0f ms  %s %+.0f deg" % (1000 * res.time[i], what, res.view_angle(i, res.head, view))
+            if len(views) > 1:
+                title = "%s  %s" % (view, title)
+            if moves:
+                dx = round(1000 * (res.pos[i, res.root, 0] - res.pos[0, res.root, 0])) + 0.0   # no "-0"
+                title += "\n%s dx %+.0f mm" % (res.bodies[res.root], dx)
+            ax.set_title(title, fontsize=8)
+    fig.suptitle(res.title + " (%s views every %.0f ms, ground marks %.0f mm apart)"
+                 % (", ".join(views), 1000 * every, 1000 * GROUND_STEP), fontsize=9)
     from matplotlib import cm
     for n, (norm, cmap, label) in enumerate(((scene.tension_norm, scene.tension_cmap, "tension [N]"),
                                              (scene.disc_norm, scene.disc_cmap, "disc axial [N]"))):
@@ -545,11 +662,11 @@ def write_strip(res, out, every, dpi, fmax=None, start=None, end=None):
         cb.ax.tick_params(labelsize=6)
     fig.savefig(out, dpi=dpi)
     plt.close(fig)
-    return len(frames)
+    return len(frames), views
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+    p = argparse.ArgumentParser(prog="hhneck-animate", description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("result", help="hhneck HDF5 result file")
     p.add_argument("out", nargs="?", help="animation to write: NAME.gif or NAME.mp4")
@@ -562,29 +679,38 @@ def main(argv=None):
                    help="resolution: the frame is 12 x 7 inches, 960 x 560 pixels at the default 80")
     p.add_argument("--fmax", type=float,
                    help="tension at the top of the colour scale [N] (default: the peak between the first and last frame)")
-    p.add_argument("--strip", metavar="PNG", help="also write a key-frame strip of side views")
+    p.add_argument("--view", dest="views", action="append", metavar="VIEW",
+                   help="side, front, top, iso or auto (default): repeat the option or give a comma list for "
+                        "several; auto picks the plane views that show the head's motion relative to T1 "
+                        "(the animation adds the 3-D view)")
+    p.add_argument("--strip", metavar="PNG", help="also write a key-frame strip of the views")
     p.add_argument("--every", type=float, default=0.02, help="key-frame interval of the strip [s] (default 0.02)")
     p.add_argument("--quiet", action="store_true", help="no progress lines")
     args = p.parse_args(argv)
     if args.out is None and args.strip is None:
         p.error("give an output animation (OUT.gif or OUT.mp4) or --strip PNG")
+    try:
+        args.views = parse_views(args.views)
+    except ValueError as e:
+        p.error(str(e))
     if args.out is not None:
         suffix = args.out.lower().rsplit(".", 1)[-1]
         if suffix not in ("gif", "mp4"):
             p.error("the animation must be NAME.gif or NAME.mp4, not %s" % args.out)
         if suffix == "mp4" and shutil.which("ffmpeg") is None:
-            print("animate.py: MP4 needs ffmpeg, which is not installed: install it "
+            print("hhneck-animate: MP4 needs ffmpeg, which is not installed: install it "
                   "(sudo apt-get install ffmpeg) or ask for OUT.gif instead", file=sys.stderr)
             return 2
     if args.slow <= 0 or args.fps <= 0 or args.every <= 0:
         p.error("--slow, --fps and --every must be positive")
     res = Result(args.result)
     if args.out is not None:
-        n = write_animation(res, args.out, args)
-        print("animate.py: wrote %s (%d frames)" % (args.out, n))
+        n, views = write_animation(res, args.out, args)
+        print("hhneck-animate: wrote %s (%d frames), views: %s" % (args.out, n, ", ".join(views)))
     if args.strip is not None:
-        n = write_strip(res, args.strip, args.every, min(args.dpi, 100.0) + 20, args.fmax, args.start, args.end)
-        print("animate.py: wrote %s (%d key frames)" % (args.strip, n))
+        n, views = write_strip(res, args.strip, args.every, min(args.dpi, 100.0) + 20, args.fmax, args.start,
+                               args.end, args.views)
+        print("hhneck-animate: wrote %s (%d key frames), views: %s" % (args.strip, n, ", ".join(views)))
     return 0
 
 

@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """Compare a listing with its reference (reference/outputs/CASE.txt).
 
-    python3 tools/compare_listing.py LISTING REFERENCE [--rtol 5e-3]
+    hhneck-compare-listing LISTING REFERENCE [--rtol 5e-3]
 
 Line by line, the text with every number taken out must be the same, and
 every number must agree with the reference within a tolerance that is set
@@ -32,6 +31,7 @@ of the energy table: a channel at the level of the integration tolerance,
 checked by test_stability). Prints one PASS or FAIL line; exit 1 on a
 difference.
 """
+import argparse
 import re
 import sys
 
@@ -171,22 +171,19 @@ def compare(new, ref, rtol=RTOL):
     return True, "largest deviation %.2f of the tolerance%s" % (worst, ", " + where if where else "")
 
 
-def main():
-    args = sys.argv[1:]
-    rtol = RTOL
-    if "--rtol" in args:
-        k = args.index("--rtol")
-        rtol = float(args[k + 1])
-        del args[k:k + 2]
-    if len(args) != 2:
-        print(__doc__.split("\n\n")[1], file=sys.stderr)
-        return 2
-    new, ref = (open(p).read().splitlines() for p in args)
-    ok, text = compare(new, ref, rtol)
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hhneck-compare-listing", description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("listing", help="the listing to check")
+    p.add_argument("reference", help="its reference (reference/outputs/CASE.txt)")
+    p.add_argument("--rtol", type=float, default=RTOL, help="relative tolerance (default %g)" % RTOL)
+    args = p.parse_args(argv)
+    new, ref = (open(f).read().splitlines() for f in (args.listing, args.reference))
+    ok, text = compare(new, ref, args.rtol)
     if ok:
-        print("PASS  %s matches %s (%s)" % (args[0], args[1], text))
+        print("PASS  %s matches %s (%s)" % (args.listing, args.reference, text))
         return 0
-    print("FAIL  %s: %s" % (args[0], text))
+    print("FAIL  %s: %s" % (args.listing, text))
     return 1
 
 

@@ -1,11 +1,10 @@
-#!/usr/bin/env python3
 """Compare the model's NBDL sled runs with the volunteers (15 g and 12 g).
 
-    python3 tools/compare_nbdl.py [--case 15g|12g|both|NAME] [--h5 SEV=RESULT.h5 ...] [--out DIR]
-                                  [--data NAME=DIR] [--deck NAME=DECK]
+    hhneck-compare-nbdl [--case 15g|12g|both|NAME] [--h5 SEV=RESULT.h5 ...] [--out DIR]
+                        [--data NAME=DIR] [--deck NAME=DECK]
 
-Without --h5 it runs `fpm run --profile release -- --h5 ... < input/nbdlSEVg.inp`
-for each case. Volunteer data: reference/nbdl_15g (runs 1635-1644) and
+Without --h5 it runs input/nbdlSEVg.inp for each case (hhneck.run.run_deck:
+$HHNECK, else the project's release build). Volunteer data: reference/nbdl_15g (runs 1635-1644) and
 reference/nbdl_12g (runs 1607-1617), raw, every 0.5 ms. Every volunteer run
 and the model are filtered CFC 60 (SAE J211/1, as the library does).
 
@@ -22,18 +21,20 @@ significant digits.
 
 Other runs of the same kind (a directory with the same CHANNEL.csv files,
 columns time_ms,run_...): `--data NAME=DIR --case NAME` compares the deck
-input/nbdlNAME.inp (or `--deck NAME=DECK`) with them; tools/make_nbdl_tables.py
+input/nbdlNAME.inp (or `--deck NAME=DECK`) with them; hhneck-nbdl-tables
 --data DIR --name nbdlNAME writes that deck and its T1 tables. A channel
 whose file the directory lacks is left out (the overall rating is the mean
 over the rated channels present, and the table names the missing ones); a
 file that cannot be read as evenly spaced runs stops the tool with its name.
 """
+import argparse
 import os
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
+
+from . import run
 
 G = 9.80665
 WINDOW = (30.0, 250.0)   # ms
@@ -294,34 +295,33 @@ def figure(sev, curves, model_curves, path):
 
 
 def run_deck(sev, tmp):
-    h5 = os.path.join(tmp, "nbdl%s.h5" % sev)
-    with open(DECKS.get(sev, "input/nbdl%s.inp" % sev)) as deck:
-        subprocess.run(["fpm", "run", "--profile", "release", "--", "--h5", h5], stdin=deck,
-                       stdout=subprocess.DEVNULL, check=True)
-    return h5
+    """Run a case's deck (input/nbdlSEV.inp or its --deck) to TMP/nbdlSEV.h5; the result file's path."""
+    return run.run_deck(DECKS.get(sev, "input/nbdl%s.inp" % sev), h5=os.path.join(tmp, "nbdl%s.h5" % sev)).h5
 
 
-def main():
-    args = sys.argv[1:]
-    outdir, which, given = "docs", "both", {}
-    while args:
-        a = args.pop(0)
-        if a == "--out":
-            outdir = args.pop(0)
-        elif a == "--case":
-            which = args.pop(0)
-        elif a == "--h5":
-            k, v = args.pop(0).split("=", 1)
-            given[k] = v
-        elif a == "--data":
-            k, v = args.pop(0).split("=", 1)
-            DATA_DIRS[k] = v
-        elif a == "--deck":
-            k, v = args.pop(0).split("=", 1)
-            DECKS[k] = v
-        else:
-            sys.exit("usage: compare_nbdl.py [--case 15g|12g|both|NAME] [--h5 SEV=FILE ...] [--out DIR] "
-                     "[--data NAME=DIR] [--deck NAME=DECK]")
+def pair(text):
+    """NAME=VALUE of an option as (NAME, VALUE)."""
+    if "=" not in text:
+        raise argparse.ArgumentTypeError("expected NAME=VALUE, got %r" % text)
+    return tuple(text.split("=", 1))
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hhneck-compare-nbdl", description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--case", default="both", help="15g, 12g, both (default) or the NAME of --data")
+    p.add_argument("--h5", action="append", type=pair, default=[], metavar="SEV=RESULT.h5",
+                   help="the model's result file of a case (default: run its deck)")
+    p.add_argument("--out", default="docs", metavar="DIR",
+                   help="where validation_table.md and the figures go (default docs)")
+    p.add_argument("--data", action="append", type=pair, default=[], metavar="NAME=DIR",
+                   help="runs of another case: a directory of CHANNEL.csv files")
+    p.add_argument("--deck", action="append", type=pair, default=[], metavar="NAME=DECK",
+                   help="the deck of a case (default input/nbdlNAME.inp)")
+    args = p.parse_args(argv)
+    outdir, which, given = args.out, args.case, dict(args.h5)
+    DATA_DIRS.update(dict(args.data))
+    DECKS.update(dict(args.deck))
     sevs = SEVERITIES if which == "both" else (which,)
     tmp = tempfile.mkdtemp()
     lines = []
@@ -335,7 +335,8 @@ def main():
     print(text)
     with open(os.path.join(outdir, "validation_table.md"), "w") as out:
         out.write(text)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """Compare two sweep result files member by member.
 
-    python3 tools/compare_sweeps.py A.h5 B.h5 [--expect-failed N]
+    hhneck-compare-sweeps A.h5 B.h5 [--expect-failed N]
 
 Passes when the designs, the status and message of every member, its
 evaluation count and every summary output are exactly equal (bit for bit:
@@ -10,20 +9,22 @@ over ranks), and, with --expect-failed, when exactly N members failed and
 every failed member has a message. Prints one PASS or FAIL line per check
 and exits non-zero on any failure.
 """
+import argparse
 import sys
 
 import h5py
 import numpy as np
 
 
-def main(argv):
-    if len(argv) < 3:
-        print(__doc__, file=sys.stderr)
-        return 1
-    expect_failed = None
-    if "--expect-failed" in argv:
-        expect_failed = int(argv[argv.index("--expect-failed") + 1])
-    a, b = h5py.File(argv[1], "r"), h5py.File(argv[2], "r")
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hhneck-compare-sweeps", description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("a", help="first sweep result file")
+    p.add_argument("b", help="second sweep result file (its ranks are checked)")
+    p.add_argument("--expect-failed", type=int, metavar="N", help="exactly N members failed")
+    args = p.parse_args(argv)
+    expect_failed = args.expect_failed
+    a, b = h5py.File(args.a, "r"), h5py.File(args.b, "r")
     passes = failures = 0
 
     def check(ok, what, detail=""):
@@ -56,4 +57,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

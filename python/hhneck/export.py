@@ -1,18 +1,17 @@
-#!/usr/bin/env python3
 """Exports hhneck result channels to CSV and to ISO-MME folders, and reads
 ISO-MME folders (docs/output-format.md, "Export").
 
-    hhneck_export.py csv RESULT.h5 [--channels A,B,...] -o OUT.csv
+    hhneck-export csv RESULT.h5 [--channels A,B,...] -o OUT.csv
         time and the channels (default all), one row per sample; the header
         row names each column with its unit: "time [s],HEAD_AX [g],...".
         Values as in the result file (the project's axes).
-    hhneck_export.py mme RESULT.h5 -o DIR [--test NAME] [--channels A,B,...]
+    hhneck-export mme RESULT.h5 -o DIR [--test NAME] [--channels A,B,...]
                      [--position 11] [--fine3 VH]
         an ISO-MME 1.6 folder DIR: DIR/NAME.mme, DIR/Channel/NAME.chn and
         one DIR/Channel/NAME.001, .002, ... per channel, in SAE J211 signs
         with ISO channel codes (the channels that have one: J211_CHANNELS;
         default all of them that the file has). NAME defaults to DIR's name.
-    hhneck_export.py mme-info DIR
+    hhneck-export mme-info DIR
         the test attributes and the channels (code, name, unit, samples) of
         an ISO-MME folder.
 
@@ -27,10 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-try:                                 # run as tools/hhneck_export.py or imported from tools/
-    import hhneck_results
-except ImportError:                  # pragma: no cover - imported as part of a package
-    from . import hhneck_results
+from . import results as hhneck_results
 
 MME_VERSION = "1.6"
 KEY_WIDTH = 28                       # "Name of the channel         :" - ISO-MME header lines
@@ -329,7 +325,7 @@ def mme_from_result(path, test_name, channels=None, position="11", fine3="VH"):
         ("Title", title),
         ("Type of the test", "simulation"),
         ("Number of test objects", "1"),
-        ("Comments", "written by tools/hhneck_export.py from %s; SAE J211 signs (docs/output-format.md)"
+        ("Comments", "written by hhneck-export from %s; SAE J211 signs (docs/output-format.md)"
          % os.path.basename(path)),
     ]
     return MmeTest(test_name, info, out, [("Instrumentation standard", "SAE J211 (simulation)")])
@@ -349,7 +345,7 @@ def write_csv(path, out, channels=None):
 
 def main(argv=None):
     """Command line (see the module's documentation)."""
-    p = argparse.ArgumentParser(prog="hhneck_export.py", description=__doc__.split("\n\n")[0],
+    p = argparse.ArgumentParser(prog="hhneck-export", description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", required=True)
     c = sub.add_parser("csv", help="channels as CSV")
@@ -387,7 +383,7 @@ def main(argv=None):
             for ch in t.channels:
                 print("%s  %-10s %6d samples  %s" % (ch.code, ch.unit, len(ch.values), ch.name))
     except (KeyError, ValueError, OSError) as e:
-        print("hhneck_export.py: %s" % (e.args[0] if isinstance(e, KeyError) else e), file=sys.stderr)
+        print("hhneck-export: %s" % (e.args[0] if isinstance(e, KeyError) else e), file=sys.stderr)
         return 1
     return 0
 

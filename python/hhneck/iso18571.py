@@ -1,8 +1,7 @@
-#!/usr/bin/env python3
 """ISO/TS 18571 objective rating of a model curve against a reference curve,
 by the standard's published implementation, the PyPI package
-objective-rating-metrics (version 1.3, TU Graz, MIT; tools/setup.sh installs
-it). Nothing is computed here but the sampling the package needs: the
+objective-rating-metrics (version 1.3, TU Graz, MIT; a dependency of this
+package). Nothing is computed here but the sampling the package needs: the
 corridor, phase, magnitude and slope scores and their weighted overall
 rating are the package's own (class ISO18571, its default parameters).
 
@@ -25,8 +24,9 @@ values (ndigits < 0 in the package) unless ndigits is given.
 
 Usage as a program, with a CSV of three columns (time [s], reference, model):
 
-    python3 tools/iso18571.py CURVES.csv [T0 T1]
+    hhneck-iso18571 CURVES.csv [T0 T1]
 """
+import argparse
 import sys
 
 import numpy as np
@@ -95,13 +95,17 @@ def rate_many(channels, window=None, ndigits=None):
     return dict(channels=each, overall=float(np.mean([s["overall"] for s in each.values()])))
 
 
-def main(argv):
-    if len(argv) not in (2, 4):
-        print("usage: python3 tools/iso18571.py CURVES.csv [T0 T1]  (columns: time [s], reference, model)",
-              file=sys.stderr)
-        return 2
-    data = np.loadtxt(argv[1], delimiter=",", ndmin=2)
-    window = (float(argv[2]), float(argv[3])) if len(argv) == 4 else None
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hhneck-iso18571",
+                                description="ISO/TS 18571 rating of a model curve against a reference curve.")
+    p.add_argument("csv", help="CSV of three columns: time [s], reference, model")
+    p.add_argument("window", nargs="*", type=float, metavar="T",
+                   help="T0 T1: the interval of evaluation [s] (default: all of it)")
+    args = p.parse_args(argv)
+    if len(args.window) not in (0, 2):
+        p.error("give both T0 and T1, or neither")
+    data = np.loadtxt(args.csv, delimiter=",", ndmin=2)
+    window = tuple(args.window) if args.window else None
     scores = rate(data[:, 0], data[:, 1], data[:, 2], window=window)
     for key in SCORES:
         print("%-10s %.6f" % (key, scores[key]))
@@ -109,4 +113,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

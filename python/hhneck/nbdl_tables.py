@@ -1,18 +1,17 @@
-#!/usr/bin/env python3
 """Writes the T1 input tables of the NBDL sled decks from the volunteer runs
 in reference/:
 
-    python3 tools/make_nbdl_tables.py
+    hhneck-nbdl-tables
 
 input/nbdl15g_t1.inp (runs 1635-1644, n = 7) and input/nbdl12g_t1.inp (runs
 1607-1617, n = 10): T1 x- and z-acceleration [g] and sagittal rotation, each
-run filtered (SAE J211/1, the filter of tools/compare_nbdl.py), mean over the
+run filtered (SAE J211/1, the filter of hhneck.compare_nbdl), mean over the
 runs, every 1 ms from 0 to 299 ms. The x-acceleration and the rotation are
 filtered CFC 60; the z-acceleration CFC 20: above about 20 Hz the runs' T1
 z-accelerations are out of phase with each other (a mount ringing at 50-60 Hz,
 up to 88 g with millimetre displacements, at 85-120 ms), not a motion of the
 torso the model's rigid T1 should transmit to the head; the evidence is
-printed by tools/nbdl_t1_evidence.py (docs/validation.md). The 15 g rotation
+printed by studies/nbdl_t1_evidence.py (docs/validation.md). The 15 g rotation
 is in degrees; the 12 g rotation file carries no unit and is read as radians
 (the table's value scale converts it; reasons in reference/cases.md).
 
@@ -26,12 +25,12 @@ its peaks. The same factor on the z-acceleration and the rotation, and the
 
 Other runs of the same kind (a directory with the same CHANNEL.csv files):
 
-    python3 tools/make_nbdl_tables.py --data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]
+    hhneck-nbdl-tables --data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]
 
 writes input/NAME_t1.inp (same filters, mean over the directory's runs) and
 input/NAME.inp (the 12 g deck with that drive; --into: another directory
 than input/); compare with
-`python3 tools/compare_nbdl.py --data X=DIR --deck X=input/NAME.inp --case X
+`hhneck-compare-nbdl --data X=DIR --deck X=input/NAME.inp --case X
 --out DIR2`. Without --rot-unit the T1 rotation is read as radians when the
 largest |mean| is below 1.5 (as the 12 g files, reference/cases.md), else as
 degrees; the choice is printed. Without T1_ZAccel.csv or T1_YrotDisp.csv
@@ -40,20 +39,20 @@ are written every 1 ms over the runs' span whatever their sampling step. Runs
 whose pulse starts more than 10 ms away from the shipped runs' (their mean T1
 x-acceleration first below -1 g at about 52 ms) get a warning that says how
 far to shift their time_ms. The comments that name DIR and the deck go on
-continuation comment cards when they pass column 80 (tools/deck_fields.py);
+continuation comment cards when they pass column 80 (hhneck.deck_fields);
 an INCLUDE card (--into) or H5FILE card (--name) that would pass it is
 refused, and neither deck is written.
 """
+import argparse
 import os
 import re
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import compare_nbdl  # noqa: E402
-from compare_nbdl import cfc, has_channel, peak, runs  # noqa: E402
-from deck_fields import CardError, check_cards, comment_cards, hold, write_decks  # noqa: E402
+from . import compare_nbdl
+from .compare_nbdl import cfc, has_channel, peak, runs
+from .deck_fields import CardError, check_cards, comment_cards, hold, write_decks
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
@@ -91,7 +90,7 @@ def pulse_onset(t, data):
 
 def t1_peak_mean(sev):
     """Mean over the runs of the T1 x-acceleration peak (g, each run CFC 60,
-    the peak of tools/compare_nbdl.py), as reference-data.md section 3 has it."""
+    the peak of hhneck.compare_nbdl), as reference-data.md section 3 has it."""
     t, data, _ = runs("T1_XAccel", sev)
     dt = (t[1] - t[0]) * 1e-3
     return float(np.mean([peak(t, cfc(r, 60, dt), -1)[0] for r in data]))
@@ -111,7 +110,7 @@ def t1_tables_8g():
         "* (8 g mean T1 x-acceleration peak, reference/reference-data.md",
         "* section 3) / %.2f g (the 12 g runs' mean peak, each run CFC 60)." % abs(t1_peak_mean("12g")),
         "* The same factor on z and rotation and the 12 g time course are",
-        "* assumptions. Written by tools/make_nbdl_tables.py.",
+        "* assumptions. Written by hhneck-nbdl-tables.",
         "* Time in ms (scale 0.001 s).",
     ]
     for line in t1_tables("12g"):
@@ -131,7 +130,7 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
         "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
         "* (the z-acceleration CFC %d: its runs are out of phase above about" % z_cfc,
         "* 20 Hz), mean over the runs, every 1 ms. Written by",
-    ] + comment_cards("tools/make_nbdl_tables.py from reference/nbdl_%s (Ewing & Thomas" % sev) + [
+    ] + comment_cards("hhneck-nbdl-tables from reference/nbdl_%s (Ewing & Thomas" % sev) + [
         "* 1972, NHTSA Biomechanics Test Database, via IMMC-UWaterloo/ARCGen).",
         "* Time in ms (scale 0.001 s).",
     ]
@@ -159,7 +158,7 @@ def new_case(folder, name, rot_unit=None, into="input"):
     if abs(onset - SHIPPED_ONSET) > 10.0:
         print("T1 x-acceleration first passes -1 g at %.1f ms, against about %.0f ms in the shipped runs (the "
               "source's time origin): the deck starts from rest at 0 ms (HOLD POSTURE sets its holding forces "
-              "there) and tools/compare_nbdl.py rates 30-250 ms with the z dip before 125 ms; shift the runs' "
+              "there) and hhneck-compare-nbdl rates 30-250 ms with the z dip before 125 ms; shift the runs' "
               "time_ms by %+.0f ms to match" % (onset, SHIPPED_ONSET, SHIPPED_ONSET - onset), file=sys.stderr)
     held = {coord: chan for coord, chan in (("TZ", "T1_ZAccel"), ("RY", "T1_YrotDisp")) if not has_channel(chan, name)}
     for coord, chan in held.items():
@@ -180,8 +179,8 @@ def new_case(folder, name, rot_unit=None, into="input"):
     deck = open(os.path.join("input", "nbdl12g.inp")).read().splitlines()
     out = (comment_cards("%s: the 54-DOF head/neck model with T1 driven by the mean of the %d runs"
                          % (name, len(cols)))
-           + comment_cards("in %s (T1 tables by tools/make_nbdl_tables.py --data)." % folder)
-           + ["* Compare: python3 tools/compare_nbdl.py --case X --out OUT"]
+           + comment_cards("in %s (T1 tables by hhneck-nbdl-tables --data)." % folder)
+           + ["* Compare: hhneck-compare-nbdl --case X --out OUT"]
            + comment_cards("  --data X=%s" % folder)
            + comment_cards("  --deck X=%s" % os.path.join(into, name + ".inp")))
     for line in deck:
@@ -202,19 +201,26 @@ def new_case(folder, name, rot_unit=None, into="input"):
     return tables
 
 
-def main():
-    args = sys.argv[1:]
-    if args:
-        opts = dict(zip(args[::2], args[1::2]))
-        if len(args) % 2 or set(opts) - {"--data", "--name", "--rot-unit", "--into"} \
-                or not {"--data", "--name"} <= set(opts) or opts.get("--rot-unit", "deg") not in ("deg", "rad"):
-            sys.exit("usage: make_nbdl_tables.py [--data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]]")
-        new_case(opts["--data"], opts["--name"], opts.get("--rot-unit"), opts.get("--into", "input"))
-        return
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hhneck-nbdl-tables", description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--data", metavar="DIR", help="a directory of other runs (CHANNEL.csv files)")
+    p.add_argument("--name", help="the new case's name (with --data)")
+    p.add_argument("--rot-unit", choices=("deg", "rad"), help="unit of the runs' T1 rotation (with --data)")
+    p.add_argument("--into", default="input", metavar="DIR2", help="where the decks go (with --data; default input)")
+    args = p.parse_args(argv)
+    if args.data or args.name:
+        if not (args.data and args.name):
+            p.error("--data and --name go together")
+        new_case(args.data, args.name, args.rot_unit, args.into)
+        return 0
+    if args.rot_unit or args.into != "input":
+        p.error("--rot-unit and --into go with --data and --name")
     decks = {os.path.join("input", "nbdl%s_t1.inp" % sev): t1_tables(sev) for sev in CASES}
     decks[os.path.join("input", "nbdl8g_t1.inp")] = t1_tables_8g()
     write_decks(decks)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,14 +1,14 @@
-#!/usr/bin/env python3
-"""Draw the model's prediction corridor (example/corridor_mpi.F90) against the
+"""Draw the model's prediction corridor (app/mpi/corridor_mpi.F90) against the
 volunteers' corridors.
 
-    python3 tools/plot_corridor.py PREFIX OUT.png
+    hhneck-plot-corridor PREFIX OUT.png
 
 reads PREFIX_nbdl15g.csv and PREFIX_nbdl12g.csv (model mean and SD, volunteer
 mean and SD of each rated head channel, CFC 60) and draws one row per
 severity; prints the share of 30-250 ms in which the volunteers' mean lies
 inside the model's mean +- 1 SD.
 """
+import argparse
 import sys
 
 import matplotlib
@@ -22,8 +22,13 @@ CH = [("HEAD_AX", "head x-acceleration (g)"), ("HEAD_AZ", "head z-acceleration (
       ("HEAD_THETY", "rotation (deg)")]
 
 
-def main():
-    prefix, out = sys.argv[1], sys.argv[2]
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hhneck-plot-corridor", description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("prefix", help="the corridor driver's output prefix (PREFIX_nbdl15g.csv, PREFIX_nbdl12g.csv)")
+    p.add_argument("png", help="plot to write")
+    args = p.parse_args(argv)
+    prefix, out = args.prefix, args.png
     fig, axes = plt.subplots(2, 5, figsize=(22, 8))
     for row, sev in enumerate(("15g", "12g")):
         d = np.genfromtxt("%s_nbdl%s.csv" % (prefix, sev), delimiter=",", names=True)
@@ -44,7 +49,8 @@ def main():
     axes[0][0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=80)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

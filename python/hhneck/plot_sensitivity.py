@@ -1,18 +1,20 @@
-#!/usr/bin/env python3
 """Sensitivity report of a sweep result file: a plot and a Markdown table.
 
-    python3 tools/plot_sensitivity.py SWEEP.h5 OUT.png [--markdown OUT.md]
+    hhneck-plot-sensitivity SWEEP.h5 OUT.png [--markdown OUT.md]
 
 The plot shows, for the head rotation, angular acceleration and upper-neck
 loads, how much each parameter moves them (OAT elasticities or standardised
 regression coefficients, as the sweep computed them), parameters ranked by
 their largest effect. The table gives every output against every parameter.
 """
+import argparse
 import sys
 
 import h5py
 import matplotlib
 import numpy as np
+
+from .results import text, text_list
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -20,29 +22,25 @@ import matplotlib.pyplot as plt  # noqa: E402
 SHOWN = ["THETA_PEAK", "ALPHA_PEAK", "OC_TENSION", "OC_SHEAR", "OC_FLEX", "OC_EXT", "NIJ", "HIC15"]
 
 
-def text(a):
-    return [x.decode().strip() if isinstance(x, bytes) else str(x).strip() for x in a]
-
-
-def main(argv):
-    if len(argv) < 3:
-        print(__doc__, file=sys.stderr)
-        return 1
-    f = h5py.File(argv[1], "r")
-    names = text(f["params/name"][()])
-    what = text(f["params/what"][()])
-    outs = text(f["runs/output_names"][()])
-    units = text(f["runs/output_units"][()])
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hhneck-plot-sensitivity", description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("sweep", help="sweep result file (hhneck --sweep --h5 SWEEP.h5)")
+    p.add_argument("png", help="plot to write")
+    p.add_argument("--markdown", metavar="MD", help="also write the table of every output against every parameter")
+    args = p.parse_args(argv)
+    f = h5py.File(args.sweep, "r")
+    names = text_list(f["params/name"][()])
+    what = text_list(f["params/what"][()])
+    outs = text_list(f["runs/output_names"][()])
+    units = text_list(f["runs/output_units"][()])
     coef = f["sensitivity/coefficient"][()]          # (nout, np)
     valid = f["sensitivity/valid"][()] == 1
     r2 = f["sensitivity/r2"][()]
-    method = f["sensitivity"].attrs["method"]
-    method = (method.decode() if isinstance(method, bytes) else str(method)).strip()
+    method = text(f["sensitivity"].attrs["method"])
     status = f["runs/status"][()]
-    design = f.attrs["design"]
-    design = (design.decode() if isinstance(design, bytes) else str(design)).strip()
-    title = f.attrs["title"]
-    title = (title.decode() if isinstance(title, bytes) else str(title)).strip()
+    design = text(f.attrs["design"])
+    title = text(f.attrs["title"])
 
     shown = [outs.index(o) for o in SHOWN if o in outs]
     c = np.where(valid, coef, np.nan)
@@ -63,11 +61,11 @@ def main(argv):
     ax.legend(fontsize=7, loc="lower right")
     ax.grid(axis="x", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(argv[2], dpi=110)
-    print(f"wrote {argv[2]}")
+    fig.savefig(args.png, dpi=110)
+    print(f"wrote {args.png}")
 
-    if "--markdown" in argv:
-        md = argv[argv.index("--markdown") + 1]
+    if args.markdown:
+        md = args.markdown
         with open(md, "w") as out:
             out.write(f"| parameter | {' | '.join(outs)} |\n|---|{'---|' * len(outs)}\n")
             for p in range(len(names)):
@@ -80,4 +78,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """Write an XDMF file so ParaView opens a hhneck result file and animates it.
 
-    tools/write_xdmf.py RESULT.h5 [--every 0.001]
+    hhneck-xdmf RESULT.h5 [--every 0.001]
 
 writes RESULT.xmf next to RESULT.h5: a temporal collection with, at each
 time step, the grid 'bodies' (the mass centres, joined child to parent as
@@ -20,8 +19,7 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from animate import LINE_FAMILIES, Result  # noqa: E402
+from .animate import LINE_FAMILIES, Result
 
 FAMILY_CODE = {"ligaments": 1, "muscles": 2, "springs": 3, "discs": 4}
 
@@ -62,7 +60,7 @@ def write_sidecar(res, steps, path):
             pts[:, 2 * e + end] = c if body == 0 else res.pos[steps, body - 1] + res.rot[steps, body - 1] @ c
         force[:, e] = fam.force[steps, k]
     with h5py.File(path, "w") as f:
-        f.attrs["source"] = "tools/write_xdmf.py"
+        f.attrs["source"] = "hhneck-xdmf"
         for name, data, units in (("time", res.time[steps], "s"), ("points", pts, "m"), ("force", force, "N"),
                                   ("connectivity", np.arange(2 * ne, dtype=np.int32).reshape(ne, 2), "none"),
                                   ("family", codes, "none")):
@@ -137,7 +135,7 @@ def write_xmf(res, steps, h5name, side_name, ne, path):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p = argparse.ArgumentParser(prog="hhneck-xdmf", description=__doc__.split("\n\n")[0])
     p.add_argument("result", help="hhneck HDF5 result file")
     p.add_argument("--every", type=float, default=0.001,
                    help="time between XDMF steps [s] (default 0.001; 0: every sample)")
@@ -152,7 +150,7 @@ def main(argv=None):
     xmf, side = stem + ".xmf", stem + ".elements.h5"
     ne = write_sidecar(res, steps, side)
     write_xmf(res, steps, os.path.basename(args.result), os.path.basename(side), ne, xmf)
-    print("write_xdmf.py: wrote %s (%d time steps, %d bodies, %d elements) and %s"
+    print("hhneck-xdmf: wrote %s (%d time steps, %d bodies, %d elements) and %s"
           % (xmf, len(steps), res.nb, ne, side))
     return 0
 
