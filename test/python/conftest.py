@@ -30,6 +30,20 @@ def use_project_package():
 
 
 use_project_package()
+
+
+def package_env():
+    """The environment for a subprocess that runs `python3 -m hhneck.NAME`:
+    this project's python/ first on PYTHONPATH."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([PACKAGE] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
+    return env
+
+
+def hhneck_module(name, *args, cwd=ROOT):
+    """Run `python3 -m hhneck.NAME ARGS` (this project's package) in cwd; the CompletedProcess."""
+    return subprocess.run([sys.executable, "-m", "hhneck." + name] + [str(a) for a in args], cwd=cwd,
+                          capture_output=True, text=True, env=package_env())
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 SHORT_END = 0.02          # [s] end time of the short deck
 
