@@ -20,12 +20,16 @@
         why, when the run computed none.
     schema_version(f) -> int
         a file's schema_version (1 for files written before it existed).
+    read_results(path, channels=None) -> Results
+        all three at once: .channels, .bodies, .injury (the DataFrames
+        above), .title, .schema_version, .path.
 
 Command line: hhneck-results RESULT.h5 (python3 -m hhneck.results) prints
 the title, bodies, channel count and the injury criteria.
 """
 import argparse
 import sys
+from dataclasses import dataclass
 
 import h5py
 import numpy as np
@@ -150,18 +154,37 @@ def read_injury(path):
     return df.set_index("criterion")
 
 
+@dataclass
+class Results:
+    """A result file read whole: channels (read_channels), bodies
+    (read_bodies), injury (read_injury), title, schema_version, path."""
+    channels: pd.DataFrame
+    bodies: pd.DataFrame
+    injury: pd.DataFrame
+    title: str
+    schema_version: int
+    path: str
+
+
+def read_results(path, channels=None):
+    """The channels (all, or those named), bodies and injury criteria of a
+    result file, with units (read_channels, read_bodies, read_injury)."""
+    ch = read_channels(path, channels)
+    return Results(ch, read_bodies(path), read_injury(path), ch.attrs["title"], ch.attrs["schema_version"],
+                   str(path))
+
+
 def main(argv=None):
     """Print a summary of a result file."""
     p = argparse.ArgumentParser(prog="hhneck-results",
                                 description="Summary of a hhneck result file: title, bodies, channels, injury criteria.")
     p.add_argument("result", help="hhneck HDF5 result file")
-    path = p.parse_args(argv).result
-    ch = read_channels(path)
-    print("%s (schema version %d)" % (ch.attrs["title"], ch.attrs["schema_version"]))
+    res = read_results(p.parse_args(argv).result)
+    ch = res.channels
+    print("%s (schema version %d)" % (res.title, res.schema_version))
     print("%d channels, %d samples from %g s to %g s" % (ch.shape[1], ch.shape[0], ch.index[0], ch.index[-1]))
-    print(read_bodies(path).to_string())
-    inj = read_injury(path)
-    print(inj.attrs.get("note") or inj.to_string())
+    print(res.bodies.to_string())
+    print(res.injury.attrs.get("note") or res.injury.to_string())
     return 0
 
 

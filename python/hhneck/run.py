@@ -4,6 +4,7 @@
     run.h5          # the result file written
     run.listing     # the listing (standard output) as text
     run.channels()  # the channels as a pandas DataFrame with units (hhneck.results.read_channels)
+    run.results()   # channels, bodies and injury criteria (hhneck.results.read_results)
 
 Each change is a CHANGE card (docs/deck-format.md, "CHANGE"): an 80-column
 card image, or the fields F1 ... F7 as a tuple that change_card() lays out
@@ -27,7 +28,7 @@ import tempfile
 from dataclasses import dataclass
 
 from .deck_fields import CardError, field_text
-from .results import read_channels
+from .results import read_channels, read_results
 
 
 class RunError(RuntimeError):
@@ -54,6 +55,12 @@ class Run:
         if self.h5 is None:
             raise ValueError("the run wrote no result file (h5=False)")
         return read_channels(self.h5, names)
+
+    def results(self, names=None):
+        """The run's result file read whole (hhneck.results.read_results)."""
+        if self.h5 is None:
+            raise ValueError("the run wrote no result file (h5=False)")
+        return read_results(self.h5, names)
 
 
 def change_card(name, kind, target, item="", op="SET", value="", f7=""):

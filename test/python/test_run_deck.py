@@ -53,6 +53,9 @@ def test_run_deck_equals_direct_run(direct, tmp_path):
     assert len(a) > 100 and a == b
     assert any("HEADMASS" in l for l in a)                                  # the change is noted in the listing
     ch = r.channels()
+    whole = r.results()
+    assert whole.channels.equals(ch) and whole.title == ch.attrs["title"] and whole.schema_version == 2
+    assert whole.bodies.loc["HEAD", "number"] == 9 and "HIC15" in whole.injury.index
     assert ch.index[-1] == pytest.approx(0.01, abs=1e-12) and ch.attrs["units"]["HEAD_AX"] == "g"
     with h5py.File(h5, "r") as f:
         assert list(ch.columns) == [n.decode() if isinstance(n, bytes) else n for n in f["channels"].attrs["names"]]
