@@ -7,7 +7,7 @@
 !! dynamics evaluations. Writes a table on stdout and the rows as CSV.
 !!
 !!   fpm run --example work_precision --profile release -- docs/work_precision.csv
-!!   python3 tools/plot_work_precision.py docs/work_precision.csv docs/work_precision.png
+!!   hhneck-plot-work-precision docs/work_precision.csv docs/work_precision.png
 program work_precision
     use hn_kinds, only: wp
     use hn_case, only: case_t

@@ -1,6 +1,6 @@
 !> Regression: every case deck re-run and compared with its reference
 !! outputs in reference/outputs (written on purpose by
-!! tools/regenerate_references.sh, never by this test), both at rtol 1e-8
+!! dev/regenerate_references.sh, never by this test), both at rtol 1e-8
 !! and atol 1e-11 with the deck's integrator. Every channel at every 1 ms
 !! sample must agree within 1e-4 of the channel's largest reference
 !! magnitude (at least 1e-4 of the largest channel of its unit, so that

@@ -1,10 +1,10 @@
-"""tools/compare_listing.py against listings made by hand: a noise channel
+"""hhneck-compare-listing against listings made by hand: a noise channel
 whose peak moves passes, a real peak that moves by 3 ms fails, a unit with
 a space is a row of the peaks table, and the one reference failure seen on
 another machine (the OC_MX noise peak of nbdl15g) passes."""
 import os
 
-import compare_listing as cl
+import hhneck.compare_listing as cl
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 

@@ -1,4 +1,4 @@
-"""tools/hhneck_export.py: the hand-made ISO-MME example folder
+"""hhneck.export (hhneck-export): the hand-made ISO-MME example folder
 (test/python/data/mme_example, ISO-MME 1.6, two channels) read as written,
 written and read back equal, SAE J211 signs on known vectors, the ISO-MME
 folder and the CSV file of the short deck's result file."""
@@ -9,7 +9,7 @@ import h5py
 import numpy as np
 import pytest
 
-import hhneck_export as hx
+import hhneck.export as hx
 from conftest import DATA
 
 EXAMPLE = os.path.join(DATA, "mme_example")

@@ -1,4 +1,4 @@
-"""tools/iso18571.py against the package objective-rating-metrics itself,
+"""hhneck.iso18571 against the package objective-rating-metrics itself,
 and the expected scores of the Fortran agreement test
 (test/unit/data/iso18571_expected.csv, read by test/unit/test_iso18571.pf)
 regenerated here from the package and compared with the file, so that the
@@ -21,8 +21,8 @@ import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 if __name__ == "__main__":
-    sys.path.insert(0, os.path.join(ROOT, "tools"))
-import iso18571  # noqa: E402
+    sys.path.insert(0, os.path.join(ROOT, "python"))
+from hhneck import iso18571  # noqa: E402
 from objective_rating_metrics.rating import ISO18571  # noqa: E402
 
 EXPECTED = os.path.join(ROOT, "test", "unit", "data", "iso18571_expected.csv")
@@ -86,7 +86,7 @@ def package_scores(t, reference, model):
 
 
 def expected_rows():
-    """One row per case: the scores that tools/iso18571.py gets from the package."""
+    """One row per case: the scores that hhneck-iso18571 gets from the package."""
     rows = []
     for name, (dt, n, _, _) in CASES.items():
         scores = iso18571.rate(*curves(name))
@@ -138,7 +138,7 @@ def test_the_cases_are_not_all_alike():
         assert min(float(r[3 + k]) for r in stored) < 0.8, col
 
 
-# --- tools/iso18571.py against the package -----------------------------------
+# --- hhneck-iso18571 against the package -----------------------------------
 
 def test_identical_curves_rate_one():
     t, r, _ = curves("half_sine_self")

@@ -1,4 +1,4 @@
-"""tools/hhneck_results.py and the schema-2 result file (docs/output-format.md),
+"""hhneck.results and the schema-2 result file (docs/output-format.md),
 on the result file of a short deck written by the debug build: lists as
 UTF-8 string arrays that h5py reads as str, an integer schema_version, and
 the reader's DataFrames against the deck and the file as h5py reads it."""
@@ -8,7 +8,7 @@ import h5py
 import numpy as np
 import pytest
 
-import hhneck_results as hr
+import hhneck.results as hr
 from conftest import ROOT, SHORT_END
 
 

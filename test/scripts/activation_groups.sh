@@ -12,8 +12,8 @@ py_checks - "$tmp/shipped.h5" input/head_neck_54dof.inp <<'PY'
 import sys
 import h5py
 import numpy as np
-sys.path.insert(0, "tools")
-from deck_fields import field, is_card
+sys.path.insert(0, "python")
+from hhneck.deck_fields import field, is_card
 c = h5py.File(sys.argv[1], "r")["channels"]
 deck = open(sys.argv[2]).read().splitlines()
 u0 = {field(l, 1): float(field(l, 2)) for l in deck if is_card(l, "ACTIVATE")}
@@ -40,8 +40,8 @@ for d in two one; do
 done
 python3 - "$tmp" <<'PY'
 import sys
-sys.path.insert(0, "tools")
-from deck_fields import field, is_card, set_field
+sys.path.insert(0, "python")
+from hhneck.deck_fields import field, is_card, set_field
 lines = open("input/head_neck_54dof.inp").read().splitlines()
 flex = next(l for l in lines if is_card(l, "ACTIVATE") and field(l, 1) == "FLEX")
 two = [set_field(flex, 1, "EXT") if is_card(l, "ACTIVATE") and field(l, 1) == "EXT" else l for l in lines]

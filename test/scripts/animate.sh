@@ -8,6 +8,8 @@
 # file is well formed and every dataset it references exists.
 # Run from the project root: sh test/scripts/animate.sh
 HHNECK=${HHNECK:-$(fpm run --runner echo 2>/dev/null | tail -n 1)}
+PYTHONPATH=$(pwd)/python${PYTHONPATH:+:$PYTHONPATH}   # the project's own package
+export PYTHONPATH
 PY=$(python3 -c 'import sys; print(sys.executable)')   # the interpreter itself, not a shim
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
@@ -72,7 +74,7 @@ print(("PASS" if units and not missing else "FAIL") +
 EOF
 
 # --- a small GIF (6 frames: 0 to 100 ms every 20 ms) and a key-frame strip
-"$PY" tools/animate.py "$tmp/c62.h5" "$tmp/small.gif" --slow 1 --fps 50 --dpi 30 --quiet \
+"$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/small.gif" --slow 1 --fps 50 --dpi 30 --quiet \
     --strip "$tmp/strip.png" > "$tmp/anim.out" 2> "$tmp/anim.err"
 check "animate.py writes a GIF and a strip (exit $?)" $?
 pycheck "$tmp" <<'EOF'
@@ -90,14 +92,14 @@ print(("PASS" if st.format == "PNG" and "(6 key frames)" in out else "FAIL") +
 EOF
 
 # --- MP4: one clear line when ffmpeg is missing; an H.264 file when present
-PATH=/nonexistent "$PY" tools/animate.py "$tmp/c62.h5" "$tmp/no.mp4" > "$tmp/mp4.out" 2> "$tmp/mp4.err"
+PATH=/nonexistent "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/no.mp4" > "$tmp/mp4.out" 2> "$tmp/mp4.err"
 rc=$?
 lines=$(wc -l < "$tmp/mp4.err")
 grep -q "apt-get install ffmpeg" "$tmp/mp4.err" && grep -q "gif" "$tmp/mp4.err" \
     && [ "$rc" -eq 2 ] && [ "$lines" -eq 1 ] && [ ! -e "$tmp/no.mp4" ]
 check "MP4 without ffmpeg: exit $rc, $lines line naming apt-get install ffmpeg and .gif, no file" $?
 if command -v ffmpeg > /dev/null 2>&1; then
-    "$PY" tools/animate.py "$tmp/c62.h5" "$tmp/small.mp4" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
+    "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/small.mp4" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
     rc=$?
     frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
              -of csv=p=0 "$tmp/small.mp4" 2> /dev/null)
@@ -110,9 +112,9 @@ fi
 # --- the drawn geometry against independent truth
 pycheck "$tmp/c62.h5" input/head_neck_54dof.inp <<'EOF'
 import sys
-sys.path.insert(0, "tools")
+sys.path.insert(0, "python")
 import h5py, numpy as np
-import animate
+from hhneck import animate
 f = h5py.File(sys.argv[1], "r")
 cards = [l for l in open(sys.argv[2]) if not l.startswith("*")]
 bodies = [l.split()[1] for l in cards if l.startswith("BODY ")]
@@ -127,10 +129,10 @@ def truth(i, k, c):
     return np.array([r[a] + sum(s[j, a] * c[j] for j in range(3)) for a in range(3)])
 res = animate.Result(sys.argv[1])
 i = len(res.time) - 1                          # 100 ms: head extended by some 40 deg
-fig, scene = animate.build_figure(res, np.array([0, i]), 30)
+fig, scene = animate.build_figure(res, np.array([0, i]), 30, views=("side", "front", "iso"))
 scene.update(i)
 head = bodies.index("HEAD") + 1
-side, front, d3 = (scene.artists[v] for v in ("side", "front", "3d"))
+side, front, d3 = (scene.artists[v] for v in ("side", "front", "iso"))
 r = f["bodies/position"][i, head - 1]
 x, z = side["cm"]["HEAD"].get_data()
 y, z2 = front["cm"]["HEAD"].get_data()
@@ -162,13 +164,13 @@ shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "a") as f:
     del f["model/elements"]
 EOF
-"$PY" tools/animate.py "$tmp/old.h5" "$tmp/old.gif" --slow 1 --fps 20 --dpi 20 --quiet > /dev/null 2> "$tmp/old.err"
+"$PY" -m hhneck.animate "$tmp/old.h5" "$tmp/old.gif" --slow 1 --fps 20 --dpi 20 --quiet > /dev/null 2> "$tmp/old.err"
 rc=$?
 [ "$rc" -eq 0 ] && [ -s "$tmp/old.gif" ] && grep -q "no /model/elements" "$tmp/old.err"
 check "a file without /model/elements: GIF of the bodies and one warning (exit $rc)" $?
 
 # --- XDMF: well formed, every referenced dataset exists with the declared shape
-"$PY" tools/write_xdmf.py "$tmp/c62.h5" > "$tmp/xdmf.out" 2>&1
+"$PY" -m hhneck.xdmf "$tmp/c62.h5" > "$tmp/xdmf.out" 2>&1
 check "write_xdmf.py writes c62.xmf and c62.elements.h5 (exit $?)" $?
 pycheck "$tmp/c62.xmf" "$tmp/c62.h5" input/head_neck_54dof.inp <<'EOF'
 import sys, os

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Every deck the tools write is a deck the program takes: each card
 # within 80 columns, comment cards too (a long path in a comment goes on
-# continuation comment cards, tools/deck_fields.py), and `hhneck --check`
+# continuation comment cards, hhneck.deck_fields), and `hhneck --check`
 # passes on it, with the tools' files under a directory path of more than 120
 # characters. A data card that a long path would push beyond column 80 (an
 # INCLUDE or CASE card naming a file there) is refused with a message naming
@@ -32,8 +32,8 @@ valid() {
 # The unit checks of the helper every writer uses.
 py_checks - <<'PY'
 import sys
-sys.path.insert(0, "tools")
-from deck_fields import CardError, check_cards, comment_cards, field_text, set_field
+sys.path.insert(0, "python")
+from hhneck.deck_fields import CardError, check_cards, comment_cards, field_text, set_field
 
 def check(ok, what):
     print(("PASS  " if ok else "FAIL  ") + what)
@@ -53,7 +53,7 @@ flat = "x" * 200
 cards = comment_cards(flat)
 check([len(c) for c in cards] == [80, 80, 46] and joined(cards) == flat,
       "comment_cards: a text without a blank or '/' broken at column 80 exactly")
-text = "the runs in %s (T1 tables by tools/make_nbdl_tables.py --data)." % path
+text = "the runs in %s (T1 tables by hhneck-nbdl-tables --data)." % path
 cards = comment_cards(text)
 check(all(len(c) <= 80 and not c.endswith(" ") for c in cards) and joined(cards) == text,
       "comment_cards: a sentence around the path, no card ending in a blank, joined the sentence again")
@@ -87,8 +87,8 @@ check "the long directory path has ${#long} characters (at least 120)" [ ${#long
 # shipped decks again, each valid with the others it includes.
 ln -s "$root/reference" "$long/proj/reference"
 cp input/nbdl15g.inp input/nbdl12g.inp input/nbdl8g.inp "$long/proj/input/"
-(cd "$long/proj" && python3 "$root/tools/make_head_neck_deck.py" > input/head_neck_54dof.inp &&
-     python3 "$root/tools/make_case_decks.py" && python3 "$root/tools/make_nbdl_tables.py")
+(cd "$long/proj" && python3 "$root/dev/make_head_neck_deck.py" > input/head_neck_54dof.inp &&
+     python3 -m hhneck.case_decks && python3 -m hhneck.nbdl_tables)
 check "make_head_neck_deck.py, make_case_decks.py and make_nbdl_tables.py run (exit $?)" [ $? -eq 0 ]
 for f in head_neck_54dof case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g_t1 nbdl12g_t1 nbdl8g_t1; do
     check "input/$f.inp as written: within 80 columns, the shipped deck" written "$long/proj/input/$f.inp" "input/$f.inp"
@@ -101,7 +101,7 @@ done
 # long path (the shipped values: the shipped deck)
 for opt in "--posture straight" "--posture seated-held" "--t1-slope 20 --lordosis 10"; do
     # shellcheck disable=SC2086
-    python3 tools/make_head_neck_deck.py $opt > "$long/proj/input/head_neck_54dof.inp"
+    python3 dev/make_head_neck_deck.py $opt > "$long/proj/input/head_neck_54dof.inp"
     check "make_head_neck_deck.py $opt: within 80 columns" within80 "$long/proj/input/head_neck_54dof.inp"
     check "make_head_neck_deck.py $opt: hhneck --check passes on case 6-2 with it" valid "$long/proj" input/case6-2.inp
 done
@@ -109,8 +109,8 @@ done
 # PARAM cards, with the values of the shipped model deck
 python3 - input/head_neck_54dof.inp input/calibrate_nbdl.inp "$long/fit listing.txt" <<'PY'
 import sys
-sys.path.insert(0, "tools")
-from deck_fields import field, is_card
+sys.path.insert(0, "python")
+from hhneck.deck_fields import field, is_card
 deck = open(sys.argv[1]).read().splitlines()
 par = {field(l, 1): field(l, 4) for l in deck if is_card(l, "SCALE")}
 for hist, s in (("FLEX", "F"), ("EXT", "E")):
@@ -119,7 +119,7 @@ for hist, s in (("FLEX", "F"), ("EXT", "E")):
 names = [field(l, 1) for l in open(sys.argv[2]).read().splitlines() if is_card(l, "PARAM")]
 open(sys.argv[3], "w").write("".join("PARAM %-10s= %s\n" % (n, par[n]) for n in names))
 PY
-python3 tools/make_head_neck_deck.py --fit "$long/fit listing.txt" > "$long/proj/input/head_neck_54dof.inp"
+python3 dev/make_head_neck_deck.py --fit "$long/fit listing.txt" > "$long/proj/input/head_neck_54dof.inp"
 check "make_head_neck_deck.py --fit LISTING (shipped values): the shipped deck" \
     cmp -s "$long/proj/input/head_neck_54dof.inp" input/head_neck_54dof.inp
 
@@ -131,8 +131,8 @@ mkdir "$tmp/t1" "$long/t1"
 check "t1_drive_effect.py: every variant's deck and T1 tables within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp/t1" "$long/t1" <<'PY'
 import os, subprocess, sys
-sys.path.insert(0, "tools")
-from deck_fields import CardError
+sys.path[:0] = ["python", "studies"]
+from hhneck.deck_fields import CardError
 import t1_drive_effect as t
 hhneck, short, long = sys.argv[1:4]
 bad = []
@@ -159,8 +159,8 @@ PY
 check "probe_x_trough.py: every probe's deck, model deck and T1 tables within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp/probe" "$long/probe" <<'PY'
 import os, subprocess, sys
-sys.path.insert(0, "tools")
-from deck_fields import CardError
+sys.path[:0] = ["python", "studies"]
+from hhneck.deck_fields import CardError
 import probe_x_trough as p
 hhneck, short, long = sys.argv[1:4]
 os.makedirs(short)
@@ -190,8 +190,8 @@ PY
 check "predict_nbdl8g.py --fit LISTING (under the long path): the 8 g deck and its model deck within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$long/fit listing.txt" "$tmp" "$long" <<'PY'
 import os, subprocess, sys
-sys.path.insert(0, "tools")
-from deck_fields import CardError
+sys.path[:0] = ["python", "studies"]
+from hhneck.deck_fields import CardError
 import predict_nbdl8g as p
 hhneck, listing, short, long = sys.argv[1:5]
 model = open("input/head_neck_54dof.inp").read()
@@ -217,8 +217,8 @@ mkdir "$tmp/fits" "$long/fits"
 check "fit_axial_damping.py: the calibration decks and their case and model decks within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp/fits" "$long/fits" <<'PY'
 import os, subprocess, sys
-sys.path.insert(0, "tools")
-from deck_fields import CardError
+sys.path[:0] = ["python", "studies"]
+from hhneck.deck_fields import CardError
 import fit_axial_damping as f
 hhneck, short, long = sys.argv[1:4]
 model = open(f.MODEL).read()
@@ -245,8 +245,8 @@ PY
 check "cross_severity.py: the scoring decks of a listing under the long path, written there, within 80 columns, hhneck --calibrate --check passes" \
     python3 - "$HHNECK" "$long/fit listing.txt" "$long" <<'PY'
 import os, subprocess, sys
-sys.path.insert(0, "tools")
-from deck_fields import CardError, write_deck
+sys.path[:0] = ["python", "studies"]
+from hhneck.deck_fields import CardError, write_deck
 import cross_severity as c
 hhneck, listing, long = sys.argv[1:4]
 values = [v for _, v in c.params(listing)]

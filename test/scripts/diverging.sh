@@ -10,5 +10,5 @@ rc=$?
 check "a diverging run ends with exit code 3 (got $rc)" [ "$rc" -eq 3 ]
 check "the listing ends with RUN INCOMPLETE" grep -q "RUN INCOMPLETE" "$tmp/diverge.out"
 check "stderr names the stability limit" grep -q "stability limit" "$tmp/diverge.err"
-py_checks tools/check_incomplete.py "$tmp/diverge.h5" 0.1
+py_checks test/scripts/lib/check_incomplete.py "$tmp/diverge.h5" 0.1
 finish

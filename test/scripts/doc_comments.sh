@@ -1,7 +1,7 @@
 #!/bin/sh
 # Every dummy argument of a public procedure in src/ has a trailing !!
 # comment of its own (minpack's style, docs/architecture.md), checked by
-# tools/check_doc_comments.py; first the checker itself on a small module
+# dev/check_doc_comments.py; first the checker itself on a small module
 # whose undocumented dummies are known.
 # This check runs no executable: HHNECK is not needed.
 HHNECK=${HHNECK:-none}
@@ -41,7 +41,7 @@ contains
     end subroutine hidden
 end module known
 EOF
-python3 tools/check_doc_comments.py "$tmp/known.f90" > "$tmp/known.out" 2> "$tmp/known.err"
+python3 dev/check_doc_comments.py "$tmp/known.f90" > "$tmp/known.out" 2> "$tmp/known.err"
 rc=$?
 cat > "$tmp/known.expected" <<EOF
 $tmp/known.f90:12 pair a (shares its line)
@@ -55,10 +55,10 @@ check "it lists exactly the 4 undocumented dummies, as file:line procedure argum
 check "it checks 6 dummies of 3 public procedures (not the result, me, or the private one)" \
     grep -q '^6 dummy arguments of 3 public procedures in 1 files checked; 4 without' "$tmp/known.err"
 check "a --skip that names no file is an error (exit 2)" \
-    sh -c "python3 tools/check_doc_comments.py --skip '$tmp/none.f90' '$tmp/known.f90' > /dev/null 2>&1; [ \$? -eq 2 ]"
+    sh -c "python3 dev/check_doc_comments.py --skip '$tmp/none.f90' '$tmp/known.f90' > /dev/null 2>&1; [ \$? -eq 2 ]"
 
 # The source tree, all of it.
-python3 tools/check_doc_comments.py \
+python3 dev/check_doc_comments.py \
     src > "$tmp/src.out" 2> "$tmp/src.err"
 rc=$?
 summary=$(tail -n 1 "$tmp/src.err")

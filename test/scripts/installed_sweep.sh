@@ -3,7 +3,8 @@
 # deck and the INCLUDE files of both decks are found as a single run finds
 # INCLUDE files (next to the including file, the working directory, then
 # -I DIR and HHNECK_PATH), by the serial sweep and by the sweep driver
-# (example sweep_mpi, built without MPI next to the executable). Each
+# (the fpm example sweep_mpi, app/mpi/sweep_mpi.F90, built without MPI
+# next to the executable). Each
 # sweep has 2 members of a few milliseconds of the NBDL 15 g deck.
 . test/scripts/lib/checks.sh
 project=$(pwd)

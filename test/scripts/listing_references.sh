@@ -1,7 +1,7 @@
 #!/bin/sh
 # The listings of the regression decks against their references
-# (reference/outputs/CASE.txt, written by tools/regenerate_references.sh):
-# same text, numbers within tools/compare_listing.py's tolerance. Run from
+# (reference/outputs/CASE.txt, written by dev/regenerate_references.sh):
+# same text, numbers within hhneck-compare-listing's tolerance. Run from
 # the project root; the executable in $HHNECK.
 # Each deck runs with its own integrator at --rtol 1.0E-7, as the
 # references were written: another build or machine has other roundoff and
@@ -9,7 +9,7 @@
 # that moves the listings by up to 40 times the compare tolerance (an FMA
 # build, -march=native), by 0.10 of it at 1e-7. compare_listing.py takes a
 # channel at roundoff level against its unit's largest for noise, so the
-# time of a noise peak is never compared. tools/listing_robustness.sh
+# time of a noise peak is never compared. dev/listing_robustness.sh
 # builds with other roundoff (-march=native, -O0) and runs this comparison.
 # A change of an input far below physics but far above one ulp (the head's
 # mass by 2.6e-8 of itself; one ulp cannot be written in ten columns) must
@@ -18,10 +18,12 @@
 set -u
 HHNECK=${HHNECK:-$(fpm run --profile release --runner echo 2>/dev/null | tail -n 1)}
 case $HHNECK in /*) ;; *) HHNECK=$(pwd)/$HHNECK ;; esac   # usable after a cd
+PYTHONPATH=$(pwd)/python${PYTHONPATH:+:$PYTHONPATH}   # the project's own package
+export PYTHONPATH
 tmp=$(mktemp -d)
 pass=0; fail=0
 compare() {
-    if python3 tools/compare_listing.py "$1" "$2"; then
+    if python3 -m hhneck.compare_listing "$1" "$2"; then
         pass=$((pass + 1))
     else
         fail=$((fail + 1))

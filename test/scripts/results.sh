@@ -4,5 +4,5 @@
 
 "$HHNECK" --h5 "$tmp/case6-2.h5" < input/case6-2.inp > "$tmp/listing.txt" 2> "$tmp/err.txt"
 check "case 6-2 runs to the end (exit code 0)" [ $? -eq 0 ]
-py_checks tools/check_results.py "$tmp/case6-2.h5"
+py_checks test/scripts/lib/check_results.py "$tmp/case6-2.h5"
 finish

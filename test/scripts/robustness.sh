@@ -145,7 +145,7 @@ kill -TERM "$first"
 wait "$first"
 rc=$?
 [ "$rc" -eq 5 ] && has "$T/first.err" 'interrupted by signal 15' && has "$T/first.err" "kept in $T/both.h5 (marked incomplete" \
-    && [ ! -e "$T/both.h5.part" ] && [ ! -e "$T/both.h5.lock" ] && python3 tools/check_incomplete.py "$T/both.h5" 0.25 > /dev/null
+    && [ ! -e "$T/both.h5.part" ] && [ ! -e "$T/both.h5.lock" ] && python3 test/scripts/lib/check_incomplete.py "$T/both.h5" 0.25 > /dev/null
 check $? "the first run, stopped by SIGTERM: exit 5 ($rc), its file valid and marked incomplete, lock released"
 
 # 4. a SIGKILL never leaves an older complete result under the name
@@ -278,7 +278,7 @@ check $? "a table scale of 4.9E-324: accepted with a warning that the table is z
 rc=$?
 [ "$rc" -eq 3 ] && has "$T/stiff.err" 'the wall-time limit of 6 s' && has "$T/stiff.err" 'The fastest mode has' \
     && has "$T/stiff.err" 'about .* to go' && has "$T/stiff.out" 'RUN INCOMPLETE' \
-    && python3 tools/check_incomplete.py "$T/stiff.h5" 0.25 > /dev/null
+    && python3 test/scripts/lib/check_incomplete.py "$T/stiff.h5" 0.25 > /dev/null
 check $? "a stiff deck on DOPRI5 with --max-wall 6 --progress: progress shown, exit 3 ($rc), the fastest mode named, file kept"
 # where a wall-time limit stops a run depends on the machine's load; a step
 # limit stops it at the same state on every machine: the diagnosis there

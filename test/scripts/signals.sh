@@ -16,7 +16,7 @@ rc=$?
 check "SIGTERM: exit code 5 (got $rc)" [ "$rc" -eq 5 ]
 check "SIGTERM: stderr says interrupted by signal 15" grep -q "interrupted by signal 15" "$tmp/term.err"
 check "SIGTERM: the partial file is renamed to the result name" [ ! -e "$tmp/term.h5.part" ]
-py_checks tools/check_incomplete.py "$tmp/term.h5" 0.25
+py_checks test/scripts/lib/check_incomplete.py "$tmp/term.h5" 0.25
 
 "$HHNECK" --h5 "$tmp/kill.h5" < "$tmp/long.inp" > /dev/null 2>&1 &
 pid=$!

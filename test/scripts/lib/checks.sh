@@ -2,9 +2,12 @@
 # counts checks, prints one "PASS  what" or "FAIL  what" line per check and
 # the closing "N passed, N failed" line. Run from the project root; the
 # executable is $HHNECK (default: fpm's debug build, built if needed), made
-# an absolute path.
-HHNECK=${HHNECK:-$(fpm run --runner echo 2>/dev/null | tail -n 1)}
+# an absolute path; the Python package is the project's own (python/ first
+# on PYTHONPATH, whatever copy pip installed).
+HHNECK=${HHNECK:-$(fpm run hhneck --runner echo 2>/dev/null | tail -n 1)}
 case $HHNECK in /*) ;; *) HHNECK=$(pwd)/$HHNECK ;; esac   # usable after a cd
+PYTHONPATH=$(pwd)/python${PYTHONPATH:+:$PYTHONPATH}
+export PYTHONPATH
 npass=0
 nfail=0
 tmp=$(mktemp -d)
@@ -33,7 +36,7 @@ py_checks() {
     nfail=$((nfail + nf))
     if [ "$rc" -ne 0 ] && [ "$nf" -eq 0 ]; then
         printf '%s\n' "$out" | tail -n 5
-        fail "python3 $1 stopped (exit $rc)"
+        fail "python3 $* stopped (exit $rc)"
     fi
 }
 

@@ -1,0 +1,26 @@
+#!/bin/sh
+# Regenerates the reference outputs of every case deck ON PURPOSE, after a
+# change that is meant to change results (say why in the commit). The
+# regression test (test/test_regression.f90) never writes them.
+#   reference/outputs/CASE.txt   the listing (release build, the deck's sampling)
+#                                at rtol 1e-7 (--rtol: atol 1e-10), so that a
+#                                build or machine with other roundoff, and so
+#                                other step sequences, agrees far inside the
+#                                tolerance of hhneck-compare-listing (at the
+#                                decks' own rtol 1e-3 or 1e-4 the listings of
+#                                an FMA build differ by 1.4 to 40 times it)
+#   reference/outputs/CASE.h5    /time and /channels every 1 ms, computed at
+#                                rtol 1e-8 (atol 1e-11) so that builds with
+#                                other roundoff agree far inside the tolerance
+set -eu
+cd "$(dirname "$0")/.."
+fpm build --profile release >&2          # its progress must not go into a listing
+hhneck=$(fpm run --profile release --runner echo 2>/dev/null | tail -n 1)
+tmp=$(mktemp -d)
+for c in case6-1 case6-2 case6-5 nbdl15g nbdl12g hybrid3_flexion rear8g; do
+    echo "regenerating reference/outputs/$c" >&2
+    "$hhneck" --no-h5 --rtol 1.0E-7 < "input/$c.inp" > "reference/outputs/$c.txt"
+    "$hhneck" --sample 1.0E-3 --rtol 1.0E-8 --h5 "$tmp/$c.h5" < "input/$c.inp" > /dev/null
+    python3 dev/extract_reference.py "$tmp/$c.h5" "reference/outputs/$c.h5"
+done
+rm -rf "$tmp"
