@@ -18,11 +18,7 @@ import time
 
 import numpy as np
 
-try:
-    from . import segments
-except ImportError:                        # run as a file
-    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    from hhneck import segments
+from . import segments
 
 REPORT = os.path.join(segments.ROOT, "docs", "catalogue.md")
 GOAL_SEGMENT = "the model's rotation inside the reported range at every level, direction and moment"

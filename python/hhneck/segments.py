@@ -34,8 +34,9 @@ relative to the lower one minus its neutral value (for OC-C2 the sum of the
 C1 and head angles about the same axis, exact for a planar motion).
 
 API: write_deck, run_case, rotation_curve, rotations_at, data_branches,
-rate_curve, catalogue (all cases), write_report (markdown + figures).
-Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--report MD].
+rate_curve, catalogue (all cases; hhneck.catalogue writes docs/catalogue.md).
+Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
+(hhneck-catalogue writes the report).
 """
 import argparse
 import csv
@@ -45,6 +46,8 @@ import sys
 import tempfile
 
 import numpy as np
+
+from . import iso18571
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MODEL_DECK = os.path.join(ROOT, "input", "head_neck_54dof.inp")
@@ -254,15 +257,6 @@ def reference_on(grid, moment, rotation):
     return np.where(grid >= 0, np.interp(grid, mp, rp), np.interp(-grid, mn, rn))
 
 
-def _iso():
-    try:
-        from hhneck import iso18571
-    except ImportError:                    # the project's tools before the package is installed
-        sys.path.insert(0, os.path.join(ROOT, "tools"))
-        import iso18571
-    return iso18571
-
-
 #: [s per N m] the moment as the rating's abscissa: the 0.01 N m grid of the
 #: curves becomes the 0.1 ms step the rating samples at, so a curve keeps its
 #: 201 (Panjabi) or 701 (Nightingale) samples; the rating's windows are
@@ -273,7 +267,7 @@ MOMENT_AS_TIME = 0.01
 def rate_curve(grid, reference, model):
     """ISO/TS 18571 of a moment-rotation curve: rotation as a function of
     the moment (in place of time, MOMENT_AS_TIME), on the 0.01 N m grid."""
-    return _iso().rate(np.asarray(grid) * MOMENT_AS_TIME, reference, model)
+    return iso18571.rate(np.asarray(grid) * MOMENT_AS_TIME, reference, model)
 
 
 def _run_timed(args):

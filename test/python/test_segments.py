@@ -5,16 +5,11 @@ torsional G J/h) as the deck's DISC card and SCALE factors give it; with
 every element, the deck takes exactly the cards of the model deck joining
 the segment's bodies; the data are split into their loading branches as the
 README of the data describes."""
-import os
-import sys
-
 import numpy as np
 import pytest
 
-from conftest import ROOT, hhneck_executable
-
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from hhneck import segments  # noqa: E402
+from conftest import hhneck_executable
+from hhneck import segments
 
 
 def _disc_card(deck, name):
