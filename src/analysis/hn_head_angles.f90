@@ -5,12 +5,12 @@
 !! rotation angle (the magnitude of the rotation vector, 0 to pi); and the
 !! signed extreme of a sampled curve (the value of largest magnitude).
 module hn_head_angles
-    use hn_kinds, only: wp, one
+    use hn_kinds, only: wp, one, pi
     use hn_rotation, only: rotation_vector, norm3
     implicit none
     private
 
-    public :: bryant_angles, rotation_angle, signed_extreme, extreme_index
+    public :: bryant_angles, bryant_angles_near, rotation_angle, signed_extreme, extreme_index
 
 contains
 
@@ -32,6 +32,28 @@ contains
             q(3) = atan2(s(2, 1), s(2, 2))
         end if
     end function bryant_angles
+
+    !> The Bryant angles of S that continue `near` (the angles of the sample
+    !! before): of the two triples that give S, (alpha, beta, gamma) and
+    !! (alpha + pi, pi - beta, gamma + pi), each angle moved by whole turns
+    !! to lie within pi of `near`, the triple closer to `near`. A head that
+    !! pitches past 90 deg keeps alpha and gamma near zero and beta going on
+    !! (the principal triple would jump to alpha = gamma = 180 deg there).
+    pure function bryant_angles_near(s, near) result(q)
+        real(wp), intent(in) :: s(3, 3)    !! rotation matrix (orthonormal, det +1)
+        real(wp), intent(in) :: near(3)    !! the angles to continue [rad]
+        real(wp) :: q(3)
+        real(wp) :: a(3), b(3)
+        a = bryant_angles(s)
+        b = [a(1) + pi, pi - a(2), a(3) + pi]
+        a = a + 2*pi*anint((near - a)/(2*pi))
+        b = b + 2*pi*anint((near - b)/(2*pi))
+        if (sum((b - near)**2) < sum((a - near)**2)) then
+            q = b
+        else
+            q = a
+        end if
+    end function bryant_angles_near
 
     !> Total rotation angle of S [rad], 0 to pi: the angle of the single
     !! rotation about one axis that turns R into the body's axes.

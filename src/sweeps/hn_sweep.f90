@@ -17,7 +17,7 @@ module hn_sweep
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
     use hn_optimize, only: latin_hypercube
-    use hn_head_angles, only: bryant_angles, rotation_angle, signed_extreme, extreme_index
+    use hn_head_angles, only: bryant_angles, bryant_angles_near, rotation_angle, signed_extreme, extreme_index
     implicit none
     private
 
@@ -588,6 +588,7 @@ contains
         real(wp) :: y(nout)
         type(channel_set_t) :: ch
         real(wp), allocatable :: a(:, :), f(:, :), m(:, :), q(:, :), ang(:)
+        real(wp) :: prev(3)
         integer :: k, n, i, at
         call channels_define(cs, ch)
         n = size(res%samples_t)
@@ -603,8 +604,15 @@ contains
         end do
         y(4) = signed_extreme(a(:, 2))
         ! head orientation in 3-D
+        ! each sample's angles continue the one before (a pitch past 90 deg
+        ! is not turned into 180 deg of lateral bending and twist)
+        prev = bryant_angles(res%samples_head_s(:, :, 1))
         do i = 1, n
-            q(i, :) = bryant_angles(res%samples_head_s(:, :, i))/deg
+            prev = bryant_angles_near(res%samples_head_s(:, :, i), prev)
+            q(i, :) = prev
+        end do
+        q = q/deg
+        do i = 1, n
             ang(i) = rotation_angle(res%samples_head_s(:, :, i))/deg
         end do
         do i = 1, 3
