@@ -11,7 +11,8 @@ and the model are filtered CFC 60 (SAE J211/1, as the library does).
 Rated channels (the head's kinematics): x- and z-acceleration, angular
 acceleration, angular velocity, rotation; each gets a CORA-style rating
 (method in docs/validation.md) and the overall rating of a case is their
-mean. The head displacements relative to T1 are reported and rated but not
+mean; each gets its ISO/TS 18571 rating too (hhneck.iso18571, reference =
+the volunteers' mean, same window), and their mean. The head displacements relative to T1 are reported and rated but not
 in the overall rating (their frames and points are not documented).
 Peaks: x-acceleration, z-acceleration dip and rebound, angular acceleration,
 angular velocity, rotation, each against the mean +- SD of the runs' peaks
@@ -34,7 +35,7 @@ import tempfile
 
 import numpy as np
 
-from . import run
+from . import iso18571, run
 
 G = 9.80665
 WINDOW = (30.0, 250.0)   # ms
@@ -223,7 +224,9 @@ def compare(sev, h5):
         m = (t >= WINDOW[0]) & (t <= WINDOW[1])
         C, X, score, lag = cora(t, mi, mean, sd)
         inside = np.mean(np.abs(mi[m] - mean[m]) <= sd[m])
-        chans.append(dict(label=label, C=C, X=X, score=score, lag=lag, inside=inside, rated=label in RATED))
+        iso = iso18571.rate(t * 1e-3, mean, mi, window=(WINDOW[0] * 1e-3, WINDOW[1] * 1e-3))["overall"]
+        chans.append(dict(label=label, C=C, X=X, score=score, lag=lag, inside=inside, iso=iso,
+                          rated=label in RATED))
         curves[label] = (t, data, mean, sd)
     for plabel, label, sign, win in PEAKS:
         if label not in curves:
@@ -242,11 +245,12 @@ def compare(sev, h5):
 def tables(sev, chans, peaks, overall, nrun):
     sevt = sev.replace("g", " g")
     L = ["### NBDL %s (%d volunteer runs)" % (sevt, nrun), "",
-         "| channel | corridor C | cross-corr. X | CORA-style | lag (ms) | time inside mean ± 1 SD |",
-         "|---|---|---|---|---|---|"]
+         "| channel | corridor C | cross-corr. X | CORA-style | lag (ms) | time inside mean ± 1 SD | ISO/TS 18571 |",
+         "|---|---|---|---|---|---|---|"]
     for c in chans:
-        L.append("| %s%s | %.3f | %.3f | **%.3f** | %+.1f | %.0f %% |" % (
-            c["label"], "" if c["rated"] else " (reported)", c["C"], c["X"], c["score"], c["lag"], 100 * c["inside"]))
+        L.append("| %s%s | %.3f | %.3f | **%.3f** | %+.1f | %.0f %% | %.3f |" % (
+            c["label"], "" if c["rated"] else " (reported)", c["C"], c["X"], c["score"], c["lag"], 100 * c["inside"],
+            c["iso"]))
     L += ["", "| head peak | model | at (ms) | volunteers (mean ± SD) | at (ms) | (model − mean)/SD | "
           "within 1 SD | within 10 ms |", "|---|---|---|---|---|---|---|---|"]
     for p in peaks:
@@ -261,9 +265,12 @@ def tables(sev, chans, peaks, overall, nrun):
             len(rated), ", ".join(c for c in RATED if c not in rated))
     with_rep = "; with the two displacement channels: %.3f" % rep if nrep == len(REPORTED) else \
         "; with the displacement channel: %.3f" % rep if nrep else ""
+    iso = np.mean([c["iso"] for c in chans if c["rated"]])
     L += ["", "Overall CORA-style rating %s (mean of %s): **%.3f** (target ≥ 0.85: %s)%s. "
+          "ISO/TS 18571 (objective-rating-metrics; reference the volunteers' mean, CFC 60, the same window), "
+          "mean of the same channels: **%.3f**. "
           "Peaks within 1 SD: %d of %d; peak times within 10 ms: %d of %d."
-          % (sevt, which, overall, "met" if overall >= 0.85 else "not met", with_rep,
+          % (sevt, which, overall, "met" if overall >= 0.85 else "not met", with_rep, iso,
              sum(p["ok_peak"] for p in peaks), len(peaks), sum(p["ok_time"] for p in peaks), len(peaks)), ""]
     return L
 
