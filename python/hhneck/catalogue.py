@@ -3,9 +3,10 @@ ISO/TS 18571 (objective-rating-metrics) and writes docs/catalogue.md with a
 table and a figure per source.
 
 Cases in it now: the quasi-static segment tests of Panjabi et al. 2001 (21
-curves) and Nightingale et al. 2007 (3), set up by hhneck.segments. Not yet
-in it: the specimen sled tests (Stemper 2004, Kang 2018 front and side) and
-the NBDL volunteer sleds (rated by hhneck-compare-nbdl, docs/validation.md).
+curves) and Nightingale et al. 2007 (3), set up by hhneck.segments, and the
+Stemper 2004 rear-impact specimen test (7 channels, hhneck.specimens), with
+two variants of its set-up. Not yet in it: Kang 2018 front and side, and the
+NBDL volunteer sleds (rated by hhneck-compare-nbdl, docs/validation.md).
 
 Command: hhneck-catalogue [--quick] [--exe HHNECK] [--jobs N] [--out DIR]
 [--report docs/catalogue.md]. --quick runs one segment (C4-C5) per source
@@ -18,7 +19,7 @@ import time
 
 import numpy as np
 
-from . import segments
+from . import segments, specimens
 
 REPORT = os.path.join(segments.ROOT, "docs", "catalogue.md")
 GOAL_SEGMENT = "the model's rotation inside the reported range at every level, direction and moment"
@@ -100,7 +101,57 @@ def figure(src, rows, figdir):
     return out
 
 
-def write_report(results, path, wall, jobs):
+def specimen_section(stemper, variants, figdir, relto):
+    """Markdown lines of the Stemper case: per channel the ISO/TS 18571
+    scores and peaks, the variants' means, a figure."""
+    lines = ["## Specimen sled tests", "", "### Stemper 2004, rear impact 1.8 m/s (T1 potted)", "",
+             "**Prediction** (nothing fitted to these data). Set-up: `python/hhneck/specimens.py` (its "
+             "docstring): the source's T1 pulse, gravity down, muscles passive (activation zero), the start "
+             "posture held by HOLD POSTURE in place of the labs' positioning cables. Reference: the "
+             "corridor outline's midline; ISO/TS 18571 over the 0.3–126 ms the corridors cover.", "",
+             "| channel | corridor | phase | magnitude | slope | ISO 18571 | model peak (at ms) | "
+             "midline peak (at ms) | time inside the corridor |", "|---|---|---|---|---|---|---|---|---|"]
+    for ch, s in stemper.items():
+        lines.append("| %s | %.3f | %.3f | %.3f | %.3f | **%.3f** | %.3g (%.0f) | %.3g (%.0f) | %.0f %% |" % (
+            ch, s["corridor"], s["phase"], s["magnitude"], s["slope"], s["overall"], s["peak_model"][0],
+            s["peak_model"][1], s["peak_ref"][0], s["peak_ref"][1], 100 * s["inside"]))
+    mean = np.mean([s["overall"] for s in stemper.values()])
+    low = min(stemper, key=lambda c: stemper[c]["overall"])
+    lines += ["", "Mean over the 7 channels: **%.3f** (goal ≥ 0.75 with no channel below 0.50: not met; the "
+              "lowest, %s, %.3f). The SAFER HBM publishes no score for this case." % (
+                  mean, low, stemper[low]["overall"]), "",
+              "Variants of the set-up (the same channels; an experiment, not the shipped set-up):", "",
+              "| support | muscles | mean ISO 18571 | lowest channel |", "|---|---|---|---|"]
+    for (sup, mus), r in variants.items():
+        lowv = min(r, key=lambda c: r[c]["overall"])
+        lines.append("| %s | %s | %.3f | %s %.3f |" % (sup, mus, np.mean([v["overall"] for v in r.values()]),
+                                                        lowv, r[lowv]["overall"]))
+    lines.append("")
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, axes = plt.subplots(1, 7, figsize=(17, 2.6))
+        for ax, (ch, s) in zip(axes, stemper.items()):
+            ax.fill_between(s["grid"], s["lower"], s["upper"], color="0.85", label="corridor")
+            ax.plot(s["grid"], s["reference"], "k-", lw=1.0, label="midline")
+            ax.plot(s["grid"], s["model"], "r-", lw=1.0, label="model")
+            ax.set_title("%s (%.2f)" % (ch.replace("seg_angle_", "").replace("head_T1_", "head-T1 "),
+                                        s["overall"]), fontsize=8)
+            ax.tick_params(labelsize=6)
+        axes[0].legend(fontsize=6)
+        fig.supxlabel("time [ms]", fontsize=8)
+        fig.tight_layout()
+        out = os.path.join(figdir, "catalogue_stemper.png")
+        fig.savefig(out, dpi=100)
+        plt.close(fig)
+        lines += ["![Stemper 2004: model (red) against the corridors](%s)" % os.path.relpath(out, relto), ""]
+    except ImportError:
+        pass
+    return lines
+
+
+def write_report(results, path, wall, jobs, stemper=None, variants=None):
     """docs/catalogue.md: the cases, their scores against the goals, the
     figures (beside `path`) and the wall times."""
     d = os.path.dirname(os.path.abspath(path))
@@ -119,16 +170,22 @@ def write_report(results, path, wall, jobs):
             "no ranges in the data (mean only); see model/data"
         lines.append("| %s | segment, pure moment | %d | %.3f | %s | %s |" % (
             src, len(rows), np.mean([r["iso"]["overall"] for r in rows]), GOAL_SEGMENT, met))
-    lines += ["| Stemper 2004, Kang 2018 front and side | specimen sled | – | not yet in the catalogue | ≥ 0.75 "
-              "each, no channel below 0.50 | not built: the potted-specimen decks and the T1 load-cell, "
-              "segment-angle and 3-D head-angle channels are still to come |",
+    if stemper:
+        smean = np.mean([v["overall"] for v in stemper.values()])
+        slow = min(v["overall"] for v in stemper.values())
+        lines.append("| Stemper 2004 rear 1.8 m/s | specimen sled | 7 | %.3f | ≥ 0.75, no channel below 0.50 | "
+                     "%s (lowest channel %.3f) |" % (smean, "yes" if smean >= 0.75 and slow >= 0.5 else "no", slow))
+    lines += ["| Kang 2018 front and side | specimen sled | – | not yet in the catalogue | ≥ 0.75 "
+              "each, no channel below 0.50 | not built: the T1 (T3) load-cell channels are still to come |",
               "| NBDL 15 g, 12 g (and runs not in the repository) | volunteer sled (calibration) | 5 each | "
               "in docs/validation.md (`hhneck-compare-nbdl`: CORA-style 0.888 and 0.891, ISO/TS 18571 0.854 and "
               "0.845 when this was written) | ≥ 0.85 | CORA-style yes; ISO/TS 18571 at 15 g only |", ""]
     lines += segment_section(seg, d, d)
+    if stemper:
+        lines += specimen_section(stemper, variants or {}, d, d)
     lines += ["## Wall time", "",
-              "%d cases in %.1f s wall time, %d runs at a time (the release build; each case's own run below)." % (
-                  len(results), wall, jobs), "",
+              "%d segment cases and the specimen runs in %.1f s wall time, segment runs %d at a time (the "
+              "release build; each segment case's own run below)." % (len(results), wall, jobs), "",
               "| case | wall time [s] |", "|---|---|"]
     lines += ["| %s %s %s | %.2f |" % (r["source"], r["segment"].replace("_", "–"), r["motion"].replace("_", " "),
                                        r["wall"]) for r in results]
@@ -149,8 +206,14 @@ def main(argv=None):
     a = p.parse_args(argv)
     t0 = time.perf_counter()
     results = segments.catalogue(a.exe, a.quick, a.data, a.out, a.jobs)
+    work = a.out or None
+    stemper = specimens.rate_stemper(specimens.run_stemper(work, a.exe), a.data)
+    variants = {}
+    if not a.quick:
+        for sup, mus in (("NONE", "PASSIVE"), ("HOLD", "REFLEX")):
+            variants[(sup, mus)] = specimens.rate_stemper(specimens.run_stemper(work, a.exe, sup, mus), a.data)
     wall = time.perf_counter() - t0
-    write_report(results, a.report, wall, a.jobs)
+    write_report(results, a.report, wall, a.jobs, stemper, variants)
     print("hhneck-catalogue: %d cases rated in %.1f s; report %s" % (len(results), wall, a.report),
           file=sys.stderr)
     return 0
