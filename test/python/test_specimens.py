@@ -74,3 +74,51 @@ def test_rating_uses_the_corridor_midline(stemper):
     for ch, s in rated.items():
         assert 0.0 <= s["overall"] <= 1.0
         assert np.allclose(s["reference"], 0.5 * (s["lower"] + s["upper"]))
+
+
+def test_head_bryant_x_of_known_matrices():
+    """The first Bryant angle of Rx(a) Ry(b) Rz(c), stored as the result
+    file stores S (h5py [t, j, i] = S_ij)."""
+    def rx(a):
+        return np.array([[1, 0, 0], [0, np.cos(a), -np.sin(a)], [0, np.sin(a), np.cos(a)]])
+
+    def ry(b):
+        return np.array([[np.cos(b), 0, np.sin(b)], [0, 1, 0], [-np.sin(b), 0, np.cos(b)]])
+
+    def rz(c):
+        return np.array([[np.cos(c), -np.sin(c), 0], [np.sin(c), np.cos(c), 0], [0, 0, 1]])
+    angles = [(-0.9, 0.3, 0.5), (0.2, -1.2, -2.0), (1.4, 0.0, 0.1)]
+    stored = np.array([(rx(a) @ ry(b) @ rz(c)).T for a, b, c in angles])
+    assert np.allclose(specimens.head_bryant_x(stored), np.degrees([a for a, _, _ in angles]), atol=1e-12)
+
+
+@pytest.mark.parametrize("direction", ["front", "side"])
+def test_kang_drive_and_signs(tmp_path, direction):
+    """Front: T1 driven rearward (-x), side: toward the specimen's right (the
+    model's -y), each by the pulse's velocity change; the head's answer has
+    the data's signs (front: rearward x-acceleration, flexion negative in
+    J211; side: +y acceleration, left bending negative)."""
+    model = specimens.run_kang(direction, str(tmp_path), hhneck_executable())
+    with h5py.File(tmp_path / ("kang_%s_hold.h5" % direction), "r") as f:
+        t = f["time"][:]
+        p = f["bodies/position"][:, 0, :]
+        ay = f["channels"]["HEAD_AY"][:]
+    k = 0 if direction == "front" else 1
+    v = np.gradient(p[:, k], t)
+    tp, a = specimen_data.read_pulse(os.path.join(segments.DATA_DIR, "kang2018_sled_pulse.csv"))
+    assert np.interp(0.0666, t, v) == pytest.approx(-specimen_data.delta_v(tp, a, 0.0666), rel=3e-3)
+    assert np.max(np.abs(p[:, 1 - k])) < 1e-9                     # the other direction held
+    if direction == "front":
+        tm, ax = model["head_acc_x"]
+        assert ax[np.argmax(np.abs(ax))] < 0
+        tm, ry = model["head_rot_y"]
+        assert ry.min() < -30.0
+    else:
+        tm, aj = model["head_acc_y"]
+        assert np.allclose(aj, -ay) and aj[np.argmax(np.abs(aj))] > 0
+        tm, rx = model["head_rot_x"]
+        assert rx.min() < -30.0 and rx[0] == 0.0
+    rated = specimens.rate_kang(direction, model)
+    assert sorted(rated) == sorted(specimens.KANG_CHANNELS[direction])
+    for sc in rated.values():
+        assert sc["grid"][0] >= 0.0 and 0.0 <= sc["overall"] <= 1.0
