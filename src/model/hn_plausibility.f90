@@ -6,20 +6,14 @@
 module hn_plausibility
     use hn_kinds, only: wp, zero, half
     use hn_model, only: model_t
-    use hn_line_elements, only: line_attach_t
+    use hn_families, only: nfamilies
+    use hn_element_family, only: warning_len, add_warning, check_point
     implicit none
     private
 
     public :: plausibility_warnings
 
-    ! reference values of the head/neck model (reference/parameters.md)
-    real(wp), parameter :: ref_disc_axial = 5.0e5_wp      !! N/m
-    real(wp), parameter :: ref_disc_bending = 20.0_wp     !! N m/rad
-    real(wp), parameter :: ref_ligament_2mm = 30.0_wp     !! N at 2 mm stretch
-    real(wp), parameter :: ref_muscle_m1 = 3000.0_wp      !! N/m
-    real(wp), parameter :: ref_muscle_m2 = 400.0_wp       !! N s/m
-    real(wp), parameter :: ref_limit_c1 = 100.0_wp        !! N m s/rad per rad
-    real(wp), parameter :: factor = 100.0_wp              !! "orders of magnitude"
+    ! the element families' checks are their `plausibility` bindings (hn_element_family)
     real(wp), parameter :: light_mass = 0.01_wp           !! kg: ~40x below the lightest vertebra (0.376 kg)
     real(wp), parameter :: small_inertia = 1.0e-6_wp      !! kg m^2: ~300x below the smallest vertebral moment
 
@@ -28,9 +22,9 @@ contains
     !> Warnings about the model, one line each.
     subroutine plausibility_warnings(model, warnings)
         type(model_t), intent(in) :: model                            !! the model as read from the deck
-        character(len=160), allocatable, intent(out) :: warnings(:)   !! one line per doubtful value (none: size 0)
-        integer :: k, e
-        real(wp) :: ev(3), reach
+        character(len=warning_len), allocatable, intent(out) :: warnings(:)   !! one line per doubtful value (none: size 0)
+        integer :: k, e, f
+        real(wp) :: ev(3)
         character(len=160) :: w
         character(len=300) :: wl
         allocate (warnings(0))
@@ -54,87 +48,19 @@ contains
                     call add(w)
                 end if
             end do
-            do e = 1, size(model%discs)
-                call check_point(model%discs(e)%body_a, model%discs(e)%pa, 'disc '//model%discs(e)%name)
-                call check_point(model%discs(e)%body_b, model%discs(e)%pb, 'disc '//model%discs(e)%name)
-                associate (d => model%discs(e))
-                    call check_range('disc '//trim(d%name)//' axial stiffness d1 A/h', d%d1*d%area/d%h, &
-                                     ref_disc_axial, 'N/m')
-                    call check_range('disc '//trim(d%name)//' bending stiffness d1 Iy/h', d%d1*d%iy/d%h, &
-                                     ref_disc_bending, 'N m/rad')
-                end associate
-            end do
-            call check_lines('ligament', model%ligaments)
-            call check_lines('muscle', model%muscles)
-            call check_lines('spring', model%springs)
-            do e = 1, size(model%ligaments)
-                associate (l => model%ligaments(e))
-                    call check_range('ligament '//trim(l%name)//' tension at 2 mm stretch', &
-                                     l%l1*2.0e-3_wp + l%l2*(2.0e-3_wp)**l%n, ref_ligament_2mm, 'N')
-                end associate
-            end do
-            do e = 1, size(model%muscles)
-                call check_range('muscle '//trim(model%muscles(e)%name)//' stiffness m1', model%muscles(e)%m1, &
-                                 ref_muscle_m1, 'N/m')
-                call check_range('muscle '//trim(model%muscles(e)%name)//' damping m2', model%muscles(e)%m2, &
-                                 ref_muscle_m2, 'N s/m')
+            do f = 1, nfamilies
+                call model%family(f)%f%plausibility(t, warnings)
             end do
             do e = 1, size(model%applied)
-                call check_point(model%applied(e)%body, model%applied(e)%point, 'applied load')
-            end do
-            do e = 1, size(model%limits)
-                if (model%limits(e)%local > 3) call check_range('joint-limit damper on '// &
-                    trim(t%name(model%limits(e)%body))//' ramp C1', model%limits(e)%c1, ref_limit_c1, 'N m s/rad/rad')
+                call check_point(model%tree, model%applied(e)%body, model%applied(e)%point, 'applied load', warnings)
             end do
         end associate
     contains
         subroutine add(text)
             character(len=*), intent(in) :: text
-            character(len=160), allocatable :: tmp(:)
-            integer :: n
-            n = size(warnings)
-            allocate (tmp(n + 1))
-            tmp(1:n) = warnings
-            tmp(n + 1) = text
-            call move_alloc(tmp, warnings)
+            call add_warning(warnings, text)
         end subroutine add
 
-        !> Both attachment points of every line element of a list.
-        subroutine check_lines(kind, at)
-            character(len=*), intent(in) :: kind
-            class(line_attach_t), intent(in) :: at(:)
-            integer :: i
-            do i = 1, size(at)
-                call check_point(at(i)%body_a, at(i)%point_a, kind//' '//at(i)%name)
-                call check_point(at(i)%body_b, at(i)%point_b, kind//' '//at(i)%name)
-            end do
-        end subroutine check_lines
-
-        !> A point farther from its body's mass centre than max(0.25 m, 5 radii of gyration).
-        subroutine check_point(k, p, what)
-            integer, intent(in) :: k
-            real(wp), intent(in) :: p(3)
-            character(len=*), intent(in) :: what
-            if (k < 1) return
-            reach = max(0.25_wp, 5*sqrt((model%tree%inertia(1, 1, k) + model%tree%inertia(2, 2, k) + &
-                                         model%tree%inertia(3, 3, k))/(2*model%tree%mass(k))))
-            if (norm2(p) > reach) then
-                write (w, '(a,a,a,f7.3,a,f6.3,a)') trim(what), ': attachment on ', trim(model%tree%name(k)), &
-                    norm2(p), ' m from its mass centre, far outside the body (more than ', reach, ' m)'
-                call add(w)
-            end if
-        end subroutine check_point
-
-        subroutine check_range(what, v, ref, units)
-            character(len=*), intent(in) :: what, units
-            real(wp), intent(in) :: v, ref
-            if (v <= zero) return
-            if (v > factor*ref .or. v < ref/factor) then
-                write (w, '(2a,es10.3,3a,es9.2,a)') trim(what), ' = ', v, ' ', units, &
-                    ' is two or more orders of magnitude from the reference model''s ', ref, ' (check units)'
-                call add(w)
-            end if
-        end subroutine check_range
     end subroutine plausibility_warnings
 
     !> Eigenvalues of a symmetric 3x3 matrix, ascending (trigonometric method).
