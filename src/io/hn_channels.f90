@@ -22,7 +22,6 @@ module hn_channels
     use hn_kinematics, only: body_accelerations
     use hn_applied, only: applied_vector, applied_couple
     use hn_rotation, only: cross
-    use hn_families, only: nfamilies
     use hn_element_family, only: family_channel_t
     implicit none
     private
@@ -155,7 +154,7 @@ contains
                                        q_joint_rot, k, m))
                 end do
             end do
-            do f = 1, nfamilies
+            do f = 1, size(model%family)
                 fc = model%family(f)%f%channels(tree)
                 c = [c(1:n), [(channel_t(fc(e)%name, fc(e)%units, fc(e)%group, q_element, fc(e)%item, fc(e)%comp, f), &
                               e=1, size(fc))], c(n + 1:)]

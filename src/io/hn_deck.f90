@@ -1884,7 +1884,7 @@ contains
             fam = 0
             if (len_trim(s) > 0) fam = family_ref(rd, i, s)
             if (rd%failed()) return
-            do f = 1, nfamilies
+            do f = 1, size(cs%model%family)
                 if (fam == 0 .or. fam == f) call cs%model%family(f)%f%stiffen(fac)
             end do
         end do

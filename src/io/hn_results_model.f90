@@ -8,7 +8,6 @@
 !! in docs/output-format.md.
 module hn_results_model
     use hn_model, only: model_t
-    use hn_families, only: nfamilies
     use hn_element_family, only: element_table_t
     use hn_h5, only: h5_file_t
     implicit none
@@ -26,7 +25,7 @@ contains
         type(element_table_t) :: tab
         integer :: f
         call h5%group('/model/elements')
-        do f = 1, nfamilies
+        do f = 1, size(model%family)
             tab = model%family(f)%f%result_table()
             if (len_trim(tab%group) > 0) call write_table(h5, '/model/elements/'//trim(tab%group), tab)
         end do

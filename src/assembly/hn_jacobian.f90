@@ -24,7 +24,6 @@
 module hn_jacobian
     use hn_kinds, only: wp, zero
     use hn_model, only: model_t
-    use hn_families, only: nfamilies
     use hn_kinematics, only: kinematics_t
     implicit none
     private
@@ -50,7 +49,7 @@ contains
         real(wp) :: b(size(cols)), bd(6, size(cols))
         kgen = zero
         cgen = zero
-        do f = 1, nfamilies
+        do f = 1, size(model%family)
             if (model%family_on(f)) call model%family(f)%f%add_tangent(model%tree, kin, t, x, xd, kgen, cgen, &
                                                                        cols, sgn, idx, b, bd)
         end do

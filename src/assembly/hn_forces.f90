@@ -5,7 +5,6 @@
 module hn_forces
     use hn_kinds, only: wp, zero
     use hn_model, only: model_t
-    use hn_families, only: nfamilies
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, loads_clear
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
@@ -26,7 +25,7 @@ module hn_forces
         !> per family: discs (6, nd) resultants shear x, y, axial, bending x, y, torque; ligaments (2, nl)
         !! tension [N], length [m]; muscles (3, nm) tension [N], length [m], activation; limits (1, nlim)
         !! generalized force [N or N m]; springs (1, ns) tension [N]
-        type(family_values_t) :: fam(nfamilies)
+        type(family_values_t), allocatable :: fam(:)
         real(wp) :: u_elastic = zero                !! energy stored in discs, ligaments, springs [J]
         real(wp) :: p_diss = zero                   !! power dissipated by discs, springs, joint dampers [W]
         real(wp) :: p_muscle = zero                 !! power absorbed by the muscles [W]
@@ -40,7 +39,8 @@ contains
         type(model_t), intent(in) :: model       !! the model
         type(element_output_t), intent(out) :: eo !! outputs sized for its elements, zero
         integer :: f
-        do f = 1, nfamilies
+        allocate (eo%fam(size(model%family)))
+        do f = 1, size(model%family)
             associate (fam => model%family(f)%f)
                 allocate (eo%fam(f)%v(fam%ncomp(), fam%count()))
             end associate
@@ -68,7 +68,7 @@ contains
         end do
         loads%q = model%q_hold
 
-        do f = 1, nfamilies
+        do f = 1, size(model%family)
             if (model%family_on(f)) call model%family(f)%f%add_loads(t, kin, x, xd, loads, eo%fam(f)%v, &
                                                                      eo%u_elastic, eo%p_diss, eo%p_muscle)
         end do
@@ -92,7 +92,7 @@ contains
         type(model_t), intent(in) :: model       !! the model
         integer :: f
         n = 0
-        do f = 1, nfamilies
+        do f = 1, size(model%family)
             n = n + model%family(f)%f%switch_count()
         end do
     end function switch_count
@@ -112,7 +112,7 @@ contains
         integer :: f, i, n
         sw = 1.0_wp
         i = 0
-        do f = 1, nfamilies
+        do f = 1, size(model%family)
             n = model%family(f)%f%switch_count()
             if (model%family_on(f) .and. n > 0) call model%family(f)%f%switching(t, kin, x, sw(i + 1:i + n))
             i = i + n

@@ -6,7 +6,6 @@
 module hn_plausibility
     use hn_kinds, only: wp, zero, half
     use hn_model, only: model_t
-    use hn_families, only: nfamilies
     use hn_element_family, only: warning_len, add_warning, check_point
     implicit none
     private
@@ -48,7 +47,7 @@ contains
                     call add(w)
                 end if
             end do
-            do f = 1, nfamilies
+            do f = 1, size(model%family)
                 call model%family(f)%f%plausibility(t, warnings)
             end do
             do e = 1, size(model%applied)

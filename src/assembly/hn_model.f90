@@ -15,7 +15,7 @@ module hn_model
     private
 
     public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, family_items_text
-    public :: scale_family, model_set_family
+    public :: scale_family, model_set_family, model_add_family
     ! the registry's names, for the modules that know the model only
     public :: max_family_items, nfamilies, family_name, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
 
@@ -26,10 +26,11 @@ module hn_model
         real(wp) :: gravity(3) = [zero, zero, -g_std]  !! gravitational acceleration in R [m/s^2]
         logical, allocatable :: prescribed(:)          !! (n) coordinate driven by `motion`
         type(motion_t), allocatable :: motion(:)       !! (n) its time history
-        type(family_slot_t) :: family(nfamilies)       !! the element families, in the registry's order
+        !> the element families: the registry's in its order (fam_*), then any added by model_add_family
+        type(family_slot_t), allocatable :: family(:)
         type(applied_load_t), allocatable :: applied(:)
         real(wp), allocatable :: q_hold(:)             !! (n) constant generalized forces (posture holding)
-        logical :: family_on(nfamilies) = .true.       !! element families switched on
+        logical, allocatable :: family_on(:)           !! (size(family)) element families switched on
         integer :: solver = solver_gauss               !! solver of a_ij xddot = f
         character(len=8) :: jacobian = 'STRUCT'        !! Jacobian of the stiff integrators: STRUCT (from the elements) or FD
     end type model_t
@@ -41,7 +42,7 @@ contains
         type(model_t), intent(in) :: model       !! the model
         integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
         n = 0
-        if (f < 1 .or. f > nfamilies) return
+        if (f < 1 .or. f > size(model%family)) return
         n = model%family(f)%f%count()
     end function family_count
 
@@ -54,6 +55,8 @@ contains
         allocate (model%prescribed(tree%ndof), model%motion(tree%ndof), model%q_hold(tree%ndof))
         model%prescribed = .false.
         model%q_hold = zero
+        allocate (model%family(nfamilies), model%family_on(nfamilies))
+        model%family_on = .true.
         do f = 1, nfamilies
             call new_family(f, model%family(f))
         end do
@@ -68,6 +71,28 @@ contains
         if (allocated(model%family(f)%f)) deallocate (model%family(f)%f)
         allocate (model%family(f)%f, source=fam)
     end subroutine model_set_family
+
+    !> Add a family of a kind the registry does not list (a model built in
+    !! code, not from a deck: a test's or an experiment's element type); every
+    !! evaluation visits it after the registry's families.
+    pure subroutine model_add_family(model, fam, f)
+        type(model_t), intent(inout) :: model          !! the model; out: one more family slot, switched on
+        class(element_family_t), intent(in) :: fam     !! the family
+        integer, intent(out) :: f                      !! its number in the model
+        type(family_slot_t), allocatable :: slots(:)
+        logical, allocatable :: on(:)
+        integer :: i
+        f = size(model%family) + 1
+        allocate (slots(f), on(f))
+        do i = 1, f - 1
+            call move_alloc(model%family(i)%f, slots(i)%f)
+        end do
+        allocate (slots(f)%f, source=fam)
+        call move_alloc(slots, model%family)
+        on(1:f - 1) = model%family_on
+        on(f) = .true.
+        call move_alloc(on, model%family_on)
+    end subroutine model_add_family
 
     !> Active coordinates of the neutral configuration (every coordinate at
     !! its reference value).
@@ -91,7 +116,7 @@ contains
         x0 = neutral_coordinates(model)
         call kinematics_allocate(model%tree, kin)
         call partial_velocities(model%tree, x0, 0*x0, kin)
-        do f = 1, nfamilies
+        do f = 1, size(model%family)
             call model%family(f)%f%set_neutral(kin)
         end do
     end subroutine model_set_neutral
