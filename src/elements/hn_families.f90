@@ -72,9 +72,11 @@ contains
         end select
     end subroutine new_family
 
-    !> Number of the family called `name` (its first 9 characters), 0 when there is none.
+    !> Number of the family called `name`, 0 when there is none.
     pure integer function family_index(name) result(f)
         character(len=*), intent(in) :: name    !! a family name
+        f = 0
+        if (len_trim(name) > family_name_len) return
         f = findloc(family_name, name(1:min(len(name), family_name_len)), dim=1)
     end function family_index
 
