@@ -84,11 +84,7 @@ contains
         end do
     end subroutine disc_loads
 
-    !> Disc: qd = B xdot with column B_i = +-G sj_i, G mapping a motion
-    !! vector (w; v) to (L^T (v + w x (P_u - origin)); J^-1 L^T w) (P_u the
-    !! upper plate centre where the loads act; + for the upper body's
-    !! coordinates, - for the lower's); ds/dq and ds/dqd by central
-    !! differences of disc_resultants; K += B^T ds/dq B, C += B^T ds/dqd B.
+    !> K += B^T ds/dq B, C += B^T ds/dqd B of every disc (add_disc).
     pure subroutine disc_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
         class(disc_family_t), intent(in) :: this      !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree
@@ -103,38 +99,52 @@ contains
         integer, intent(out) :: idx(:)                !! scratch (unused)
         real(wp), intent(out) :: b(:)                 !! scratch (unused)
         real(wp), intent(out) :: bd(:, :)             !! scratch, (6, n)
-        integer :: e, ncol, i, m
-        real(wp) :: q(6), qd(6), l(3, 3), pup(3), ks(6, 6), cs(6, 6), dq(6), step, jinv(3, 3), pr(3)
-        real(wp) :: w(3), v(3)
+        integer :: e
         idx = 0; b = zero
         do e = 1, size(this%items)
-            associate (d => this%items(e))
-                call disc_deformation(d, kin, q, qd, l, pup)
-                do m = 1, 6
-                    dq = zero
-                    step = max(fd_rel*abs(q(m)), fd_abs_length)
-                    dq(m) = step
-                    ks(:, m) = (disc_resultants(d, q + dq, qd) - disc_resultants(d, q - dq, qd))/(2*step)
-                    step = max(fd_rel*abs(qd(m)), fd_abs_rate)
-                    dq(m) = step
-                    cs(:, m) = (disc_resultants(d, q, qd + dq) - disc_resultants(d, q, qd - dq))/(2*step)
-                end do
-                jinv = inv_left_jacobian(q(4:6))
-                pr = pup - kin%origin
-                call path_columns(tree, d%body_a, d%body_b, cols, sgn, ncol)
-            end associate
-            do i = 1, ncol
-                w = kin%sj(1:3, cols(i))
-                v = kin%sj(4:6, cols(i)) + cross(w, pr)
-                bd(1:3, i) = sgn(i)*matmul(v, l)
-                bd(4:6, i) = sgn(i)*matmul(jinv, matmul(w, l))
-            end do
-            kgen(cols(1:ncol), cols(1:ncol)) = kgen(cols(1:ncol), cols(1:ncol)) + &
-                                               matmul(transpose(bd(:, 1:ncol)), matmul(ks, bd(:, 1:ncol)))
-            cgen(cols(1:ncol), cols(1:ncol)) = cgen(cols(1:ncol), cols(1:ncol)) + &
-                                               matmul(transpose(bd(:, 1:ncol)), matmul(cs, bd(:, 1:ncol)))
+            call add_disc(this%items(e), tree, kin, kgen, cgen, cols, sgn, bd)
         end do
     end subroutine disc_tangent
+
+    !> Disc: qd = B xdot with column B_i = +-G sj_i, G mapping a motion
+    !! vector (w; v) to (L^T (v + w x (P_u - origin)); J^-1 L^T w) (P_u the
+    !! upper plate centre where the loads act; + for the upper body's
+    !! coordinates, - for the lower's); ds/dq and ds/dqd by central
+    !! differences of disc_resultants.
+    pure subroutine add_disc(d, tree, kin, kgen, cgen, cols, sgn, b)
+        type(disc_t), intent(in) :: d
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        real(wp), intent(inout) :: kgen(:, :), cgen(:, :)
+        integer, intent(out) :: cols(:), sgn(:)   ! scratch, at least n long
+        real(wp), intent(out) :: b(:, :)           ! scratch, (6, n)
+        integer :: ncol, i, m
+        real(wp) :: q(6), qd(6), l(3, 3), pup(3), ks(6, 6), cs(6, 6), dq(6), step, jinv(3, 3), pr(3)
+        real(wp) :: w(3), v(3)
+        call disc_deformation(d, kin, q, qd, l, pup)
+        do m = 1, 6
+            dq = zero
+            step = max(fd_rel*abs(q(m)), fd_abs_length)
+            dq(m) = step
+            ks(:, m) = (disc_resultants(d, q + dq, qd) - disc_resultants(d, q - dq, qd))/(2*step)
+            step = max(fd_rel*abs(qd(m)), fd_abs_rate)
+            dq(m) = step
+            cs(:, m) = (disc_resultants(d, q, qd + dq) - disc_resultants(d, q, qd - dq))/(2*step)
+        end do
+        jinv = inv_left_jacobian(q(4:6))
+        pr = pup - kin%origin
+        call path_columns(tree, d%body_a, d%body_b, cols, sgn, ncol)
+        do i = 1, ncol
+            w = kin%sj(1:3, cols(i))
+            v = kin%sj(4:6, cols(i)) + cross(w, pr)
+            b(1:3, i) = sgn(i)*matmul(v, l)
+            b(4:6, i) = sgn(i)*matmul(jinv, matmul(w, l))
+        end do
+        kgen(cols(1:ncol), cols(1:ncol)) = kgen(cols(1:ncol), cols(1:ncol)) + &
+                                           matmul(transpose(b(:, 1:ncol)), matmul(ks, b(:, 1:ncol)))
+        cgen(cols(1:ncol), cols(1:ncol)) = cgen(cols(1:ncol), cols(1:ncol)) + &
+                                           matmul(transpose(b(:, 1:ncol)), matmul(cs, b(:, 1:ncol)))
+    end subroutine add_disc
 
     !> Discs never switch.
     pure integer function disc_switch_count(this) result(n)
