@@ -9,6 +9,8 @@ module hn_forces
     use hn_loads, only: body_loads_t, loads_clear
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
     use hn_rotation, only: cross
+    use hn_element_family, only: family_work_t
+    use hn_line_elements, only: max_via
     implicit none
     private
 
@@ -18,6 +20,7 @@ module hn_forces
     !> The outputs of one family's elements.
     type :: family_values_t
         real(wp), allocatable :: v(:, :)            !! (ncomp, count) what the family's add_loads returns
+        type(family_work_t) :: work                 !! its scratch, kept between evaluations
     end type family_values_t
 
     !> What each element does at the current instant.
@@ -43,6 +46,7 @@ contains
         do f = 1, size(model%family)
             associate (fam => model%family(f)%f)
                 allocate (eo%fam(f)%v(fam%ncomp(), fam%count()))
+                allocate (eo%fam(f)%work%g(fam%count()), eo%fam(f)%work%seg(max_via + 1, fam%count()))
             end associate
             eo%fam(f)%v = zero
         end do
@@ -70,7 +74,7 @@ contains
 
         do f = 1, size(model%family)
             if (model%family_on(f)) call model%family(f)%f%add_loads(t, kin, x, xd, loads, eo%fam(f)%v, &
-                                                                     eo%u_elastic, eo%p_diss, eo%p_muscle)
+                                                                     eo%fam(f)%work, eo%u_elastic, eo%p_diss, eo%p_muscle)
         end do
         do e = 1, size(model%applied)
             associate (al => model%applied(e))

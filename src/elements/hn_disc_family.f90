@@ -8,7 +8,8 @@ module hn_disc_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_discs, only: disc_t, apply_disc, disc_set_reference, disc_deformation, disc_resultants, inv_left_jacobian
-    use hn_element_family, only: element_family_t, family_channel_t, element_table_t, table_data_t, max_family_items, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
+                                 max_family_items, &
                                  item_len, warning_len, fd_rel, fd_abs_length, fd_abs_rate, path_columns, check_point, &
                                  check_range
     implicit none
@@ -64,7 +65,7 @@ contains
     end subroutine disc_neutral
 
     !> Loads of every disc; outputs their resultants.
-    pure subroutine disc_loads(this, t, kin, x, xd, loads, out, u_elastic, p_diss, p_muscle)
+    pure subroutine disc_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
         class(disc_family_t), intent(in) :: this      !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -72,6 +73,7 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
         type(body_loads_t), intent(inout) :: loads    !! loads, the discs' added
         real(wp), intent(inout) :: out(:, :)          !! (6, nd) resultants
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         real(wp), intent(inout) :: u_elastic          !! stored energy [J]
         real(wp), intent(inout) :: p_diss             !! dissipated power [W]
         real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)

@@ -24,7 +24,7 @@ module hn_element_family
     implicit none
     private
 
-    public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t
+    public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
     public :: path_columns, add_warning, check_point, check_range, line_columns, add_line_tangent
 
     integer, parameter, public :: max_family_items = 6   !! most properties a family has to scale
@@ -36,6 +36,13 @@ module hn_element_family
     !! are smooth on that scale; a kink inside the interval gives the mean slope).
     real(wp), parameter, public :: fd_rel = 1.0e-6_wp
     real(wp), parameter, public :: fd_abs_length = 1.0e-9_wp, fd_abs_rate = 1.0e-6_wp
+
+    !> Scratch of a family's loads kept between evaluations (sized once,
+    !! by element_output_allocate): the line elements' geometry.
+    type :: family_work_t
+        type(line_geometry_t), allocatable :: g(:)        !! (count) geometry of each line element
+        type(line_geometry_t), allocatable :: seg(:, :)   !! (max_via + 1, count) segments of muscle paths
+    end type family_work_t
 
     !> One channel a family defines: its value is output (comp, item) of the family.
     type :: family_channel_t
@@ -105,8 +112,8 @@ module hn_element_family
         end subroutine neutral_sub
 
         !> Add the family's loads at time t to the body loads and generalized forces.
-        pure subroutine loads_sub(this, t, kin, x, xd, loads, out, u_elastic, p_diss, p_muscle)
-            import :: element_family_t, kinematics_t, body_loads_t, wp
+        pure subroutine loads_sub(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+            import :: element_family_t, kinematics_t, body_loads_t, wp, family_work_t
             class(element_family_t), intent(in) :: this      !! the family
             real(wp), intent(in) :: t                        !! time [s]
             type(kinematics_t), intent(in) :: kin            !! kinematics at (x, xd)
@@ -114,6 +121,7 @@ module hn_element_family
             real(wp), intent(in) :: xd(:)                    !! their rates [m/s, rad/s]
             type(body_loads_t), intent(inout) :: loads       !! loads, the family's added
             real(wp), intent(inout) :: out(:, :)             !! (ncomp, count) the elements' outputs
+            type(family_work_t), intent(inout) :: work       !! scratch sized for the family
             real(wp), intent(inout) :: u_elastic             !! stored energy, the family's added [J]
             real(wp), intent(inout) :: p_diss                !! dissipated power, the family's added [W]
             real(wp), intent(inout) :: p_muscle              !! power absorbed by muscles, the family's added [W]

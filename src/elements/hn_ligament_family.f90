@@ -8,7 +8,7 @@ module hn_ligament_family
     use hn_tree, only: body_tree_t
     use hn_line_elements, only: ligament_t, line_geometry_t, line_geometries, ligament_tension, ligament_energy, &
                                 apply_line_tensions, set_neutral_lengths, max_via
-    use hn_element_family, only: element_family_t, family_channel_t, element_table_t, max_family_items, item_len, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, check_range, &
                                  line_columns, add_line_tangent
     implicit none
@@ -60,7 +60,7 @@ contains
     end subroutine ligament_neutral
 
     !> Tensions of every ligament applied to its bodies; stored energy.
-    pure subroutine ligament_loads(this, t, kin, x, xd, loads, out, u_elastic, p_diss, p_muscle)
+    pure subroutine ligament_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
         class(ligament_family_t), intent(in) :: this  !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -68,15 +68,17 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
         type(body_loads_t), intent(inout) :: loads    !! loads, the ligaments' added
         real(wp), intent(inout) :: out(:, :)          !! (2, nl) tension [N], length [m]
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         real(wp), intent(inout) :: u_elastic          !! stored energy [J]
         real(wp), intent(inout) :: p_diss             !! dissipated power [W] (none here)
         real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
-        type(line_geometry_t) :: gl(size(this%items))
-        call line_geometries(kin, this%items, gl)
-        out(1, :) = ligament_tension(this%items, gl%length)
-        out(2, :) = gl%length
-        call apply_line_tensions(loads, kin, this%items, gl, out(1, :))
-        u_elastic = u_elastic + sum(ligament_energy(this%items, gl%length))
+        associate (gl => work%g)
+            call line_geometries(kin, this%items, gl)
+            out(1, :) = ligament_tension(this%items, gl%length)
+            out(2, :) = gl%length
+            call apply_line_tensions(loads, kin, this%items, gl, out(1, :))
+            u_elastic = u_elastic + sum(ligament_energy(this%items, gl%length))
+        end associate
     end subroutine ligament_loads
 
     !> K += (dT/dL) b b^T of every ligament (b = dL/dxdot; no damping).

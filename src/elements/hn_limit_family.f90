@@ -8,7 +8,7 @@ module hn_limit_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_joint_limits, only: joint_limit_t, joint_range_t, limit_force, range_moment, range_energy
-    use hn_element_family, only: element_family_t, family_channel_t, element_table_t, max_family_items, item_len, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_range
     implicit none
     private
@@ -60,7 +60,7 @@ contains
     end subroutine limit_neutral
 
     !> Damper forces and range moments on their coordinates; dissipated power, stored energy.
-    pure subroutine limit_loads(this, t, kin, x, xd, loads, out, u_elastic, p_diss, p_muscle)
+    pure subroutine limit_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
         class(limit_family_t), intent(in) :: this     !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -68,6 +68,7 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
         type(body_loads_t), intent(inout) :: loads    !! generalized forces, the family's added
         real(wp), intent(inout) :: out(:, :)          !! (1, nlim) damper forces [N or N m]
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         real(wp), intent(inout) :: u_elastic          !! stored energy [J]
         real(wp), intent(inout) :: p_diss             !! dissipated power [W]
         real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)

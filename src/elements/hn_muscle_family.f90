@@ -13,7 +13,7 @@ module hn_muscle_family
     use hn_muscle, only: activation_t, activation_value
     use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
                                 apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
-    use hn_element_family, only: element_family_t, family_channel_t, element_table_t, max_family_items, item_len, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, check_range, &
                                  line_columns, add_line_tangent
     implicit none
@@ -85,7 +85,7 @@ contains
     end subroutine muscle_neutral
 
     !> Tensions along every muscle's path; power absorbed.
-    pure subroutine muscle_loads(this, t, kin, x, xd, loads, out, u_elastic, p_diss, p_muscle)
+    pure subroutine muscle_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
         class(muscle_family_t), intent(in) :: this    !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -93,19 +93,21 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
         type(body_loads_t), intent(inout) :: loads    !! loads, the muscles' added
         real(wp), intent(inout) :: out(:, :)          !! (3, nm) tension [N], length [m], activation
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         real(wp), intent(inout) :: u_elastic          !! stored energy [J] (none here)
         real(wp), intent(inout) :: p_diss             !! dissipated power [W] (none here)
         real(wp), intent(inout) :: p_muscle           !! power absorbed by the muscles [W]
-        type(line_geometry_t) :: gm(size(this%items)), gseg(max_via + 1, size(this%items))
         integer :: e
-        call muscle_geometries(kin, this%items, gm, gseg)
-        do e = 1, size(this%items)
-            out(3, e) = muscle_activation(this, e, t)
-        end do
-        out(1, :) = muscle_tension(this%items, gm%length, gm%rate, out(3, :))
-        out(2, :) = gm%length
-        call apply_muscle_tensions(loads, kin, this%items, gseg, out(1, :))
-        p_muscle = p_muscle + sum(out(1, :)*gm%rate)
+        associate (gm => work%g)
+            call muscle_geometries(kin, this%items, gm, work%seg)
+            do e = 1, size(this%items)
+                out(3, e) = muscle_activation(this, e, t)
+            end do
+            out(1, :) = muscle_tension(this%items, gm%length, gm%rate, out(3, :))
+            out(2, :) = gm%length
+            call apply_muscle_tensions(loads, kin, this%items, work%seg, out(1, :))
+            p_muscle = p_muscle + sum(out(1, :)*gm%rate)
+        end associate
     end subroutine muscle_loads
 
     !> K += (dT/dL) b b^T, C += (dT/dL') b b^T of every muscle along its path.

@@ -8,7 +8,7 @@ module hn_spring_family
     use hn_tree, only: body_tree_t
     use hn_line_elements, only: spring_t, line_geometry_t, line_geometries, spring_tension, spring_energy, &
                                 apply_line_tensions, set_neutral_lengths, max_via
-    use hn_element_family, only: element_family_t, family_channel_t, element_table_t, max_family_items, item_len, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, line_columns, &
                                  add_line_tangent
     implicit none
@@ -58,7 +58,7 @@ contains
     end subroutine spring_neutral
 
     !> Tensions of every spring applied to its bodies; stored energy, dissipated power.
-    pure subroutine spring_loads(this, t, kin, x, xd, loads, out, u_elastic, p_diss, p_muscle)
+    pure subroutine spring_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
         class(spring_family_t), intent(in) :: this    !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -66,15 +66,17 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
         type(body_loads_t), intent(inout) :: loads    !! loads, the springs' added
         real(wp), intent(inout) :: out(:, :)          !! (1, ns) tension [N]
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         real(wp), intent(inout) :: u_elastic          !! stored energy [J]
         real(wp), intent(inout) :: p_diss             !! dissipated power [W]
         real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
-        type(line_geometry_t) :: gs(size(this%items))
-        call line_geometries(kin, this%items, gs)
-        out(1, :) = spring_tension(this%items, gs%length, gs%rate)
-        call apply_line_tensions(loads, kin, this%items, gs, out(1, :))
-        u_elastic = u_elastic + sum(spring_energy(this%items, gs%length))
-        p_diss = p_diss + sum(this%items%damping*gs%rate**2)
+        associate (gs => work%g)
+            call line_geometries(kin, this%items, gs)
+            out(1, :) = spring_tension(this%items, gs%length, gs%rate)
+            call apply_line_tensions(loads, kin, this%items, gs, out(1, :))
+            u_elastic = u_elastic + sum(spring_energy(this%items, gs%length))
+            p_diss = p_diss + sum(this%items%damping*gs%rate**2)
+        end associate
     end subroutine spring_loads
 
     !> K += (dT/dL) b b^T, C += (dT/dL') b b^T of every spring.

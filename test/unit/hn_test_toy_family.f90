@@ -10,7 +10,7 @@ module hn_test_toy_family
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
-    use hn_element_family, only: element_family_t, family_channel_t, element_table_t, max_family_items, item_len, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, check_range
     implicit none
     private
@@ -66,7 +66,7 @@ contains
     end subroutine toy_neutral
 
     !> Q_j = -k (x_j - x0) - c xdot_j; energy k d^2 / 2, dissipation c xdot^2.
-    pure subroutine toy_loads(this, t, kin, x, xd, loads, out, u_elastic, p_diss, p_muscle)
+    pure subroutine toy_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
         class(coord_spring_family_t), intent(in) :: this   !! the family
         real(wp), intent(in) :: t                          !! time [s]
         type(kinematics_t), intent(in) :: kin              !! kinematics (unused)
@@ -74,6 +74,7 @@ contains
         real(wp), intent(in) :: xd(:)                      !! their rates
         type(body_loads_t), intent(inout) :: loads         !! generalized forces, the springs' added
         real(wp), intent(inout) :: out(:, :)               !! (1, n) generalized forces
+        type(family_work_t), intent(inout) :: work         !! scratch (unused)
         real(wp), intent(inout) :: u_elastic               !! stored energy [J]
         real(wp), intent(inout) :: p_diss                  !! dissipated power [W]
         real(wp), intent(inout) :: p_muscle                !! muscle power [W] (none)
