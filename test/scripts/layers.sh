@@ -67,7 +67,8 @@ fi
 
 # the check must fail on a tree with one upward use: hn_kinds (base) using hn_run (run)
 cp -r src "$tmp/src"
-sed 's/^module hn_kinds$/module hn_kinds\n    use hn_run, only: run_state_t/' src/base/hn_kinds.f90 > "$tmp/src/base/hn_kinds.f90"
+awk '{ print } /^module hn_kinds$/ { print "    use hn_run, only: run_state_t" }' src/base/hn_kinds.f90 \
+    > "$tmp/src/base/hn_kinds.f90"
 if check "$tmp/src" docs/architecture.md > "$tmp/report2" 2>&1; then
     echo "FAIL  the check passed a tree where base/hn_kinds uses run/hn_run"
     fail=$((fail + 1))
