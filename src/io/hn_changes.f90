@@ -20,7 +20,8 @@
 module hn_changes
     use hn_kinds, only: wp, zero, msglen
     use hn_deck_reader, only: deck_reader_t, locate_field, field_text, int_str, nfields, parse_real, upper
-    use hn_model, only: model_t, family_name, family_items, family_items_text, scale_family, max_family_items
+    use hn_model, only: model_t, family_items, family_items_text, scale_family, max_family_items
+    use hn_families, only: family_index, family_names_text
     use hn_tree, only: tree_build
     implicit none
     private
@@ -289,10 +290,10 @@ contains
             associate (c => changes(k), i => changes(k)%line)
                 select case (c%kind)
                 case (kind_family)
-                    fam = findloc(family_name, c%target(1:min(len(c%target), len(family_name))), dim=1)
+                    fam = family_index(c%target)
                     if (fam == 0) then
                         call rd%fail(rd%context(i, 3, 'target')//': found "'//trim(c%target)// &
-                                     '"; expected DISCS, LIGAMENTS, MUSCLES, LIMITS or SPRINGS')
+                                     '"; expected '//family_names_text())
                         return
                     end if
                     items = family_items(fam)

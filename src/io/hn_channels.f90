@@ -6,7 +6,9 @@
 !! Every channel is one descriptor (name, unit, listing group, and how it is
 !! computed: a quantity code with an item and a component); the fixed
 !! channels are one table below, the per-body and per-element channels are
-!! made by one loop each. Adding a channel of an existing quantity is one
+!! made by one loop over the bodies and one over the element families (each
+!! family's `channels` binding names its channels; their values are the
+!! family's outputs). Adding a channel of an existing quantity is one
 !! line; a new quantity is one line in the table plus one case in
 !! `channel_value`. Other code finds channels by name (`channel_index`).
 !!
@@ -20,8 +22,7 @@ module hn_channels
     use hn_kinematics, only: body_accelerations
     use hn_applied, only: applied_vector, applied_couple
     use hn_rotation, only: cross
-    use hn_model, only: fam_discs, fam_ligaments, fam_muscles, fam_limits
-    use hn_line_elements, only: muscle_hill
+    use hn_element_family, only: family_channel_t
     implicit none
     private
 
@@ -44,10 +45,7 @@ module hn_channels
     integer, parameter :: q_oc_force = 11     !! head-on-neck force at the OC, head axis `comp` [N]
     integer, parameter :: q_oc_moment = 12    !! head-on-neck moment at the OC, head axis `comp` [N m]
     integer, parameter :: q_joint_rot = 13    !! Bryant angle `comp` (4..6) of body `item` [deg]
-    integer, parameter :: q_disc = 14         !! resultant `comp` of disc `item` (1 shear x, 3 axial, 5 moment y)
-    integer, parameter :: q_ligament = 15     !! tension of ligament `item` [N]
-    integer, parameter :: q_muscle = 16       !! tension (comp 1) [N] or activation (comp 3) of muscle `item`
-    integer, parameter :: q_limit = 17        !! generalized force of joint-limit damper `item` [N or N m]
+    integer, parameter :: q_element = 14      !! output `comp` of element `item` of family `family`
     integer, parameter :: q_energy = 18       !! energy term `comp` (e_* below) [J]
 
     integer, parameter :: e_kinetic = 1, e_gravity = 2, e_elastic = 3, e_hold = 4, e_dissip = 5, &
@@ -61,6 +59,7 @@ module hn_channels
         integer :: quantity = 0   !! a q_* code
         integer :: item = 0       !! body or element number, where the quantity needs one
         integer :: comp = 0       !! axis, resultant or term number, where the quantity needs one
+        integer :: family = 0     !! element family (q_element)
     end type channel_t
 
     !> The channels of a run and their current values.
@@ -141,11 +140,10 @@ contains
         type(case_t), intent(in) :: cs          !! the case (its model's bodies and elements)
         type(channel_set_t), intent(out) :: ch  !! the channels, values zero
         type(channel_t), allocatable :: c(:)
-        integer :: k, e, m, n
+        type(family_channel_t), allocatable :: fc(:)
+        integer :: k, e, m, n, f
         associate (model => cs%model, tree => cs%model%tree)
-            n = size(fixed_channels) + 3*(tree%nbody - 1) + 3*size(model%discs) + size(model%ligaments) + &
-                size(model%muscles) + count(model%muscles%law == muscle_hill) + size(model%limits) + &
-                size(energy_channels)
+            n = size(fixed_channels) + 3*(tree%nbody - 1) + size(energy_channels)
             allocate (c(n))
             n = size(fixed_channels)
             c(1:n) = fixed_channels
@@ -156,28 +154,11 @@ contains
                                        q_joint_rot, k, m))
                 end do
             end do
-            do e = 1, size(model%discs)
-                call add(channel_t(trim(model%discs(e)%name)//'_P', 'N', 'DISC AXIAL', q_disc, e, 3))
-            end do
-            do e = 1, size(model%discs)
-                call add(channel_t(trim(model%discs(e)%name)//'_VX', 'N', 'DISC SHEAR X', q_disc, e, 1))
-            end do
-            do e = 1, size(model%discs)
-                call add(channel_t(trim(model%discs(e)%name)//'_MY', 'N m', 'DISC MOMENT Y', q_disc, e, 5))
-            end do
-            do e = 1, size(model%ligaments)
-                call add(channel_t(model%ligaments(e)%name, 'N', 'LIGAMENTS', q_ligament, e, 0))
-            end do
-            do e = 1, size(model%muscles)
-                call add(channel_t(model%muscles(e)%name, 'N', 'MUSCLES', q_muscle, e, 1))
-                if (model%muscles(e)%law == muscle_hill) &
-                    call add(channel_t('A_'//model%muscles(e)%name, '-', 'MUSCLE ACTIVATION', q_muscle, e, 3))
-            end do
-            do e = 1, size(model%limits)
-                k = model%limits(e)%body
-                m = model%limits(e)%local
-                call add(channel_t('L_'//trim(tree%name(k))//'_'//coord_names(m), merge('N  ', 'N m', m <= 3), &
-                                   'JOINT LIMITS', q_limit, e, m))
+            do f = 1, size(model%family)
+                fc = model%family(f)%f%channels(tree)
+                c = [c(1:n), [(channel_t(fc(e)%name, fc(e)%units, fc(e)%group, q_element, fc(e)%item, fc(e)%comp, f), &
+                              e=1, size(fc))], c(n + 1:)]
+                n = n + size(fc)
             end do
         end associate
         c(n + 1:) = energy_channels
@@ -253,10 +234,7 @@ contains
                 else
                     v = model%tree%q_ref(c%comp, c%item)/deg
                 end if
-            case (q_disc); v = merge(ws%eo%disc(c%comp, c%item), zero, model%family_on(fam_discs))
-            case (q_ligament); v = merge(ws%eo%ligament(1, c%item), zero, model%family_on(fam_ligaments))
-            case (q_muscle); v = merge(ws%eo%muscle(c%comp, c%item), zero, model%family_on(fam_muscles))
-            case (q_limit); v = merge(ws%eo%limit(c%item), zero, model%family_on(fam_limits))
+            case (q_element); v = merge(ws%eo%fam(c%family)%v(c%comp, c%item), zero, model%family_on(c%family))
             case (q_energy); v = energy_value(en, c%comp, ch%e0)
             case default; v = zero
             end select

@@ -7,8 +7,15 @@ module hn_deck
     use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
-    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_name, family_items, family_items_text, &
-                        scale_family, max_family_items
+    use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_items, family_items_text, &
+                        scale_family, max_family_items, model_set_family
+    use hn_families, only: nfamilies, family_name, family_index, card_continuations, fam_discs, fam_ligaments, &
+                           fam_muscles, fam_limits, fam_springs
+    use hn_disc_family, only: disc_family_t
+    use hn_ligament_family, only: ligament_family_t
+    use hn_muscle_family, only: muscle_family_t
+    use hn_limit_family, only: limit_family_t
+    use hn_spring_family, only: spring_family_t
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic, motion_eval
     use hn_tables, only: table_t, table_set
     use hn_discs, only: disc_t
@@ -250,9 +257,10 @@ contains
     !> Number of continuation cards a card type takes (-1: computed, TABLE).
     pure integer function continuations(key) result(n)
         character(len=*), intent(in) :: key
+        n = card_continuations(key)     ! an element family's card: the registry's count
+        if (n >= 0) return
         select case (key)
-        case ('DISC'); n = 2
-        case ('LIGAMENT', 'MUSCLE', 'SPRING', 'FORCE', 'HILL', 'ACTIVATE'); n = 1
+        case ('FORCE'); n = 1
         case ('TABLE'); n = -1
         case default; n = 0
         end select
@@ -1328,8 +1336,15 @@ contains
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         type(named_table_t), intent(in) :: tabs(:)
-        integer :: k, i, ninternal, nlimdrop, it, nel(6)
+        integer :: k, i, ninternal, nlimdrop, it
+        integer :: nel(nfamilies)       !! elements so far of each family
+        integer :: njoint(2)            !! joint-limit dampers and ranges of motion so far
         logical :: keep
+        type(disc_family_t) :: df
+        type(ligament_family_t) :: lf
+        type(muscle_family_t) :: mf
+        type(limit_family_t) :: jf
+        type(spring_family_t) :: sf
         type(disc_t) :: d
         character(len=100) :: note
         type(ligament_t) :: g
@@ -1338,29 +1353,28 @@ contains
 
         ninternal = 0
         nlimdrop = 0
-        call activation_cards(rd, cards, cs)
+        call activation_cards(rd, cards, cs, mf%activations)
         if (rd%failed()) return
         ! room for every element card, trimmed at the end (appending one by one is quadratic)
-        deallocate (cs%model%discs, cs%model%ligaments, cs%model%muscles, cs%model%springs, cs%model%limits, &
-                    cs%model%ranges)
-        allocate (cs%model%discs(count(cards%key == 'DISC')), cs%model%ligaments(count(cards%key == 'LIGAMENT')), &
-                  cs%model%muscles(count(cards%key == 'MUSCLE' .or. cards%key == 'HILL')), &
-                  cs%model%springs(count(cards%key == 'SPRING')), cs%model%limits(count(cards%key == 'LIMIT')), &
-                  cs%model%ranges(count(cards%key == 'ROM')))
+        allocate (df%items(count(cards%key == 'DISC')), lf%items(count(cards%key == 'LIGAMENT')), &
+                  mf%items(count(cards%key == 'MUSCLE' .or. cards%key == 'HILL')), &
+                  sf%items(count(cards%key == 'SPRING')), jf%items(count(cards%key == 'LIMIT')), &
+                  jf%ranges(count(cards%key == 'ROM')), mf%tables(0))
         nel = 0
+        njoint = 0
         do k = 1, size(cards)
             i = cards(k)%first
             select case (cards(k)%key)
             case ('DISC')
                 call disc_card(rd, i, bnames, bmap, ninternal, d, keep)
-                if (keep) call append(1)
+                if (keep) call append(fam_discs)
             case ('LIGAMENT')
                 g = ligament_t()
                 call line_card(rd, i, 'ligament', g%line_attach_t, i, 7, keep)
                 call rd%real(i, 4, 'l1', 'N/m', g%l1, zero, big_modulus)
                 call rd%real(i, 5, 'l2', 'N/m^n', g%l2, zero, 1.0e30_wp)
                 call rd%real(i, 6, 'exponent n', '-', g%n, one, 10.0_wp, default=2.0_wp)
-                if (keep .and. .not. rd%failed()) call append(2)
+                if (keep .and. .not. rd%failed()) call append(fam_ligaments)
             case ('MUSCLE')
                 mu = muscle_t()
                 call line_card(rd, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
@@ -1370,42 +1384,42 @@ contains
                 if (.not. rd%is_blank(i, 7)) then
                     it = table_ref(rd, i, 7, tabs)
                     if (.not. rd%failed()) then
-                        cs%model%tables = [cs%model%tables, tabs(it)%tab]
-                        mu%activation = size(cs%model%tables)
+                        mf%tables = [mf%tables, tabs(it)%tab]
+                        mu%activation = size(mf%tables)
                     end if
                 end if
-                if (keep .and. .not. rd%failed()) call append(3)
+                if (keep .and. .not. rd%failed()) call append(fam_muscles)
             case ('HILL')
                 mu = muscle_t(law=muscle_hill)
                 call line_card(rd, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
                 call rd%real(i, 4, 'maximum isometric force F0', 'N', mu%hill%f0, zero, 1.0e5_wp)
                 call rd%real(i, 5, 'optimal fibre length', 'm', mu%hill%lopt, 1.0e-3_wp, one)
-                if (.not. rd%is_blank(i, 6)) mu%history = history_ref(rd, i, 6, cs%model%activations)
+                if (.not. rd%is_blank(i, 6)) mu%history = history_ref(rd, i, 6, mf%activations)
                 if (mu%history > 0) then
-                    mu%hill%srs_q = cs%model%activations(mu%history)%srs_q
-                    mu%hill%srs_range = cs%model%activations(mu%history)%srs_range
+                    mu%hill%srs_q = mf%activations(mu%history)%srs_q
+                    mu%hill%srs_range = mf%activations(mu%history)%srs_range
                 end if
                 call rd%real(i, 7, 'damping', 'N s/m', mu%hill%damping, zero, 1.0e5_wp, default=zero)
-                if (keep .and. .not. rd%failed()) call append(3)
+                if (keep .and. .not. rd%failed()) call append(fam_muscles)
             case ('SPRING')
                 sp = spring_t()
                 call line_card(rd, i, 'spring', sp%line_attach_t, i, 6, keep)
                 call rd%real(i, 4, 'stiffness', 'N/m', sp%stiffness, zero, big_modulus)
                 call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
-                if (keep .and. .not. rd%failed()) call append(4)
+                if (keep .and. .not. rd%failed()) call append(fam_springs)
             case ('LIMIT', 'ROM')
-                call joint_card(rd, i, cs, bnames, bmap, nlimdrop, nel(5:6))
+                call joint_card(rd, i, cs, bnames, bmap, nlimdrop, jf, njoint)
             case ('FAMILY')
                 call family_card(rd, i, cs)
             end select
             if (rd%failed()) return
         end do
-        cs%model%discs = cs%model%discs(1:nel(1))
-        cs%model%ligaments = cs%model%ligaments(1:nel(2))
-        cs%model%muscles = cs%model%muscles(1:nel(3))
-        cs%model%springs = cs%model%springs(1:nel(4))
-        cs%model%limits = cs%model%limits(1:nel(5))
-        cs%model%ranges = cs%model%ranges(1:nel(6))
+        df%items = df%items(1:nel(fam_discs))
+        lf%items = lf%items(1:nel(fam_ligaments))
+        mf%items = mf%items(1:nel(fam_muscles))
+        jf%items = jf%items(1:njoint(1))
+        jf%ranges = jf%ranges(1:njoint(2))
+        sf%items = sf%items(1:nel(fam_springs))
         if (ninternal > 0) then
             write (note, '(i0,a)') ninternal, ' ELEMENTS DROPPED: BOTH ENDS ON ONE MERGED BODY'
             call add_scene_note(cs, note)
@@ -1415,23 +1429,28 @@ contains
             call add_scene_note(cs, note)
         end if
         do k = 1, size(cards)
-            if (cards(k)%key == 'VIA') call via_card(rd, cards, cards(k)%first, cs, bnames, bmap)
+            if (cards(k)%key == 'VIA') call via_card(rd, cards, cards(k)%first, mf%items, bnames, bmap)
             if (rd%failed()) return
         end do
+        call model_set_family(cs%model, fam_discs, df)
+        call model_set_family(cs%model, fam_ligaments, lf)
+        call model_set_family(cs%model, fam_muscles, mf)
+        call model_set_family(cs%model, fam_limits, jf)
+        call model_set_family(cs%model, fam_springs, sf)
         do k = 1, size(cards)
             if (cards(k)%key == 'SCALE') call scale_card(rd, cards(k)%first, cs)
             if (rd%failed()) return
         end do
     contains
-        !> Put the element just read into slot nel(kind) + 1 of its list.
-        subroutine append(kind)
-            integer, intent(in) :: kind
-            nel(kind) = nel(kind) + 1
-            select case (kind)
-            case (1); cs%model%discs(nel(1)) = d
-            case (2); cs%model%ligaments(nel(2)) = g
-            case (3); cs%model%muscles(nel(3)) = mu
-            case (4); cs%model%springs(nel(4)) = sp
+        !> Put the element just read into place nel(f) + 1 of family f's list.
+        subroutine append(f)
+            integer, intent(in) :: f
+            nel(f) = nel(f) + 1
+            select case (f)
+            case (fam_discs); df%items(nel(f)) = d
+            case (fam_ligaments); lf%items(nel(f)) = g
+            case (fam_muscles); mf%items(nel(f)) = mu
+            case (fam_springs); sf%items(nel(f)) = sp
             end select
         end subroutine append
 
@@ -1471,11 +1490,11 @@ contains
     !! HILL card of that name), in order from body a to body b, moved onto
     !! a merged body as the muscle's ends are; a VIA card of a muscle the
     !! scene dropped is dropped with it.
-    subroutine via_card(rd, cards, i, cs, bnames, bmap)
+    subroutine via_card(rd, cards, i, muscles, bnames, bmap)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         integer, intent(in) :: i
-        type(case_t), intent(inout) :: cs
+        type(muscle_t), intent(inout) :: muscles(:)
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         character(len=10) :: nm, other
@@ -1488,8 +1507,8 @@ contains
             call rd%real(i, 2 + f, 'via point', 'm', p(f), -big_length, big_length)
         end do
         if (rd%failed()) return
-        do e = size(cs%model%muscles), 1, -1       ! (a loop: no temporary of the name component)
-            if (cs%model%muscles(e)%name == nm) exit
+        do e = size(muscles), 1, -1       ! (a loop: no temporary of the name component)
+            if (muscles(e)%name == nm) exit
         end do
         if (e == 0) then
             defined = .false.
@@ -1502,7 +1521,7 @@ contains
                                             '"; expected the name of a MUSCLE or HILL card')
             return
         end if
-        associate (m => cs%model%muscles(e))
+        associate (m => muscles(e))
             if (m%nvia == max_via) then
                 call rd%fail(rd%context(i, 1, 'muscle name')//': muscle "'//trim(nm)//'" has '// &
                              trim(int_str(max_via))//' via points already; expected at most '// &
@@ -1523,12 +1542,14 @@ contains
     !! onset is the sled pulse onset: the first time the prescribed
     !! translational acceleration of the root body exceeds 1 g (never, when
     !! it does not).
-    subroutine activation_cards(rd, cards, cs)
+    subroutine activation_cards(rd, cards, cs, activations)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
-        type(case_t), intent(inout) :: cs
+        type(case_t), intent(in) :: cs
+        type(activation_t), allocatable, intent(out) :: activations(:)
         type(activation_t) :: ah
         integer :: k, i
+        allocate (activations(0))
         do k = 1, size(cards)
             if (cards(k)%key /= 'ACTIVATE') cycle
             i = cards(k)%first
@@ -1551,7 +1572,7 @@ contains
             call rd%real(i + 1, 4, 'short-range stiffness range', 'lopt', ah%srs_range, 1.0e-4_wp, one, &
                          default=0.01_wp)
             if (rd%failed()) return
-            cs%model%activations = [cs%model%activations, ah]
+            activations = [activations, ah]
         end do
     end subroutine activation_cards
 
@@ -1657,14 +1678,15 @@ contains
     !! beyond the physiological range: rotation, range (deg), stiffness at the
     !! edge K [N m/rad], excess t0 [deg] over which it grows e-fold); dropped
     !! on a locked or merged coordinate.
-    subroutine joint_card(rd, i, cs, bnames, bmap, ndrop, nel)
+    subroutine joint_card(rd, i, cs, bnames, bmap, ndrop, jf, nel)
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i
         type(case_t), intent(inout) :: cs
         character(len=10), intent(in) :: bnames(:)
         type(body_map_t), intent(in) :: bmap
         integer, intent(inout) :: ndrop
-        integer, intent(inout) :: nel(2)              !! dampers and ranges so far in cs%model
+        type(limit_family_t), intent(inout) :: jf     !! the dampers and ranges read so far
+        integer, intent(inout) :: nel(2)              !! how many dampers and ranges
         type(joint_limit_t) :: lim
         type(joint_range_t) :: r
         integer :: kb, m, j
@@ -1697,7 +1719,7 @@ contains
             lim%xmax = lim%xmax*unit_factor(m)
             lim%xneutral = lim%xneutral*unit_factor(m)
             if (rd%failed()) return
-            nel(1) = nel(1) + 1; cs%model%limits(nel(1)) = lim
+            nel(1) = nel(1) + 1; jf%items(nel(1)) = lim
             return
         end if
         if (m <= 3) then
@@ -1718,7 +1740,7 @@ contains
         call rd%real(i, 6, 'e-fold excess t0', 'deg', r%t0, 0.01_wp, 90.0_wp, default=5.0_wp)
         if (rd%failed()) return
         r%xmin = r%xmin*deg; r%xmax = r%xmax*deg; r%t0 = r%t0*deg
-        nel(2) = nel(2) + 1; cs%model%ranges(nel(2)) = r
+        nel(2) = nel(2) + 1; jf%ranges(nel(2)) = r
     end subroutine joint_card
 
 
@@ -1754,7 +1776,7 @@ contains
         character(len=*), intent(in) :: s
         fam = 0
         if (rd%failed()) return
-        fam = findloc(family_name, s(1:min(len(s), 9)), dim=1)
+        fam = family_index(s)
         if (fam == 0) call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
                                    join(family_name))
     end function family_ref
@@ -1769,7 +1791,7 @@ contains
         character(len=100) :: note
         call rd%name(i, 1, 'element family', s)
         if (rd%failed()) return
-        fam = findloc(family_name, s(1:9), dim=1)
+        fam = family_index(s)
         if (fam == 0) then
             call rd%fail(rd%context(i, 1, 'element family')//': found "'// &
                          trim(s)//'"; expected one of '//join(family_name))
@@ -1850,7 +1872,7 @@ contains
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
         type(case_t), intent(inout) :: cs
-        integer :: k, i, fam
+        integer :: k, i, fam, f
         real(wp) :: fac
         character(len=10) :: s
         do k = 1, size(cards)
@@ -1862,20 +1884,9 @@ contains
             fam = 0
             if (len_trim(s) > 0) fam = family_ref(rd, i, s)
             if (rd%failed()) return
-            associate (m => cs%model)
-                if (fam == 0 .or. family_name(max(fam, 1)) == 'DISCS') then
-                    m%discs%d1 = fac*m%discs%d1
-                    m%discs%d2 = fac*m%discs%d2
-                    m%discs%d2b = fac*m%discs%d2b
-                    m%discs%g = fac*m%discs%g
-                end if
-                if (fam == 0 .or. family_name(max(fam, 1)) == 'LIGAMENTS') then
-                    m%ligaments%l1 = fac*m%ligaments%l1
-                    m%ligaments%l2 = fac*m%ligaments%l2
-                end if
-                if (fam == 0 .or. family_name(max(fam, 1)) == 'MUSCLES') m%muscles%m1 = fac*m%muscles%m1
-                if (fam == 0 .or. family_name(max(fam, 1)) == 'SPRINGS') m%springs%stiffness = fac*m%springs%stiffness
-            end associate
+            do f = 1, size(cs%model%family)
+                if (fam == 0 .or. fam == f) call cs%model%family(f)%f%stiffen(fac)
+            end do
         end do
     end subroutine stiffen_cards
 

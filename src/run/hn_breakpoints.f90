@@ -19,6 +19,8 @@ module hn_breakpoints
     use hn_case, only: case_t
     use hn_motion, only: motion_kind_accel
     use hn_sorting, only: sort_index
+    use hn_families, only: fam_muscles
+    use hn_muscle_family, only: activation_tables
     implicit none
     private
 
@@ -50,9 +52,11 @@ contains
         do e = 1, size(cs%model%applied)
             all = [all, table_corners(cs%model%applied(e)%magnitude%t, cs%model%applied(e)%magnitude%y)]
         end do
-        do e = 1, size(cs%model%tables)
-            all = [all, table_corners(cs%model%tables(e)%t, cs%model%tables(e)%y)]
-        end do
+        associate (tables => activation_tables(cs%model%family(fam_muscles)%f))
+            do e = 1, size(tables)
+                all = [all, table_corners(tables(e)%t, tables(e)%y)]
+            end do
+        end associate
         all = pack(all, all > cs%t_start .and. all < cs%t_end)
         all = all(sort_index(all))   ! ascending, then drop repeats
         allocate (tb(size(all)))

@@ -14,6 +14,8 @@ module hn_run
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
                            energy_t, dynamics_outputs, inertia_forces_free
     use hn_forces, only: switch_count, switching_functions
+    use hn_families, only: fam_limits
+    use hn_limit_family, only: ranges_of
     use hn_integrators, only: integrator_t, new_integrator, spectral_radius, interpolate_hermite
     use hn_channels, only: channel_set_t, channels_define, channels_compute, channel_index
     use hn_results, only: results_t
@@ -258,7 +260,9 @@ contains
             me%tol = time_match*max(cs%sample_dt, 1.0e-6_wp)
             me%ks = 0; me%kp = 0; me%kd = 1
         end associate
-        allocate (me%rom_peak(size(me%cs%model%ranges)), me%rom_time(size(me%cs%model%ranges)))
+        associate (nrom => size(ranges_of(me%cs%model%family(fam_limits)%f)))
+            allocate (me%rom_peak(nrom), me%rom_time(nrom))
+        end associate
         me%rom_peak = zero; me%rom_time = me%cs%t_start
     end subroutine init_outputs
 
@@ -565,7 +569,7 @@ contains
         class(run_state_t), intent(inout) :: me
         real(wp), intent(in) :: t
         integer :: k
-        call range_track(me%cs%model%ranges, me%sys%ws%x, t, me%rom_peak, me%rom_time)
+        call range_track(ranges_of(me%cs%model%family(fam_limits)%f), me%sys%ws%x, t, me%rom_peak, me%rom_time)
         do k = 1, me%ch%n
             if (me%ch%value(k) > me%peaks%vmax(k)) then
                 me%peaks%vmax(k) = me%ch%value(k); me%peaks%tmax(k) = t
@@ -638,7 +642,7 @@ contains
         type(run_state_t), intent(inout) :: me
         character(len=160), allocatable :: lines(:)
         integer :: k
-        lines = range_warnings(me%cs%model%ranges, me%rom_peak, me%rom_time, range_margin)
+        lines = range_warnings(ranges_of(me%cs%model%family(fam_limits)%f), me%rom_peak, me%rom_time, range_margin)
         do k = 1, size(lines)
             call me%lst%message(lines(k))
         end do

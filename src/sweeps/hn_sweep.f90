@@ -12,7 +12,8 @@ module hn_sweep
     use hn_deck, only: read_case_lines
     use hn_changes, only: read_param_kind, kind_family, kind_body, kind_field
     use hn_tree, only: tree_build
-    use hn_model, only: model_set_neutral, family_name, family_count, family_items, family_items_text, scale_family
+    use hn_model, only: model_set_neutral, family_count, family_items, family_items_text, scale_family
+    use hn_families, only: family_index, family_names_text
     use hn_run, only: run_state_t, run_result_t, exit_deck, exit_ok
     use hn_channels, only: channel_set_t, channels_define
     use hn_filters, only: cfc_filter
@@ -327,10 +328,10 @@ contains
         at = rd%where(p%card_line)//' (PARAM '//trim(p%name)//')'
         select case (p%kind)
         case (par_family)
-            p%family = findloc(family_name, p%target, dim=1)
+            p%family = family_index(p%target)
             if (p%family == 0) then
                 call rd%fail(rd%context(p%card_line, 3, 'target')//': found "'//trim(p%target)// &
-                             '"; expected DISCS, LIGAMENTS, MUSCLES, LIMITS or SPRINGS')
+                             '"; expected '//family_names_text())
                 return
             end if
             if (.not. any(family_items(p%family) == p%item)) then

@@ -1,0 +1,277 @@
+!> The DISCS family: Timoshenko discs between vertebral plates (eqs 1-9,
+!! hn_discs), behind the element-family interface. Output per disc: the six
+!! resultants (shear x, y, axial [N], bending x, y, torque [N m]).
+module hn_disc_family
+    use hn_kinds, only: wp, zero
+    use hn_rotation, only: cross
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t
+    use hn_tree, only: body_tree_t
+    use hn_discs, only: disc_t, apply_disc, disc_set_reference, disc_deformation, disc_resultants, inv_left_jacobian
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
+                                 max_family_items, &
+                                 item_len, warning_len, fd_rel, fd_abs_length, fd_abs_rate, path_columns, check_point, &
+                                 check_range
+    implicit none
+    private
+
+    public :: disc_family_t, discs_of
+
+    real(wp), parameter :: ref_disc_axial = 5.0e5_wp      !! N/m (reference/parameters.md)
+    real(wp), parameter :: ref_disc_bending = 20.0_wp     !! N m/rad
+
+    !> The discs of a model.
+    type, extends(element_family_t) :: disc_family_t
+        type(disc_t), allocatable :: items(:)
+    contains
+        procedure :: count => disc_count
+        procedure :: ncomp => disc_ncomp
+        procedure :: set_neutral => disc_neutral
+        procedure :: add_loads => disc_loads
+        procedure :: add_tangent => disc_tangent
+        procedure :: switch_count => disc_switch_count
+        procedure :: switching => disc_switching
+        procedure :: channels => disc_channels
+        procedure :: result_table => disc_table
+        procedure :: plausibility => disc_plausibility
+        procedure :: scale_items => disc_items
+        procedure :: scale => disc_scale
+        procedure :: stiffen => disc_stiffen
+    end type disc_family_t
+
+contains
+
+    !> Number of discs.
+    pure integer function disc_count(this) result(n)
+        class(disc_family_t), intent(in) :: this   !! the family
+        n = 0
+        if (allocated(this%items)) n = size(this%items)
+    end function disc_count
+
+    !> Output rows per disc: the six resultants.
+    pure integer function disc_ncomp(this) result(n)
+        class(disc_family_t), intent(in) :: this   !! the family
+        n = 6
+    end function disc_ncomp
+
+    !> Plate frames and neutral offsets from the neutral configuration.
+    pure subroutine disc_neutral(this, kin)
+        class(disc_family_t), intent(inout) :: this   !! the family; out: disc references set
+        type(kinematics_t), intent(in) :: kin         !! kinematics of the neutral configuration
+        integer :: e
+        do e = 1, size(this%items)
+            call disc_set_reference(this%items(e), kin)
+        end do
+    end subroutine disc_neutral
+
+    !> Loads of every disc; outputs their resultants.
+    pure subroutine disc_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+        class(disc_family_t), intent(in) :: this      !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
+        real(wp), intent(in) :: x(:)                  !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
+        type(body_loads_t), intent(inout) :: loads    !! loads, the discs' added
+        real(wp), intent(inout) :: out(:, :)          !! (6, nd) resultants
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
+        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
+        real(wp), intent(inout) :: p_diss             !! dissipated power [W]
+        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        real(wp) :: u, pd
+        integer :: e
+        do e = 1, size(this%items)
+            call apply_disc(this%items(e), kin, loads, out(:, e), u, pd)
+            u_elastic = u_elastic + u
+            p_diss = p_diss + pd
+        end do
+    end subroutine disc_loads
+
+    !> K += B^T ds/dq B, C += B^T ds/dqd B of every disc (add_disc).
+    pure subroutine disc_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+        class(disc_family_t), intent(in) :: this      !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
+        real(wp), intent(in) :: t                     !! time [s]
+        real(wp), intent(in) :: x(:)                  !! active coordinates
+        real(wp), intent(in) :: xd(:)                 !! their rates
+        real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the discs' added
+        real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the discs' added
+        integer, intent(out) :: cols(:)               !! scratch
+        integer, intent(out) :: sgn(:)                !! scratch
+        integer, intent(out) :: idx(:)                !! scratch (unused)
+        real(wp), intent(out) :: b(:)                 !! scratch (unused)
+        real(wp), intent(out) :: bd(:, :)             !! scratch, (6, n)
+        integer :: e
+        idx = 0; b = zero
+        do e = 1, size(this%items)
+            call add_disc(this%items(e), tree, kin, kgen, cgen, cols, sgn, bd)
+        end do
+    end subroutine disc_tangent
+
+    !> Disc: qd = B xdot with column B_i = +-G sj_i, G mapping a motion
+    !! vector (w; v) to (L^T (v + w x (P_u - origin)); J^-1 L^T w) (P_u the
+    !! upper plate centre where the loads act; + for the upper body's
+    !! coordinates, - for the lower's); ds/dq and ds/dqd by central
+    !! differences of disc_resultants.
+    pure subroutine add_disc(d, tree, kin, kgen, cgen, cols, sgn, b)
+        type(disc_t), intent(in) :: d
+        type(body_tree_t), intent(in) :: tree
+        type(kinematics_t), intent(in) :: kin
+        real(wp), intent(inout) :: kgen(:, :), cgen(:, :)
+        integer, intent(out) :: cols(:), sgn(:)   ! scratch, at least n long
+        real(wp), intent(out) :: b(:, :)           ! scratch, (6, n)
+        integer :: ncol, i, m
+        real(wp) :: q(6), qd(6), l(3, 3), pup(3), ks(6, 6), cs(6, 6), dq(6), step, jinv(3, 3), pr(3)
+        real(wp) :: w(3), v(3)
+        call disc_deformation(d, kin, q, qd, l, pup)
+        do m = 1, 6
+            dq = zero
+            step = max(fd_rel*abs(q(m)), fd_abs_length)
+            dq(m) = step
+            ks(:, m) = (disc_resultants(d, q + dq, qd) - disc_resultants(d, q - dq, qd))/(2*step)
+            step = max(fd_rel*abs(qd(m)), fd_abs_rate)
+            dq(m) = step
+            cs(:, m) = (disc_resultants(d, q, qd + dq) - disc_resultants(d, q, qd - dq))/(2*step)
+        end do
+        jinv = inv_left_jacobian(q(4:6))
+        pr = pup - kin%origin
+        call path_columns(tree, d%body_a, d%body_b, cols, sgn, ncol)
+        do i = 1, ncol
+            w = kin%sj(1:3, cols(i))
+            v = kin%sj(4:6, cols(i)) + cross(w, pr)
+            b(1:3, i) = sgn(i)*matmul(v, l)
+            b(4:6, i) = sgn(i)*matmul(jinv, matmul(w, l))
+        end do
+        kgen(cols(1:ncol), cols(1:ncol)) = kgen(cols(1:ncol), cols(1:ncol)) + &
+                                           matmul(transpose(b(:, 1:ncol)), matmul(ks, b(:, 1:ncol)))
+        cgen(cols(1:ncol), cols(1:ncol)) = cgen(cols(1:ncol), cols(1:ncol)) + &
+                                           matmul(transpose(b(:, 1:ncol)), matmul(cs, b(:, 1:ncol)))
+    end subroutine add_disc
+
+    !> Discs never switch.
+    pure integer function disc_switch_count(this) result(n)
+        class(disc_family_t), intent(in) :: this   !! the family
+        n = 0
+    end function disc_switch_count
+
+    !> No switching functions.
+    pure subroutine disc_switching(this, t, kin, x, sw)
+        class(disc_family_t), intent(in) :: this      !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at x
+        real(wp), intent(in) :: x(:)                  !! active coordinates
+        real(wp), intent(out) :: sw(:)                !! (0) none
+        sw = zero
+    end subroutine disc_switching
+
+    !> Channels: every disc's axial force, then every shear x, then every moment y.
+    pure function disc_channels(this, tree) result(c)
+        class(disc_family_t), intent(in) :: this      !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
+        type(family_channel_t), allocatable :: c(:)
+        integer :: e, n
+        n = size(this%items)
+        allocate (c(3*n))
+        do e = 1, n
+            associate (nm => this%items(e)%name)
+                c(e) = family_channel_t(trim(nm)//'_P', 'N', 'DISC AXIAL', e, 3)
+                c(n + e) = family_channel_t(trim(nm)//'_VX', 'N', 'DISC SHEAR X', e, 1)
+                c(2*n + e) = family_channel_t(trim(nm)//'_MY', 'N m', 'DISC MOMENT Y', e, 5)
+            end associate
+        end do
+    end function disc_channels
+
+    !> /model/elements/discs: plate centres, plate frames, area and thickness.
+    pure function disc_table(this) result(tab)
+        class(disc_family_t), intent(in) :: this      !! the family
+        type(element_table_t) :: tab
+        integer :: e, n
+        n = size(this%items)
+        tab%group = 'discs'
+        tab%description = 'disc: lower plate centre (a, on body a) and upper plate centre (b, on body b)'
+        allocate (tab%name(n))
+        tab%name = [character(len=12) :: (this%items(e)%name, e=1, n)]
+        tab%body = reshape([(this%items(e)%body_a, this%items(e)%body_b, e=1, n)], [2, n])
+        tab%point = reshape([(this%items(e)%pa, this%items(e)%pb, e=1, n)], [3, 2, n])
+        allocate (tab%extra(3))
+        tab%extra(1)%name = 'plate_frame'
+        tab%extra(1)%units = '1'
+        tab%extra(1)%description = 'plate frames (lower, upper) in their body frames: h5py [e, plate, j, i] is R_ij'
+        tab%extra(1)%r = [(this%items(e)%ra, this%items(e)%rb, e=1, n)]
+        tab%extra(1)%shape = [3, 3, 2, n]
+        tab%extra(2)%name = 'area'
+        tab%extra(2)%units = 'm^2'
+        tab%extra(2)%r = [(this%items(e)%area, e=1, n)]
+        tab%extra(2)%shape = [n]
+        tab%extra(3)%name = 'thickness'
+        tab%extra(3)%units = 'm'
+        tab%extra(3)%r = [(this%items(e)%h, e=1, n)]
+        tab%extra(3)%shape = [n]
+    end function disc_table
+
+    !> Plate centres far outside their bodies; axial and bending stiffness far from the reference model's.
+    pure subroutine disc_plausibility(this, tree, warnings)
+        class(disc_family_t), intent(in) :: this      !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the discs' added
+        integer :: e
+        do e = 1, size(this%items)
+            associate (d => this%items(e))
+                call check_point(tree, d%body_a, d%pa, 'disc '//d%name, warnings)
+                call check_point(tree, d%body_b, d%pb, 'disc '//d%name, warnings)
+                call check_range('disc '//trim(d%name)//' axial stiffness d1 A/h', d%d1*d%area/d%h, &
+                                 ref_disc_axial, 'N/m', warnings)
+                call check_range('disc '//trim(d%name)//' bending stiffness d1 Iy/h', d%d1*d%iy/d%h, &
+                                 ref_disc_bending, 'N m/rad', warnings)
+            end associate
+        end do
+    end subroutine disc_plausibility
+
+    !> E, VISCOUS, G, VAXIAL, VBEND, ETENSION.
+    pure subroutine disc_items(this, items)
+        class(disc_family_t), intent(in) :: this      !! the family
+        character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
+        items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION']
+    end subroutine disc_items
+
+    !> Scale one property of every disc (d2b not given becomes d2 from here on).
+    pure subroutine disc_scale(this, item, factor)
+        class(disc_family_t), intent(inout) :: this   !! the family
+        character(len=*), intent(in) :: item          !! one of disc_items
+        real(wp), intent(in) :: factor                !! the factor
+        where (this%items%d2b < zero) this%items%d2b = this%items%d2
+        select case (item)
+        case ('E'); this%items%d1 = factor*this%items%d1
+        case ('VISCOUS')     ! every mode's damping
+            this%items%d2 = factor*this%items%d2
+            this%items%d2b = factor*this%items%d2b
+        case ('VAXIAL'); this%items%d2 = factor*this%items%d2     ! axial damping (eq 1)
+        case ('VBEND'); this%items%d2b = factor*this%items%d2b    ! shear, bending, torsion damping
+        case ('G'); this%items%g = factor*this%items%g
+        case ('ETENSION'); this%items%ft = factor*this%items%ft   ! axial stiffness in tension / d1's
+        end select
+    end subroutine disc_scale
+
+    !> STIFFEN: d1, d2, d2b and G (damping-to-stiffness ratios kept).
+    pure subroutine disc_stiffen(this, factor)
+        class(disc_family_t), intent(inout) :: this   !! the family
+        real(wp), intent(in) :: factor                !! the factor
+        this%items%d1 = factor*this%items%d1
+        this%items%d2 = factor*this%items%d2
+        this%items%d2b = factor*this%items%d2b
+        this%items%g = factor*this%items%g
+    end subroutine disc_stiffen
+
+    !> The discs of a model's family slot (a copy; none when the slot holds another family).
+    pure function discs_of(fam) result(items)
+        class(element_family_t), intent(in) :: fam   !! the slot's family
+        type(disc_t), allocatable :: items(:)
+        select type (fam)
+        type is (disc_family_t)
+            items = fam%items
+        class default
+            allocate (items(0))
+        end select
+    end function discs_of
+
+end module hn_disc_family

@@ -1,0 +1,347 @@
+!> What every element family does, behind one abstract type: a family
+!! (discs, ligaments, ...) holds its typed elements in a concrete type that
+!! extends `element_family_t` and implements every deferred binding; the
+!! model holds one slot per family (`family_slot_t`) and calls each binding
+!! once per family, never per element, so the typed inner loops stay inside
+!! the family. A family that leaves a binding out does not compile.
+!!
+!! The bindings: size and outputs (`count`, `ncomp`), the neutral set-up
+!! (`set_neutral`), the loads at one instant (`add_loads`), the tangent of
+!! the loads for the structured Jacobian (`add_tangent`), the switching
+!! functions of one-way elements (`switch_count`, `switching`), the channel
+!! definitions (`channels`; the values are the family's outputs), the
+!! result-file table (`result_table`), the plausibility warnings
+!! (`plausibility`) and the properties that SCALE, CHANGE ... FAMILY, the
+!! sweeps' FAMILY parameters and STIFFEN scale (`scale_items`, `scale`,
+!! `stiffen`).
+module hn_element_family
+    use hn_kinds, only: wp, zero
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t
+    use hn_tree, only: body_tree_t
+    use hn_rotation, only: cross
+    use hn_line_elements, only: line_geometry_t, line_geometry, max_via
+    implicit none
+    private
+
+    public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
+    public :: path_columns, add_warning, check_point, check_range, line_columns, add_line_tangent
+
+    integer, parameter, public :: max_family_items = 6   !! most properties a family has to scale
+    integer, parameter, public :: item_len = 10           !! length of a property name
+    integer, parameter, public :: warning_len = 160       !! length of a plausibility warning
+
+    !> Relative step of the central differences of the element laws in the
+    !! tangents, and the smallest absolute steps [m, m/s, rad, rad/s] (laws
+    !! are smooth on that scale; a kink inside the interval gives the mean slope).
+    real(wp), parameter, public :: fd_rel = 1.0e-6_wp
+    real(wp), parameter, public :: fd_abs_length = 1.0e-9_wp, fd_abs_rate = 1.0e-6_wp
+
+    !> Scratch of a family's loads kept between evaluations (sized once,
+    !! by element_output_allocate): the line elements' geometry.
+    type :: family_work_t
+        type(line_geometry_t), allocatable :: g(:)        !! (count) geometry of each line element
+        type(line_geometry_t), allocatable :: seg(:, :)   !! (max_via + 1, count) segments of muscle paths
+    end type family_work_t
+
+    !> One channel a family defines: its value is output (comp, item) of the family.
+    type :: family_channel_t
+        character(len=24) :: name = ''
+        character(len=12) :: units = ''
+        character(len=16) :: group = ''
+        integer :: item = 0     !! element number in the family
+        integer :: comp = 0     !! row of the family's output array
+    end type family_channel_t
+
+    !> One extra dataset of a family's result table (below its group).
+    type :: table_data_t
+        character(len=24) :: name = ''            !! dataset name in the group
+        character(len=16) :: units = ''
+        character(len=200) :: description = ''
+        real(wp), allocatable :: r(:)             !! real values (flat, Fortran order), or
+        integer, allocatable :: i(:)              !! integer values
+        integer, allocatable :: shape(:)          !! their shape
+    end type table_data_t
+
+    !> A family's table in the result file: group /model/elements/GROUP with
+    !! names, body pairs and attachment points, and extra datasets.
+    type :: element_table_t
+        character(len=16) :: group = ''           !! '' : the family has no table
+        character(len=200) :: description = ''
+        character(len=12), allocatable :: name(:) !! (ne) element names
+        integer, allocatable :: body(:, :)        !! (2, ne) bodies a, b (0 = R)
+        real(wp), allocatable :: point(:, :, :)   !! (3, 2, ne) points a, b in body frames [m]
+        type(table_data_t), allocatable :: extra(:)
+    end type element_table_t
+
+    !> An element family: its elements (in the extending type) and what it does.
+    type, abstract :: element_family_t
+    contains
+        procedure(count_fn), deferred :: count
+        procedure(count_fn), deferred :: ncomp
+        procedure(neutral_sub), deferred :: set_neutral
+        procedure(loads_sub), deferred :: add_loads
+        procedure(tangent_sub), deferred :: add_tangent
+        procedure(count_fn), deferred :: switch_count
+        procedure(switching_sub), deferred :: switching
+        procedure(channels_fn), deferred :: channels
+        procedure(table_fn), deferred :: result_table
+        procedure(plausibility_sub), deferred :: plausibility
+        procedure(items_sub), deferred :: scale_items
+        procedure(scale_sub), deferred :: scale
+        procedure(stiffen_sub), deferred :: stiffen
+    end type element_family_t
+
+    !> One slot of the model: a family of any kind.
+    type :: family_slot_t
+        class(element_family_t), allocatable :: f
+    end type family_slot_t
+
+    abstract interface
+        !> A count: elements, output rows or switching functions of the family.
+        pure integer function count_fn(this) result(n)
+            import :: element_family_t
+            class(element_family_t), intent(in) :: this   !! the family
+        end function count_fn
+
+        !> Set up the neutral configuration from its kinematics.
+        pure subroutine neutral_sub(this, kin)
+            import :: element_family_t, kinematics_t
+            class(element_family_t), intent(inout) :: this   !! the family; out: references set
+            type(kinematics_t), intent(in) :: kin            !! kinematics of the neutral configuration
+        end subroutine neutral_sub
+
+        !> Add the family's loads at time t to the body loads and generalized forces.
+        pure subroutine loads_sub(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+            import :: element_family_t, kinematics_t, body_loads_t, wp, family_work_t
+            class(element_family_t), intent(in) :: this      !! the family
+            real(wp), intent(in) :: t                        !! time [s]
+            type(kinematics_t), intent(in) :: kin            !! kinematics at (x, xd)
+            real(wp), intent(in) :: x(:)                     !! active coordinates [m, rad]
+            real(wp), intent(in) :: xd(:)                    !! their rates [m/s, rad/s]
+            type(body_loads_t), intent(inout) :: loads       !! loads, the family's added
+            real(wp), intent(inout) :: out(:, :)             !! (ncomp, count) the elements' outputs
+            type(family_work_t), intent(inout) :: work       !! scratch sized for the family
+            real(wp), intent(inout) :: u_elastic             !! stored energy, the family's added [J]
+            real(wp), intent(inout) :: p_diss                !! dissipated power, the family's added [W]
+            real(wp), intent(inout) :: p_muscle              !! power absorbed by muscles, the family's added [W]
+        end subroutine loads_sub
+
+        !> Add the family's generalized stiffness K and damping C.
+        pure subroutine tangent_sub(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+            import :: element_family_t, body_tree_t, kinematics_t, wp
+            class(element_family_t), intent(in) :: this      !! the family
+            type(body_tree_t), intent(in) :: tree            !! the body tree
+            type(kinematics_t), intent(in) :: kin            !! kinematics of (x, xd): joint columns filled
+            real(wp), intent(in) :: t                        !! time [s]
+            real(wp), intent(in) :: x(:)                     !! active coordinates [m, rad]
+            real(wp), intent(in) :: xd(:)                    !! their rates [m/s, rad/s]
+            real(wp), intent(inout) :: kgen(:, :)            !! (n, n) generalized stiffness, the family's added
+            real(wp), intent(inout) :: cgen(:, :)            !! (n, n) generalized damping, the family's added
+            integer, intent(out) :: cols(:)                  !! scratch, at least n long
+            integer, intent(out) :: sgn(:)                   !! scratch, at least n long
+            integer, intent(out) :: idx(:)                   !! scratch, at least n long
+            real(wp), intent(out) :: b(:)                    !! scratch, n long
+            real(wp), intent(out) :: bd(:, :)                !! scratch, (6, n)
+        end subroutine tangent_sub
+
+        !> The family's switching functions (whose sign changes mark where a one-way element switches).
+        pure subroutine switching_sub(this, t, kin, x, sw)
+            import :: element_family_t, kinematics_t, wp
+            class(element_family_t), intent(in) :: this      !! the family
+            real(wp), intent(in) :: t                        !! time [s]
+            type(kinematics_t), intent(in) :: kin            !! kinematics at x
+            real(wp), intent(in) :: x(:)                     !! active coordinates [m, rad]
+            real(wp), intent(out) :: sw(:)                   !! (switch_count) the switching functions
+        end subroutine switching_sub
+
+        !> The family's output channels.
+        pure function channels_fn(this, tree) result(c)
+            import :: element_family_t, body_tree_t, family_channel_t
+            class(element_family_t), intent(in) :: this      !! the family
+            type(body_tree_t), intent(in) :: tree            !! the body tree (names)
+            type(family_channel_t), allocatable :: c(:)
+        end function channels_fn
+
+        !> The family's table in the result file.
+        pure function table_fn(this) result(tab)
+            import :: element_family_t, element_table_t
+            class(element_family_t), intent(in) :: this      !! the family
+            type(element_table_t) :: tab
+        end function table_fn
+
+        !> Warnings about doubtful values of the family's elements, added to `warnings`.
+        pure subroutine plausibility_sub(this, tree, warnings)
+            import :: element_family_t, body_tree_t, warning_len
+            class(element_family_t), intent(in) :: this      !! the family
+            type(body_tree_t), intent(in) :: tree            !! the body tree
+            character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the family's added
+        end subroutine plausibility_sub
+
+        !> The properties that a FAMILY parameter may scale ('' after the last).
+        pure subroutine items_sub(this, items)
+            import :: element_family_t, max_family_items, item_len
+            class(element_family_t), intent(in) :: this      !! the family
+            character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
+        end subroutine items_sub
+
+        !> Multiply one property of every element by `factor`.
+        pure subroutine scale_sub(this, item, factor)
+            import :: element_family_t, wp
+            class(element_family_t), intent(inout) :: this   !! the family
+            character(len=*), intent(in) :: item             !! property, one of scale_items()
+            real(wp), intent(in) :: factor                   !! the factor
+        end subroutine scale_sub
+
+        !> STIFFEN: multiply the elements' stiffnesses by `factor`.
+        pure subroutine stiffen_sub(this, factor)
+            import :: element_family_t, wp
+            class(element_family_t), intent(inout) :: this   !! the family
+            real(wp), intent(in) :: factor                   !! the factor
+        end subroutine stiffen_sub
+    end interface
+
+    real(wp), parameter :: far_factor = 100.0_wp   !! "two orders of magnitude" of a stiffness check
+
+contains
+
+    !> Warn of an attachment point farther from its body's mass centre than
+    !! max(0.25 m, 5 radii of gyration).
+    pure subroutine check_point(tree, k, p, what, warnings)
+        type(body_tree_t), intent(in) :: tree    !! the body tree
+        integer, intent(in) :: k                 !! the body (0 = R: not checked)
+        real(wp), intent(in) :: p(3)             !! the point in the body frame [m]
+        character(len=*), intent(in) :: what     !! the element, for the message
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, one added if far
+        character(len=warning_len) :: w
+        real(wp) :: reach
+        if (k < 1) return
+        reach = max(0.25_wp, 5*sqrt((tree%inertia(1, 1, k) + tree%inertia(2, 2, k) + &
+                                     tree%inertia(3, 3, k))/(2*tree%mass(k))))
+        if (norm2(p) > reach) then
+            write (w, '(a,a,a,f7.3,a,f6.3,a)') trim(what), ': attachment on ', trim(tree%name(k)), &
+                norm2(p), ' m from its mass centre, far outside the body (more than ', reach, ' m)'
+            call add_warning(warnings, w)
+        end if
+    end subroutine check_point
+
+    !> Warn of a positive value two or more orders of magnitude from the reference model's.
+    pure subroutine check_range(what, v, ref, units, warnings)
+        character(len=*), intent(in) :: what     !! the value, for the message
+        real(wp), intent(in) :: v                !! the value
+        real(wp), intent(in) :: ref              !! the reference model's
+        character(len=*), intent(in) :: units    !! its units
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, one added if far
+        character(len=warning_len) :: w
+        if (v <= zero) return
+        if (v > far_factor*ref .or. v < ref/far_factor) then
+            write (w, '(2a,es10.3,3a,es9.2,a)') trim(what), ' = ', v, ' ', units, &
+                ' is two or more orders of magnitude from the reference model''s ', ref, ' (check units)'
+            call add_warning(warnings, w)
+        end if
+    end subroutine check_range
+
+    !> A line element's deformation-rate row b_i = dL/dxdot_i = sj_i . phi_b
+    !! - sj_i . phi_a with the spatial force phi = ((p - origin) x u; u) of a
+    !! unit tension at each end, summed over the segments of its path
+    !! (points in order: the two ends and a muscle's via points between),
+    !! and its length and lengthening rate. ok is false for a segment of
+    !! zero length (no tangent).
+    pure subroutine line_columns(tree, kin, bodies, points, npt, cols, sgn, b, length, rate, ok)
+        type(body_tree_t), intent(in) :: tree            !! the body tree
+        type(kinematics_t), intent(in) :: kin            !! kinematics: joint columns filled
+        integer, intent(in) :: bodies(max_via + 2)       !! bodies of the path's points
+        real(wp), intent(in) :: points(3, max_via + 2)   !! the points in their body frames [m]
+        integer, intent(in) :: npt                       !! number of points
+        integer, intent(out) :: cols(:)                  !! scratch, at least n long
+        integer, intent(out) :: sgn(:)                   !! scratch, at least n long
+        real(wp), intent(out) :: b(:)                    !! (n) the row
+        real(wp), intent(out) :: length                  !! path length [m]
+        real(wp), intent(out) :: rate                    !! its rate [m/s]
+        logical, intent(out) :: ok                       !! every segment has a length
+        type(line_geometry_t) :: g
+        integer :: k, ncol, i
+        real(wp) :: phia(6), phib(6)
+        b = zero; length = zero; rate = zero
+        ok = .false.
+        do k = 1, npt - 1
+            call line_geometry(kin, bodies(k), points(:, k), bodies(k + 1), points(:, k + 1), g)
+            if (g%length <= zero) return
+            length = length + g%length
+            rate = rate + g%rate
+            phia = [cross(g%pa - kin%origin, g%unit), g%unit]
+            phib = [cross(g%pb - kin%origin, g%unit), g%unit]
+            call path_columns(tree, bodies(k), bodies(k + 1), cols, sgn, ncol)
+            do i = 1, ncol
+                if (sgn(i) > 0) then
+                    b(cols(i)) = b(cols(i)) + dot_product(kin%sj(:, cols(i)), phib)
+                else
+                    b(cols(i)) = b(cols(i)) - dot_product(kin%sj(:, cols(i)), phia)
+                end if
+            end do
+        end do
+        ok = .true.
+    end subroutine line_columns
+
+    !> K += kl b b^T, C += cl b b^T over the nonzero entries of b.
+    pure subroutine add_line_tangent(b, kl, cl, kgen, cgen, idx)
+        real(wp), intent(in) :: b(:)                     !! (n) the element's row (line_columns)
+        real(wp), intent(in) :: kl                       !! dT/dL of its law [N/m]
+        real(wp), intent(in) :: cl                       !! dT/dL' of its law [N s/m]
+        real(wp), intent(inout) :: kgen(:, :)            !! (n, n) generalized stiffness
+        real(wp), intent(inout) :: cgen(:, :)            !! (n, n) generalized damping
+        integer, intent(out) :: idx(:)                   !! scratch, at least n long
+        integer :: i, nz
+        if (kl == zero .and. cl == zero) return
+        nz = 0
+        do i = 1, size(kgen, 1)
+            if (b(i) /= zero) then
+                nz = nz + 1
+                idx(nz) = i
+            end if
+        end do
+        do i = 1, nz
+            kgen(idx(1:nz), idx(i)) = kgen(idx(1:nz), idx(i)) + kl*b(idx(i))*b(idx(1:nz))
+            cgen(idx(1:nz), idx(i)) = cgen(idx(1:nz), idx(i)) + cl*b(idx(i))*b(idx(1:nz))
+        end do
+    end subroutine add_line_tangent
+
+    !> Append one warning line to a list.
+    pure subroutine add_warning(warnings, text)
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! the list, one line added
+        character(len=*), intent(in) :: text                                   !! the line
+        warnings = [character(len=warning_len) :: warnings, text]
+    end subroutine add_warning
+
+    !> Coordinates on the tree path between bodies ka and kb (0 = R): those
+    !! in exactly one of the two chains, ascending, with sign +1 for kb's,
+    !! -1 for ka's. The chains are ascending: one merge of the two lists.
+    pure subroutine path_columns(tree, ka, kb, cols, sgn, ncol)
+        type(body_tree_t), intent(in) :: tree    !! the body tree
+        integer, intent(in) :: ka                !! first body (0 = R)
+        integer, intent(in) :: kb                !! second body (0 = R)
+        integer, intent(out) :: cols(:)          !! the coordinates (ncol set)
+        integer, intent(out) :: sgn(:)           !! their signs
+        integer, intent(out) :: ncol             !! how many
+        integer :: ia, ib, na, nb, ja, jb
+        na = 0; nb = 0
+        if (ka > 0) na = tree%chain_len(ka)
+        if (kb > 0) nb = tree%chain_len(kb)
+        ia = 1; ib = 1; ncol = 0
+        do while (ia <= na .or. ib <= nb)
+            ja = huge(ja); jb = huge(jb)
+            if (ia <= na) ja = tree%chain(ia, ka)
+            if (ib <= nb) jb = tree%chain(ib, kb)
+            if (ja == jb) then          ! on both chains: the two ends move as one
+                ia = ia + 1; ib = ib + 1
+            else if (jb < ja) then
+                ncol = ncol + 1; cols(ncol) = jb; sgn(ncol) = 1
+                ib = ib + 1
+            else
+                ncol = ncol + 1; cols(ncol) = ja; sgn(ncol) = -1
+                ia = ia + 1
+            end if
+        end do
+    end subroutine path_columns
+
+end module hn_element_family

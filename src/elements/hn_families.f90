@@ -1,0 +1,104 @@
+!> The registry of element families: the one list of the families, their
+!! names (FAMILY, SCALE, STIFFEN, CHANGE ... FAMILY, the sweeps' FAMILY
+!! parameters, the listing), the deck cards that make their elements with
+!! the continuation cards each takes, and the concrete type of each
+!! (`new_family`). A family's number `fam_*` is its place in this list; the
+!! model holds one slot per family in this order, and every evaluation
+!! visits them in this order (discs, ligaments, muscles, limits, springs).
+!!
+!! Adding a family: its module (a type extending `element_family_t` of
+!! hn_element_family), one `fam_*` number, one name, its cards in
+!! `family_cards`, one case in `new_family`; the reading of its cards in
+!! hn_deck (docs/architecture.md, "Adding an element family").
+module hn_families
+    use hn_discs, only: disc_t
+    use hn_line_elements, only: ligament_t, muscle_t, spring_t
+    use hn_joint_limits, only: joint_limit_t, joint_range_t
+    use hn_tables, only: table_t
+    use hn_muscle, only: activation_t
+    use hn_element_family, only: element_family_t, family_slot_t
+    use hn_disc_family, only: disc_family_t
+    use hn_ligament_family, only: ligament_family_t
+    use hn_muscle_family, only: muscle_family_t
+    use hn_limit_family, only: limit_family_t
+    use hn_spring_family, only: spring_family_t
+    implicit none
+    private
+
+    public :: new_family, family_index, family_names_text, family_card_t, family_cards, card_continuations
+
+    !> The families, in evaluation order.
+    integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
+                                  fam_limits = 4, fam_springs = 5, nfamilies = 5
+    integer, parameter, public :: family_name_len = 9
+    !> Their names on FAMILY, SCALE, STIFFEN and CHANGE cards and in the listing.
+    character(len=family_name_len), parameter, public :: family_name(nfamilies) = &
+        [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS']
+
+    !> A deck card that belongs to a family: its key, its family, its continuation cards.
+    type :: family_card_t
+        character(len=8) :: key = ''
+        integer :: family = 0
+        integer :: ncont = 0
+    end type family_card_t
+
+    !> Every card of every family (VIA and ACTIVATE complete the muscles).
+    type(family_card_t), parameter :: family_cards(*) = [ &
+        family_card_t('DISC', fam_discs, 2), &
+        family_card_t('LIGAMENT', fam_ligaments, 1), &
+        family_card_t('MUSCLE', fam_muscles, 1), &
+        family_card_t('HILL', fam_muscles, 1), &
+        family_card_t('VIA', fam_muscles, 0), &
+        family_card_t('ACTIVATE', fam_muscles, 1), &
+        family_card_t('LIMIT', fam_limits, 0), &
+        family_card_t('ROM', fam_limits, 0), &
+        family_card_t('SPRING', fam_springs, 1)]
+
+contains
+
+    !> A family of kind f with no elements.
+    pure subroutine new_family(f, slot)
+        integer, intent(in) :: f                    !! family (fam_discs ... fam_springs)
+        type(family_slot_t), intent(out) :: slot    !! the slot, holding an empty family of that kind
+        select case (f)
+        case (fam_discs); allocate (slot%f, source=disc_family_t(items=[disc_t ::]))
+        case (fam_ligaments); allocate (slot%f, source=ligament_family_t(items=[ligament_t ::]))
+        case (fam_muscles)
+            allocate (slot%f, source=muscle_family_t(items=[muscle_t ::], tables=[table_t ::], &
+                                                     activations=[activation_t ::]))
+        case (fam_limits)
+            allocate (slot%f, source=limit_family_t(items=[joint_limit_t ::], ranges=[joint_range_t ::]))
+        case (fam_springs); allocate (slot%f, source=spring_family_t(items=[spring_t ::]))
+        end select
+    end subroutine new_family
+
+    !> Number of the family called `name`, 0 when there is none.
+    pure integer function family_index(name) result(f)
+        character(len=*), intent(in) :: name    !! a family name
+        f = 0
+        if (len_trim(name) > family_name_len) return
+        f = findloc(family_name, name(1:min(len(name), family_name_len)), dim=1)
+    end function family_index
+
+    !> The family names as text: "DISCS, LIGAMENTS, MUSCLES, LIMITS or SPRINGS".
+    pure function family_names_text() result(s)
+        character(len=:), allocatable :: s
+        integer :: f
+        s = trim(family_name(1))
+        do f = 2, nfamilies
+            s = s//merge(' or ', ',   ', f == nfamilies)
+            s = trim(s)//' '//trim(family_name(f))
+        end do
+    end function family_names_text
+
+    !> Continuation cards of an element card (-1: not a family's card).
+    pure integer function card_continuations(key) result(n)
+        character(len=*), intent(in) :: key     !! card name
+        integer :: k
+        n = -1
+        do k = 1, size(family_cards)
+            if (family_cards(k)%key == key) n = family_cards(k)%ncont
+        end do
+    end function card_continuations
+
+end module hn_families

@@ -1,0 +1,224 @@
+!> The LIGAMENTS family: tension-only bands (eq 10, hn_line_elements)
+!! behind the element-family interface. Output per ligament: tension [N]
+!! and length [m].
+module hn_ligament_family
+    use hn_kinds, only: wp, zero
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t
+    use hn_tree, only: body_tree_t
+    use hn_line_elements, only: ligament_t, line_geometry_t, line_geometries, ligament_tension, ligament_energy, &
+                                apply_line_tensions, set_neutral_lengths, max_via
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
+                                 warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, check_range, &
+                                 line_columns, add_line_tangent
+    implicit none
+    private
+
+    public :: ligament_family_t, ligaments_of
+
+    real(wp), parameter :: ref_ligament_2mm = 30.0_wp     !! N at 2 mm stretch (reference/parameters.md)
+
+    !> The ligaments of a model.
+    type, extends(element_family_t) :: ligament_family_t
+        type(ligament_t), allocatable :: items(:)
+    contains
+        procedure :: count => ligament_count
+        procedure :: ncomp => ligament_ncomp
+        procedure :: set_neutral => ligament_neutral
+        procedure :: add_loads => ligament_loads
+        procedure :: add_tangent => ligament_tangent
+        procedure :: switch_count => ligament_switch_count
+        procedure :: switching => ligament_switching
+        procedure :: channels => ligament_channels
+        procedure :: result_table => ligament_table
+        procedure :: plausibility => ligament_plausibility
+        procedure :: scale_items => ligament_items
+        procedure :: scale => ligament_scale
+        procedure :: stiffen => ligament_stiffen
+    end type ligament_family_t
+
+contains
+
+    !> Number of ligaments.
+    pure integer function ligament_count(this) result(n)
+        class(ligament_family_t), intent(in) :: this   !! the family
+        n = 0
+        if (allocated(this%items)) n = size(this%items)
+    end function ligament_count
+
+    !> Output rows per ligament: tension and length.
+    pure integer function ligament_ncomp(this) result(n)
+        class(ligament_family_t), intent(in) :: this   !! the family
+        n = 2
+    end function ligament_ncomp
+
+    !> Slack lengths not given: the neutral lengths.
+    pure subroutine ligament_neutral(this, kin)
+        class(ligament_family_t), intent(inout) :: this   !! the family; out: slack lengths set
+        type(kinematics_t), intent(in) :: kin             !! kinematics of the neutral configuration
+        call set_neutral_lengths(kin, this%items)
+    end subroutine ligament_neutral
+
+    !> Tensions of every ligament applied to its bodies; stored energy.
+    pure subroutine ligament_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
+        real(wp), intent(in) :: x(:)                  !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
+        type(body_loads_t), intent(inout) :: loads    !! loads, the ligaments' added
+        real(wp), intent(inout) :: out(:, :)          !! (2, nl) tension [N], length [m]
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
+        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
+        real(wp), intent(inout) :: p_diss             !! dissipated power [W] (none here)
+        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        associate (gl => work%g)
+            call line_geometries(kin, this%items, gl)
+            out(1, :) = ligament_tension(this%items, gl%length)
+            out(2, :) = gl%length
+            call apply_line_tensions(loads, kin, this%items, gl, out(1, :))
+            u_elastic = u_elastic + sum(ligament_energy(this%items, gl%length))
+        end associate
+    end subroutine ligament_loads
+
+    !> K += (dT/dL) b b^T of every ligament (b = dL/dxdot; no damping).
+    pure subroutine ligament_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
+        real(wp), intent(in) :: t                     !! time [s]
+        real(wp), intent(in) :: x(:)                  !! active coordinates
+        real(wp), intent(in) :: xd(:)                 !! their rates
+        real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the ligaments' added
+        real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the ligaments' added
+        integer, intent(out) :: cols(:)               !! scratch
+        integer, intent(out) :: sgn(:)                !! scratch
+        integer, intent(out) :: idx(:)                !! scratch
+        real(wp), intent(out) :: b(:)                 !! scratch
+        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
+        integer :: e, bodies(max_via + 2)
+        real(wp) :: points(3, max_via + 2), length, rate, dl, dr, kl, cl
+        logical :: ok
+        bd = zero
+        do e = 1, size(this%items)
+            associate (a => this%items(e))
+                bodies = 0; points = zero
+                bodies(1) = a%body_a; bodies(2) = a%body_b
+                points(:, 1) = a%point_a; points(:, 2) = a%point_b
+                call line_columns(tree, kin, bodies, points, 2, cols, sgn, b, length, rate, ok)
+                if (.not. ok) cycle
+                dl = max(fd_rel*length, fd_abs_length)
+                dr = max(fd_rel*abs(rate), fd_abs_rate)
+                kl = (ligament_tension(a, length + dl) - ligament_tension(a, length - dl))/(2*dl)
+                cl = (ligament_tension(a, length) - ligament_tension(a, length))/(2*dr)
+                call add_line_tangent(b, kl, cl, kgen, cgen, idx)
+            end associate
+        end do
+    end subroutine ligament_tangent
+
+    !> One switching function per ligament with l1 > 0 (it becomes taut).
+    pure integer function ligament_switch_count(this) result(n)
+        class(ligament_family_t), intent(in) :: this   !! the family
+        n = count(this%items%l1 > zero)
+    end function ligament_switch_count
+
+    !> Length less slack length of every ligament with l1 > 0.
+    pure subroutine ligament_switching(this, t, kin, x, sw)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at x
+        real(wp), intent(in) :: x(:)                  !! active coordinates
+        real(wp), intent(out) :: sw(:)                !! (switch_count) the switching functions
+        type(line_geometry_t) :: gl(size(this%items))
+        integer :: e, i
+        call line_geometries(kin, this%items, gl)
+        i = 0
+        do e = 1, size(this%items)
+            if (this%items(e)%l1 <= zero) cycle
+            i = i + 1
+            sw(i) = gl(e)%length - this%items(e)%length0
+        end do
+    end subroutine ligament_switching
+
+    !> One channel per ligament: its tension.
+    pure function ligament_channels(this, tree) result(c)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
+        type(family_channel_t), allocatable :: c(:)
+        integer :: e
+        allocate (c(size(this%items)))
+        do e = 1, size(this%items)
+            c(e) = family_channel_t(this%items(e)%name, 'N', 'LIGAMENTS', e, 1)
+        end do
+    end function ligament_channels
+
+    !> /model/elements/ligaments.
+    pure function ligament_table(this) result(tab)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        type(element_table_t) :: tab
+        integer :: e, n
+        n = size(this%items)
+        tab%group = 'ligaments'
+        tab%description = 'ligament: tension-only band from point a to b'
+        allocate (tab%name(n), tab%extra(0))
+        tab%name = [character(len=12) :: (this%items(e)%name, e=1, n)]
+        tab%body = reshape([(this%items(e)%body_a, this%items(e)%body_b, e=1, n)], [2, n])
+        tab%point = reshape([(this%items(e)%point_a, this%items(e)%point_b, e=1, n)], [3, 2, n])
+    end function ligament_table
+
+    !> Attachments far outside their bodies; tension at 2 mm stretch far from the reference model's.
+    pure subroutine ligament_plausibility(this, tree, warnings)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the ligaments' added
+        integer :: e
+        do e = 1, size(this%items)
+            associate (l => this%items(e))
+                call check_point(tree, l%body_a, l%point_a, 'ligament '//l%name, warnings)
+                call check_point(tree, l%body_b, l%point_b, 'ligament '//l%name, warnings)
+                call check_range('ligament '//trim(l%name)//' tension at 2 mm stretch', &
+                                 l%l1*2.0e-3_wp + l%l2*(2.0e-3_wp)**l%n, ref_ligament_2mm, 'N', warnings)
+            end associate
+        end do
+    end subroutine ligament_plausibility
+
+    !> L1, L2.
+    pure subroutine ligament_items(this, items)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
+        items = ''
+        items(1:2) = [character(len=item_len) :: 'L1', 'L2']
+    end subroutine ligament_items
+
+    !> Scale l1 or l2 of every ligament.
+    pure subroutine ligament_scale(this, item, factor)
+        class(ligament_family_t), intent(inout) :: this   !! the family
+        character(len=*), intent(in) :: item              !! L1 or L2
+        real(wp), intent(in) :: factor                    !! the factor
+        select case (item)
+        case ('L1'); this%items%l1 = factor*this%items%l1
+        case ('L2'); this%items%l2 = factor*this%items%l2
+        end select
+    end subroutine ligament_scale
+
+    !> STIFFEN: l1 and l2.
+    pure subroutine ligament_stiffen(this, factor)
+        class(ligament_family_t), intent(inout) :: this   !! the family
+        real(wp), intent(in) :: factor                    !! the factor
+        this%items%l1 = factor*this%items%l1
+        this%items%l2 = factor*this%items%l2
+    end subroutine ligament_stiffen
+
+    !> The ligaments of a model's family slot (a copy; none when the slot holds another family).
+    pure function ligaments_of(fam) result(items)
+        class(element_family_t), intent(in) :: fam   !! the slot's family
+        type(ligament_t), allocatable :: items(:)
+        select type (fam)
+        type is (ligament_family_t)
+            items = fam%items
+        class default
+            allocate (items(0))
+        end select
+    end function ligaments_of
+
+end module hn_ligament_family

@@ -1,0 +1,304 @@
+!> The MUSCLES family: the paper's viscoelastic muscles (eq 11) and
+!! Hill-type muscles (hn_muscle), with their paths through via points
+!! (hn_line_elements), behind the element-family interface. The family
+!! holds the activation tables (eq 11) and the activation histories (ACTIVATE
+!! cards) its muscles refer to. Output per muscle: tension [N], length [m]
+!! and activation.
+module hn_muscle_family
+    use hn_kinds, only: wp, zero
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t
+    use hn_tree, only: body_tree_t
+    use hn_tables, only: table_t, table_value
+    use hn_muscle, only: activation_t, activation_value
+    use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
+                                apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
+                                 warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, check_range, &
+                                 line_columns, add_line_tangent
+    implicit none
+    private
+
+    public :: muscle_family_t, muscles_of, activation_tables, activation_histories
+
+    real(wp), parameter :: ref_muscle_m1 = 3000.0_wp      !! N/m (reference/parameters.md)
+    real(wp), parameter :: ref_muscle_m2 = 400.0_wp       !! N s/m
+
+    !> The muscles of a model and the activation inputs they refer to.
+    type, extends(element_family_t) :: muscle_family_t
+        type(muscle_t), allocatable :: items(:)
+        type(table_t), allocatable :: tables(:)              !! activation tables (eq 11) referenced by muscles
+        type(activation_t), allocatable :: activations(:)    !! activation histories of Hill-type muscles
+    contains
+        procedure :: count => muscle_count
+        procedure :: ncomp => muscle_ncomp
+        procedure :: set_neutral => muscle_neutral
+        procedure :: add_loads => muscle_loads
+        procedure :: add_tangent => muscle_tangent
+        procedure :: switch_count => muscle_switch_count
+        procedure :: switching => muscle_switching
+        procedure :: channels => muscle_channels
+        procedure :: result_table => muscle_table
+        procedure :: plausibility => muscle_plausibility
+        procedure :: scale_items => muscle_items
+        procedure :: scale => muscle_scale
+        procedure :: stiffen => muscle_stiffen
+        procedure :: activation => muscle_activation
+    end type muscle_family_t
+
+contains
+
+    !> Number of muscles.
+    pure integer function muscle_count(this) result(n)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        n = 0
+        if (allocated(this%items)) n = size(this%items)
+    end function muscle_count
+
+    !> Output rows per muscle: tension, length, activation.
+    pure integer function muscle_ncomp(this) result(n)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        n = 3
+    end function muscle_ncomp
+
+    !> Activation a(t) of muscle e: its activation history (Hill-type law)
+    !! or table (eq 11); zero without either.
+    pure real(wp) function muscle_activation(this, e, t) result(act)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: e                     !! muscle number
+        real(wp), intent(in) :: t                    !! time [s]
+        act = zero
+        associate (m => this%items(e))
+            if (m%law == muscle_hill) then
+                if (m%history > 0) act = activation_value(this%activations(m%history), t)
+            else if (m%activation > 0) then
+                act = table_value(this%tables(m%activation), t)
+            end if
+        end associate
+    end function muscle_activation
+
+    !> Rest lengths not given: the neutral path lengths.
+    pure subroutine muscle_neutral(this, kin)
+        class(muscle_family_t), intent(inout) :: this   !! the family; out: rest lengths set
+        type(kinematics_t), intent(in) :: kin           !! kinematics of the neutral configuration
+        call set_neutral_lengths(kin, this%items)
+    end subroutine muscle_neutral
+
+    !> Tensions along every muscle's path; power absorbed.
+    pure subroutine muscle_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
+        real(wp), intent(in) :: x(:)                  !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
+        type(body_loads_t), intent(inout) :: loads    !! loads, the muscles' added
+        real(wp), intent(inout) :: out(:, :)          !! (3, nm) tension [N], length [m], activation
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
+        real(wp), intent(inout) :: u_elastic          !! stored energy [J] (none here)
+        real(wp), intent(inout) :: p_diss             !! dissipated power [W] (none here)
+        real(wp), intent(inout) :: p_muscle           !! power absorbed by the muscles [W]
+        integer :: e
+        associate (gm => work%g)
+            call muscle_geometries(kin, this%items, gm, work%seg)
+            do e = 1, size(this%items)
+                out(3, e) = muscle_activation(this, e, t)
+            end do
+            out(1, :) = muscle_tension(this%items, gm%length, gm%rate, out(3, :))
+            out(2, :) = gm%length
+            call apply_muscle_tensions(loads, kin, this%items, work%seg, out(1, :))
+            p_muscle = p_muscle + sum(out(1, :)*gm%rate)
+        end associate
+    end subroutine muscle_loads
+
+    !> K += (dT/dL) b b^T, C += (dT/dL') b b^T of every muscle along its path.
+    pure subroutine muscle_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
+        real(wp), intent(in) :: t                     !! time [s] (activation)
+        real(wp), intent(in) :: x(:)                  !! active coordinates
+        real(wp), intent(in) :: xd(:)                 !! their rates
+        real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the muscles' added
+        real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the muscles' added
+        integer, intent(out) :: cols(:)               !! scratch
+        integer, intent(out) :: sgn(:)                !! scratch
+        integer, intent(out) :: idx(:)                !! scratch
+        real(wp), intent(out) :: b(:)                 !! scratch
+        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
+        integer :: e, bodies(max_via + 2), npt
+        real(wp) :: points(3, max_via + 2), length, rate, dl, dr, kl, cl, act
+        logical :: ok
+        bd = zero
+        do e = 1, size(this%items)
+            associate (m => this%items(e))
+                call muscle_path_points(m, bodies, points, npt)
+                call line_columns(tree, kin, bodies, points, npt, cols, sgn, b, length, rate, ok)
+                if (.not. ok) cycle
+                dl = max(fd_rel*length, fd_abs_length)
+                dr = max(fd_rel*abs(rate), fd_abs_rate)
+                act = muscle_activation(this, e, t)
+                kl = (muscle_tension(m, length + dl, rate, act) - muscle_tension(m, length - dl, rate, act))/(2*dl)
+                cl = (muscle_tension(m, length, rate + dr, act) - muscle_tension(m, length, rate - dr, act))/(2*dr)
+                call add_line_tangent(b, kl, cl, kgen, cgen, idx)
+            end associate
+        end do
+    end subroutine muscle_tangent
+
+    !> One switching function per muscle (its law crossing zero).
+    pure integer function muscle_switch_count(this) result(n)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        n = size(this%items)
+    end function muscle_switch_count
+
+    !> The muscles' laws (m1 d + m2 d' + a Fmax or the Hill force): tension starts or stops at zero.
+    pure subroutine muscle_switching(this, t, kin, x, sw)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at x
+        real(wp), intent(in) :: x(:)                  !! active coordinates
+        real(wp), intent(out) :: sw(:)                !! (switch_count) the switching functions
+        type(line_geometry_t) :: gm(size(this%items)), gseg(max_via + 1, size(this%items))
+        real(wp) :: act(size(this%items))
+        integer :: e
+        call muscle_geometries(kin, this%items, gm, gseg)
+        do e = 1, size(this%items)
+            act(e) = muscle_activation(this, e, t)
+        end do
+        sw = muscle_law_value(this%items, gm%length, gm%rate, act)
+    end subroutine muscle_switching
+
+    !> One tension channel per muscle, and an activation channel per Hill-type muscle.
+    pure function muscle_channels(this, tree) result(c)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
+        type(family_channel_t), allocatable :: c(:)
+        integer :: e, n
+        allocate (c(size(this%items) + count(this%items%law == muscle_hill)))
+        n = 0
+        do e = 1, size(this%items)
+            n = n + 1
+            c(n) = family_channel_t(this%items(e)%name, 'N', 'MUSCLES', e, 1)
+            if (this%items(e)%law == muscle_hill) then
+                n = n + 1
+                c(n) = family_channel_t('A_'//this%items(e)%name, '-', 'MUSCLE ACTIVATION', e, 3)
+            end if
+        end do
+    end function muscle_channels
+
+    !> /model/elements/muscles with the via points: via_count (ne), via_body
+    !! (ne, max_via) and via_point (ne, max_via, 3) as h5py shows them; a
+    !! muscle's path runs from point a through its first via_count via
+    !! points to point b.
+    pure function muscle_table(this) result(tab)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        type(element_table_t) :: tab
+        integer :: e, n
+        n = size(this%items)
+        tab%group = 'muscles'
+        tab%description = 'muscle: tension-only path from point a through its via points to b'
+        allocate (tab%name(n))
+        tab%name = [character(len=12) :: (this%items(e)%name, e=1, n)]
+        tab%body = reshape([(this%items(e)%body_a, this%items(e)%body_b, e=1, n)], [2, n])
+        tab%point = reshape([(this%items(e)%point_a, this%items(e)%point_b, e=1, n)], [3, 2, n])
+        allocate (tab%extra(3))
+        tab%extra(1)%name = 'via_count'
+        tab%extra(1)%units = '1'
+        tab%extra(1)%description = 'via points of each muscle path, in order from point a to point b'
+        tab%extra(1)%i = [(this%items(e)%nvia, e=1, n)]
+        tab%extra(1)%shape = [n]
+        tab%extra(2)%name = 'via_body'
+        tab%extra(2)%units = '1'
+        tab%extra(2)%description = 'bodies of the via points (0 = R, else /model order; unused slots 0)'
+        tab%extra(2)%i = [(this%items(e)%via_body, e=1, n)]
+        tab%extra(2)%shape = [max_via, n]
+        tab%extra(3)%name = 'via_point'
+        tab%extra(3)%units = 'm'
+        tab%extra(3)%description = 'via points in their body frames from the mass centre (unused slots 0)'
+        tab%extra(3)%r = [(this%items(e)%via_point, e=1, n)]
+        tab%extra(3)%shape = [3, max_via, n]
+    end function muscle_table
+
+    !> Attachments far outside their bodies; m1 and m2 far from the reference model's.
+    pure subroutine muscle_plausibility(this, tree, warnings)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the muscles' added
+        integer :: e
+        do e = 1, size(this%items)
+            associate (m => this%items(e))
+                call check_point(tree, m%body_a, m%point_a, 'muscle '//m%name, warnings)
+                call check_point(tree, m%body_b, m%point_b, 'muscle '//m%name, warnings)
+                call check_range('muscle '//trim(m%name)//' stiffness m1', m%m1, ref_muscle_m1, 'N/m', warnings)
+                call check_range('muscle '//trim(m%name)//' damping m2', m%m2, ref_muscle_m2, 'N s/m', warnings)
+            end associate
+        end do
+    end subroutine muscle_plausibility
+
+    !> M1, M2, F0.
+    pure subroutine muscle_items(this, items)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
+        items = ''
+        items(1:3) = [character(len=item_len) :: 'M1', 'M2', 'F0']
+    end subroutine muscle_items
+
+    !> Scale m1, the damping (M2: m2 and the Hill damping) or F0 (with the Hill damping) of every muscle.
+    pure subroutine muscle_scale(this, item, factor)
+        class(muscle_family_t), intent(inout) :: this   !! the family
+        character(len=*), intent(in) :: item            !! M1, M2 or F0
+        real(wp), intent(in) :: factor                  !! the factor
+        select case (item)
+        case ('M1'); this%items%m1 = factor*this%items%m1
+        case ('M2')      ! the damping of either law: m2 (eq 11) and the Hill damping
+            this%items%m2 = factor*this%items%m2
+            this%items%hill%damping = factor*this%items%hill%damping
+        case ('F0')      ! Hill-type muscles: F0 and the damping that is proportional to it
+            this%items%hill%f0 = factor*this%items%hill%f0
+            this%items%hill%damping = factor*this%items%hill%damping
+        end select
+    end subroutine muscle_scale
+
+    !> STIFFEN: m1.
+    pure subroutine muscle_stiffen(this, factor)
+        class(muscle_family_t), intent(inout) :: this   !! the family
+        real(wp), intent(in) :: factor                  !! the factor
+        this%items%m1 = factor*this%items%m1
+    end subroutine muscle_stiffen
+
+    !> The muscles of a model's family slot (a copy; none when the slot holds another family).
+    pure function muscles_of(fam) result(items)
+        class(element_family_t), intent(in) :: fam   !! the slot's family
+        type(muscle_t), allocatable :: items(:)
+        select type (fam)
+        type is (muscle_family_t)
+            items = fam%items
+        class default
+            allocate (items(0))
+        end select
+    end function muscles_of
+
+    !> The activation tables (eq 11) of a model's family slot (a copy; none when the slot holds another family).
+    pure function activation_tables(fam) result(items)
+        class(element_family_t), intent(in) :: fam   !! the slot's family
+        type(table_t), allocatable :: items(:)
+        select type (fam)
+        type is (muscle_family_t)
+            items = fam%tables
+        class default
+            allocate (items(0))
+        end select
+    end function activation_tables
+
+    !> The activation histories of a model's family slot (a copy; none when the slot holds another family).
+    pure function activation_histories(fam) result(items)
+        class(element_family_t), intent(in) :: fam   !! the slot's family
+        type(activation_t), allocatable :: items(:)
+        select type (fam)
+        type is (muscle_family_t)
+            items = fam%activations
+        class default
+            allocate (items(0))
+        end select
+    end function activation_histories
+
+end module hn_muscle_family

@@ -1,0 +1,207 @@
+!> The SPRINGS family: linear spring-dampers between two points
+!! (hn_line_elements) behind the element-family interface. Output per
+!! spring: its tension [N].
+module hn_spring_family
+    use hn_kinds, only: wp, zero
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t
+    use hn_tree, only: body_tree_t
+    use hn_line_elements, only: spring_t, line_geometry_t, line_geometries, spring_tension, spring_energy, &
+                                apply_line_tensions, set_neutral_lengths, max_via
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
+                                 warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, line_columns, &
+                                 add_line_tangent
+    implicit none
+    private
+
+    public :: spring_family_t, springs_of
+
+    !> The springs of a model.
+    type, extends(element_family_t) :: spring_family_t
+        type(spring_t), allocatable :: items(:)
+    contains
+        procedure :: count => spring_count
+        procedure :: ncomp => spring_ncomp
+        procedure :: set_neutral => spring_neutral
+        procedure :: add_loads => spring_loads
+        procedure :: add_tangent => spring_tangent
+        procedure :: switch_count => spring_switch_count
+        procedure :: switching => spring_switching
+        procedure :: channels => spring_channels
+        procedure :: result_table => spring_table
+        procedure :: plausibility => spring_plausibility
+        procedure :: scale_items => spring_items
+        procedure :: scale => spring_scale
+        procedure :: stiffen => spring_stiffen
+    end type spring_family_t
+
+contains
+
+    !> Number of springs.
+    pure integer function spring_count(this) result(n)
+        class(spring_family_t), intent(in) :: this   !! the family
+        n = 0
+        if (allocated(this%items)) n = size(this%items)
+    end function spring_count
+
+    !> Output rows per spring: its tension.
+    pure integer function spring_ncomp(this) result(n)
+        class(spring_family_t), intent(in) :: this   !! the family
+        n = 1
+    end function spring_ncomp
+
+    !> Free lengths not given: the neutral lengths.
+    pure subroutine spring_neutral(this, kin)
+        class(spring_family_t), intent(inout) :: this   !! the family; out: free lengths set
+        type(kinematics_t), intent(in) :: kin           !! kinematics of the neutral configuration
+        call set_neutral_lengths(kin, this%items)
+    end subroutine spring_neutral
+
+    !> Tensions of every spring applied to its bodies; stored energy, dissipated power.
+    pure subroutine spring_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+        class(spring_family_t), intent(in) :: this    !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
+        real(wp), intent(in) :: x(:)                  !! active coordinates [m, rad]
+        real(wp), intent(in) :: xd(:)                 !! their rates [m/s, rad/s]
+        type(body_loads_t), intent(inout) :: loads    !! loads, the springs' added
+        real(wp), intent(inout) :: out(:, :)          !! (1, ns) tension [N]
+        type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
+        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
+        real(wp), intent(inout) :: p_diss             !! dissipated power [W]
+        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        associate (gs => work%g)
+            call line_geometries(kin, this%items, gs)
+            out(1, :) = spring_tension(this%items, gs%length, gs%rate)
+            call apply_line_tensions(loads, kin, this%items, gs, out(1, :))
+            u_elastic = u_elastic + sum(spring_energy(this%items, gs%length))
+            p_diss = p_diss + sum(this%items%damping*gs%rate**2)
+        end associate
+    end subroutine spring_loads
+
+    !> K += (dT/dL) b b^T, C += (dT/dL') b b^T of every spring.
+    pure subroutine spring_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+        class(spring_family_t), intent(in) :: this    !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
+        real(wp), intent(in) :: t                     !! time [s]
+        real(wp), intent(in) :: x(:)                  !! active coordinates
+        real(wp), intent(in) :: xd(:)                 !! their rates
+        real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the springs' added
+        real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the springs' added
+        integer, intent(out) :: cols(:)               !! scratch
+        integer, intent(out) :: sgn(:)                !! scratch
+        integer, intent(out) :: idx(:)                !! scratch
+        real(wp), intent(out) :: b(:)                 !! scratch
+        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
+        integer :: e, bodies(max_via + 2)
+        real(wp) :: points(3, max_via + 2), length, rate, dl, dr, kl, cl
+        logical :: ok
+        bd = zero
+        do e = 1, size(this%items)
+            associate (a => this%items(e))
+                bodies = 0; points = zero
+                bodies(1) = a%body_a; bodies(2) = a%body_b
+                points(:, 1) = a%point_a; points(:, 2) = a%point_b
+                call line_columns(tree, kin, bodies, points, 2, cols, sgn, b, length, rate, ok)
+                if (.not. ok) cycle
+                dl = max(fd_rel*length, fd_abs_length)
+                dr = max(fd_rel*abs(rate), fd_abs_rate)
+                kl = (spring_tension(a, length + dl, rate) - spring_tension(a, length - dl, rate))/(2*dl)
+                cl = (spring_tension(a, length, rate + dr) - spring_tension(a, length, rate - dr))/(2*dr)
+                call add_line_tangent(b, kl, cl, kgen, cgen, idx)
+            end associate
+        end do
+    end subroutine spring_tangent
+
+    !> Springs never switch.
+    pure integer function spring_switch_count(this) result(n)
+        class(spring_family_t), intent(in) :: this   !! the family
+        n = 0
+    end function spring_switch_count
+
+    !> No switching functions.
+    pure subroutine spring_switching(this, t, kin, x, sw)
+        class(spring_family_t), intent(in) :: this    !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics at x (unused)
+        real(wp), intent(in) :: x(:)                  !! active coordinates (unused)
+        real(wp), intent(out) :: sw(:)                !! (0) none
+        sw = zero
+    end subroutine spring_switching
+
+    !> No channels (springs are fixtures of test models and scenes, not listed).
+    pure function spring_channels(this, tree) result(c)
+        class(spring_family_t), intent(in) :: this    !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
+        type(family_channel_t), allocatable :: c(:)
+        allocate (c(0))
+    end function spring_channels
+
+    !> /model/elements/springs; springs have no name in the deck: SPRING1, SPRING2, ...
+    pure function spring_table(this) result(tab)
+        class(spring_family_t), intent(in) :: this    !! the family
+        type(element_table_t) :: tab
+        integer :: e, n
+        n = size(this%items)
+        tab%group = 'springs'
+        tab%description = 'linear spring-damper from point a to b'
+        allocate (tab%name(n), tab%extra(0))
+        do e = 1, n
+            write (tab%name(e), '(a, i0)') 'SPRING', e
+        end do
+        tab%body = reshape([(this%items(e)%body_a, this%items(e)%body_b, e=1, n)], [2, n])
+        tab%point = reshape([(this%items(e)%point_a, this%items(e)%point_b, e=1, n)], [3, 2, n])
+    end function spring_table
+
+    !> Attachments far outside their bodies.
+    pure subroutine spring_plausibility(this, tree, warnings)
+        class(spring_family_t), intent(in) :: this    !! the family
+        type(body_tree_t), intent(in) :: tree         !! the body tree
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the springs' added
+        integer :: e
+        do e = 1, size(this%items)
+            call check_point(tree, this%items(e)%body_a, this%items(e)%point_a, 'spring '//this%items(e)%name, warnings)
+            call check_point(tree, this%items(e)%body_b, this%items(e)%point_b, 'spring '//this%items(e)%name, warnings)
+        end do
+    end subroutine spring_plausibility
+
+    !> K, C.
+    pure subroutine spring_items(this, items)
+        class(spring_family_t), intent(in) :: this    !! the family
+        character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
+        items = ''
+        items(1:2) = [character(len=item_len) :: 'K', 'C']
+    end subroutine spring_items
+
+    !> Scale the stiffness or damping of every spring.
+    pure subroutine spring_scale(this, item, factor)
+        class(spring_family_t), intent(inout) :: this   !! the family
+        character(len=*), intent(in) :: item            !! K or C
+        real(wp), intent(in) :: factor                  !! the factor
+        select case (item)
+        case ('K'); this%items%stiffness = factor*this%items%stiffness
+        case ('C'); this%items%damping = factor*this%items%damping
+        end select
+    end subroutine spring_scale
+
+    !> STIFFEN: the stiffness.
+    pure subroutine spring_stiffen(this, factor)
+        class(spring_family_t), intent(inout) :: this   !! the family
+        real(wp), intent(in) :: factor                  !! the factor
+        this%items%stiffness = factor*this%items%stiffness
+    end subroutine spring_stiffen
+
+    !> The springs of a model's family slot (a copy; none when the slot holds another family).
+    pure function springs_of(fam) result(items)
+        class(element_family_t), intent(in) :: fam   !! the slot's family
+        type(spring_t), allocatable :: items(:)
+        select type (fam)
+        type is (spring_family_t)
+            items = fam%items
+        class default
+            allocate (items(0))
+        end select
+    end function springs_of
+
+end module hn_spring_family

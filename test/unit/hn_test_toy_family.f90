@@ -1,0 +1,190 @@
+!> A toy element family for the tests, registered only in the models the
+!! tests build (model_add_family): linear spring-dampers on single
+!! coordinates, Q_j = -k (x_j - x0) - c xdot_j. It shows what a new family
+!! is: one type extending element_family_t with every binding, and nothing
+!! else in the code changed for the loads, the structured Jacobian, the
+!! channels, the plausibility checks and the scaling to use it. Output per
+!! spring: its generalized force [N or N m].
+module hn_test_toy_family
+    use hn_kinds, only: wp, zero, half
+    use hn_kinematics, only: kinematics_t
+    use hn_loads, only: body_loads_t
+    use hn_tree, only: body_tree_t
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
+                                 warning_len, check_range
+    implicit none
+    private
+
+    public :: coord_spring_t, coord_spring_family_t
+
+    !> One spring-damper on one active coordinate.
+    type :: coord_spring_t
+        character(len=12) :: name = ''
+        integer :: dof = 0             !! active coordinate
+        real(wp) :: k = zero           !! stiffness [N/m or N m/rad]
+        real(wp) :: c = zero           !! damping [N s/m or N m s/rad]
+        real(wp) :: x0 = zero          !! neutral value [m or rad]
+    end type coord_spring_t
+
+    !> The coordinate springs of a model.
+    type, extends(element_family_t) :: coord_spring_family_t
+        type(coord_spring_t), allocatable :: items(:)
+    contains
+        procedure :: count => toy_count
+        procedure :: ncomp => toy_ncomp
+        procedure :: set_neutral => toy_neutral
+        procedure :: add_loads => toy_loads
+        procedure :: add_tangent => toy_tangent
+        procedure :: switch_count => toy_switch_count
+        procedure :: switching => toy_switching
+        procedure :: channels => toy_channels
+        procedure :: result_table => toy_table
+        procedure :: plausibility => toy_plausibility
+        procedure :: scale_items => toy_items
+        procedure :: scale => toy_scale
+        procedure :: stiffen => toy_stiffen
+    end type coord_spring_family_t
+
+contains
+
+    !> Number of springs.
+    pure integer function toy_count(this) result(n)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        n = size(this%items)
+    end function toy_count
+
+    !> One output row: the generalized force.
+    pure integer function toy_ncomp(this) result(n)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        n = 1
+    end function toy_ncomp
+
+    !> Nothing to set up.
+    pure subroutine toy_neutral(this, kin)
+        class(coord_spring_family_t), intent(inout) :: this   !! the family (unchanged)
+        type(kinematics_t), intent(in) :: kin                 !! neutral kinematics (unused)
+    end subroutine toy_neutral
+
+    !> Q_j = -k (x_j - x0) - c xdot_j; energy k d^2 / 2, dissipation c xdot^2.
+    pure subroutine toy_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t                          !! time [s]
+        type(kinematics_t), intent(in) :: kin              !! kinematics (unused)
+        real(wp), intent(in) :: x(:)                       !! active coordinates
+        real(wp), intent(in) :: xd(:)                      !! their rates
+        type(body_loads_t), intent(inout) :: loads         !! generalized forces, the springs' added
+        real(wp), intent(inout) :: out(:, :)               !! (1, n) generalized forces
+        type(family_work_t), intent(inout) :: work         !! scratch (unused)
+        real(wp), intent(inout) :: u_elastic               !! stored energy [J]
+        real(wp), intent(inout) :: p_diss                  !! dissipated power [W]
+        real(wp), intent(inout) :: p_muscle                !! muscle power [W] (none)
+        integer :: e
+        do e = 1, size(this%items)
+            associate (s => this%items(e))
+                out(1, e) = -s%k*(x(s%dof) - s%x0) - s%c*xd(s%dof)
+                loads%q(s%dof) = loads%q(s%dof) + out(1, e)
+                u_elastic = u_elastic + half*s%k*(x(s%dof) - s%x0)**2
+                p_diss = p_diss + s%c*xd(s%dof)**2
+            end associate
+        end do
+    end subroutine toy_loads
+
+    !> K_jj += k, C_jj += c (the law is linear: its tangent exactly).
+    pure subroutine toy_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        type(body_tree_t), intent(in) :: tree              !! the body tree (unused)
+        type(kinematics_t), intent(in) :: kin              !! kinematics (unused)
+        real(wp), intent(in) :: t                          !! time [s] (unused)
+        real(wp), intent(in) :: x(:)                       !! active coordinates (unused)
+        real(wp), intent(in) :: xd(:)                      !! their rates (unused)
+        real(wp), intent(inout) :: kgen(:, :)              !! generalized stiffness, the springs' added
+        real(wp), intent(inout) :: cgen(:, :)              !! generalized damping, the springs' added
+        integer, intent(out) :: cols(:)                    !! scratch (unused)
+        integer, intent(out) :: sgn(:)                     !! scratch (unused)
+        integer, intent(out) :: idx(:)                     !! scratch (unused)
+        real(wp), intent(out) :: b(:)                      !! scratch (unused)
+        real(wp), intent(out) :: bd(:, :)                  !! scratch (unused)
+        integer :: e
+        cols = 0; sgn = 0; idx = 0; b = zero; bd = zero
+        do e = 1, size(this%items)
+            associate (s => this%items(e))
+                kgen(s%dof, s%dof) = kgen(s%dof, s%dof) + s%k
+                cgen(s%dof, s%dof) = cgen(s%dof, s%dof) + s%c
+            end associate
+        end do
+    end subroutine toy_tangent
+
+    !> No switching functions.
+    pure integer function toy_switch_count(this) result(n)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        n = 0
+    end function toy_switch_count
+
+    !> No switching functions.
+    pure subroutine toy_switching(this, t, kin, x, sw)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t                          !! time [s]
+        type(kinematics_t), intent(in) :: kin              !! kinematics (unused)
+        real(wp), intent(in) :: x(:)                       !! active coordinates (unused)
+        real(wp), intent(out) :: sw(:)                     !! (0) none
+        sw = zero
+    end subroutine toy_switching
+
+    !> One channel per spring: CS_name, its generalized force.
+    pure function toy_channels(this, tree) result(c)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        type(body_tree_t), intent(in) :: tree              !! the body tree (unused)
+        type(family_channel_t), allocatable :: c(:)
+        integer :: e
+        allocate (c(size(this%items)))
+        do e = 1, size(this%items)
+            c(e) = family_channel_t('CS_'//this%items(e)%name, 'N m', 'COORD SPRINGS', e, 1)
+        end do
+    end function toy_channels
+
+    !> No table in the result file.
+    pure function toy_table(this) result(tab)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        type(element_table_t) :: tab
+        tab%group = ''
+    end function toy_table
+
+    !> A stiffness two orders of magnitude or more from 10 N m/rad.
+    pure subroutine toy_plausibility(this, tree, warnings)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        type(body_tree_t), intent(in) :: tree              !! the body tree (unused)
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the springs' added
+        integer :: e
+        do e = 1, size(this%items)
+            call check_range('coordinate spring '//trim(this%items(e)%name)//' k', this%items(e)%k, 10.0_wp, &
+                             'N m/rad', warnings)
+        end do
+    end subroutine toy_plausibility
+
+    !> K, C.
+    pure subroutine toy_items(this, items)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
+        items = ''
+        items(1:2) = [character(len=item_len) :: 'K', 'C']
+    end subroutine toy_items
+
+    !> Scale k or c of every spring.
+    pure subroutine toy_scale(this, item, factor)
+        class(coord_spring_family_t), intent(inout) :: this   !! the family
+        character(len=*), intent(in) :: item                  !! K or C
+        real(wp), intent(in) :: factor                        !! the factor
+        select case (item)
+        case ('K'); this%items%k = factor*this%items%k
+        case ('C'); this%items%c = factor*this%items%c
+        end select
+    end subroutine toy_scale
+
+    !> STIFFEN: k.
+    pure subroutine toy_stiffen(this, factor)
+        class(coord_spring_family_t), intent(inout) :: this   !! the family
+        real(wp), intent(in) :: factor                        !! the factor
+        this%items%k = factor*this%items%k
+    end subroutine toy_stiffen
+
+end module hn_test_toy_family
