@@ -48,7 +48,7 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   notebook rates.
 
 API: stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
-kang_deck, run_kang, rate_kang.
+kang_deck, run_kang, rate_kang; rate_channel.
 """
 import os
 import subprocess
@@ -60,6 +60,17 @@ from . import iso18571, segments, specimen_data
 
 STEMPER_CHANNELS = ["seg_angle_C%d_C%d" % (k, k + 1) for k in range(2, 7)] + ["head_T1_angle",
                                                                                "head_T1_retraction"]
+
+
+def _run(deck, workdir, exe):
+    """Run a deck in workdir (shipped decks found through -I ROOT); its result file."""
+    exe = exe or segments.default_executable()
+    with open(deck) as fin, open(deck[:-4] + ".txt", "w") as fout:
+        r = subprocess.run([exe, "-I", segments.ROOT], stdin=fin, stdout=fout, stderr=subprocess.PIPE,
+                           text=True, cwd=workdir)
+    if r.returncode != 0:
+        raise RuntimeError("%s: hhneck exit %d: %s" % (deck, r.returncode, r.stderr.strip()[-400:]))
+    return deck[:-4] + ".h5"
 
 
 def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.DATA_DIR):
@@ -106,14 +117,8 @@ def run_stemper(workdir=None, exe=None, support="HOLD", muscles="PASSIVE"):
     import h5py
     work = workdir or tempfile.mkdtemp(prefix="hhneck-stemper-")
     os.makedirs(work, exist_ok=True)
-    deck = stemper_deck(work, support, muscles)
-    exe = exe or segments.default_executable()
-    with open(deck) as fin, open(deck[:-4] + ".txt", "w") as fout:
-        r = subprocess.run([exe, "-I", segments.ROOT], stdin=fin, stdout=fout, stderr=subprocess.PIPE,
-                           text=True, cwd=work)
-    if r.returncode != 0:
-        raise RuntimeError("%s: hhneck exit %d: %s" % (deck, r.returncode, r.stderr.strip()[-400:]))
-    with h5py.File(deck[:-4] + ".h5", "r") as f:
+    h5 = _run(stemper_deck(work, support, muscles), work, exe)
+    with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
         c = {n: np.asarray(f["channels"][n][:], dtype=float) for n in
              ["C%d_RY" % k for k in range(2, 7)] + ["HEAD_THETY", "T1_THETY", "HEAD_DX"]}
@@ -131,14 +136,20 @@ def rate_stemper(model, data_dir=segments.DATA_DIR):
     out = {}
     for ch in STEMPER_CHANNELS:
         g, ref, lo, hi = specimen_data.reference(path, ch)
-        t, m = model[ch]
-        mi = np.interp(g, t, m)
-        s = iso18571.rate(g * 1e-3, ref, mi)
-        km, kr = int(np.argmax(np.abs(mi))), int(np.argmax(np.abs(ref)))
-        s.update(grid=g, reference=ref, lower=lo, upper=hi, model=mi, peak_model=(mi[km], g[km]),
-                 peak_ref=(ref[kr], g[kr]), inside=float(np.mean((mi >= lo) & (mi <= hi))))
-        out[ch] = s
+        out[ch] = rate_channel(g, ref, lo, hi, *model[ch])
     return out
+
+
+def rate_channel(g, ref, lo, hi, t, m):
+    """ISO/TS 18571 of the model curve (t [ms], m) against the reference on
+    the grid g [ms], with its bounds: the scores, the curves on the grid,
+    both peaks (value, time) and the share of the grid inside the bounds."""
+    mi = np.interp(g, t, m)
+    sc = iso18571.rate(g * 1e-3, ref, mi)
+    km, kr = int(np.argmax(np.abs(mi))), int(np.argmax(np.abs(ref)))
+    sc.update(grid=g, reference=ref, lower=lo, upper=hi, model=mi, peak_model=(mi[km], g[km]),
+              peak_ref=(ref[kr], g[kr]), inside=float(np.mean((mi >= lo) & (mi <= hi))))
+    return sc
 
 
 KANG_CHANNELS = {"front": ["head_acc_x", "head_acc_z", "head_rot_y"],
@@ -184,16 +195,6 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
     return deck
 
 
-def _run(deck, workdir, exe):
-    exe = exe or segments.default_executable()
-    with open(deck) as fin, open(deck[:-4] + ".txt", "w") as fout:
-        r = subprocess.run([exe, "-I", segments.ROOT], stdin=fin, stdout=fout, stderr=subprocess.PIPE,
-                           text=True, cwd=workdir)
-    if r.returncode != 0:
-        raise RuntimeError("%s: hhneck exit %d: %s" % (deck, r.returncode, r.stderr.strip()[-400:]))
-    return deck[:-4] + ".h5"
-
-
 def head_bryant_x(rotation):
     """The head's first Bryant angle (about R's x) [deg] from /bodies/rotation
     samples of the head (nt, 3, 3; h5py [t, j, i] = S_ij)."""
@@ -229,11 +230,5 @@ def rate_kang(direction, model, data_dir=segments.DATA_DIR):
         t1 = 1.2 * g[int(np.argmax(np.abs(ref)))]
         keep = g <= t1
         g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
-        t, m = model[ch]
-        mi = np.interp(g, t, m)
-        sc = iso18571.rate(g * 1e-3, ref, mi)
-        km, kr = int(np.argmax(np.abs(mi))), int(np.argmax(np.abs(ref)))
-        sc.update(grid=g, reference=ref, lower=lo, upper=hi, model=mi, peak_model=(mi[km], g[km]),
-                  peak_ref=(ref[kr], g[kr]), inside=float(np.mean((mi >= lo) & (mi <= hi))))
-        out[ch] = sc
+        out[ch] = rate_channel(g, ref, lo, hi, *model[ch])
     return out
