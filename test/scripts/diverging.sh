@@ -3,7 +3,7 @@
 # 3, listing and HDF5 file kept up to the last good step, marked incomplete.
 . test/scripts/lib/checks.sh
 
-sed 's/^CONTROL   0.1       5.0E-5    0.001     ADAMS     1.0E-4    1.0E-7/CONTROL   0.1       2.0E-4    0.001     RK4/' \
+sed 's/^CONTROL .*/CONTROL   0.1       2.0E-4    0.001     RK4/' \
     input/case6-2.inp > "$tmp/diverge.inp"
 "$HHNECK" --h5 "$tmp/diverge.h5" < "$tmp/diverge.inp" > "$tmp/diverge.out" 2> "$tmp/diverge.err"
 rc=$?
