@@ -60,15 +60,28 @@ contains
     pure subroutine new_family(f, slot)
         integer, intent(in) :: f                    !! family (fam_discs ... fam_springs)
         type(family_slot_t), intent(out) :: slot    !! the slot, holding an empty family of that kind
+        ! the empty arrays are allocated with size 0 (not taken from a
+        ! zero-size array constructor, whose result gfortran copies into an
+        ! unallocated component when the model is copied)
+        type(disc_t), allocatable :: d(:)
+        type(ligament_t), allocatable :: l(:)
+        type(muscle_t), allocatable :: m(:)
+        type(table_t), allocatable :: tb(:)
+        type(activation_t), allocatable :: a(:)
+        type(joint_limit_t), allocatable :: jl(:)
+        type(joint_range_t), allocatable :: jr(:)
+        type(spring_t), allocatable :: sp(:)
         select case (f)
-        case (fam_discs); allocate (slot%f, source=disc_family_t(items=[disc_t ::]))
-        case (fam_ligaments); allocate (slot%f, source=ligament_family_t(items=[ligament_t ::]))
+        case (fam_discs)
+            allocate (d(0)); allocate (slot%f, source=disc_family_t(items=d))
+        case (fam_ligaments)
+            allocate (l(0)); allocate (slot%f, source=ligament_family_t(items=l))
         case (fam_muscles)
-            allocate (slot%f, source=muscle_family_t(items=[muscle_t ::], tables=[table_t ::], &
-                                                     activations=[activation_t ::]))
+            allocate (m(0), tb(0), a(0)); allocate (slot%f, source=muscle_family_t(items=m, tables=tb, activations=a))
         case (fam_limits)
-            allocate (slot%f, source=limit_family_t(items=[joint_limit_t ::], ranges=[joint_range_t ::]))
-        case (fam_springs); allocate (slot%f, source=spring_family_t(items=[spring_t ::]))
+            allocate (jl(0), jr(0)); allocate (slot%f, source=limit_family_t(items=jl, ranges=jr))
+        case (fam_springs)
+            allocate (sp(0)); allocate (slot%f, source=spring_family_t(items=sp))
         end select
     end subroutine new_family
 

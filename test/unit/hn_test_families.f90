@@ -45,7 +45,12 @@ contains
     pure subroutine set_springs(model, springs)
         type(model_t), intent(inout) :: model      !! the model; out: its SPRINGS family holds `springs`
         type(spring_t), intent(in) :: springs(:)   !! the springs
-        call model_set_family(model, fam_springs, spring_family_t(items=springs))
+        type(spring_t), allocatable :: s(:)
+        ! an allocated copy: a zero-size actual (a constructor [spring_t ::])
+        ! would give a component that the model's copy leaves unallocated
+        allocate (s(size(springs)))
+        s = springs
+        call model_set_family(model, fam_springs, spring_family_t(items=s))
     end subroutine set_springs
 
 end module hn_test_families
