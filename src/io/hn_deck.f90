@@ -9,7 +9,8 @@ module hn_deck
     use hn_tree, only: body_tree_t, tree_allocate, tree_build, name_len
     use hn_model, only: model_init, model_set_neutral, neutral_coordinates, family_items, family_items_text, &
                         scale_family, max_family_items, model_set_family
-    use hn_families, only: nfamilies, family_name, family_index, card_continuations, fam_discs, fam_ligaments, &
+    use hn_cards, only: card_known, card_ncont, card_repeats
+    use hn_families, only: nfamilies, family_name, family_index, fam_discs, fam_ligaments, &
                            fam_muscles, fam_limits, fam_springs
     use hn_disc_family, only: disc_family_t
     use hn_ligament_family, only: ligament_family_t
@@ -254,28 +255,11 @@ contains
         end if
     end subroutine check_unknowns
 
-    !> Number of continuation cards a card type takes (-1: computed, TABLE).
-    pure integer function continuations(key) result(n)
-        character(len=*), intent(in) :: key
-        n = card_continuations(key)     ! an element family's card: the registry's count
-        if (n >= 0) return
-        select case (key)
-        case ('FORCE'); n = 1
-        case ('TABLE'); n = -1
-        case default; n = 0
-        end select
-    end function continuations
-
     !> Split the lines into cards, checking names, continuation counts and
     !! that TITLE comes first.
     subroutine group_cards(rd, cards)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), allocatable, intent(out) :: cards(:)
-        character(len=8), parameter :: known(38) = [character(len=8) :: 'TITLE', 'CONTROL', 'SOLVER', &
-            'GRAVITY', 'OUTPUT', 'H5FILE', 'DUMP', 'HEADNECK', 'HOLD', 'BODY', 'BODYPI', 'JOINT', 'LOCK', &
-            'NEUTRAL', 'INITIAL', 'PRESCRIB', 'TABLE', 'DISC', 'LIGAMENT', 'MUSCLE', 'LIMIT', 'SPRING', &
-            'FORCE', 'COUPLE', 'FAMILY', 'EVENTS', 'STIFFEN', 'MERGE', 'SCENE', 'HILL', 'ACTIVATE', 'ROM', 'SCALE', &
-            'RUNLIMIT', 'CHANGE', 'VIA', 'CRITERIA', 'PULSE']
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
@@ -295,7 +279,7 @@ contains
                 return
             end if
             if (key == 'END') exit
-            if (.not. any(known == key)) then
+            if (.not. card_known(key)) then
                 call rd%fail(rd%where(i)//', columns 1-8: found unknown card "'//trim(key)// &
                              '"; expected one of TITLE CONTROL BODY JOINT ... (docs/deck-format.md)')
                 return
@@ -304,7 +288,7 @@ contains
                 call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(key)//'"; expected a TITLE card first')
                 return
             end if
-            need = continuations(key)
+            need = card_ncont(key)
             if (need < 0) then
                 s = rd%raw(i, 2)
                 read (s, *, iostat=ios) npts
@@ -337,7 +321,8 @@ contains
         cards = cards(1:nc)
     end subroutine group_cards
 
-    !> Index of the only card of a type; 0 when absent; error when repeated.
+    !> Index of the only card of a type; 0 when absent; error when repeated
+    !! (a card the registry, hn_cards, lets repeat: the last one).
     integer function single(rd, cards, key, required) result(ic)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
@@ -347,7 +332,7 @@ contains
         ic = 0
         do k = 1, size(cards)
             if (cards(k)%key /= key) cycle
-            if (ic /= 0) then
+            if (ic /= 0 .and. .not. card_repeats(key)) then
                 call rd%fail(rd%where(cards(k)%first)//', columns 1-8: found a second '//key// &
                              ' card; expected only one (the first is at '//rd%where(cards(ic)%first)//')')
                 return
