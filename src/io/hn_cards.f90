@@ -2,13 +2,14 @@
 !! continuation cards it takes, the card group whose module reads it and
 !! whether a deck may hold more than one of it. The deck reader's check of
 !! card names (`card_known`), its grouping of continuation cards
-!! (`card_ncont`) and its dispatch to the card groups (`card_group`,
-!! `group_order`) read this table; docs/deck-format.md has one `### NAME`
+!! (`card_ncont`) and its dispatch to the card groups (`deck_passes`) read
+!! this table; docs/deck-format.md has one `### NAME`
 !! section per card of it (test/scripts/deck_cards.sh). An element card
 !! takes its continuation count from the family registry (hn_families).
 !!
-!! Adding a card: one line in `cards` and one handler in the module of its
-!! group (docs/architecture.md, "Adding a card").
+!! Adding a card: one line in `cards` and its handler in the module of its
+!! group, called from that group's pass (docs/architecture.md, "Adding a
+!! card").
 module hn_cards
     use hn_families, only: card_continuations
     implicit none
@@ -75,6 +76,31 @@ module hn_cards
         card_info_t('COUPLE', 0, grp_loads, .true.), &
         card_info_t('STIFFEN', 0, grp_loads, .true.), &
         card_info_t('CHANGE', 0, grp_changes, .true.)]
+
+    !> One pass of the deck reader over the cards: the group whose module
+    !! reads it and the handler of that module that does.
+    type, public :: deck_pass_t
+        integer :: group = 0
+        character(len=16) :: handler = ''
+    end type deck_pass_t
+
+    !> The passes, in the order the cards depend on each other: the bodies
+    !! (with the coordinates locked and the scene, which the tree needs), the
+    !! control cards, the tables, the coordinates' motions (tables), the
+    !! elements (the tree, the tables), the loads, the reported bodies, the
+    !! stiffness factors (the elements), the model's CHANGE cards (the whole
+    !! model) and RUNLIMIT. CHANGE cards rewrite fields before the first pass.
+    type(deck_pass_t), parameter, public :: deck_passes(*) = [ &
+        deck_pass_t(grp_bodies, 'body_cards'), &
+        deck_pass_t(grp_control, 'control_cards'), &
+        deck_pass_t(grp_tables, 'table_cards'), &
+        deck_pass_t(grp_coordinates, 'coordinate_cards'), &
+        deck_pass_t(grp_elements, 'element_cards'), &
+        deck_pass_t(grp_loads, 'load_cards'), &
+        deck_pass_t(grp_control, 'report_cards'), &
+        deck_pass_t(grp_loads, 'stiffen_cards'), &
+        deck_pass_t(grp_changes, 'model_changes'), &
+        deck_pass_t(grp_control, 'runlimit_card')]
 
 contains
 
