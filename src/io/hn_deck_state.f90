@@ -53,14 +53,19 @@ module hn_deck_state
 
 contains
 
-    !> Split the lines into cards, checking names, continuation counts and
-    !! that TITLE comes first.
-    subroutine group_cards(rd, cards)
+    !> Split the lines into cards, checking names (the card registry),
+    !! continuation counts and that TITLE comes first (a deck; not a few
+    !! card images for one card group, title_first false).
+    subroutine group_cards(rd, cards, title_first)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        type(card_t), allocatable, intent(out) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(card_t), allocatable, intent(out) :: cards(:)  !! the cards, each with the count of its continuation cards
+        logical, intent(in), optional :: title_first  !! refuse a first card other than TITLE (default: yes)
         integer :: i, nc, need, npts, ios
         character(len=8) :: key
         character(len=10) :: s
+        logical :: title
+        title = .true.
+        if (present(title_first)) title = title_first
         allocate (cards(rd%nlines))
         nc = 0
         i = 1
@@ -82,7 +87,7 @@ contains
                              '"; expected one of TITLE CONTROL BODY JOINT ... (docs/deck-format.md)')
                 return
             end if
-            if (nc == 0 .and. key /= 'TITLE') then
+            if (nc == 0 .and. key /= 'TITLE' .and. title) then
                 call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(key)//'"; expected a TITLE card first')
                 return
             end if
