@@ -1,7 +1,10 @@
 !> Interpretation of a fixed-format input deck into a run case. The cards
 !! and their columns are documented in docs/deck-format.md; every error
 !! names the source, line, columns, card and field, what was found and
-!! what was expected.
+!! what was expected. This module reads the deck and runs the passes of
+!! the card registry (hn_cards) over it; each card group has its module
+!! (hn_deck_control, _bodies, _scene, _coordinates, _tables, _elements,
+!! _loads), on what they share (hn_deck_state).
 module hn_deck
     use hn_kinds, only: msglen
     use hn_case, only: case_t, deck_line_t
