@@ -15,7 +15,7 @@ module hn_deck
     use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
     use hn_sorting, only: sort_index_text
     use hn_cards, only: deck_passes
-    use hn_deck_state, only: card_t, body_map_t, named_table_t, group_cards
+    use hn_deck_state, only: card_t, deck_state_t, group_cards
     use hn_deck_control, only: runlimit_card, control_cards, report_cards
     use hn_deck_coordinates, only: coordinate_cards
     use hn_deck_bodies, only: body_cards
@@ -126,57 +126,54 @@ contains
     subroutine interpret(rd, cs)
         type(deck_reader_t), intent(inout) :: rd
         type(case_t), intent(out) :: cs
-        type(card_t), allocatable :: cards(:)
-        type(named_table_t), allocatable :: tabs(:)
-        character(len=10), allocatable :: bnames(:)
-        type(body_map_t) :: bmap
+        type(deck_state_t) :: st
         type(change_t), allocatable :: changes(:)
         integer, allocatable :: first(:)
         integer :: k, p
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
-            call group_cards(rd, cards)
+            call group_cards(rd, st%cards)
         end if
         allocate (cs%scene(0), cs%changes(0), cs%subtitles(0))
         ! CHANGE cards: fields rewritten in rd's images (cs%deck keeps the deck as read)
         if (.not. rd%failed()) then
             allocate (first(0))
-            do k = 1, size(cards)
-                if (cards(k)%key == 'CHANGE') first = [first, cards(k)%first]
+            do k = 1, size(st%cards)
+                if (st%cards(k)%key == 'CHANGE') first = [first, st%cards(k)%first]
             end do
             call read_changes(rd, first, changes)
         end if
         ! cards that repeat one another are refused before a change can be ambiguous, and again
         ! when a change rewrote a field that identifies a card (F1, F2)
-        if (.not. rd%failed()) call check_repeats(rd, cards)
+        if (.not. rd%failed()) call check_repeats(rd, st%cards)
         if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
         if (.not. rd%failed()) then
-            if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, cards)
+            if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, st%cards)
         end if
         do p = 1, size(deck_passes)
             if (rd%failed()) exit
             select case (deck_passes(p)%handler)
-            case ('body_cards'); call body_cards(rd, cards, cs, bnames, bmap)
-            case ('control_cards'); call control_cards(rd, cards, cs)
-            case ('table_cards'); call table_cards(rd, cards, tabs, cs)
-            case ('coordinate_cards'); call coordinate_cards(rd, cards, cs, bnames, bmap, tabs)
-            case ('element_cards'); call element_cards(rd, cards, cs, bnames, bmap, tabs)
-            case ('load_cards'); call load_cards(rd, cards, cs, bnames, bmap, tabs)
-            case ('report_cards'); call report_cards(rd, cards, cs, bnames, bmap)
-            case ('stiffen_cards'); call stiffen_cards(rd, cards, cs)
+            case ('body_cards'); call body_cards(rd, st%cards, cs, st%bnames, st%bmap)
+            case ('control_cards'); call control_cards(rd, st%cards, cs)
+            case ('table_cards'); call table_cards(rd, st%cards, st%tabs, cs)
+            case ('coordinate_cards'); call coordinate_cards(rd, st, cs)
+            case ('element_cards'); call element_cards(rd, st, cs)
+            case ('load_cards'); call load_cards(rd, st, cs)
+            case ('report_cards'); call report_cards(rd, st%cards, cs, st%bnames, st%bmap)
+            case ('stiffen_cards'); call stiffen_cards(rd, st%cards, cs)
             case ('model_changes'); call apply_model_changes(rd, changes, cs%model, cs%changes)
-            case ('runlimit_card'); call runlimit_card(rd, cards, cs)
+            case ('runlimit_card'); call runlimit_card(rd, st%cards, cs)
             case default
                 call rd%fail(rd%top//': the deck reader has no handler "'//trim(deck_passes(p)%handler)// &
                              '" (hn_cards, deck_passes)')
             end select
         end do
-        if (.not. rd%failed()) call check_unknowns(rd, cards, cs)
+        if (.not. rd%failed()) call check_unknowns(rd, st%cards, cs)
         if (.not. rd%failed()) then
             call model_set_neutral(cs%model)
             call plausibility_warnings(cs%model, cs%warnings)
-            do k = 1, size(tabs)
-                if (len_trim(tabs(k)%warning) > 0) cs%warnings = [character(len=160) :: cs%warnings, tabs(k)%warning]
+            do k = 1, size(st%tabs)
+                if (len_trim(st%tabs(k)%warning) > 0) cs%warnings = [character(len=160) :: cs%warnings, st%tabs(k)%warning]
             end do
         end if
     end subroutine interpret

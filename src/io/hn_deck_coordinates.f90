@@ -7,8 +7,8 @@ module hn_deck_coordinates
     use hn_deck_reader, only: deck_reader_t
     use hn_model, only: neutral_coordinates
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
-    use hn_deck_state, only: card_t, body_map_t, named_table_t, add_scene_note, k_old, locked_error, active_ref, &
-                             body_ref, coord_ref, table_ref, unit_of, unit_factor, unit_limit
+    use hn_deck_state, only: deck_state_t, add_scene_note, k_old, locked_error, active_ref, body_ref, coord_ref, &
+                             table_ref, unit_of, unit_factor, unit_limit
     implicit none
     private
 
@@ -65,13 +65,10 @@ contains
     !> INITIAL and PRESCRIB cards. A card for a coordinate the scene locked
     !! is dropped when it only restates the neutral value; otherwise it is an
     !! error.
-    subroutine coordinate_cards(rd, cards, cs, bnames, bmap, tabs)
+    subroutine coordinate_cards(rd, st, cs)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(deck_state_t), intent(in) :: st  !! the deck's cards, bodies (names, where each went) and tables
         type(case_t), intent(inout) :: cs  !! the run case the cards fill
-        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
-        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
-        type(named_table_t), intent(in) :: tabs(:)  !! the deck's named tables (TABLE, PULSE)
         integer :: k, i, kb, m, j, it, stat, ndrop
         real(wp) :: v, vd, fac, amp, freq, phase
         character(len=10) :: s
@@ -81,18 +78,18 @@ contains
         cs%x0 = neutral_coordinates(cs%model)
         cs%xd0 = zero
         ndrop = 0
-        do k = 1, size(cards)
-            i = cards(k)%first
-            select case (cards(k)%key)
+        do k = 1, size(st%cards)
+            i = st%cards(k)%first
+            select case (st%cards(k)%key)
             case ('INITIAL')
-                call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
+                call active_ref(rd, i, cs, st%bnames, st%bmap, kb, m, j, .true.)
                 if (rd%failed()) return
                 if (j == 0) then
                     call rd%real(i, 3, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
                                  default=cs%model%tree%q_ref(m, kb)/unit_factor(m))
                     call rd%real(i, 4, 'initial rate', unit_of(m)//'/s', vd, -1.0e5_wp, 1.0e5_wp, default=zero)
                     if (abs(v*unit_factor(m) - cs%model%tree%q_ref(m, kb)) > 1.0e-12_wp .or. vd /= zero) then
-                        call locked_error(rd, i, bnames, bmap, k_old(rd, i, bnames), m)
+                        call locked_error(rd, i, st%bnames, st%bmap, k_old(rd, i, st%bnames), m)
                         return
                     end if
                     ndrop = ndrop + 1
@@ -105,7 +102,7 @@ contains
                 cs%x0(j) = v*fac
                 cs%xd0(j) = vd*fac
             case ('PRESCRIB')
-                call active_ref(rd, i, cs, bnames, bmap, kb, m, j, .true.)
+                call active_ref(rd, i, cs, st%bnames, st%bmap, kb, m, j, .true.)
                 if (rd%failed()) return
                 if (j == 0) then
                     call rd%name(i, 3, 'kind', s)
@@ -114,7 +111,7 @@ contains
                                                       default=v)
                     if (rd%failed()) return
                     if (s /= 'CONSTANT' .or. abs(v*unit_factor(m) - cs%model%tree%q_ref(m, kb)) > 1.0e-12_wp) then
-                        call locked_error(rd, i, bnames, bmap, k_old(rd, i, bnames), m)
+                        call locked_error(rd, i, st%bnames, st%bmap, k_old(rd, i, st%bnames), m)
                         return
                     end if
                     ndrop = ndrop + 1
@@ -129,16 +126,16 @@ contains
                                  default=cs%model%tree%q_ref(m, kb)/fac)
                     cs%model%motion(j) = motion_constant(v*fac)
                 case ('ACCEL', 'POSITION')
-                    it = table_ref(rd, i, 4, tabs)
+                    it = table_ref(rd, i, 4, st%tabs)
                     if (rd%failed()) return
                     if (s == 'ACCEL') then
                         call rd%real(i, 5, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
                                      default=cs%model%tree%q_ref(m, kb)/fac)
                         call rd%real(i, 6, 'initial rate', unit_of(m)//'/s', vd, -1.0e5_wp, 1.0e5_wp, default=zero)
-                        call motion_accel_table(cs%model%motion(j), tabs(it)%tab%t, tabs(it)%tab%y*fac, &
+                        call motion_accel_table(cs%model%motion(j), st%tabs(it)%tab%t, st%tabs(it)%tab%y*fac, &
                                                 v*fac, vd*fac, stat)
                     else
-                        call motion_position_table(cs%model%motion(j), tabs(it)%tab%t, tabs(it)%tab%y*fac, stat)
+                        call motion_position_table(cs%model%motion(j), st%tabs(it)%tab%t, st%tabs(it)%tab%y*fac, stat)
                     end if
                 case ('HARMONIC')
                     call rd%real(i, 4, 'amplitude', unit_of(m), amp, -unit_limit(m), unit_limit(m))

@@ -19,7 +19,7 @@ module hn_deck_elements
     use hn_muscle, only: activation_t
     use hn_joint_limits, only: joint_limit_t, joint_range_t
     use hn_rotation, only: norm3
-    use hn_deck_state, only: coord_names, big_length, big_modulus, card_t, body_map_t, named_table_t, add_scene_note, &
+    use hn_deck_state, only: deck_state_t, coord_names, big_length, big_modulus, card_t, body_map_t, add_scene_note, &
                              active_ref, family_ref, body_ref, table_ref, unit_of, unit_factor, unit_limit, join
     implicit none
     private
@@ -31,13 +31,10 @@ contains
     !> DISC, LIGAMENT, MUSCLE, LIMIT, SPRING, FAMILY cards. Elements are
     !! moved onto merged bodies; an element inside one merged body, or a
     !! joint damper on a locked or merged coordinate, is dropped.
-    subroutine element_cards(rd, cards, cs, bnames, bmap, tabs)
+    subroutine element_cards(rd, st, cs)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(deck_state_t), intent(in) :: st  !! the deck's cards, bodies (names, where each went) and tables
         type(case_t), intent(inout) :: cs  !! the run case the cards fill
-        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
-        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
-        type(named_table_t), intent(in) :: tabs(:)  !! the deck's named tables (TABLE, PULSE)
         integer :: k, i, ninternal, nlimdrop, it
         integer :: nel(nfamilies)       !! elements so far of each family
         integer :: njoint(2)            !! joint-limit dampers and ranges of motion so far
@@ -55,20 +52,20 @@ contains
 
         ninternal = 0
         nlimdrop = 0
-        call activation_cards(rd, cards, cs, mf%activations)
+        call activation_cards(rd, st%cards, cs, mf%activations)
         if (rd%failed()) return
         ! room for every element card, trimmed at the end (appending one by one is quadratic)
-        allocate (df%items(count(cards%key == 'DISC')), lf%items(count(cards%key == 'LIGAMENT')), &
-                  mf%items(count(cards%key == 'MUSCLE' .or. cards%key == 'HILL')), &
-                  sf%items(count(cards%key == 'SPRING')), jf%items(count(cards%key == 'LIMIT')), &
-                  jf%ranges(count(cards%key == 'ROM')), mf%tables(0))
+        allocate (df%items(count(st%cards%key == 'DISC')), lf%items(count(st%cards%key == 'LIGAMENT')), &
+                  mf%items(count(st%cards%key == 'MUSCLE' .or. st%cards%key == 'HILL')), &
+                  sf%items(count(st%cards%key == 'SPRING')), jf%items(count(st%cards%key == 'LIMIT')), &
+                  jf%ranges(count(st%cards%key == 'ROM')), mf%tables(0))
         nel = 0
         njoint = 0
-        do k = 1, size(cards)
-            i = cards(k)%first
-            select case (cards(k)%key)
+        do k = 1, size(st%cards)
+            i = st%cards(k)%first
+            select case (st%cards(k)%key)
             case ('DISC')
-                call disc_card(rd, i, bnames, bmap, ninternal, d, keep)
+                call disc_card(rd, i, st%bnames, st%bmap, ninternal, d, keep)
                 if (keep) call append(fam_discs)
             case ('LIGAMENT')
                 g = ligament_t()
@@ -84,9 +81,9 @@ contains
                 call rd%real(i, 5, 'damping m2', 'N s/m', mu%m2, zero, big_modulus)
                 call rd%real(i, 6, 'active force Fmax', 'N', mu%fmax, zero, 1.0e6_wp, default=zero)
                 if (.not. rd%is_blank(i, 7)) then
-                    it = table_ref(rd, i, 7, tabs)
+                    it = table_ref(rd, i, 7, st%tabs)
                     if (.not. rd%failed()) then
-                        mf%tables = [mf%tables, tabs(it)%tab]
+                        mf%tables = [mf%tables, st%tabs(it)%tab]
                         mu%activation = size(mf%tables)
                     end if
                 end if
@@ -110,7 +107,7 @@ contains
                 call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
                 if (keep .and. .not. rd%failed()) call append(fam_springs)
             case ('LIMIT', 'ROM')
-                call joint_card(rd, i, cs, bnames, bmap, nlimdrop, jf, njoint)
+                call joint_card(rd, i, cs, st%bnames, st%bmap, nlimdrop, jf, njoint)
             case ('FAMILY')
                 call family_card(rd, i, cs)
             end select
@@ -130,8 +127,8 @@ contains
             write (note, '(i0,a)') nlimdrop, ' JOINT-LIMIT DAMPERS DROPPED: ON LOCKED OR MERGED COORDINATES'
             call add_scene_note(cs, note)
         end if
-        do k = 1, size(cards)
-            if (cards(k)%key == 'VIA') call via_card(rd, cards, cards(k)%first, mf%items, bnames, bmap)
+        do k = 1, size(st%cards)
+            if (st%cards(k)%key == 'VIA') call via_card(rd, st%cards, st%cards(k)%first, mf%items, st%bnames, st%bmap)
             if (rd%failed()) return
         end do
         call model_set_family(cs%model, fam_discs, df)
@@ -139,8 +136,8 @@ contains
         call model_set_family(cs%model, fam_muscles, mf)
         call model_set_family(cs%model, fam_limits, jf)
         call model_set_family(cs%model, fam_springs, sf)
-        do k = 1, size(cards)
-            if (cards(k)%key == 'SCALE') call scale_card(rd, cards(k)%first, cs)
+        do k = 1, size(st%cards)
+            if (st%cards(k)%key == 'SCALE') call scale_card(rd, st%cards(k)%first, cs)
             if (rd%failed()) return
         end do
     contains
@@ -170,8 +167,8 @@ contains
             keep = .false.
             call rd%name(i, 1, what//' name', nm)
             at%name = nm
-            at%body_a = body_ref(rd, i, 2, 'body a', bnames, .true.)
-            at%body_b = body_ref(rd, i, 3, 'body b', bnames, .true.)
+            at%body_a = body_ref(rd, i, 2, 'body a', st%bnames, .true.)
+            at%body_b = body_ref(rd, i, 3, 'body b', st%bnames, .true.)
             call distinct_bodies(rd, i, at%body_a, at%body_b)
             call line_points(rd, i + 1, at%point_a, at%point_b)
             select case (what)
@@ -183,7 +180,7 @@ contains
                 call rd%real(ll, lf, 'free length', 'm', at%length0, zero, big_length, default=-one)
             end select
             if (rd%failed()) return
-            call map_ends(bmap, at%body_a, at%point_a, at%body_b, at%point_b, ninternal)
+            call map_ends(st%bmap, at%body_a, at%point_a, at%body_b, at%point_b, ninternal)
             keep = at%body_a /= at%body_b
         end subroutine line_card
     end subroutine element_cards

@@ -7,7 +7,7 @@ module hn_deck_loads
     use hn_deck_reader, only: deck_reader_t
     use hn_applied, only: applied_load_t, applied_force, applied_couple, frame_body, frame_inertial
     use hn_rotation, only: norm3
-    use hn_deck_state, only: big_length, card_t, body_map_t, named_table_t, family_ref, body_ref, table_ref
+    use hn_deck_state, only: deck_state_t, big_length, card_t, family_ref, body_ref, table_ref
     implicit none
     private
 
@@ -16,25 +16,22 @@ module hn_deck_loads
 contains
 
     !> FORCE and COUPLE cards (moved onto merged bodies).
-    subroutine load_cards(rd, cards, cs, bnames, bmap, tabs)
+    subroutine load_cards(rd, st, cs)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(deck_state_t), intent(in) :: st  !! the deck's cards, bodies (names, where each went) and tables
         type(case_t), intent(inout) :: cs  !! the run case the cards fill
-        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
-        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
-        type(named_table_t), intent(in) :: tabs(:)  !! the deck's named tables (TABLE, PULSE)
         type(applied_load_t) :: al
         integer :: k, i, f, it, nal
         character(len=10) :: s
         deallocate (cs%model%applied)
-        allocate (cs%model%applied(count(cards%key == 'FORCE' .or. cards%key == 'COUPLE')))
+        allocate (cs%model%applied(count(st%cards%key == 'FORCE' .or. st%cards%key == 'COUPLE')))
         nal = 0
-        do k = 1, size(cards)
-            if (cards(k)%key /= 'FORCE' .and. cards(k)%key /= 'COUPLE') cycle
-            i = cards(k)%first
+        do k = 1, size(st%cards)
+            if (st%cards(k)%key /= 'FORCE' .and. st%cards(k)%key /= 'COUPLE') cycle
+            i = st%cards(k)%first
             al = applied_load_t()
-            al%kind = merge(applied_force, applied_couple, cards(k)%key == 'FORCE')
-            al%body = body_ref(rd, i, 1, 'body', bnames, .false.)
+            al%kind = merge(applied_force, applied_couple, st%cards(k)%key == 'FORCE')
+            al%body = body_ref(rd, i, 1, 'body', st%bnames, .false.)
             call rd%name(i, 2, 'frame', s)
             if (rd%failed()) return
             select case (s)
@@ -44,26 +41,26 @@ contains
                 call rd%fail(rd%context(i, 2, 'frame')//': found "'//trim(s)//'"; expected R (inertial) or BODY')
                 return
             end select
-            it = table_ref(rd, i, 3, tabs)
+            it = table_ref(rd, i, 3, st%tabs)
             do f = 1, 3
                 call rd%real(i, 3 + f, 'direction', '-', al%direction(f), -1.0e6_wp, 1.0e6_wp)
             end do
             if (rd%failed()) return
             if (norm3(al%direction) == zero) then
-                call rd%fail(rd%where(i)//', columns 41-70 ('//trim(cards(k)%key)//' card, fields F4-F6 '// &
+                call rd%fail(rd%where(i)//', columns 41-70 ('//trim(st%cards(k)%key)//' card, fields F4-F6 '// &
                              '''direction''): found a zero vector; expected a direction')
                 return
             end if
             al%direction = al%direction/norm3(al%direction)
-            al%magnitude = tabs(it)%tab
+            al%magnitude = st%tabs(it)%tab
             if (al%kind == applied_force) then
                 do f = 1, 3
                     call rd%real(i + 1, f, 'point of application', 'm', al%point(f), -big_length, big_length)
                 end do
             end if
             if (rd%failed()) return
-            al%point = al%point + bmap%shift(:, al%body)
-            al%body = bmap%new(al%body)
+            al%point = al%point + st%bmap%shift(:, al%body)
+            al%body = st%bmap%new(al%body)
             nal = nal + 1; cs%model%applied(nal) = al
         end do
         cs%model%applied = cs%model%applied(1:nal)

@@ -15,7 +15,7 @@ module hn_deck_state
     implicit none
     private
 
-    public :: coord_names, big_length, big_modulus, max_table_points, tiny_value, card_t, body_map_t, named_table_t, &
+    public :: deck_state_t, coord_names, big_length, big_modulus, max_table_points, tiny_value, card_t, body_map_t, named_table_t, &
               group_cards, single, add_scene_note, k_old, locked_error, active_ref, family_ref, body_ref, coord_ref, &
               table_ref, unit_of, unit_factor, unit_limit, join, real_str
 
@@ -50,6 +50,15 @@ module hn_deck_state
         integer :: line = 0
         character(len=160) :: warning = ''   !! a scale that makes the table zero in effect
     end type named_table_t
+
+    !> What the card groups pass along: the deck's cards, the names of its
+    !! bodies and where each went, its named tables.
+    type :: deck_state_t
+        type(card_t), allocatable :: cards(:)
+        character(len=10), allocatable :: bnames(:)   !! the deck's bodies, in deck order
+        type(body_map_t) :: bmap
+        type(named_table_t), allocatable :: tabs(:)
+    end type deck_state_t
 
 contains
 
