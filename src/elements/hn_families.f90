@@ -8,8 +8,9 @@
 !!
 !! Adding a family: its module (a type extending `element_family_t` of
 !! hn_element_family), one `fam_*` number, one name, its cards in
-!! `family_cards`, one case in `new_family`; the reading of its cards in
-!! hn_deck (docs/architecture.md, "Adding an element family").
+!! `family_cards`, one case in `new_family`; its cards in the card registry
+!! hn_cards and their reading in hn_deck_elements (docs/architecture.md,
+!! "Adding an element family").
 module hn_families
     use hn_discs, only: disc_t
     use hn_line_elements, only: ligament_t, muscle_t, spring_t

@@ -1,0 +1,226 @@
+!> The control cards of a deck: TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT,
+!! H5FILE, EVENTS, HOLD, DUMP (`control_cards`), HEADNECK and CRITERIA
+!! (`report_cards`, after the bodies) and RUNLIMIT (`runlimit_card`).
+module hn_deck_control
+    use hn_kinds, only: wp, zero
+    use hn_case, only: case_t
+    use hn_deck_reader, only: deck_reader_t
+    use hn_linsolve, only: solver_cholesky, solver_names, solver_code
+    use hn_integrators, only: integrator_names
+    use hn_criteria_card, only: criteria_card
+    use hn_deck_state, only: card_t, body_map_t, single, body_ref, join, real_str
+    implicit none
+    private
+
+    public :: runlimit_card, title_cards, control_cards, report_cards
+
+contains
+
+    !> RUNLIMIT wall steps: stop the run (exit 3, files kept and marked
+    !! incomplete) after this wall time [s] or this many steps; blank: no limit.
+    subroutine runlimit_card(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(case_t), intent(inout) :: cs  !! the run case the cards fill
+        integer :: ic
+        ic = single(rd, cards, 'RUNLIMIT', .false.)
+        if (ic == 0 .or. rd%failed()) return
+        call rd%real(cards(ic)%first, 1, 'wall-time limit', 's', cs%wall_limit, 1.0e-3_wp, 1.0e7_wp, default=zero)
+        call rd%int(cards(ic)%first, 2, 'step limit', cs%step_limit, 1, huge(1), default=0)
+        if (.not. rd%failed() .and. cs%wall_limit <= zero .and. cs%step_limit == 0) &
+            call rd%fail(rd%where(cards(ic)%first)//', columns 11-30 (RUNLIMIT card): found no limit; '// &
+                         'expected a wall time [s] in F1, a step count in F2, or both')
+    end subroutine runlimit_card
+
+    !> TITLE: the deck's first card is its title. A deck that INCLUDEs a
+    !! case deck (a variant of it) meets that deck's TITLE too: the first
+    !! TITLE card of an INCLUDEd file is a subtitle, in deck order. A second
+    !! TITLE card in one file is refused.
+    subroutine title_cards(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(case_t), intent(inout) :: cs  !! the run case the cards fill
+        integer :: k, j, first, earlier, i
+        first = 0
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'TITLE') cycle
+            i = cards(k)%first
+            if (first == 0) then
+                first = k
+                cs%model%title = rd%text(i, 11)
+                cycle
+            end if
+            earlier = 0
+            if (rd%lines(i)%via == 0) earlier = first
+            do j = first, k - 1
+                if (earlier /= 0) exit
+                if (cards(j)%key == 'TITLE' .and. rd%lines(cards(j)%first)%via == rd%lines(i)%via) earlier = j
+            end do
+            if (earlier /= 0) then
+                call rd%fail(rd%where(i)//', columns 1-8: found a second TITLE card; expected only one (the '// &
+                             'first is at '//rd%where(cards(earlier)%first)//'; the TITLE of an INCLUDEd deck '// &
+                             'is a subtitle)')
+                return
+            end if
+            cs%subtitles = [character(len=80) :: cs%subtitles, rd%text(i, 11)]
+        end do
+        if (first == 0) call rd%fail(rd%top//': the deck has no TITLE card; expected one')
+    end subroutine title_cards
+
+    !> TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT, H5FILE, DUMP, HOLD.
+    subroutine control_cards(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(case_t), intent(inout) :: cs  !! the run case the cards fill
+        integer :: ic, i, k, f, nd
+        character(len=10) :: s
+        real(wp) :: v, span
+        real(wp), allocatable :: tmp(:)
+
+        call title_cards(rd, cards, cs)
+        if (rd%failed()) return
+
+        ic = single(rd, cards, 'CONTROL', .true.)
+        if (rd%failed()) return
+        i = cards(ic)%first
+        call rd%real(i, 7, 'start time', 's', cs%t_start, -1.0e4_wp, 1.0e4_wp, default=zero)
+        call rd%real(i, 1, 'end time', 's', cs%t_end, -1.0e4_wp, 1.0e4_wp)
+        if (.not. rd%failed() .and. .not. (cs%t_end > cs%t_start)) then
+            call rd%fail(rd%context(i, 1, 'end time')//': found '// &
+                         trim(rd%raw(i, 1))//' s; expected an end time after the start time '// &
+                         trim(real_str(cs%t_start))//' s')
+            return
+        end if
+        span = cs%t_end - cs%t_start
+        call rd%real(i, 2, 'step', 's', cs%h, 1.0e-12_wp, 1.0e4_wp)
+        if (rd%failed()) return
+        cs%control_at = rd%context(i, 2, 'step')
+        if (span/cs%h > 1.0e8_wp) then
+            call rd%fail(rd%context(i, 2, 'step')//': found '// &
+                         trim(rd%raw(i, 2))//' s; a step this small needs more than 1E8 steps for the run; '// &
+                         'expected a step of at least '//trim(real_str(span*1.0e-8_wp))//' s')
+            return
+        end if
+        if (cs%h > span) then
+            call rd%fail(rd%context(i, 2, 'step')//': found '// &
+                         trim(rd%raw(i, 2))//' s; expected a step no longer than the run ('// &
+                         trim(real_str(span))//' s)')
+            return
+        end if
+        call rd%real(i, 3, 'print interval', 's', cs%print_dt, 1.0e-9_wp, 1.0e4_wp)
+        if (rd%failed()) return
+        if (span/cs%print_dt > 1.0e6_wp) then
+            call rd%fail(rd%context(i, 3, 'print interval')//': found '// &
+                         trim(rd%raw(i, 3))//' s; expected at most 1E6 print times in the run')
+            return
+        end if
+        call rd%name(i, 4, 'integrator', s)
+        if (.not. rd%failed()) then
+            if (.not. any(integrator_names == s(1:8))) then
+                call rd%fail(rd%context(i, 4, 'integrator')//': found "'// &
+                             trim(s)//'"; expected one of '//join(integrator_names))
+                return
+            end if
+            cs%integrator = s(1:8)
+        end if
+        call rd%real(i, 5, 'relative tolerance', '-', cs%rtol, 1.0e-14_wp, 0.1_wp, default=1.0e-6_wp)
+        call rd%real(i, 6, 'absolute tolerance', '-', cs%atol, 1.0e-16_wp, 1.0_wp, default=1.0e-8_wp)
+        if (rd%failed()) return
+
+        ! SOLVER: how a_ij xddot = f is solved (default CHOLESKY: a_ij and f_i by
+        ! the recursive forms) and the Jacobian of the stiff integrators
+        ! (default STRUCT: from the elements' tangent; FD: differences)
+        cs%model%solver = solver_cholesky
+        ic = single(rd, cards, 'SOLVER', .false.)
+        if (ic > 0) then
+            i = cards(ic)%first
+            call rd%name(i, 1, 'method', s)
+            if (rd%failed()) return
+            cs%model%solver = solver_code(trim(s))
+            if (cs%model%solver == 0) then
+                call rd%fail(rd%context(i, 1, 'method')//': found "'//trim(s)//'"; expected one of '// &
+                             join(solver_names))
+                return
+            end if
+            if (len_trim(rd%raw(i, 2)) > 0) then
+                call rd%choice(i, 2, 'Jacobian', [character(len=6) :: 'STRUCT', 'FD'], s)
+                if (rd%failed()) return
+                cs%model%jacobian = s(1:8)
+            end if
+        end if
+        ic = single(rd, cards, 'GRAVITY', .false.)
+        if (ic > 0) then
+            do f = 1, 3
+                call rd%real(cards(ic)%first, f, 'gravity component', 'm/s^2', v, -1.0e3_wp, 1.0e3_wp)
+                cs%model%gravity(f) = v
+            end do
+        end if
+        cs%sample_dt = min(cs%print_dt, 1.0e-4_wp)
+        ic = single(rd, cards, 'OUTPUT', .false.)
+        if (ic > 0) then
+            call rd%real(cards(ic)%first, 1, 'HDF5 sample interval', 's', cs%sample_dt, 1.0e-9_wp, 1.0e4_wp)
+            if (rd%failed()) return
+            if (span/cs%sample_dt > 1.0e7_wp) &
+                call rd%fail(rd%context(cards(ic)%first, 1, 'HDF5 sample interval')// &
+                             ': expected at most 1E7 samples in the run')
+            if (len_trim(rd%raw(cards(ic)%first, 2)) > 0) then
+                call rd%choice(cards(ic)%first, 2, 'output accelerations', [character(len=7) :: 'HERMITE', 'SOLVE'], s)
+                if (rd%failed()) return
+                cs%output_xdd = s(1:8)
+            end if
+        end if
+        ic = single(rd, cards, 'H5FILE', .false.)
+        if (ic > 0) cs%h5file = rd%text(cards(ic)%first, 11)
+        ic = single(rd, cards, 'EVENTS', .false.)
+        if (ic > 0) then
+            call rd%choice(cards(ic)%first, 1, 'event handling', [character(len=5) :: 'NONE', 'TIME', 'STATE'], s)
+            cs%events = s(1:8)
+        end if
+        ic = single(rd, cards, 'HOLD', .false.)
+        if (ic > 0) then
+            call rd%name(cards(ic)%first, 1, 'option', s)
+            if (s /= 'POSTURE' .and. .not. rd%failed()) &
+                call rd%fail(rd%context(cards(ic)%first, 1, 'option')//': found "'//trim(s)//'"; expected POSTURE')
+            cs%hold_posture = .true.
+        end if
+        allocate (cs%dump_times(0))
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'DUMP') cycle
+            i = cards(k)%first
+            nd = 0
+            do f = 1, 7
+                if (rd%is_blank(i, f)) cycle
+                call rd%real(i, f, 'dump time', 's', v, cs%t_start, cs%t_end)
+                tmp = [cs%dump_times, v]
+                call move_alloc(tmp, cs%dump_times)
+                nd = nd + 1
+            end do
+            if (nd == 0 .and. .not. rd%failed()) &
+                call rd%fail(rd%where(i)//', columns 11-80 (DUMP card): found no times; expected 1 to 7 times [s]')
+        end do
+    end subroutine control_cards
+
+    !> HEADNECK: the bodies reported as head and T1 (their merged bodies
+    !! when MERGE absorbed them).
+    subroutine report_cards(rd, cards, cs, bnames, bmap)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(case_t), intent(inout) :: cs  !! the run case the cards fill
+        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
+        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
+        integer :: ic
+        cs%head = findloc(bnames, 'HEAD', dim=1)
+        if (cs%head == 0) cs%head = size(bnames)
+        cs%head = bmap%new(cs%head)
+        cs%t1 = findloc(cs%model%tree%parent, 0, dim=1)
+        ic = single(rd, cards, 'HEADNECK', .false.)
+        if (ic > 0) then
+            cs%head = bmap%new(body_ref(rd, cards(ic)%first, 1, 'head body', bnames, .false.))
+            if (.not. rd%is_blank(cards(ic)%first, 2)) &
+                cs%t1 = bmap%new(body_ref(rd, cards(ic)%first, 2, 'T1 body', bnames, .false.))
+        end if
+        ic = single(rd, cards, 'CRITERIA', .false.)
+        if (ic > 0) call criteria_card(rd, cards(ic)%first, cs)
+    end subroutine report_cards
+
+end module hn_deck_control

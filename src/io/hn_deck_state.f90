@@ -1,0 +1,331 @@
+!> What the card groups of the deck reader share: a card with its
+!! continuation cards (`card_t`), the grouping of deck lines into cards
+!! (`group_cards`, by the card registry hn_cards), where each deck body went
+!! (`body_map_t`), the named tables (`named_table_t`), and the located
+!! references of one card to bodies, coordinates, tables and families. The
+!! modules hn_deck_<group> read their cards with these and the field access
+!! of hn_deck_reader.
+module hn_deck_state
+    use hn_kinds, only: wp, one, deg
+    use hn_case, only: case_t
+    use hn_deck_reader, only: deck_reader_t, int_str, upper
+    use hn_cards, only: card_known, card_ncont, card_repeats
+    use hn_families, only: family_name, family_index
+    use hn_tables, only: table_t
+    implicit none
+    private
+
+    public :: deck_state_t, coord_names, big_length, big_modulus, max_table_points, tiny_value, card_t, body_map_t, named_table_t, &
+              group_cards, single, add_scene_note, k_old, locked_error, active_ref, family_ref, body_ref, coord_ref, &
+              table_ref, unit_of, unit_factor, unit_limit, join, real_str
+
+    !> The coordinates of a body in deck order.
+    character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
+    real(wp), parameter :: big_length = 10.0_wp     !! largest coordinate of a point [m]
+    real(wp), parameter :: big_modulus = 1.0e13_wp  !! largest modulus or stiffness accepted
+    integer, parameter :: max_table_points = 100000 !! points of one TABLE
+    real(wp), parameter :: tiny_value = 1.0e-30_wp  !! a table whose values are all below this is zero in effect
+
+    !> One card with its continuation cards: deck lines first .. first+ncont.
+    type :: card_t
+        character(len=8) :: key = ''
+        integer :: first = 0
+        integer :: ncont = 0
+    end type card_t
+
+    !> Where each body named in the deck went: its number in the reduced
+    !! tree and the shift of points given in its frame (MERGE); the card line
+    !! of the MERGE that absorbed it (0: not absorbed).
+    type :: body_map_t
+        integer, allocatable :: new(:)
+        real(wp), allocatable :: shift(:, :)
+        integer, allocatable :: merged_by(:)
+        integer, allocatable :: locked_by(:, :)   !! (coordinate, deck body): the LOCK or SCENE card line that locked it (0: none)
+    end type body_map_t
+
+    !> A named table of the deck.
+    type :: named_table_t
+        character(len=10) :: name = ''
+        type(table_t) :: tab
+        integer :: line = 0
+        character(len=160) :: warning = ''   !! a scale that makes the table zero in effect
+    end type named_table_t
+
+    !> What the card groups pass along: the deck's cards, the names of its
+    !! bodies and where each went, its named tables.
+    type :: deck_state_t
+        type(card_t), allocatable :: cards(:)
+        character(len=10), allocatable :: bnames(:)   !! the deck's bodies, in deck order
+        type(body_map_t) :: bmap
+        type(named_table_t), allocatable :: tabs(:)
+    end type deck_state_t
+
+contains
+
+    !> Split the lines into cards, checking names (the card registry),
+    !! continuation counts and that TITLE comes first (a deck; not a few
+    !! card images for one card group, title_first false).
+    subroutine group_cards(rd, cards, title_first)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_t), allocatable, intent(out) :: cards(:)  !! the cards, each with the count of its continuation cards
+        logical, intent(in), optional :: title_first  !! refuse a first card other than TITLE (default: yes)
+        integer :: i, nc, need, npts, ios
+        character(len=8) :: key
+        character(len=10) :: s
+        logical :: title
+        title = .true.
+        if (present(title_first)) title = title_first
+        allocate (cards(rd%nlines))
+        nc = 0
+        i = 1
+        do while (i <= rd%nlines)
+            key = rd%key(i)
+            if (len_trim(rd%lines(i)%text(1:10)) == 0) then
+                call rd%fail(rd%where(i)//', columns 1-8: found a continuation card (blank card name) '// &
+                             'where a new card was expected; too many continuation cards for the card above?')
+                return
+            end if
+            if (rd%lines(i)%text(9:10) /= '  ') then
+                call rd%fail(rd%where(i)//', columns 9-10: found "'//rd%lines(i)%text(9:10)// &
+                             '"; expected blanks after the card name (fields start in column 11)')
+                return
+            end if
+            if (key == 'END') exit
+            if (.not. card_known(key)) then
+                call rd%fail(rd%where(i)//', columns 1-8: found unknown card "'//trim(key)// &
+                             '"; expected one of TITLE CONTROL BODY JOINT ... (docs/deck-format.md)')
+                return
+            end if
+            if (nc == 0 .and. key /= 'TITLE' .and. title) then
+                call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(key)//'"; expected a TITLE card first')
+                return
+            end if
+            need = card_ncont(key)
+            if (need < 0) then
+                s = rd%raw(i, 2)
+                read (s, *, iostat=ios) npts
+                if (ios /= 0 .or. npts < 1 .or. npts > max_table_points) then
+                    call rd%int(i, 2, 'number of points', npts, 1, max_table_points)
+                    if (.not. rd%failed()) call rd%fail(rd%where(i)//': bad TABLE point count')
+                    return
+                end if
+                need = (npts + 2)/3
+                if (upper(adjustl(rd%raw(i, 5))) == 'CSV') need = 1     ! the file name card
+            end if
+            nc = nc + 1
+            cards(nc)%key = key
+            cards(nc)%first = i
+            cards(nc)%ncont = need
+            if (i + need > rd%nlines) then
+                call rd%fail(rd%where(i)//' ('//trim(key)//' card): the deck ends before its '// &
+                             trim(int_str(need))//' continuation card(s)')
+                return
+            end if
+            do i = i + 1, i + need
+                if (len_trim(rd%lines(i)%text(1:10)) /= 0) then
+                    call rd%fail(rd%where(i)//', columns 1-10: found "'//trim(rd%lines(i)%text(1:10))// &
+                                 '"; expected a continuation card of the '//trim(key)// &
+                                 ' card above (columns 1-10 blank)')
+                    return
+                end if
+            end do
+        end do
+        cards = cards(1:nc)
+    end subroutine group_cards
+
+    !> Index of the only card of a type; 0 when absent; error when repeated
+    !! (a card the registry, hn_cards, lets repeat: the last one).
+    integer function single(rd, cards, key, required) result(ic)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        character(len=*), intent(in) :: key  !! the card name
+        logical, intent(in) :: required  !! whether the deck must have one
+        integer :: k
+        ic = 0
+        do k = 1, size(cards)
+            if (cards(k)%key /= key) cycle
+            if (ic /= 0 .and. .not. card_repeats(key)) then
+                call rd%fail(rd%where(cards(k)%first)//', columns 1-8: found a second '//key// &
+                             ' card; expected only one (the first is at '//rd%where(cards(ic)%first)//')')
+                return
+            end if
+            ic = k
+        end do
+        if (ic == 0 .and. required) call rd%fail(rd%top//': the deck has no '//key//' card; expected one')
+    end function single
+
+    !> Append a line to the scene notes of the listing.
+    subroutine add_scene_note(cs, text)
+        type(case_t), intent(inout) :: cs  !! the run case the cards fill
+        character(len=*), intent(in) :: text  !! the note (at most 100 characters)
+        character(len=100), allocatable :: tmp(:)
+        integer :: n
+        n = size(cs%scene)
+        allocate (tmp(n + 1))
+        tmp(1:n) = cs%scene
+        tmp(n + 1) = text
+        call move_alloc(tmp, cs%scene)
+    end subroutine add_scene_note
+
+    !> Old (deck) body number of field F1 of line i.
+    integer function k_old(rd, i, bnames) result(k)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
+        k = body_ref(rd, i, 1, 'body', bnames, .false.)
+    end function k_old
+
+    !> Error: card i addresses coordinate m of deck body kold, which a LOCK
+    !! or SCENE card locked (named with its location).
+    subroutine locked_error(rd, i, bnames, bmap, kold, m)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        integer, intent(in) :: kold  !! the body in deck order
+        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
+        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
+        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
+        character(len=:), allocatable :: by
+        by = ' (LOCK or SCENE card)'
+        if (bmap%locked_by(m, kold) > 0) by = ' by the '//trim(rd%key(bmap%locked_by(m, kold)))//' card at '// &
+                                             rd%where(bmap%locked_by(m, kold))
+        call rd%fail(rd%context(i, 2, 'coordinate')//': '//trim(bnames(kold))//'.'//coord_names(m)// &
+                     ' is locked'//by//'; expected an active coordinate, or the neutral value')
+    end subroutine locked_error
+
+    !> Body (in the reduced tree) and coordinate of an INITIAL/PRESCRIB/LIMIT
+    !! card (fields F1, F2). A body absorbed by MERGE has no coordinates (an
+    !! error). A locked coordinate gives j = 0 when allow_locked, else an error.
+    subroutine active_ref(rd, i, cs, bnames, bmap, kb, m, j, allow_locked)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        type(case_t), intent(in) :: cs  !! the run case the cards fill
+        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
+        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
+        integer, intent(out) :: kb  !! the body in the reduced tree
+        integer, intent(out) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
+        integer, intent(out) :: j  !! the model coordinate (0: a locked one)
+        logical, intent(in) :: allow_locked  !! a locked coordinate gives j = 0 (otherwise an error)
+        integer :: kold
+        j = 0
+        kold = body_ref(rd, i, 1, 'body', bnames, .false.)
+        m = coord_ref(rd, i, 2)
+        kb = 1
+        if (rd%failed()) return
+        if (bmap%merged_by(kold) > 0) then
+            call rd%fail(rd%context(i, 1, 'body')//': body '//trim(bnames(kold))//' was merged by the MERGE card at '// &
+                         rd%where(bmap%merged_by(kold))//'; its coordinates no longer exist')
+            return
+        end if
+        kb = bmap%new(kold)
+        j = cs%model%tree%dof_index(m, kb)
+        if (j == 0 .and. .not. allow_locked) call locked_error(rd, i, bnames, bmap, kold, m)
+    end subroutine active_ref
+
+    !> Element family named s in field F2 of line i (an error when unknown).
+    integer function family_ref(rd, i, s) result(fam)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        character(len=*), intent(in) :: s  !! the family name found on the card
+        fam = 0
+        if (rd%failed()) return
+        fam = family_index(s)
+        if (fam == 0) call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
+                                   join(family_name))
+    end function family_ref
+
+    !> Body named in field f (R allowed when allow_inertial: returns 0).
+    integer function body_ref(rd, i, f, what, bnames, allow_inertial) result(kb)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        integer, intent(in) :: f  !! the field (F1 .. F7)
+        character(len=*), intent(in) :: what  !! what the field holds (messages)
+        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
+        logical, intent(in) :: allow_inertial  !! R (the inertial frame) allowed, as body 0
+        character(len=10) :: s
+        kb = 1
+        call rd%name(i, f, what, s)
+        if (rd%failed()) return
+        if (allow_inertial .and. (s == 'R' .or. s == 'INERTIAL')) then
+            kb = 0
+            return
+        end if
+        kb = findloc(bnames, s, dim=1)
+        if (kb == 0) then
+            call rd%fail(rd%context(i, f, what)//': found "'//trim(s)//'"; expected a body defined '// &
+                         'on a BODY card'//merge(' or R', '     ', allow_inertial))
+            kb = 1
+        end if
+    end function body_ref
+
+    !> Coordinate named in field f: TX TY TZ RX RY RZ -> 1..6.
+    integer function coord_ref(rd, i, f) result(m)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        integer, intent(in) :: f  !! the field (F1 .. F7)
+        character(len=10) :: s
+        m = 1
+        call rd%name(i, f, 'coordinate', s)
+        if (rd%failed()) return
+        m = findloc(coord_names, s(1:2), dim=1)
+        if (m == 0 .or. len_trim(s) /= 2) then
+            call rd%fail(rd%context(i, f, 'coordinate')//': found "'//trim(s)//'"; expected TX TY TZ RX RY or RZ')
+            m = 1
+        end if
+    end function coord_ref
+
+    !> Table named in field f.
+    integer function table_ref(rd, i, f, tabs) result(it)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        integer, intent(in) :: f  !! the field (F1 .. F7)
+        type(named_table_t), intent(in) :: tabs(:)  !! the deck's named tables (TABLE, PULSE)
+        character(len=10) :: s
+        integer :: k
+        it = 1
+        call rd%name(i, f, 'table', s)
+        if (rd%failed()) return
+        it = 0
+        do k = 1, size(tabs)
+            if (tabs(k)%name == s) it = k
+        end do
+        if (it == 0) then
+            call rd%fail(rd%context(i, f, 'table')//': found "'//trim(s)//'"; expected the name of a TABLE or PULSE card')
+            it = 1
+        end if
+    end function table_ref
+
+    !> Deck unit of coordinate m and its factor to SI.
+    pure function unit_of(m) result(u)
+        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
+        character(len=3) :: u
+        u = merge('m  ', 'deg', m <= 3)
+    end function unit_of
+
+    pure real(wp) function unit_factor(m) result(f)
+        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
+        f = merge(one, deg, m <= 3)
+    end function unit_factor
+
+    !> Largest magnitude accepted for a coordinate value in deck units.
+    pure real(wp) function unit_limit(m) result(f)
+        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
+        f = merge(big_length, 3600.0_wp, m <= 3)
+    end function unit_limit
+
+    pure function join(list) result(s)
+        character(len=*), intent(in) :: list(:)  !! the words
+        character(len=:), allocatable :: s
+        integer :: k
+        s = trim(list(1))
+        do k = 2, size(list)
+            s = s//' '//trim(list(k))
+        end do
+    end function join
+
+    pure function real_str(v) result(s)
+        real(wp), intent(in) :: v  !! the value
+        character(len=24) :: s
+        write (s, '(g0.6)') v
+    end function real_str
+
+end module hn_deck_state
