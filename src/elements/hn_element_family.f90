@@ -20,12 +20,12 @@ module hn_element_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_rotation, only: cross
-    use hn_line_elements, only: line_geometry_t, line_geometry, max_via
+    use hn_line_elements, only: line_geometry_t, line_geometry, max_via, line_attach_t
     implicit none
     private
 
     public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
-    public :: path_columns, add_warning, check_point, check_range, line_columns, add_line_tangent
+    public :: path_columns, add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
 
     integer, parameter, public :: max_family_items = 6   !! most properties a family has to scale
     integer, parameter, public :: item_len = 10           !! length of a property name
@@ -282,6 +282,32 @@ contains
         end do
         ok = .true.
     end subroutine line_columns
+
+    !> The row b = dL/dxdot of a two-point element (line_columns on its
+    !! attachments), its length and rate, and the central-difference steps
+    !! of its law in length and rate (fd_rel of them, at least the absolute
+    !! floors).
+    pure subroutine attach_columns(tree, kin, a, cols, sgn, b, length, rate, dl, dr, ok)
+        type(body_tree_t), intent(in) :: tree            !! the body tree
+        type(kinematics_t), intent(in) :: kin            !! kinematics: joint columns filled
+        class(line_attach_t), intent(in) :: a            !! the element's attachments
+        integer, intent(out) :: cols(:)                  !! scratch, at least n long
+        integer, intent(out) :: sgn(:)                   !! scratch, at least n long
+        real(wp), intent(out) :: b(:)                    !! (n) the row
+        real(wp), intent(out) :: length                  !! its length [m]
+        real(wp), intent(out) :: rate                    !! its rate [m/s]
+        real(wp), intent(out) :: dl                      !! length step [m]
+        real(wp), intent(out) :: dr                      !! rate step [m/s]
+        logical, intent(out) :: ok                       !! the element has a length
+        integer :: bodies(max_via + 2)
+        real(wp) :: points(3, max_via + 2)
+        bodies = 0; points = zero
+        bodies(1) = a%body_a; bodies(2) = a%body_b
+        points(:, 1) = a%point_a; points(:, 2) = a%point_b
+        call line_columns(tree, kin, bodies, points, 2, cols, sgn, b, length, rate, ok)
+        dl = max(fd_rel*length, fd_abs_length)
+        dr = max(fd_rel*abs(rate), fd_abs_rate)
+    end subroutine attach_columns
 
     !> K += kl b b^T, C += cl b b^T over the nonzero entries of b.
     pure subroutine add_line_tangent(b, kl, cl, kgen, cgen, idx)

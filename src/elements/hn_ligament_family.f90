@@ -7,10 +7,9 @@ module hn_ligament_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_line_elements, only: ligament_t, line_geometry_t, line_geometries, ligament_tension, ligament_energy, &
-                                apply_line_tensions, set_neutral_lengths, max_via
+                                apply_line_tensions, set_neutral_lengths
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
-                                 warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, check_range, &
-                                 line_columns, add_line_tangent
+                                 warning_len, check_point, check_range, attach_columns, add_line_tangent
     implicit none
     private
 
@@ -96,21 +95,16 @@ contains
         integer, intent(out) :: idx(:)                !! scratch
         real(wp), intent(out) :: b(:)                 !! scratch
         real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
-        integer :: e, bodies(max_via + 2)
-        real(wp) :: points(3, max_via + 2), length, rate, dl, dr, kl, cl
+        integer :: e
+        real(wp) :: length, rate, dl, dr, kl, cl
         logical :: ok
         bd = zero
         do e = 1, size(this%items)
             associate (a => this%items(e))
-                bodies = 0; points = zero
-                bodies(1) = a%body_a; bodies(2) = a%body_b
-                points(:, 1) = a%point_a; points(:, 2) = a%point_b
-                call line_columns(tree, kin, bodies, points, 2, cols, sgn, b, length, rate, ok)
+                call attach_columns(tree, kin, a, cols, sgn, b, length, rate, dl, dr, ok)
                 if (.not. ok) cycle
-                dl = max(fd_rel*length, fd_abs_length)
-                dr = max(fd_rel*abs(rate), fd_abs_rate)
                 kl = (ligament_tension(a, length + dl) - ligament_tension(a, length - dl))/(2*dl)
-                cl = (ligament_tension(a, length) - ligament_tension(a, length))/(2*dr)
+                cl = zero                          ! a ligament has no damping
                 call add_line_tangent(b, kl, cl, kgen, cgen, idx)
             end associate
         end do
