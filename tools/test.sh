@@ -9,9 +9,11 @@
 #      debug build's executable (and to the checking build's too for a
 #      script with a line "# builds: debug checking"; to the release
 #      build's for one with "# builds: release"),
-#   4. the Python tests of the tools, test/python (pytest).
+#   4. the Python tests of the tools, test/python (pytest), with HHNECK set
+#      to the release build's executable.
 # The test programs of a build run $TEST_JOBS at a time (default: the
-# number of cores); each one's output is shown whole when all are done.
+# number of cores), and so do the scripts with the Python tests beside
+# them; each one's output is shown whole when all are done.
 # Each test program and script ends its output with "N passed, N failed";
 # the last line is the total over all of them. Exit code 1 on any failure.
 #   tools/test.sh NAME [FILTER]   only the test program NAME (a suite
@@ -31,6 +33,7 @@ case "${1:-}" in
 esac
 TEST_JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
 times=build/test_times    # seconds per test program in the last run
+script_times=build/script_times    # seconds per script (and build) and of the Python tests in the last run
 
 # fpm's debug profile, without its -fcoarray=single: with it gfortran 12
 # writes test module files that it cannot read back once they use pFUnit
@@ -89,7 +92,7 @@ run_tests() {
     mkdir -p "$out"
     # shellcheck disable=SC2016
     xargs -P "$TEST_JOBS" -n 1 sh -c \
-        'n=$(basename "$1"); t=$(date +%s); "$1" > "$0/$n.out" 2>&1; echo $? > "$0/$n.rc";
+        'n=$(basename "$1"); t=$(date +%s); "$1" >> "$0/$n.out" 2>&1; echo $? > "$0/$n.rc";
          echo "$(($(date +%s) - t)) $n" > "$0/$n.time"; echo "   $n done ($(($(date +%s) - t)) s)"' \
         "$out" < "$work/exes"
     cat "$out"/*.time > "$times" 2>/dev/null
@@ -100,7 +103,7 @@ run_tests() {
         cat "$out/$n.out"
         if [ "$(cat "$out/$n.rc")" -ne 0 ]; then
             status=1
-            if ! grep -q '^[0-9][0-9]* passed, [0-9][0-9]* failed$' "$out/$n.out"; then
+            if ! grep -a -q '^[0-9][0-9]* passed, [0-9][0-9]* failed$' "$out/$n.out"; then
                 echo "FAIL  $n stopped before its closing line (exit code $(cat "$out/$n.rc"))"
                 echo "0 passed, 1 failed"
             fi
@@ -116,36 +119,81 @@ fi
 
 # the whole-program checks run the debug build's executable; a script
 # with a line "# builds: debug checking" runs on both builds' executables,
-# one with "# builds: release" on fpm's release build (the README's run)
-for script in test/scripts/*.sh; do
-    builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1)
-    for build in ${builds:-debug}; do
-        case $build in
-            debug) flags=$DEBUG_FLAGS ;;
-            checking) [ "$checking" = yes ] || continue; flags=$CHECK_FLAGS ;;
-            release) flags= ;;
-            *) echo "$script: unknown build '$build'" >&2; continue ;;
-        esac
-        if [ "$build" = release ]; then
-            HHNECK=$(fpm run --profile release --runner echo 2>/dev/null | tail -n 1)
-        else
-            HHNECK=$(fpm run --flag "$flags $PF_INC" --runner echo 2>/dev/null | tail -n 1)
-        fi
-        export HHNECK
-        step "$script ($build build)" sh "$script"
+# one with "# builds: release" on fpm's release build (the README's run).
+# The executables are built first, one build at a time; then the scripts
+# and the Python tests (on the release build's executable: they test the
+# tools over the program as a user runs it) run TEST_JOBS at a
+# time, the slowest first (their times from the last run, in
+# $script_times), each in its own process with its own temporary folders,
+# and their outputs are shown whole, in the order of the list below.
+exe_of() {
+    case $1 in
+        debug) fpm run --flag "$DEBUG_FLAGS $PF_INC" --runner echo 2>/dev/null | tail -n 1 ;;
+        checking) fpm run --flag "$CHECK_FLAGS $PF_INC" --runner echo 2>/dev/null | tail -n 1 ;;
+        release) fpm run --profile release --runner echo 2>/dev/null | tail -n 1 ;;
+    esac
+}
+run_checks() {
+    jobs=$work/jobs
+    rm -rf "$jobs"
+    mkdir -p "$jobs"
+    n=0
+    for script in test/scripts/*.sh python; do
+        builds=release
+        [ "$script" = python ] || builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1)
+        for build in ${builds:-debug}; do
+            case $build in
+                debug | release) ;;
+                checking) [ "$checking" = yes ] || continue ;;
+                *) echo "$script: unknown build '$build'" >&2; continue ;;
+            esac
+            [ -f "$jobs/exe.$build" ] || exe_of "$build" > "$jobs/exe.$build"
+            n=$((n + 1))
+            if [ "$script" = python ]; then
+                title="test/python (pytest)"
+                command="python3 -m pytest -q -p no:cacheprovider test/python"
+            else
+                title="$script ($build build)"
+                command="sh $script"
+            fi
+            echo "$title" > "$jobs/$n.title"
+            printf 'HHNECK=%s; export HHNECK; exec %s\n' "$(cat "$jobs/exe.$build")" "$command" > "$jobs/$n.sh"
+        done
     done
-done
-
-# the Python tests of the tools (test/python/conftest.py prints the
-# closing line), on the debug build's executable
-HHNECK=$(fpm run --flag "$DEBUG_FLAGS $PF_INC" --runner echo 2>/dev/null | tail -n 1)
-export HHNECK
-step "test/python (pytest)" python3 -m pytest -q -p no:cacheprovider test/python
+    # shellcheck disable=SC2016
+    ls "$jobs" | sed -n 's/\.sh$//p' |
+        awk -v known="$script_times" -v dir="$jobs" 'BEGIN {
+                while ((getline line < known) > 0) { i = index(line, " "); t[substr(line, i + 1)] = substr(line, 1, i - 1) }
+            }
+            { getline title < (dir "/" $0 ".title"); print (title in t ? t[title] : 0), $0 }' |
+        sort -rn | cut -d' ' -f2 |
+        xargs -P "$TEST_JOBS" -n 1 sh -c \
+            't=$(date +%s); sh "$0/$1.sh" >> "$0/$1.out" 2>&1; echo $? > "$0/$1.rc";
+             echo "$(($(date +%s) - t)) $(cat "$0/$1.title")" > "$0/$1.time"; echo "   $(cat "$0/$1.title") done ($(($(date +%s) - t)) s)"' \
+            "$jobs"
+    cat "$jobs"/*.time > "$script_times" 2>/dev/null
+    status=0
+    k=0
+    while [ "$k" -lt "$n" ]; do
+        k=$((k + 1))
+        echo "-- $(cat "$jobs/$k.title") ($(cut -d' ' -f1 "$jobs/$k.time") s)"
+        cat "$jobs/$k.out"
+        if [ "$(cat "$jobs/$k.rc")" -ne 0 ]; then
+            status=1
+            if ! grep -a -q '^[0-9][0-9]* passed, [0-9][0-9]* failed$' "$jobs/$k.out"; then
+                echo "FAIL  $(cat "$jobs/$k.title") stopped before its closing line (exit code $(cat "$jobs/$k.rc"))"
+                echo "0 passed, 1 failed"
+            fi
+        fi
+    done
+    return $status
+}
+step "whole-program checks (test/scripts) and the Python tests (test/python)" run_checks
 
 summary='^[0-9][0-9]* passed, [0-9][0-9]* failed$'
-passed=$(grep "$summary" "$log" | awk '{s += $1} END {print s + 0}')
-failed=$(grep "$summary" "$log" | awk '{s += $3} END {print s + 0}')
-programs=$(grep -c "$summary" "$log")
+passed=$(grep -a "$summary" "$log" | awk '{s += $1} END {print s + 0}')
+failed=$(grep -a "$summary" "$log" | awk '{s += $3} END {print s + 0}')
+programs=$(grep -a -c "$summary" "$log")
 if [ "$failed_steps" -gt 0 ] && [ "$failed" -eq 0 ]; then
     # a build that failed
     echo "FAIL  $failed_steps step(s) ended with an error before reporting a failed check (see above)"

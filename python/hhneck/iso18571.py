@@ -30,7 +30,6 @@ import argparse
 import sys
 
 import numpy as np
-from objective_rating_metrics.rating import ISO18571
 
 DT = 1.0e-4          # the package's (and the standard's) sampling: 10 kHz
 MIN_SAMPLES = 16     # fewer samples leave no room for the 9-point slope smoothing
@@ -76,6 +75,9 @@ def rate(t, reference, model, window=None, ndigits=None):
         raise ValueError("%d samples at 10 kHz: at least %d needed" % (grid.size, MIN_SAMPLES))
     if np.max(np.abs(ref)) == 0 or np.ptp(ref) == 0:
         raise ValueError("the reference curve is zero or constant: nothing to rate against")
+    # imported here: the package (numba under it) takes seconds to import,
+    # which a command's --help or a module that only imports this one need not pay
+    from objective_rating_metrics.rating import ISO18571
     iso = ISO18571(np.column_stack((grid, ref)), np.column_stack((grid, mod)), dt=DT)
     nd = -1 if ndigits is None else ndigits
     return dict(corridor=float(iso.corridor_rating(ndigits=nd)),

@@ -1,9 +1,10 @@
 """Shared by the Python tests of the tools (test/python): the project's
 package hhneck (python/hhneck: the installed one when it is this project's,
-else python/ put first on the import path), result files made by the debug
-build from short decks (case 6-2 cut to 20 ms, and a lateral variant of
+else python/ put first on the import path), result files made by the program
+from short decks (case 6-2 cut to 20 ms, and a lateral variant of
 it), and the closing line "N passed, N failed" that tools/test.sh and CI
-count. The executable is $HHNECK, else fpm's debug build (built if needed)."""
+count. The executable is $HHNECK (tools/test.sh: the release build), else
+fpm's debug build (built if needed)."""
 import os
 import subprocess
 import sys
@@ -88,7 +89,7 @@ def short_deck(lateral=False):
 
 
 def run_short(tmp_path_factory, name, deck):
-    """Run a deck text with the debug build to NAME.h5 in a temporary directory; its path."""
+    """Run a deck text with the executable to NAME.h5 in a temporary directory; its path."""
     d = tmp_path_factory.mktemp("run")
     h5 = str(d / (name + ".h5"))
     r = subprocess.run([hhneck_executable(), "--h5", h5, "--no-progress"], input=deck, cwd=ROOT,
@@ -99,7 +100,7 @@ def run_short(tmp_path_factory, name, deck):
 
 @pytest.fixture(scope="session")
 def result_file(tmp_path_factory):
-    """The result file of the short deck, written by the debug build."""
+    """The result file of the short deck, written by the executable."""
     return run_short(tmp_path_factory, "short", short_deck())
 
 

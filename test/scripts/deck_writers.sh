@@ -14,7 +14,8 @@ root=$(pwd)
 
 # within80 FILE...: no line of the files is longer than 80 characters
 within80() {
-    [ -z "$(awk 'length > 80 { print FILENAME ": line " FNR ": " length " columns" }' "$@" | tee /dev/stderr)" ]
+    over80=$(awk 'length > 80 { print FILENAME ": line " FNR ": " length " columns" }' "$@")
+    [ -z "$over80" ] || { echo "$over80" >&2; return 1; }
 }
 
 # written FILE SHIPPED: FILE within 80 columns and the same as SHIPPED

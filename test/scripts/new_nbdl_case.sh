@@ -9,6 +9,9 @@
 # (no T1 rotation or z file, no head angular acceleration, another sampling
 # step, another time origin, a broken file) are taken the way the tools
 # document, or refused with a message that names the file.
+# It checks the tools' workflow, whose whole NBDL runs the user makes with
+# the release build (the debug and checking builds run NBDL in test_cases):
+# builds: release
 . test/scripts/lib/checks.sh
 
 cp -r reference/nbdl_12g "$tmp/runs12"
