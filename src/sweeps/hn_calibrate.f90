@@ -26,7 +26,8 @@
 !! of the FIT card; subject to the model standing at rest: a parameter set
 !! whose start state (posture held, the bracing activation) has an
 !! eigenvalue with real part above -1 1/s in any case (hn_rest_modes) is
-!! not run and gets J = 2 + 0.1 s (lmax + 1); with a PASSIVE card, nor is a
+!! not run and gets J = 2 + 0.1 s (lmax + 1) (volunteer cases only: a
+!! reference case is held as its deck holds it); with a PASSIVE card, nor is a
 !! set whose neck stands without its muscles (largest real part at rest,
 !! muscles off, below the card's limit, default 0: the osteoligamentous
 !! column buckles under far less than the head's weight), which gets
@@ -534,8 +535,9 @@ contains
     end subroutine read_calibration
 
     !> Largest real part of the eigenvalues at rest (hn_rest_modes: the
-    !! start state of every case, posture held as the case holds it) over
-    !! the cases at parameter values v [1/s], with the muscles (lmax) and,
+    !! start state of every volunteer case, posture held as the case holds
+    !! it; a living subject's braced neck stands) over the volunteer cases
+    !! at parameter values v [1/s] (-huge without one), with the muscles (lmax) and,
     !! for a PASSIVE card, without them (lp; huge without the card); each
     !! case is built once for both. Huge when a case cannot be built or
     !! analysed.
@@ -551,6 +553,7 @@ contains
         lmax = -huge(one)
         lp = merge(-huge(one), huge(one), cal%passive)
         do c = 1, size(cal%sw)
+            if (cal%ref(c)%on) cycle            ! a reference case is held as its deck holds it
             call sweep_member_case(cal%sw(c), v, cs, stat, msg)
             if (stat == stat_ok) call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
             if (stat /= stat_ok) then
@@ -848,8 +851,8 @@ contains
 
         subroutine rest_report(lmax, lp)
             real(wp), intent(in) :: lmax, lp
-            write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
-            if (cal%passive .and. lp < huge(one)) &
+            if (lmax > -huge(one)) write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
+            if (cal%passive .and. lp < huge(one) .and. lp > -huge(one)) &
                 write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST WITHOUT MUSCLES ', lp, ' 1/S'
         end subroutine rest_report
 
