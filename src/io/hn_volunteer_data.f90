@@ -60,32 +60,12 @@ contains
         integer, intent(out) :: stat                       !! stat_ok or stat_bad_input
         character(len=msglen), intent(out) :: errmsg       !! the file, line and column at fault and why
         character(len=:), allocatable :: text, line
-        integer :: p, q, lineno, ncol, nrow, k, kind, i
+        integer :: p, lineno, ncol, nrow, i
         real(wp), allocatable :: row(:)
         integer, allocatable :: rowline(:)
-        stat = stat_bad_input; errmsg = ''
-        kind = file_kind(file)
-        if (kind /= kind_regular) then
-            if (kind == kind_missing) then
-                errmsg = 'volunteer data '//file//': no such file'
-            else
-                errmsg = 'volunteer data '//file//' is '//kind_name(kind)//'; expected a regular file'
-            end if
-            return
-        end if
-        call read_text(file, text, stat, errmsg)
+        call csv_head(file, 'volunteer data ', text, line, p, lineno, ncol, nrow, stat, errmsg)
         if (stat /= stat_ok) return
         stat = stat_bad_input
-        ! the header
-        p = 1; lineno = 0; ncol = 0
-        do while (p <= len(text))
-            call next_line(text, p, line)
-            lineno = lineno + 1
-            line = strip_cr(line)
-            if (len_trim(line) == 0) cycle
-            ncol = 1 + count([(line(k:k) == ',', k=1, len_trim(line))])
-            exit
-        end do
         if (ncol == 0) then
             errmsg = 'volunteer data '//file//': empty; expected a header line, then a time and one value per run '// &
                      'on each line'
@@ -96,12 +76,6 @@ contains
                      trim(int_str(ncol))//' columns; expected the time and at least two runs'
             return
         end if
-        nrow = 0
-        q = p
-        do while (q <= len(text))
-            call next_line(text, q, line)
-            if (len_trim(strip_cr(line)) > 0) nrow = nrow + 1
-        end do
         allocate (t(nrow), runs(nrow, ncol - 1), row(ncol), rowline(nrow))
         nrow = 0
         do while (p <= len(text))
@@ -255,29 +229,10 @@ contains
         real(wp), allocatable :: row(:), cells(:, :)
         logical, allocatable :: given(:), have(:, :)
         integer, allocatable :: rowline(:), kind_of(:), mean_of(:), first(:), last(:)
-        integer :: p, q, lineno, ncol, nrow, k, i, kind, a, b, n
-        stat = stat_bad_input; errmsg = ''
-        kind = file_kind(file)
-        if (kind /= kind_regular) then
-            if (kind == kind_missing) then
-                errmsg = 'reference data '//file//': no such file'
-            else
-                errmsg = 'reference data '//file//' is '//kind_name(kind)//'; expected a regular file'
-            end if
-            return
-        end if
-        call read_text(file, text, stat, errmsg)
+        integer :: p, lineno, ncol, nrow, k, i, a, b, n
+        call csv_head(file, 'reference data ', text, line, p, lineno, ncol, nrow, stat, errmsg)
         if (stat /= stat_ok) return
         stat = stat_bad_input
-        p = 1; lineno = 0; ncol = 0
-        do while (p <= len(text))
-            call next_line(text, p, line)
-            lineno = lineno + 1
-            line = strip_cr(line)
-            if (len_trim(line) == 0) cycle
-            ncol = 1 + count([(line(k:k) == ',', k=1, len_trim(line))])
-            exit
-        end do
         if (ncol < 2) then
             errmsg = 'reference data '//file//': found '//trim(int_str(ncol))//' header columns; expected a '// &
                      'header line of the time and at least one channel'
@@ -337,12 +292,6 @@ contains
             end if
         end do
         ! the rows
-        nrow = 0
-        q = p
-        do while (q <= len(text))
-            call next_line(text, q, line)
-            if (len_trim(strip_cr(line)) > 0) nrow = nrow + 1
-        end do
         allocate (cells(nrow, ncol), have(nrow, ncol), row(ncol), given(ncol), rowline(nrow))
         nrow = 0
         do while (p <= len(text))
@@ -425,6 +374,54 @@ contains
         end do
         stat = stat_ok; errmsg = ''
     end subroutine read_reference_csv
+
+    !> A CSV file's text, its header line (the first line that is not
+    !! blank) and its number of columns, where its rows start and how many
+    !! rows that are not blank follow; a missing or irregular file or one
+    !! that cannot be read refused (`what` starts the message).
+    subroutine csv_head(file, what, text, header, p, lineno, ncol, nrow, stat, errmsg)
+        character(len=*), intent(in) :: file                  !! the file
+        character(len=*), intent(in) :: what                  !! 'volunteer data ' or 'reference data '
+        character(len=:), allocatable, intent(out) :: text    !! its whole text
+        character(len=:), allocatable, intent(out) :: header  !! its header line ('' when empty)
+        integer, intent(out) :: p                             !! where the line after the header starts
+        integer, intent(out) :: lineno                        !! the header's line number
+        integer, intent(out) :: ncol                          !! the header's items (0: an empty file)
+        integer, intent(out) :: nrow                          !! lines after the header that are not blank
+        integer, intent(out) :: stat                          !! stat_ok or stat_bad_input
+        character(len=msglen), intent(out) :: errmsg          !! why not
+        character(len=:), allocatable :: line
+        integer :: kind, k, q
+        stat = stat_bad_input; errmsg = ''
+        p = 1; lineno = 0; ncol = 0; nrow = 0
+        header = ''
+        kind = file_kind(file)
+        if (kind /= kind_regular) then
+            if (kind == kind_missing) then
+                errmsg = what//file//': no such file'
+            else
+                errmsg = what//file//' is '//kind_name(kind)//'; expected a regular file'
+            end if
+            return
+        end if
+        call read_text(file, text, stat, errmsg)
+        if (stat /= stat_ok) return
+        do while (p <= len(text))
+            call next_line(text, p, line)
+            lineno = lineno + 1
+            line = strip_cr(line)
+            if (len_trim(line) == 0) cycle
+            ncol = 1 + count([(line(k:k) == ',', k=1, len_trim(line))])
+            header = line
+            exit
+        end do
+        q = p
+        do while (q <= len(text))
+            call next_line(text, q, line)
+            if (len_trim(strip_cr(line)) > 0) nrow = nrow + 1
+        end do
+        stat = stat_ok
+    end subroutine csv_head
 
     !> The whole of a file as text.
     subroutine read_text(file, text, stat, errmsg)
