@@ -60,9 +60,9 @@ contains
         integer, intent(out) :: stat                       !! stat_ok or stat_bad_input
         character(len=msglen), intent(out) :: errmsg       !! the file, line and column at fault and why
         character(len=:), allocatable :: text, line
-        integer :: p, lineno, ncol, nrow, i
-        real(wp), allocatable :: row(:)
-        integer, allocatable :: rowline(:)
+        integer :: p, lineno, ncol, nrow
+        real(wp), allocatable :: cells(:, :)
+        logical, allocatable :: have(:, :)
         call csv_head(file, 'volunteer data ', text, line, p, lineno, ncol, nrow, stat, errmsg)
         if (stat /= stat_ok) return
         stat = stat_bad_input
@@ -76,36 +76,10 @@ contains
                      trim(int_str(ncol))//' columns; expected the time and at least two runs'
             return
         end if
-        allocate (t(nrow), runs(nrow, ncol - 1), row(ncol), rowline(nrow))
-        nrow = 0
-        do while (p <= len(text))
-            call next_line(text, p, line)
-            lineno = lineno + 1
-            line = strip_cr(line)
-            if (len_trim(line) == 0) cycle
-            call parse_row(line, row, errmsg)
-            if (len_trim(errmsg) > 0) then
-                errmsg = 'volunteer data '//file//' line '//trim(int_str(lineno))//trim(errmsg)
-                return
-            end if
-            nrow = nrow + 1
-            t(nrow) = row(1)
-            runs(nrow, :) = row(2:)
-            rowline(nrow) = lineno
-        end do
-        if (nrow < 2) then
-            errmsg = 'volunteer data '//file//': '//trim(int_str(nrow))//' rows of numbers; expected at least two'
-            return
-        end if
-        do i = 2, nrow
-            if (.not. (t(i) > t(i - 1)) .or. abs((t(i) - t(i - 1)) - (t(2) - t(1))) > &
-                spacing_tolerance*(t(2) - t(1))) then
-                errmsg = 'volunteer data '//file//' line '//trim(int_str(rowline(i)))//', column 1: found the time '// &
-                         num_text(t(i))//' ms after '//num_text(t(i - 1))//' ms (line '// &
-                         trim(int_str(rowline(i - 1)))//'); expected times evenly spaced as those of the first two rows'
-                return
-            end if
-        end do
+        call csv_rows(file, 'volunteer data ', text, p, lineno, nrow, ncol, .false., cells, have, errmsg)
+        if (len_trim(errmsg) > 0) return
+        t = cells(:, 1)
+        runs = cells(:, 2:)
         stat = stat_ok
     end subroutine read_runs_csv
 
@@ -226,8 +200,8 @@ contains
         character(len=msglen), intent(out) :: errmsg       !! the file, line and column at fault and why
         character(len=:), allocatable :: text, line
         character(len=64), allocatable :: head(:)
-        real(wp), allocatable :: row(:), cells(:, :)
-        logical, allocatable :: given(:), have(:, :)
+        real(wp), allocatable :: cells(:, :)
+        logical, allocatable :: have(:, :)
         integer, allocatable :: rowline(:), kind_of(:), mean_of(:), first(:), last(:)
         integer :: p, lineno, ncol, nrow, k, i, a, b, n
         call csv_head(file, 'reference data ', text, line, p, lineno, ncol, nrow, stat, errmsg)
@@ -292,40 +266,8 @@ contains
             end if
         end do
         ! the rows
-        allocate (cells(nrow, ncol), have(nrow, ncol), row(ncol), given(ncol), rowline(nrow))
-        nrow = 0
-        do while (p <= len(text))
-            call next_line(text, p, line)
-            lineno = lineno + 1
-            line = strip_cr(line)
-            if (len_trim(line) == 0) cycle
-            call parse_row(line, row, errmsg, given)
-            if (len_trim(errmsg) == 0 .and. .not. given(1)) errmsg = ', column 1: found an empty time; expected a number'
-            if (len_trim(errmsg) > 0) then
-                errmsg = 'reference data '//file//' line '//trim(int_str(lineno))//trim(errmsg)
-                return
-            end if
-            nrow = nrow + 1
-            cells(nrow, :) = row
-            have(nrow, :) = given
-            rowline(nrow) = lineno
-        end do
-        if (nrow < 2) then
-            errmsg = 'reference data '//file//': '//trim(int_str(nrow))//' rows of numbers; expected at least two'
-            return
-        end if
-        associate (t => cells(:, 1))
-            do i = 2, nrow
-                if (.not. (t(i) > t(i - 1)) .or. abs((t(i) - t(i - 1)) - (t(2) - t(1))) > &
-                    spacing_tolerance*(t(2) - t(1))) then
-                    errmsg = 'reference data '//file//' line '//trim(int_str(rowline(i)))//', column 1: found the '// &
-                             'time '//num_text(t(i))//' ms after '//num_text(t(i - 1))//' ms (line '// &
-                             trim(int_str(rowline(i - 1)))//'); expected times evenly spaced as those of the first '// &
-                             'two rows'
-                    return
-                end if
-            end do
-        end associate
+        call csv_rows(file, 'reference data ', text, p, lineno, nrow, ncol, .true., cells, have, errmsg, rowline)
+        if (len_trim(errmsg) > 0) return
         ! each column: one run of rows; a bound on its mean's rows
         allocate (first(ncol), last(ncol))
         do k = 2, ncol
@@ -422,6 +364,71 @@ contains
         end do
         stat = stat_ok
     end subroutine csv_head
+
+    !> The rows of a CSV file after its header (csv_head): each row's
+    !! numbers (empty cells allowed with `blanks`, never the time), at
+    !! least two rows, the times (column 1) evenly spaced; errmsg names
+    !! the file, line and column at fault ('' when all is well).
+    subroutine csv_rows(file, what, text, p, lineno, nrow, ncol, blanks, cells, have, errmsg, rowline)
+        character(len=*), intent(in) :: file                  !! the file
+        character(len=*), intent(in) :: what                  !! 'volunteer data ' or 'reference data '
+        character(len=*), intent(in) :: text                  !! its whole text
+        integer, intent(in) :: p                              !! where the rows start
+        integer, intent(in) :: lineno                         !! the header's line number
+        integer, intent(in) :: nrow                           !! rows that are not blank (csv_head)
+        integer, intent(in) :: ncol                           !! items per row
+        logical, intent(in) :: blanks                         !! empty cells allowed
+        real(wp), allocatable, intent(out) :: cells(:, :)     !! (row, column) the numbers (0 where empty)
+        logical, allocatable, intent(out) :: have(:, :)       !! (row, column) not empty
+        character(len=msglen), intent(out) :: errmsg          !! '' or what is wrong
+        integer, allocatable, intent(out), optional :: rowline(:) !! the line number of each row
+        character(len=:), allocatable :: line
+        real(wp) :: row(ncol)
+        logical :: given(ncol)
+        integer :: q, ln, n, i, lines(nrow)
+        allocate (cells(nrow, ncol), have(nrow, ncol))
+        q = p; ln = lineno; n = 0
+        errmsg = ''
+        do while (q <= len(text))
+            call next_line(text, q, line)
+            ln = ln + 1
+            line = strip_cr(line)
+            if (len_trim(line) == 0) cycle
+            if (blanks) then
+                call parse_row(line, row, errmsg, given)
+                if (len_trim(errmsg) == 0 .and. .not. given(1)) &
+                    errmsg = ', column 1: found an empty time; expected a number'
+            else
+                call parse_row(line, row, errmsg)
+                given = .true.
+            end if
+            if (len_trim(errmsg) > 0) then
+                errmsg = what//file//' line '//trim(int_str(ln))//trim(errmsg)
+                return
+            end if
+            n = n + 1
+            cells(n, :) = row
+            have(n, :) = given
+            lines(n) = ln
+        end do
+        if (present(rowline)) rowline = lines
+        if (n < 2) then
+            errmsg = what//file//': '//trim(int_str(n))//' rows of numbers; expected at least two'
+            return
+        end if
+        associate (t => cells(:, 1))
+            do i = 2, n
+                if (.not. (t(i) > t(i - 1)) .or. abs((t(i) - t(i - 1)) - (t(2) - t(1))) > &
+                    spacing_tolerance*(t(2) - t(1))) then
+                    errmsg = what//file//' line '//trim(int_str(lines(i)))//', column 1: found the time '// &
+                             num_text(t(i))//' ms after '//num_text(t(i - 1))//' ms (line '// &
+                             trim(int_str(lines(i - 1)))//'); expected times evenly spaced as those of the first '// &
+                             'two rows'
+                    return
+                end if
+            end do
+        end associate
+    end subroutine csv_rows
 
     !> The whole of a file as text.
     subroutine read_text(file, text, stat, errmsg)
