@@ -15,6 +15,7 @@
 !! * rating (c + x)/2.
 module hn_rating
     use hn_kinds, only: wp, zero, one
+    use hn_iso18571, only: iso18571_rating_t
     implicit none
     private
 
@@ -49,6 +50,7 @@ module hn_rating
         real(wp), allocatable :: rating(:)       !! (curve) CORA-style rating
         real(wp), allocatable :: corridor(:)     !! (curve) corridor rating
         real(wp), allocatable :: xcorr(:)        !! (curve) cross-correlation rating
+        type(iso18571_rating_t), allocatable :: iso(:) !! (curve) ISO/TS 18571 scores (filled by the caller)
         real(wp), allocatable :: peak(:)         !! (peak) the curves' peaks [curve units]
         real(wp), allocatable :: time(:)         !! (peak) their times [ms]
         real(wp), allocatable :: z(:)            !! (peak) (peak - corridor's mean peak)/its SD

@@ -1,21 +1,33 @@
 !> Calibration as code: fit named deck parameters (the PARAM cards of the
 !! sweep deck: FAMILY scale factors, BODY scales, FIELDn values), within
-!! their bounds, to the volunteers of one or more cases, by minimising
+!! their bounds, to cases of any kind -- volunteers (DATA a directory of
+!! their runs) or a reference (DATA a reference CSV: a specimen corridor's
+!! midline, a segment test's mean) -- by minimising the weighted mean over
+!! the cases (CASE F7, default 1) of
 !!
-!!   J = (1 - R) + w P + wt T,
+!!   J_c = (1 - R_c) + w P_c + wt T_c,
 !!
-!! R the mean CORA-style rating (hn_rating) of the rated channels (the
-!! deck's CHANNEL cards) over the cases, P the mean over the cases' peaks
+!! R_c the case's mean rating of its rated channels by the RATING card's
+!! metric (F5): CORA (the default) the CORA-style rating (hn_rating),
+!! ISO18571 the overall ISO/TS 18571 rating (hn_iso18571, the formulas of
+!! objective-rating-metrics) against the volunteers' mean curve on the
+!! RATING window, or the reference curve on the rows it is given. A
+!! volunteer case rates the deck's CHANNEL cards (CFC filtered, as the
+!! volunteers' runs), a reference case the columns of its CSV as its
+!! RATED cards map them to model channels (unfiltered: the reference is
+!! as digitised). P_c the mean over the case's peaks
 !! (PEAK cards) of max(0, |z| - (1 - m)), z the peak's distance from the
 !! volunteers' mean in SDs and m a margin inside the 1 SD band, T the mean
 !! over the same peaks of max(0, |dt|/tol - (1 - m)), dt the peak time's
 !! distance from the volunteers' mean time and tol the peak-time tolerance
-!! of the RATING card (the same margin keeps the times off its edge); w
+!! of the RATING card (the same margin keeps the times off its edge;
+!! a reference case has no peaks: P_c = T_c = 0); w
 !! (default 0.02), wt (default 0) and m (default 0) are fields 5, 6 and 7
 !! of the FIT card; subject to the model standing at rest: a parameter set
 !! whose start state (posture held, the bracing activation) has an
 !! eigenvalue with real part above -1 1/s in any case (hn_rest_modes) is
-!! not run and gets J = 2 + 0.1 s (lmax + 1); with a PASSIVE card, nor is a
+!! not run and gets J = 2 + 0.1 s (lmax + 1) (volunteer cases only: a
+!! reference case is held as its deck holds it); with a PASSIVE card, nor is a
 !! set whose neck stands without its muscles (largest real part at rest,
 !! muscles off, below the card's limit, default 0: the osteoligamentous
 !! column buckles under far less than the head's weight), which gets
@@ -28,7 +40,8 @@
 !! while a restart gains more than 1e-4, in the unit cube of the parameter
 !! ranges (LOG ranges in logarithms), points clamped to the bounds.
 !! Deterministic: the same deck gives the same fit on every machine.
-!! Member runs are those of the sweep (sweep_member_case, run_state_t).
+!! Member runs are those of the sweep (sweep_member_case, run_state_t):
+!! no result file, the listing to /dev/null.
 module hn_calibrate
     use hn_kinds, only: wp, zero, one, msglen
     use hn_status, only: stat_ok, stat_bad_input
@@ -41,14 +54,16 @@ module hn_calibrate
     use hn_filters, only: cfc_filter
     use hn_tables, only: resample
     use hn_optimize, only: restarted_nelder_mead
-    use hn_rating, only: peak_t, corridor_t, score_t, score_curves, window_samples, max_lag
-    use hn_volunteer_data, only: data_channel_t, read_volunteers
+    use hn_rating, only: peak_t, corridor_t, score_t, score_curves, window_samples, max_lag, cora_rating
+    use hn_volunteer_data, only: data_channel_t, read_volunteers, reference_data_t, read_reference_csv
+    use hn_iso18571, only: iso18571_rating_t, iso18571_rating, iso18571_min_samples
     use hn_rest_modes, only: rest_mode_t, rest_modes
     use hn_model, only: fam_muscles
     implicit none
     private
 
-    public :: calibration_t, read_calibration, evaluate, calibrate, member_histories
+    public :: calibration_t, reference_case_t, read_calibration, evaluate, calibrate, member_histories
+    integer, parameter, public :: metric_cora = 1, metric_iso18571 = 2   !! RATING F5
 
     real(wp), parameter :: failed_objective = 10.0_wp        !! J of a parameter set whose run fails
     real(wp), parameter :: rest_margin = -1.0_wp             !! largest real part allowed at rest [1/s]
@@ -56,14 +71,34 @@ module hn_calibrate
     real(wp), parameter :: unstable_slope = 0.1_wp           !! its growth per 1/s beyond the margin [s]
     integer, parameter :: peak_name_len = 16                 !! longest peak name (PEAK card, columns 51-80)
 
-    !> A calibration: its cases (deck, volunteers, the sweep that binds the
-    !! parameters to that deck), the study (rated channels, peaks, rating
-    !! window, filter) and the optimizer's settings.
+    !> The rated channels of a reference case (DATA a reference CSV): its
+    !! curves and, per rated channel (RATED card, or each column of the
+    !! CSV under its own name), the model curve compared with it:
+    !! scale (channel - minus), less its value at the start with START.
+    type :: reference_case_t
+        logical :: on = .false.                         !! the case's DATA is a reference CSV
+        type(reference_data_t) :: data                  !! its curves
+        character(len=10), allocatable :: column(:)     !! (rated) the CSV column (RATED F1)
+        integer, allocatable :: col(:)                  !! (rated) its number in data
+        character(len=10), allocatable :: channel(:)    !! (rated) the model channel (F2)
+        real(wp), allocatable :: scale(:)               !! (rated) its factor (F3, default 1)
+        character(len=10), allocatable :: minus(:)      !! (rated) a channel subtracted (F4, '' none)
+        logical, allocatable :: from_start(:)           !! (rated) less its value at the start (F5 START)
+    end type reference_case_t
+
+    !> A calibration: its cases (deck, volunteers or reference, weight, the
+    !! sweep that binds the parameters to that deck), the study (rated
+    !! channels, peaks, rating window, filter, metric) and the optimizer's
+    !! settings.
     type :: calibration_t
         character(len=80) :: title = ''
         character(len=path_len), allocatable :: decks(:), data(:)
+        real(wp), allocatable :: weight(:)          !! (case) its weight in the objective (CASE F7)
         type(sweep_t), allocatable :: sw(:)
-        type(corridor_t), allocatable :: vol(:)     !! the volunteers of each case
+        type(corridor_t), allocatable :: vol(:)     !! the volunteers of each case (volunteer cases)
+        type(reference_case_t), allocatable :: ref(:)   !! the reference of each case (reference cases: ref(c)%on)
+        integer :: metric = metric_cora             !! RATING F5: the rating of the objective
+        character(len=path_len) :: curves = ''      !! CURVES card: the rated curves' CSV of an evaluation alone
         type(data_channel_t), allocatable :: channels(:)   !! CHANNEL cards: the rated channels
         type(peak_t), allocatable :: peaks(:)       !! PEAK cards (curve: a channel number)
         real(wp) :: window(2) = zero                !! RATING F1, F2: the rated times [ms]
@@ -80,17 +115,22 @@ module hn_calibrate
 
 contains
 
-    !> Read a calibration deck: TITLE; CASE path (columns 11-80) followed by
-    !! DATA directory of that case's volunteers; FIT NELDER max-evaluations
+    !> Read a calibration deck: TITLE; CASE path (columns 11-70) [weight
+    !! (F7, default 1)] followed by DATA, the directory of that case's
+    !! volunteers or a reference CSV (a name ending in .csv), then for a
+    !! reference case optional RATED cards (CSV column, model channel,
+    !! [scale], [subtracted channel], [START]); FIT NELDER max-evaluations
     !! starting-points seed [peak-weight [peak-time-weight [peak-margin]]];
-    !! RATING window-start window-end CFC-class peak-time-tolerance; CHANNEL
+    !! RATING window-start window-end CFC-class peak-time-tolerance
+    !! [CORA or ISO18571]; CHANNEL
     !! cards (channel, VALUE or RATE, [DEG-RAD], the file in columns
     !! 41-80); PEAK cards (channel, MIN or MAX, window start and end, the
     !! name in columns 51-80); PARAM cards as in a sweep deck; optional
     !! PASSIVE [limit] (a set whose neck stands without its muscles is not
     !! run); optional VALUES cards (up to 7 values each, in PARAM order), the
     !! point scored when max-evaluations is 0 (default: the decks' own
-    !! values). Each case's parameters are bound to its own deck through a
+    !! values); optional CURVES file (columns 11-80: the rated curves of
+    !! that point written as CSV). Each case's parameters are bound to its own deck through a
     !! sweep (same checks); every CHANNEL must be a channel of every case
     !! deck, and every volunteer file is read (docs/sweeps.md).
     subroutine read_calibration(path, source, cal, stat, errmsg, include_path)
@@ -110,21 +150,28 @@ contains
         character(len=:), allocatable :: ctext, found
         character(len=msglen) :: msg
         character(len=10), allocatable :: peak_channel(:)
-        integer, allocatable :: channel_line(:), peak_line(:), data_line(:)
-        integer :: i, c, k, nfit, f, rating_line, cfc, bad_peak, bad_channel, nwin, nmin
+        integer, allocatable :: channel_line(:), peak_line(:), data_line(:), rated_line(:), rated_case(:)
+        logical, allocatable :: is_ref(:)
+        character(len=:), allocatable :: dname
+        real(wp) :: w
+        integer :: i, c, k, nfit, f, rating_line, cfc, bad_peak, bad_channel, nwin, nmin, i1, i2
         real(wp) :: x
         real(wp), allocatable :: v0(:)
         rd%top = source
         if (present(include_path)) rd%search = include_path
         call read_card_images(rd, path, source, 0)
         allocate (cal%decks(0), cal%data(0), params(0), cal%values(0), cal%channels(0), cal%peaks(0))
-        allocate (channel_line(0), peak_line(0), data_line(0), peak_channel(0))
+        allocate (channel_line(0), peak_line(0), data_line(0), peak_channel(0), rated_line(0), rated_case(0), &
+                  is_ref(0), cal%weight(0))
         nfit = 0; rating_line = 0
         do i = 1, rd%nlines
             if (rd%failed()) exit
             select case (rd%key(i))
             case ('TITLE'); cal%title = adjustl(rd%lines(i)%text(11:80))
-            case ('CASE'); cal%decks = [character(len=path_len) :: cal%decks, adjustl(rd%lines(i)%text(11:80))]
+            case ('CASE')
+                cal%decks = [character(len=path_len) :: cal%decks, adjustl(rd%lines(i)%text(11:70))]
+                call rd%real(i, 7, 'case weight', '-', w, 1.0e-6_wp, 1.0e6_wp, default=one)
+                cal%weight = [cal%weight, w]
             case ('DATA')
                 if (size(cal%data) /= size(cal%decks) - 1) then
                     call rd%fail(rd%where(i)//' (DATA card): expected one DATA card after each CASE card')
@@ -132,8 +179,9 @@ contains
                 end if
                 ! found as an INCLUDE file is: next to the calibration deck, in the
                 ! working directory, then on the include path (-I, HHNECK_PATH)
-                call rd%find_file(trim(adjustl(rd%lines(i)%text(11:80))), rd%lines(i)%source, found, msg, &
-                                  directory=.true.)
+                dname = trim(adjustl(rd%lines(i)%text(11:80)))
+                is_ref = [is_ref, is_csv(dname)]
+                call rd%find_file(dname, rd%lines(i)%source, found, msg, directory=.not. is_ref(size(is_ref)))
                 if (len(found) == 0) then
                     call rd%fail(rd%where(i)//' (DATA card): '//trim(msg))
                     exit
@@ -169,6 +217,10 @@ contains
                                  '; expected 60, 180, 600 or 1000 (SAE J211/1)')
                 cal%cfc = real(cfc, wp)
                 call rd%real(i, 4, 'peak-time tolerance', 'ms', cal%time_tolerance, 1.0e-3_wp, 1.0e6_wp)
+                if (.not. rd%failed() .and. .not. rd%is_blank(i, 5)) then
+                    call rd%choice(i, 5, 'metric', [character(len=10) :: 'CORA', 'ISO18571'], opt)
+                    if (opt == 'ISO18571') cal%metric = metric_iso18571
+                end if
             case ('CHANNEL')
                 dc = data_channel_t()
                 call rd%name(i, 1, 'channel', dc%name)
@@ -218,6 +270,21 @@ contains
                 peak_line = [peak_line, i]
                 peak_channel = [character(len=10) :: peak_channel, s]
             case ('PARAM'); params = [params, rd%lines(i)]
+            case ('RATED')
+                if (size(cal%decks) == 0 .or. size(is_ref) /= size(cal%decks)) then
+                    call rd%fail(rd%where(i)//', columns 1-8 (RATED card): expected RATED cards after the DATA '// &
+                                 'card of a case (a reference CSV)')
+                    exit
+                end if
+                if (.not. is_ref(size(is_ref))) then
+                    call rd%fail(rd%where(i)//', columns 1-8 (RATED card): the DATA card before it names a '// &
+                                 'directory of volunteer runs; expected RATED cards after the DATA card of a '// &
+                                 'reference CSV (a name ending in .csv)')
+                    exit
+                end if
+                rated_line = [rated_line, i]
+                rated_case = [rated_case, size(cal%decks)]
+            case ('CURVES'); cal%curves = rd%text(i, 11)
             case ('PASSIVE')
                 cal%passive = .true.
                 call rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
@@ -231,7 +298,8 @@ contains
             case ('END'); exit
             case default
                 call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(rd%key(i))// &
-                             '"; expected TITLE, CASE, DATA, FIT, RATING, CHANNEL, PEAK, PARAM, PASSIVE, VALUES or END')
+                             '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, PASSIVE, '// &
+                             'VALUES, CURVES or END')
             end select
         end do
         ! a PEAK card names a CHANNEL card's channel (before or after it)
@@ -243,12 +311,15 @@ contains
                              '"; expected the channel of a CHANNEL card')
         end do
         if (.not. rd%failed() .and. (size(cal%decks) == 0 .or. size(cal%data) /= size(cal%decks) .or. nfit /= 1 &
-                                     .or. rating_line == 0 .or. size(cal%channels) == 0 .or. size(cal%peaks) == 0)) &
-            call rd%fail(source//': expected at least one CASE card, each followed by its DATA card, one FIT card, '// &
-                         'one RATING card, and at least one CHANNEL and one PEAK card')
+                                     .or. rating_line == 0)) &
+            call rd%fail(source//': expected at least one CASE card, each followed by its DATA card, one FIT card '// &
+                         'and one RATING card')
+        if (.not. rd%failed() .and. .not. all(is_ref) .and. (size(cal%channels) == 0 .or. size(cal%peaks) == 0)) &
+            call rd%fail(source//': expected at least one CHANNEL and one PEAK card (the deck has a case of '// &
+                         'volunteers, a DATA directory)')
         stat = rd%stat; errmsg = rd%errmsg
         if (stat /= stat_ok) return
-        allocate (cal%sw(size(cal%decks)), cal%vol(size(cal%decks)))
+        allocate (cal%sw(size(cal%decks)), cal%vol(size(cal%decks)), cal%ref(size(cal%decks)))
         do c = 1, size(cal%decks)
             sl = [line_of('TITLE     '//cal%title), line_of('BASE      '//trim(cal%decks(c))), &
                   line_of('DESIGN    LHS       '//int_field(cal%nstart)//int_field(cal%seed)), params]
@@ -258,11 +329,16 @@ contains
                 call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, path=path)
             end if
             if (stat /= stat_ok) return
-            ! every rated channel is one of the case's channels
             v0 = cal%sw(c)%params%nominal
             call sweep_member_case(cal%sw(c), v0, cs, stat, errmsg)
             if (stat /= stat_ok) return
             call channels_define(cs, chs)
+            if (is_ref(c)) then
+                call reference_case(c)
+                if (stat /= stat_ok) return
+                cycle
+            end if
+            ! every rated channel is one of the case's channels
             do k = 1, size(cal%channels)
                 if (findloc(chs%name, cal%channels(k)%name, dim=1) == 0) then
                     stat = stat_bad_input
@@ -292,8 +368,137 @@ contains
                          trim(field_text(max_lag))//' ms, in samples, plus 2)'
                 return
             end if
+            if (cal%metric == metric_iso18571) then
+                call window_rows(cal%vol(c)%t, cal%window, i1, i2)
+                do k = 1, size(cal%channels)
+                    call iso_check(cal%vol(c)%mean(i1:i2, k), cal%vol(c)%t, 'the volunteers'' mean of '// &
+                                   trim(cal%channels(k)%name)//' on the RATING window', data_line(c))
+                    if (stat /= stat_ok) return
+                end do
+            end if
         end do
     contains
+        !> The rated channels of reference case c: its CSV read, its RATED
+        !! cards (or every column under its own name) checked against the
+        !! CSV and the case deck's channels, each curve one the metric can rate.
+        subroutine reference_case(c)
+            integer, intent(in) :: c
+            integer :: m, n, r, l, col
+            character(len=10) :: column, chan, minus, fs
+            real(wp) :: sc
+            associate (rf => cal%ref(c))
+                rf%on = .true.
+                call read_reference_csv(trim(cal%data(c)), rf%data, stat, errmsg)
+                if (stat /= stat_ok) then
+                    errmsg = rd%where(data_line(c))//' (DATA card): '//errmsg
+                    return
+                end if
+                n = count(rated_case == c)
+                if (n == 0) n = size(rf%data%name)
+                allocate (rf%column(n), rf%col(n), rf%channel(n), rf%scale(n), rf%minus(n), rf%from_start(n))
+                rf%scale = one; rf%minus = ''; rf%from_start = .false.
+                if (count(rated_case == c) == 0) then
+                    rf%column = rf%data%name
+                    rf%channel = rf%data%name
+                    do m = 1, n
+                        rf%col(m) = m
+                        if (findloc(chs%name, rf%channel(m), dim=1) == 0) then
+                            stat = stat_bad_input
+                            errmsg = rd%where(data_line(c))//' (DATA card): column "'//trim(rf%channel(m))// &
+                                     '" of '//trim(cal%data(c))//' is no channel of the case deck '// &
+                                     trim(cal%decks(c))//'; expected RATED cards naming the model channel of '// &
+                                     'each column, or columns named as channels (docs/output-format.md)'
+                            return
+                        end if
+                    end do
+                else
+                    m = 0
+                    do r = 1, size(rated_line)
+                        if (rated_case(r) /= c) cycle
+                        l = rated_line(r)
+                        m = m + 1
+                        call rd%name(l, 1, 'CSV column', column)
+                        call rd%name(l, 2, 'channel', chan)
+                        call rd%real(l, 3, 'scale', '-', sc, -1.0e6_wp, 1.0e6_wp, default=one)
+                        minus = ''
+                        if (.not. rd%is_blank(l, 4)) call rd%name(l, 4, 'subtracted channel', minus)
+                        fs = ''
+                        if (.not. rd%failed() .and. .not. rd%is_blank(l, 5)) &
+                            call rd%choice(l, 5, 'origin', [character(len=10) :: 'START'], fs)
+                        if (rd%failed()) then
+                            stat = rd%stat; errmsg = rd%errmsg; return
+                        end if
+                        col = findloc(rf%data%name, column, dim=1)
+                        if (col == 0) then
+                            stat = stat_bad_input
+                            errmsg = rd%context(l, 1, 'CSV column')//': found "'//trim(column)//'"; expected a '// &
+                                     'channel column of '//trim(cal%data(c))
+                            return
+                        end if
+                        if (any(rf%column(1:m - 1) == column)) then
+                            stat = stat_bad_input
+                            errmsg = rd%context(l, 1, 'CSV column')//': found "'//trim(column)//'" again; '// &
+                                     'expected one RATED card per column'
+                            return
+                        end if
+                        if (findloc(chs%name, chan, dim=1) == 0) then
+                            stat = stat_bad_input
+                            errmsg = rd%context(l, 2, 'channel')//': found "'//trim(chan)//'"; expected a '// &
+                                     'channel of the case deck '//trim(cal%decks(c))//' (docs/output-format.md)'
+                            return
+                        end if
+                        if (len_trim(minus) > 0 .and. findloc(chs%name, minus, dim=1) == 0) then
+                            stat = stat_bad_input
+                            errmsg = rd%context(l, 4, 'subtracted channel')//': found "'//trim(minus)// &
+                                     '"; expected a channel of the case deck '//trim(cal%decks(c))
+                            return
+                        end if
+                        rf%column(m) = column; rf%col(m) = col; rf%channel(m) = chan; rf%scale(m) = sc
+                        rf%minus(m) = minus; rf%from_start(m) = fs == 'START'
+                    end do
+                end if
+                do m = 1, n
+                    associate (d => rf%data, k => rf%col(m))
+                        if (cal%metric == metric_iso18571) then
+                            call iso_check(d%mean(d%first(k):d%last(k), k), d%t, 'reference "'//trim(d%name(k))// &
+                                           '"', data_line(c))
+                        else
+                            call window_samples(d%t(d%first(k):d%last(k)), [d%t(d%first(k)), d%t(d%last(k))], &
+                                                nwin, nmin)
+                            if (nwin < nmin) then
+                                stat = stat_bad_input
+                                errmsg = rd%where(data_line(c))//' (DATA card): reference "'//trim(d%name(k))// &
+                                         '" of '//trim(cal%data(c))//' holds '//trim(int_str(nwin))// &
+                                         ' times; expected at least '//trim(int_str(nmin))// &
+                                         ' for the CORA-style rating (its largest lag, 30 ms, in samples, plus 2)'
+                            end if
+                        end if
+                    end associate
+                    if (stat /= stat_ok) return
+                end do
+            end associate
+        end subroutine reference_case
+        !> stat_bad_input with the DATA card's location when ISO 18571 cannot
+        !! rate against curve r (times spaced as t): too short, constant.
+        subroutine iso_check(r, t, what, line)
+            real(wp), intent(in) :: r(:), t(:)
+            character(len=*), intent(in) :: what
+            integer, intent(in) :: line
+            type(iso18571_rating_t) :: rt
+            character(len=msglen) :: m
+            call iso18571_rating(r, r, (t(2) - t(1))*1.0e-3_wp, rt, stat, m)
+            if (stat /= stat_ok) errmsg = rd%where(line)//' (DATA card): '//what//': '//trim(m)// &
+                                          ' (RATING F5 ISO18571 needs at least '// &
+                                          trim(int_str(iso18571_min_samples))//' samples at 10 kHz)'
+        end subroutine iso_check
+        !> A DATA name ending in .csv (any case): a reference CSV.
+        pure logical function is_csv(name)
+            character(len=*), intent(in) :: name
+            integer :: n
+            n = len_trim(name)
+            is_csv = .false.
+            if (n > 4) is_csv = any(name(n - 3:n) == ['.csv', '.CSV', '.Csv'])
+        end function is_csv
         function line_of(text) result(l)
             character(len=*), intent(in) :: text
             type(deck_line_t) :: l
@@ -330,8 +535,9 @@ contains
     end subroutine read_calibration
 
     !> Largest real part of the eigenvalues at rest (hn_rest_modes: the
-    !! start state of every case, posture held as the case holds it) over
-    !! the cases at parameter values v [1/s], with the muscles (lmax) and,
+    !! start state of every volunteer case, posture held as the case holds
+    !! it; a living subject's braced neck stands) over the volunteer cases
+    !! at parameter values v [1/s] (-huge without one), with the muscles (lmax) and,
     !! for a PASSIVE card, without them (lp; huge without the card); each
     !! case is built once for both. Huge when a case cannot be built or
     !! analysed.
@@ -347,6 +553,7 @@ contains
         lmax = -huge(one)
         lp = merge(-huge(one), huge(one), cal%passive)
         do c = 1, size(cal%sw)
+            if (cal%ref(c)%on) cycle            ! a reference case is held as its deck holds it
             call sweep_member_case(cal%sw(c), v, cs, stat, msg)
             if (stat == stat_ok) call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
             if (stat /= stat_ok) then
@@ -371,8 +578,14 @@ contains
     !! any stable set whose w P + wt T stays below 1, and decreasing
     !! towards stability. With a PASSIVE card, nor is a set whose neck
     !! stands without its muscles (largest real part at rest below the
-    !! card's limit): J = 2 + 0.1 s (limit - lp).
-    subroutine evaluate(cal, v, j, sc, ok, growth, passive_growth)
+    !! card's limit): J = 2 + 0.1 s (limit - lp). Otherwise J is the
+    !! weighted mean of the cases' J_c (the module's description); every
+    !! case's channels are rated by both metrics (sc: CORA-style in
+    !! rating, corridor, xcorr; ISO 18571 in iso), the RATING card's
+    !! metric enters J. With `curves`, the rated curves (the samples each
+    !! rating is given: reference and model) are written to that unit as
+    !! CSV rows case,channel,time_ms,reference,model.
+    subroutine evaluate(cal, v, j, sc, ok, growth, passive_growth, curves)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
         real(wp), intent(out) :: j                   !! the objective
@@ -380,9 +593,13 @@ contains
         logical, intent(out) :: ok                   !! every run complete
         real(wp), intent(out), optional :: growth    !! largest real part at rest over the cases [1/s]
         real(wp), intent(out), optional :: passive_growth !! the same without the muscles (PASSIVE card) [1/s]
-        real(wp), allocatable :: y(:, :, :)
-        real(wp) :: rsum, psum, tsum, lmax, lp
+        integer, intent(in), optional :: curves      !! unit of the rated curves' CSV (written when present)
+        real(wp), allocatable :: y(:, :)
+        real(wp) :: rsum, psum, tsum, wsum, lmax, lp
         integer :: c
+        type(case_t) :: cs
+        type(run_result_t) :: res
+        type(channel_set_t) :: ch
         call rest_growth(cal, v, lmax, lp)
         if (present(growth)) growth = lmax
         if (present(passive_growth)) passive_growth = huge(one)
@@ -399,20 +616,122 @@ contains
                 return
             end if
         end if
-        allocate (y(maxval([(size(cal%vol(c)%t), c=1, size(cal%vol))]), size(cal%channels), size(cal%sw)))
-        call member_histories(cal, v, y, ok)
         j = failed_objective
-        if (.not. ok) return
-        rsum = zero; psum = zero; tsum = zero
+        rsum = zero; psum = zero; tsum = zero; wsum = zero
         do c = 1, size(cal%sw)
-            call score_curves(cal%vol(c), y(1:size(cal%vol(c)%t), :, c), cal%window, cal%peaks, sc(c))
-            rsum = rsum + sum(sc(c)%rating)/size(cal%channels)
-            psum = psum + sum(max(zero, abs(sc(c)%z) - (one - cal%peak_margin)))/size(cal%peaks)
-            tsum = tsum + sum(max(zero, abs(sc(c)%time - cal%vol(c)%time_mean)/cal%time_tolerance - &
-                                  (one - cal%peak_margin)))/size(cal%peaks)
+            call run_member(cal, c, v, cs, ch, res, ok)
+            if (.not. ok) return
+            if (cal%ref(c)%on) then
+                call score_reference(cal%ref(c), ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c), c, curves)
+            else
+                allocate (y(size(cal%vol(c)%t), size(cal%channels)))
+                y = rated_histories(cal, cal%vol(c)%t, ch%name, cs%t_start, cs%sample_dt, res%samples)
+                call score_curves(cal%vol(c), y, cal%window, cal%peaks, sc(c))
+                call score_iso_volunteers(cal, c, y, sc(c), curves)
+                deallocate (y)
+                psum = psum + cal%weight(c)*sum(max(zero, abs(sc(c)%z) - (one - cal%peak_margin)))/size(cal%peaks)
+                tsum = tsum + cal%weight(c)*sum(max(zero, abs(sc(c)%time - cal%vol(c)%time_mean)/ &
+                                                    cal%time_tolerance - (one - cal%peak_margin)))/size(cal%peaks)
+            end if
+            rsum = rsum + cal%weight(c)*case_rating(cal, sc(c))
+            wsum = wsum + cal%weight(c)
         end do
-        j = (one - rsum/size(cal%sw)) + (cal%peak_weight*psum + cal%time_weight*tsum)/size(cal%sw)
+        j = (one - rsum/wsum) + (cal%peak_weight*psum + cal%time_weight*tsum)/wsum
     end subroutine evaluate
+
+    !> The mean rating of a case's channels by the calibration's metric.
+    pure real(wp) function case_rating(cal, sc) result(r)
+        type(calibration_t), intent(in) :: cal   !! the calibration (its metric)
+        type(score_t), intent(in) :: sc          !! the case's scores
+        if (cal%metric == metric_iso18571) then
+            r = sum(sc%iso%overall)/size(sc%iso)
+        else
+            r = sum(sc%rating)/size(sc%rating)
+        end if
+    end function case_rating
+
+    !> The first and last of the evenly spaced times t within the window.
+    pure subroutine window_rows(t, window, i1, i2)
+        real(wp), intent(in) :: t(:)             !! times [ms]
+        real(wp), intent(in) :: window(2)        !! first and last time [ms]
+        integer, intent(out) :: i1, i2           !! the rows (i2 < i1: none)
+        i1 = findloc(t >= window(1) .and. t <= window(2), .true., dim=1)
+        i2 = findloc(t >= window(1) .and. t <= window(2), .true., dim=1, back=.true.)
+    end subroutine window_rows
+
+    !> ISO 18571 of a volunteer case's rated curves y against the
+    !! volunteers' mean on the RATING window (the samples there, at the
+    !! volunteers' interval); the rated curves to unit `curves` when present.
+    subroutine score_iso_volunteers(cal, c, y, sc, curves)
+        type(calibration_t), intent(in) :: cal   !! the calibration
+        integer, intent(in) :: c                 !! the case
+        real(wp), intent(in) :: y(:, :)          !! (time, channel) the model's rated curves at the volunteers' times
+        type(score_t), intent(inout) :: sc       !! its scores: iso filled
+        integer, intent(in), optional :: curves  !! unit of the curves' CSV
+        integer :: k, i1, i2, stat
+        character(len=msglen) :: msg
+        associate (vol => cal%vol(c))
+            call window_rows(vol%t, cal%window, i1, i2)
+            allocate (sc%iso(size(cal%channels)))
+            do k = 1, size(cal%channels)
+                call iso18571_rating(vol%mean(i1:i2, k), y(i1:i2, k), (vol%t(2) - vol%t(1))*1.0e-3_wp, sc%iso(k), &
+                                     stat, msg)
+                if (present(curves)) call write_curves(curves, c, cal%channels(k)%name, vol%t(i1:i2), &
+                                                       vol%mean(i1:i2, k), y(i1:i2, k))
+            end do
+        end associate
+    end subroutine score_iso_volunteers
+
+    !> Score the rated channels of a reference case: each model curve
+    !! (scale (channel - minus), less its start value with START) at the
+    !! reference's times on the rows it is given, by ISO 18571 and the
+    !! CORA-style rating (inner corridor half the bounds' width; none
+    !! without bounds: the rating's floor); no peaks.
+    subroutine score_reference(rf, names, t0, dt, samples, sc, c, curves)
+        type(reference_case_t), intent(in) :: rf !! the case's reference
+        character(len=*), intent(in) :: names(:) !! channel names of the rows of samples
+        real(wp), intent(in) :: t0               !! first sample time [s]
+        real(wp), intent(in) :: dt               !! sample interval [s]
+        real(wp), intent(in) :: samples(:, :)    !! (nchannel, nsample)
+        type(score_t), intent(out) :: sc         !! the scores
+        integer, intent(in) :: c                 !! the case's number (the curves' CSV)
+        integer, intent(in), optional :: curves  !! unit of the curves' CSV
+        real(wp) :: tm(size(samples, 2)), f(size(samples, 2)), lag
+        real(wp), allocatable :: y(:)
+        integer :: m, i, stat
+        character(len=msglen) :: msg
+        do i = 1, size(tm)
+            tm(i) = 1000*(t0 + (i - 1)*dt)
+        end do
+        m = size(rf%col)
+        allocate (sc%rating(m), sc%corridor(m), sc%xcorr(m), sc%iso(m), sc%peak(0), sc%time(0), sc%z(0))
+        do m = 1, size(rf%col)
+            f = rf%scale(m)*samples(findloc(names, rf%channel(m), dim=1), :)
+            if (len_trim(rf%minus(m)) > 0) f = f - rf%scale(m)*samples(findloc(names, rf%minus(m), dim=1), :)
+            if (rf%from_start(m)) f = f - f(1)
+            associate (d => rf%data, k => rf%col(m))
+                associate (tr => d%t(d%first(k):d%last(k)), r => d%mean(d%first(k):d%last(k), k))
+                    y = resample(tr, tm, f)
+                    call iso18571_rating(r, y, (tr(2) - tr(1))*1.0e-3_wp, sc%iso(m), stat, msg)
+                    call cora_rating(tr, y, r, (d%upper(d%first(k):d%last(k), k) - d%lower(d%first(k):d%last(k), k))/2, &
+                                     [tr(1), tr(size(tr))], sc%corridor(m), sc%xcorr(m), sc%rating(m), lag)
+                    if (present(curves)) call write_curves(curves, c, rf%column(m), tr, r, y)
+                end associate
+            end associate
+        end do
+    end subroutine score_reference
+
+    !> Rows case,channel,time_ms,reference,model of one rated pair of curves.
+    subroutine write_curves(u, c, name, t, r, y)
+        integer, intent(in) :: u                 !! the CSV's unit
+        integer, intent(in) :: c                 !! the case
+        character(len=*), intent(in) :: name     !! the channel
+        real(wp), intent(in) :: t(:), r(:), y(:) !! times [ms], reference, model
+        integer :: i
+        do i = 1, size(t)
+            write (u, '(i0,a,a,3(a,es24.16e3))') c, ',', trim(name), ',', t(i), ',', r(i), ',', y(i)
+        end do
+    end subroutine write_curves
 
     !> J of a parameter set that fails a check at rest by `excess` [1/s]:
     !! 2 + 0.1 s excess, worse than any set that passes, and decreasing
@@ -448,16 +767,34 @@ contains
         real(wp) :: u0(size(cal%sw(1)%params)), ubest(size(u0)), j, jstart, lmax, lp
         type(score_t) :: sc(size(cal%sw))
         logical :: ok
-        integer :: r, k, nnm
+        integer :: r, k, nnm, cu, ios
+        logical :: curves_open
+        curves_open = .false.
         associate (par => cal%sw(1)%params)
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
             write (lu, '(a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T; W ', cal%peak_weight, &
                 ', WT ', cal%time_weight, ', PEAK MARGIN M ', cal%peak_margin
+            write (lu, '(a)') 'R: '//trim(merge('MEAN ISO 18571 OVERALL RATING', 'MEAN CORA-STYLE RATING       ', &
+                                                cal%metric == metric_iso18571))//' OF THE RATED CHANNELS'
             if (cal%max_evals == 0) then                 ! score the decks as they are, or at VALUES
                 vbest = par%nominal
                 if (size(cal%values) == size(par)) vbest = cal%values
-                call evaluate(cal, vbest, jbest, sc, ok, lmax, lp)
+                if (len_trim(cal%curves) > 0) then
+                    open (newunit=cu, file=trim(cal%curves), status='replace', action='write', iostat=ios)
+                    if (ios /= 0) then
+                        write (lu, '(a)') 'CURVES FILE '//trim(cal%curves)//' CANNOT BE WRITTEN'
+                    else
+                        write (cu, '(a)') 'case,channel,time_ms,reference,model'
+                        curves_open = .true.
+                    end if
+                end if
+                if (curves_open) then
+                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, curves=cu)
+                    close (cu)
+                else
+                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp)
+                end if
                 nevals = 1
                 call score_report(cal, sc, jbest, lu)
                 call rest_report(lmax, lp)
@@ -514,8 +851,8 @@ contains
 
         subroutine rest_report(lmax, lp)
             real(wp), intent(in) :: lmax, lp
-            write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
-            if (cal%passive .and. lp < huge(one)) &
+            if (lmax > -huge(one)) write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
+            if (cal%passive .and. lp < huge(one) .and. lp > -huge(one)) &
                 write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST WITHOUT MUSCLES ', lp, ' 1/S'
         end subroutine rest_report
 
@@ -529,21 +866,42 @@ contains
         end subroutine report
     end subroutine calibrate
 
-    !> The ratings and peaks of every case, three significant digits.
+    !> The ratings and peaks of every case, three significant digits; each
+    !! channel's ISO 18571 scores (overall, corridor, phase, magnitude,
+    !! slope) to six digits.
     subroutine score_report(cal, sc, j, lu)
-        type(calibration_t), intent(in) :: cal
-        type(score_t), intent(in) :: sc(:)
-        real(wp), intent(in) :: j
-        integer, intent(in) :: lu
+        type(calibration_t), intent(in) :: cal   !! the calibration
+        type(score_t), intent(in) :: sc(:)       !! (case) the scores
+        real(wp), intent(in) :: j                !! the objective
+        integer, intent(in) :: lu                !! listing unit
         integer :: c, k
+        character(len=10) :: name
         write (lu, '(a,f8.4)') 'OBJECTIVE J = ', j
         do c = 1, size(sc)
-            write (lu, '(a,a,a,f7.4)') 'CASE ', trim(cal%decks(c)), ': MEAN RATING ', &
-                sum(sc(c)%rating)/size(cal%channels)
-            do k = 1, size(cal%channels)
-                write (lu, '(2x,a10,a,f6.3,a,f6.3,a,f6.3)') cal%channels(k)%name, ' RATING ', sc(c)%rating(k), &
+            if (.not. (allocated(sc(c)%rating) .and. allocated(sc(c)%iso))) then
+                write (lu, '(a,a,a)') 'CASE ', trim(cal%decks(c)), ': NOT RATED (A RUN FAILED, OR THE SET DOES '// &
+                    'NOT PASS THE CHECKS AT REST)'
+                cycle
+            end if
+            if (any(cal%weight /= one)) then
+                write (lu, '(a,a,a,f7.4,a,f7.4)') 'CASE ', trim(cal%decks(c)), ' (WEIGHT', cal%weight(c), &
+                    '): MEAN RATING ', case_rating(cal, sc(c))
+            else
+                write (lu, '(a,a,a,f7.4)') 'CASE ', trim(cal%decks(c)), ': MEAN RATING ', case_rating(cal, sc(c))
+            end if
+            do k = 1, size(sc(c)%rating)
+                if (cal%ref(c)%on) then
+                    name = cal%ref(c)%column(k)
+                else
+                    name = cal%channels(k)%name
+                end if
+                write (lu, '(2x,a10,a,f6.3,a,f6.3,a,f6.3)') name, ' RATING ', sc(c)%rating(k), &
                     '  C ', sc(c)%corridor(k), '  X ', sc(c)%xcorr(k)
+                write (lu, '(2x,a10,a,f9.6,a,f9.6,a,f9.6,a,f9.6,a,f9.6)') name, ' ISO 18571 ', &
+                    sc(c)%iso(k)%overall, '  CORRIDOR ', sc(c)%iso(k)%corridor, '  PHASE ', sc(c)%iso(k)%phase, &
+                    '  MAGNITUDE ', sc(c)%iso(k)%magnitude, '  SLOPE ', sc(c)%iso(k)%slope
             end do
+            if (cal%ref(c)%on) cycle
             do k = 1, size(cal%peaks)
                 write (lu, '(2x,a16,a,es10.3,a,f6.1,a,es10.3,a,es9.2,a,f6.1,a,f5.1,a,f6.2)') cal%peaks(k)%name, &
                     ' MODEL ', sc(c)%peak(k), ' AT ', sc(c)%time(k), ' MS; VOLUNTEERS ', cal%vol(c)%peak_mean(k), &
@@ -553,8 +911,9 @@ contains
         end do
     end subroutine score_report
 
-    !> Run every case of the calibration at parameter values v: the rated
-    !! channels at the volunteers' times, y(:, :, case); ok false when a run fails.
+    !> Run every volunteer case of the calibration at parameter values v:
+    !! the rated channels at the volunteers' times, y(:, :, case) (zero for
+    !! a reference case); ok false when a run fails.
     subroutine member_histories(cal, v, y, ok)
         type(calibration_t), intent(in) :: cal   !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
@@ -563,29 +922,43 @@ contains
         type(case_t) :: cs
         type(run_result_t) :: res
         type(channel_set_t) :: ch
-        integer :: c, stat, lu
-        character(len=msglen) :: msg
+        integer :: c
         ok = .true.
         y = zero
         do c = 1, size(cal%sw)
-            call sweep_member_case(cal%sw(c), v, cs, stat, msg)
-            if (stat /= stat_ok) then
-                ok = .false.; return
-            end if
-            open (newunit=lu, file='/dev/null', action='write')
-            block
-                type(run_state_t) :: run         ! a fresh run object for every case
-                call run%execute(cs, lu, '', res, keep_samples=.true.)
-            end block
-            close (lu)
-            if (res%exit_code /= exit_ok) then
-                ok = .false.; return
-            end if
-            call channels_define(cs, ch)
+            if (cal%ref(c)%on) cycle
+            call run_member(cal, c, v, cs, ch, res, ok)
+            if (.not. ok) return
             y(1:size(cal%vol(c)%t), :, c) = rated_histories(cal, cal%vol(c)%t, ch%name, cs%t_start, cs%sample_dt, &
                                                              res%samples)
         end do
     end subroutine member_histories
+
+    !> Run case c at parameter values v as a sweep member: no result file,
+    !! the listing to /dev/null, every channel's samples kept in res.
+    subroutine run_member(cal, c, v, cs, ch, res, ok)
+        type(calibration_t), intent(in) :: cal   !! the calibration
+        integer, intent(in) :: c                 !! the case
+        real(wp), intent(in) :: v(:)             !! one value per parameter
+        type(case_t), intent(out) :: cs          !! the member's case
+        type(channel_set_t), intent(out) :: ch   !! its channels
+        type(run_result_t), intent(out) :: res   !! its run, with the samples
+        logical, intent(out) :: ok               !! the run is complete
+        integer :: stat, lu
+        character(len=msglen) :: msg
+        ok = .false.
+        call sweep_member_case(cal%sw(c), v, cs, stat, msg)
+        if (stat /= stat_ok) return
+        open (newunit=lu, file='/dev/null', action='write')
+        block
+            type(run_state_t) :: run         ! a fresh run object for every case
+            call run%execute(cs, lu, '', res, keep_samples=.true.)
+        end block
+        close (lu)
+        if (res%exit_code /= exit_ok) return
+        call channels_define(cs, ch)
+        ok = .true.
+    end subroutine run_member
 
     !> The rated channels of a run (the CHANNEL cards), filtered with the
     !! calibration's CFC class and interpolated to the volunteers' times.
