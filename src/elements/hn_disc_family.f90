@@ -1,8 +1,11 @@
 !> The DISCS family: Timoshenko discs between vertebral plates (eqs 1-9,
 !! hn_discs), behind the element-family interface. Output per disc: the six
-!! resultants (shear x, y, axial [N], bending x, y, torque [N m]).
+!! resultants (shear x, y, axial [N], bending x, y, torque [N m]). The
+!! family reads its DISC cards (`disc_card`).
 module hn_disc_family
-    use hn_kinds, only: wp, zero
+    use hn_kinds, only: wp, zero, one, deg
+    use hn_deck_reader, only: deck_reader_t
+    use hn_element_cards, only: card_context_t, body_map_t, body_ref, distinct_bodies, map_ends, big_length, big_modulus
     use hn_rotation, only: cross
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
@@ -15,7 +18,7 @@ module hn_disc_family
     implicit none
     private
 
-    public :: disc_family_t, discs_of
+    public :: disc_family_t, discs_of, disc_card
 
     real(wp), parameter :: ref_disc_axial = 5.0e5_wp      !! N/m (reference/parameters.md)
     real(wp), parameter :: ref_disc_bending = 20.0_wp     !! N m/rad
@@ -23,7 +26,10 @@ module hn_disc_family
     !> The discs of a model.
     type, extends(element_family_t) :: disc_family_t
         type(disc_t), allocatable :: items(:)
+        integer :: nread = 0   !! discs read from the deck so far (items holds room for every DISC card until end_cards)
     contains
+        procedure :: read_card => disc_read_card
+        procedure :: end_cards => disc_end_cards
         procedure :: count => disc_count
         procedure :: ncomp => disc_ncomp
         procedure :: set_neutral => disc_neutral
@@ -273,5 +279,75 @@ contains
             allocate (items(0))
         end select
     end function discs_of
+
+    !> A DISC card: the disc, kept unless both its plates are on one merged body.
+    subroutine disc_read_card(this, rd, ctx, i, key)
+        class(disc_family_t), intent(inout) :: this   !! the family; out: the disc added
+        type(deck_reader_t), intent(inout) :: rd      !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(inout) :: ctx    !! the deck's bodies; out: ninternal counted
+        integer, intent(in) :: i                      !! the card's first deck line
+        character(len=*), intent(in) :: key           !! the card name (DISC)
+        type(disc_t) :: d
+        logical :: keep
+        ! room for every DISC card, trimmed by end_cards (appending one by one is quadratic)
+        if (this%nread == 0 .and. size(this%items) < ctx%ncards(key)) then
+            deallocate (this%items)
+            allocate (this%items(ctx%ncards(key)))
+        end if
+        call disc_card(rd, i, ctx%bnames, ctx%bmap, ctx%ninternal, d, keep)
+        if (rd%failed()) return
+        if (.not. keep) return
+        this%nread = this%nread + 1
+        this%items(this%nread) = d
+    end subroutine disc_read_card
+
+    !> The discs read: no room left over.
+    subroutine disc_end_cards(this, rd, ctx)
+        class(disc_family_t), intent(inout) :: this   !! the family; out: items trimmed to the discs read
+        type(deck_reader_t), intent(inout) :: rd      !! the deck (unused)
+        type(card_context_t), intent(inout) :: ctx    !! the deck's cards (unused)
+        this%items = this%items(1:this%nread)
+    end subroutine disc_end_cards
+
+    !> A DISC card and its two continuation cards; keep is false for a disc
+    !! inside one merged body.
+    subroutine disc_card(rd, i, bnames, bmap, ninternal, d, keep)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
+        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
+        integer, intent(inout) :: ninternal  !! elements so far with both ends on one merged body
+        type(disc_t), intent(out) :: d  !! the disc
+        logical, intent(out) :: keep  !! false for a disc inside one merged body
+        integer :: f
+        real(wp) :: v
+        d = disc_t()
+        call rd%name(i, 1, 'disc name', d%name)
+        d%body_a = body_ref(rd, i, 2, 'lower body', bnames, .false.)
+        d%body_b = body_ref(rd, i, 3, 'upper body', bnames, .false.)
+        call distinct_bodies(rd, i, d%body_a, d%body_b)
+        call rd%real(i, 4, 'area A', 'm^2', d%area, 1.0e-8_wp, 1.0_wp)
+        call rd%real(i, 5, 'thickness h', 'm', d%h, 1.0e-5_wp, 1.0_wp)
+        call rd%real(i, 6, 'modulus d1', 'Pa', d%d1, 1.0e-3_wp, big_modulus)
+        call rd%real(i, 7, 'viscous modulus d2', 'Pa s', d%d2, zero, big_modulus)
+        do f = 1, 3
+            call rd%real(i + 1, f, 'lower plate centre', 'm', d%pa(f), -big_length, big_length)
+            call rd%real(i + 1, 3 + f, 'upper plate centre', 'm', d%pb(f), -big_length, big_length)
+        end do
+        call rd%real(i + 1, 7, 'plate tilt', 'deg', v, -90.0_wp, 90.0_wp, default=zero)
+        d%tilt = v*deg
+        call rd%real(i + 2, 1, 'shear modulus G', 'Pa', d%g, 1.0e-3_wp, big_modulus)
+        call rd%real(i + 2, 2, 'second moment Ix', 'm^4', d%ix, 1.0e-20_wp, one)
+        call rd%real(i + 2, 3, 'second moment Iy', 'm^4', d%iy, 1.0e-20_wp, one)
+        call rd%real(i + 2, 4, 'torsion constant J', 'm^4', d%j, 1.0e-20_wp, one)
+        call rd%real(i + 2, 5, 'shear factor k', '-', d%kshear, 0.1_wp, 10.0_wp, default=1.2_wp)
+        call rd%real(i + 2, 6, 'viscous modulus d2b of shear, bending and torsion', 'Pa s', d%d2b, zero, &
+                     big_modulus, default=d%d2)
+        call rd%real(i + 2, 7, 'axial stiffness in tension as a fraction of d1''s', '-', d%ft, 1.0e-3_wp, one, &
+                     default=one)
+        if (rd%failed()) return
+        call map_ends(bmap, d%body_a, d%pa, d%body_b, d%pb, ninternal)
+        keep = d%body_a /= d%body_b
+    end subroutine disc_card
 
 end module hn_disc_family

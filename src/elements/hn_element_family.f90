@@ -13,7 +13,10 @@
 !! result-file table (`result_table`), the plausibility warnings
 !! (`plausibility`) and the properties that SCALE, CHANGE ... FAMILY, the
 !! sweeps' FAMILY parameters and STIFFEN scale (`scale_items`, `scale`,
-!! `stiffen`).
+!! `stiffen`); and reading its own deck cards (`read_card`, one card into
+!! its elements; `end_cards`, what follows when every card is read), with
+!! the cards of a family the registry does not list (`deck_cards`). These
+!! three have defaults: no card, nothing after the cards.
 module hn_element_family
     use hn_kinds, only: wp, zero
     use hn_kinematics, only: kinematics_t
@@ -21,6 +24,8 @@ module hn_element_family
     use hn_tree, only: body_tree_t
     use hn_rotation, only: cross
     use hn_line_elements, only: line_geometry_t, line_geometry, max_via, line_attach_t
+    use hn_deck_reader, only: deck_reader_t
+    use hn_element_cards, only: card_context_t, family_card_t
     implicit none
     private
 
@@ -90,6 +95,9 @@ module hn_element_family
         procedure(items_sub), deferred :: scale_items
         procedure(scale_sub), deferred :: scale
         procedure(stiffen_sub), deferred :: stiffen
+        procedure :: read_card => no_card
+        procedure :: end_cards => nothing_after_cards
+        procedure :: deck_cards => registry_cards
     end type element_family_t
 
     !> One slot of the model: a family of any kind.
@@ -204,6 +212,36 @@ module hn_element_family
     real(wp), parameter :: far_factor = 100.0_wp   !! "two orders of magnitude" of a stiffness check
 
 contains
+
+    !> Read card `key` at deck line i into the family's elements (the
+    !! default: a family with no cards refuses it). A family reads its cards
+    !! into an empty family (new_family), in the order its registry entries
+    !! say (card_first, card_in_order, card_last), with the field access of
+    !! `rd` and the references of `ctx`.
+    subroutine no_card(this, rd, ctx, i, key)
+        class(element_family_t), intent(inout) :: this   !! the family; out: the card's element added
+        type(deck_reader_t), intent(inout) :: rd         !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(inout) :: ctx       !! the deck's bodies, tables, tree; what the families report
+        integer, intent(in) :: i                         !! the card's first deck line
+        character(len=*), intent(in) :: key              !! the card name
+        call rd%fail(rd%where(i)//' ('//trim(key)//' card): the element family of this card reads no cards')
+    end subroutine no_card
+
+    !> What follows when every card of the deck is read (the default: nothing).
+    subroutine nothing_after_cards(this, rd, ctx)
+        class(element_family_t), intent(inout) :: this   !! the family; out: its elements complete
+        type(deck_reader_t), intent(inout) :: rd         !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(inout) :: ctx       !! the deck's cards; out: the family's scene notes added
+    end subroutine nothing_after_cards
+
+    !> The cards of a family the registry (hn_families, family_cards) does
+    !! not list, one added to a model in code (model_add_family); the
+    !! default: none (a registry family's cards are the registry's).
+    pure function registry_cards(this) result(c)
+        class(element_family_t), intent(in) :: this      !! the family
+        type(family_card_t), allocatable :: c(:)
+        allocate (c(0))
+    end function registry_cards
 
     !> Warn of an attachment point farther from its body's mass centre than
     !! max(0.25 m, 5 radii of gyration).

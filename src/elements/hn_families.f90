@@ -7,10 +7,10 @@
 !! visits them in this order (discs, ligaments, muscles, limits, springs).
 !!
 !! Adding a family: its module (a type extending `element_family_t` of
-!! hn_element_family), one `fam_*` number, one name, its cards in
-!! `family_cards`, one case in `new_family`; its cards in the card registry
-!! hn_cards and their reading in hn_deck_elements (docs/architecture.md,
-!! "Adding an element family").
+!! hn_element_family, which reads the family's own cards, `read_card`), one
+!! `fam_*` number, one name, its cards in `family_cards`, one case in
+!! `new_family`; its cards in the card registry hn_cards
+!! (docs/architecture.md, "Adding an element family").
 module hn_families
     use hn_discs, only: disc_t
     use hn_line_elements, only: ligament_t, muscle_t, spring_t
@@ -18,6 +18,7 @@ module hn_families
     use hn_tables, only: table_t
     use hn_muscle, only: activation_t
     use hn_element_family, only: element_family_t, family_slot_t
+    use hn_element_cards, only: family_card_t, card_first, card_last
     use hn_disc_family, only: disc_family_t
     use hn_ligament_family, only: ligament_family_t
     use hn_muscle_family, only: muscle_family_t
@@ -36,21 +37,17 @@ module hn_families
     character(len=family_name_len), parameter, public :: family_name(nfamilies) = &
         [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS']
 
-    !> A deck card that belongs to a family: its key, its family, its continuation cards.
-    type :: family_card_t
-        character(len=8) :: key = ''
-        integer :: family = 0
-        integer :: ncont = 0
-    end type family_card_t
-
-    !> Every card of every family (VIA and ACTIVATE complete the muscles).
+    !> Every card of every family (VIA and ACTIVATE complete the muscles):
+    !! key, family, continuation cards, and when it is read (the default
+    !! card_in_order: in deck order; ACTIVATE first, the histories HILL cards
+    !! name; VIA last, on the muscles read before).
     type(family_card_t), parameter :: family_cards(*) = [ &
         family_card_t('DISC', fam_discs, 2), &
         family_card_t('LIGAMENT', fam_ligaments, 1), &
         family_card_t('MUSCLE', fam_muscles, 1), &
         family_card_t('HILL', fam_muscles, 1), &
-        family_card_t('VIA', fam_muscles, 0), &
-        family_card_t('ACTIVATE', fam_muscles, 1), &
+        family_card_t('VIA', fam_muscles, 0, card_last), &
+        family_card_t('ACTIVATE', fam_muscles, 1, card_first), &
         family_card_t('LIMIT', fam_limits, 0), &
         family_card_t('ROM', fam_limits, 0), &
         family_card_t('SPRING', fam_springs, 1)]

@@ -1,8 +1,10 @@
 !> The LIGAMENTS family: tension-only bands (eq 10, hn_line_elements)
 !! behind the element-family interface. Output per ligament: tension [N]
-!! and length [m].
+!! and length [m]. The family reads its LIGAMENT cards.
 module hn_ligament_family
-    use hn_kinds, only: wp, zero
+    use hn_kinds, only: wp, zero, one
+    use hn_deck_reader, only: deck_reader_t
+    use hn_element_cards, only: card_context_t, line_card, big_modulus
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -20,7 +22,10 @@ module hn_ligament_family
     !> The ligaments of a model.
     type, extends(element_family_t) :: ligament_family_t
         type(ligament_t), allocatable :: items(:)
+        integer :: nread = 0   !! ligaments read from the deck so far (items holds room for every card until end_cards)
     contains
+        procedure :: read_card => ligament_read_card
+        procedure :: end_cards => ligament_end_cards
         procedure :: count => ligament_count
         procedure :: ncomp => ligament_ncomp
         procedure :: set_neutral => ligament_neutral
@@ -214,5 +219,39 @@ contains
             allocate (items(0))
         end select
     end function ligaments_of
+
+    !> A LIGAMENT card: name, bodies, l1, l2, exponent n; the attachment
+    !! points and slack length on its continuation card. Kept unless both
+    !! ends are on one merged body.
+    subroutine ligament_read_card(this, rd, ctx, i, key)
+        class(ligament_family_t), intent(inout) :: this   !! the family; out: the ligament added
+        type(deck_reader_t), intent(inout) :: rd          !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(inout) :: ctx        !! the deck's bodies; out: ninternal counted
+        integer, intent(in) :: i                          !! the card's first deck line
+        character(len=*), intent(in) :: key               !! the card name (LIGAMENT)
+        type(ligament_t) :: g
+        logical :: keep
+        ! room for every LIGAMENT card, trimmed by end_cards (appending one by one is quadratic)
+        if (this%nread == 0 .and. size(this%items) < ctx%ncards(key)) then
+            deallocate (this%items)
+            allocate (this%items(ctx%ncards(key)))
+        end if
+        g = ligament_t()
+        call line_card(rd, ctx, i, 'ligament', g%line_attach_t, i, 7, keep)
+        call rd%real(i, 4, 'l1', 'N/m', g%l1, zero, big_modulus)
+        call rd%real(i, 5, 'l2', 'N/m^n', g%l2, zero, 1.0e30_wp)
+        call rd%real(i, 6, 'exponent n', '-', g%n, one, 10.0_wp, default=2.0_wp)
+        if (.not. keep .or. rd%failed()) return
+        this%nread = this%nread + 1
+        this%items(this%nread) = g
+    end subroutine ligament_read_card
+
+    !> The ligaments read: no room left over.
+    subroutine ligament_end_cards(this, rd, ctx)
+        class(ligament_family_t), intent(inout) :: this   !! the family; out: items trimmed to the ligaments read
+        type(deck_reader_t), intent(inout) :: rd          !! the deck (unused)
+        type(card_context_t), intent(inout) :: ctx        !! the deck's cards (unused)
+        this%items = this%items(1:this%nread)
+    end subroutine ligament_end_cards
 
 end module hn_ligament_family

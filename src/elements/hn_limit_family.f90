@@ -1,9 +1,14 @@
 !> The LIMITS family: one-way joint-limit dampers (eqs 12-13) and the
 !! resistance beyond the physiological range of motion (ROM cards), both
 !! from hn_joint_limits, behind the element-family interface. Output per
-!! damper: its generalized force [N or N m].
+!! damper: its generalized force [N or N m]. The family reads its LIMIT and
+!! ROM cards; those on a locked or merged coordinate are dropped, with a
+!! scene note.
 module hn_limit_family
-    use hn_kinds, only: wp, zero
+    use hn_kinds, only: wp, zero, deg
+    use hn_deck_reader, only: deck_reader_t
+    use hn_element_cards, only: card_context_t, body_ref, active_coordinate, unit_of, unit_factor, unit_limit, &
+                                big_modulus, coord_names
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -16,13 +21,16 @@ module hn_limit_family
     public :: limit_family_t, limits_of, ranges_of
 
     real(wp), parameter :: ref_limit_c1 = 100.0_wp        !! N m s/rad per rad (reference/parameters.md)
-    character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
 
     !> The joint-limit dampers and ranges of motion of a model.
     type, extends(element_family_t) :: limit_family_t
         type(joint_limit_t), allocatable :: items(:)    !! dampers (LIMIT cards)
         type(joint_range_t), allocatable :: ranges(:)   !! ranges of motion (ROM cards)
+        integer :: nread(2) = 0     !! dampers and ranges read from the deck so far (room for every card until end_cards)
+        integer :: ndropped = 0     !! LIMIT and ROM cards dropped: on locked or merged coordinates
     contains
+        procedure :: read_card => limit_read_card
+        procedure :: end_cards => limit_end_cards
         procedure :: count => limit_count
         procedure :: ncomp => limit_ncomp
         procedure :: set_neutral => limit_neutral
@@ -228,5 +236,104 @@ contains
             allocate (items(0))
         end select
     end function ranges_of
+
+    !> A LIMIT or ROM card: a damper or a range of motion, dropped on a
+    !! locked or merged coordinate.
+    subroutine limit_read_card(this, rd, ctx, i, key)
+        class(limit_family_t), intent(inout) :: this   !! the family; out: the card's damper or range added
+        type(deck_reader_t), intent(inout) :: rd       !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(inout) :: ctx     !! the deck's bodies and the reduced tree
+        integer, intent(in) :: i                       !! the card's first deck line
+        character(len=*), intent(in) :: key            !! the card name (LIMIT or ROM)
+        ! room for every LIMIT and ROM card, trimmed by end_cards (appending one by one is quadratic)
+        if (this%nread(1) == 0 .and. size(this%items) < ctx%ncards('LIMIT')) then
+            deallocate (this%items)
+            allocate (this%items(ctx%ncards('LIMIT')))
+        end if
+        if (this%nread(2) == 0 .and. size(this%ranges) < ctx%ncards('ROM')) then
+            deallocate (this%ranges)
+            allocate (this%ranges(ctx%ncards('ROM')))
+        end if
+        call joint_card(rd, i, ctx, this)
+    end subroutine limit_read_card
+
+    !> The dampers and ranges read: no room left over; a scene note of those dropped.
+    subroutine limit_end_cards(this, rd, ctx)
+        class(limit_family_t), intent(inout) :: this   !! the family; out: items and ranges trimmed
+        type(deck_reader_t), intent(inout) :: rd       !! the deck (unused)
+        type(card_context_t), intent(inout) :: ctx     !! out: the note of the dampers dropped
+        character(len=100) :: note
+        this%items = this%items(1:this%nread(1))
+        this%ranges = this%ranges(1:this%nread(2))
+        if (this%ndropped > 0) then
+            write (note, '(i0,a)') this%ndropped, ' JOINT-LIMIT DAMPERS DROPPED: ON LOCKED OR MERGED COORDINATES'
+            call ctx%add_note(note)
+        end if
+    end subroutine limit_end_cards
+
+    !> A LIMIT card (one-way joint-limit damper) or a ROM card (resistance
+    !! beyond the physiological range: rotation, range (deg), stiffness at the
+    !! edge K [N m/rad], excess t0 [deg] over which it grows e-fold); dropped
+    !! on a locked or merged coordinate.
+    subroutine joint_card(rd, i, ctx, jf)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's first deck line
+        type(card_context_t), intent(in) :: ctx  !! the deck's bodies (names, where each went) and the reduced tree
+        class(limit_family_t), intent(inout) :: jf   !! the dampers and ranges read so far (nread), those dropped (ndropped)
+        type(joint_limit_t) :: lim
+        type(joint_range_t) :: r
+        integer :: kb, m, j
+        ! a body absorbed by MERGE or a locked coordinate: the element would do nothing
+        if (ctx%bmap%merged_by(body_ref(rd, i, 1, 'body', ctx%bnames, .false.)) > 0) then
+            jf%ndropped = jf%ndropped + 1
+            return
+        end if
+        call active_coordinate(rd, i, ctx%tree, ctx%bnames, ctx%bmap, kb, m, j, .true.)
+        if (rd%failed()) return
+        if (j == 0) then
+            jf%ndropped = jf%ndropped + 1
+            return
+        end if
+        if (rd%key(i) == 'LIMIT') then
+            lim = joint_limit_t()
+            lim%body = kb; lim%local = m; lim%dof = j
+            call rd%real(i, 3, 'lower limit', unit_of(m), lim%xmin, -unit_limit(m), unit_limit(m))
+            call rd%real(i, 4, 'upper limit', unit_of(m), lim%xmax, -unit_limit(m), unit_limit(m))
+            if (.not. rd%failed() .and. .not. (lim%xmax > lim%xmin)) then
+                call rd%fail(rd%context(i, 4, 'upper limit')//': found '// &
+                             trim(rd%raw(i, 4))//'; expected a value above the lower limit '//trim(rd%raw(i, 3)))
+                return
+            end if
+            call rd%real(i, 5, 'damping C0', 'N s/m or N m s/rad', lim%c0, zero, big_modulus)
+            call rd%real(i, 6, 'damping ramp C1', 'per m or per rad of excess', lim%c1, zero, big_modulus)
+            call rd%real(i, 7, 'neutral value', unit_of(m), lim%xneutral, lim%xmin, lim%xmax, &
+                         default=max(lim%xmin, min(lim%xmax, ctx%tree%q_ref(m, kb)/unit_factor(m))))
+            lim%xmin = lim%xmin*unit_factor(m)
+            lim%xmax = lim%xmax*unit_factor(m)
+            lim%xneutral = lim%xneutral*unit_factor(m)
+            if (rd%failed()) return
+            jf%nread(1) = jf%nread(1) + 1; jf%items(jf%nread(1)) = lim
+            return
+        end if
+        if (m <= 3) then
+            call rd%fail(rd%context(i, 2, 'coordinate')//': found '//coord_names(m)//'; expected a rotation '// &
+                         '(RX, RY or RZ): ROM cards hold joint rotations')
+            return
+        end if
+        r%dof = j
+        r%label = trim(ctx%tree%name(kb))//' '//coord_names(m)
+        call rd%real(i, 3, 'lower end of range', 'deg', r%xmin, -180.0_wp, 180.0_wp)
+        call rd%real(i, 4, 'upper end of range', 'deg', r%xmax, -180.0_wp, 180.0_wp)
+        if (.not. rd%failed() .and. .not. (r%xmax > r%xmin)) then
+            call rd%fail(rd%context(i, 4, 'upper end of range')//': found '//trim(rd%raw(i, 4))// &
+                         '; expected a value above the lower end '//trim(rd%raw(i, 3)))
+            return
+        end if
+        call rd%real(i, 5, 'stiffness at the edge K', 'N m/rad', r%k, zero, big_modulus)
+        call rd%real(i, 6, 'e-fold excess t0', 'deg', r%t0, 0.01_wp, 90.0_wp, default=5.0_wp)
+        if (rd%failed()) return
+        r%xmin = r%xmin*deg; r%xmax = r%xmax*deg; r%t0 = r%t0*deg
+        jf%nread(2) = jf%nread(2) + 1; jf%ranges(jf%nread(2)) = r
+    end subroutine joint_card
 
 end module hn_limit_family

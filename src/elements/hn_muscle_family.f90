@@ -3,9 +3,12 @@
 !! (hn_line_elements), behind the element-family interface. The family
 !! holds the activation tables (eq 11) and the activation histories (ACTIVATE
 !! cards) its muscles refer to. Output per muscle: tension [N], length [m]
-!! and activation.
+!! and activation. The family reads its MUSCLE, HILL, ACTIVATE and VIA cards.
 module hn_muscle_family
-    use hn_kinds, only: wp, zero
+    use hn_kinds, only: wp, zero, one
+    use hn_deck_reader, only: deck_reader_t, int_str
+    use hn_element_cards, only: card_context_t, card_t, body_map_t, line_card, body_ref, table_ref, big_length, &
+                                big_modulus
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -29,7 +32,10 @@ module hn_muscle_family
         type(muscle_t), allocatable :: items(:)
         type(table_t), allocatable :: tables(:)              !! activation tables (eq 11) referenced by muscles
         type(activation_t), allocatable :: activations(:)    !! activation histories of Hill-type muscles
+        integer :: nread = 0   !! muscles read from the deck so far (items holds room for every card until end_cards)
     contains
+        procedure :: read_card => muscle_read_card
+        procedure :: end_cards => muscle_end_cards
         procedure :: count => muscle_count
         procedure :: ncomp => muscle_ncomp
         procedure :: set_neutral => muscle_neutral
@@ -300,5 +306,169 @@ contains
             allocate (items(0))
         end select
     end function activation_histories
+
+    !> An ACTIVATE, MUSCLE, HILL or VIA card (the registry reads ACTIVATE
+    !! cards before, VIA cards after the others). A muscle is kept unless
+    !! both ends are on one merged body.
+    subroutine muscle_read_card(this, rd, ctx, i, key)
+        class(muscle_family_t), intent(inout) :: this   !! the family; out: the card's muscle, history or via point added
+        type(deck_reader_t), intent(inout) :: rd        !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(inout) :: ctx      !! the deck's bodies and tables; out: ninternal counted
+        integer, intent(in) :: i                        !! the card's first deck line
+        character(len=*), intent(in) :: key             !! the card name
+        type(muscle_t) :: mu
+        logical :: keep
+        integer :: it, n
+        select case (key)
+        case ('ACTIVATE')
+            call activation_card(rd, ctx, i, this%activations)
+            return
+        case ('VIA')
+            call via_card(rd, ctx%cards, i, this%items(1:this%nread), ctx%bnames, ctx%bmap)
+            return
+        end select
+        ! room for every MUSCLE and HILL card, trimmed by end_cards (appending one by one is quadratic)
+        n = ctx%ncards('MUSCLE') + ctx%ncards('HILL')
+        if (this%nread == 0 .and. size(this%items) < n) then
+            deallocate (this%items)
+            allocate (this%items(n))
+        end if
+        if (key == 'MUSCLE') then
+            mu = muscle_t()
+            call line_card(rd, ctx, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
+            call rd%real(i, 4, 'stiffness m1', 'N/m', mu%m1, zero, big_modulus)
+            call rd%real(i, 5, 'damping m2', 'N s/m', mu%m2, zero, big_modulus)
+            call rd%real(i, 6, 'active force Fmax', 'N', mu%fmax, zero, 1.0e6_wp, default=zero)
+            if (.not. rd%is_blank(i, 7)) then
+                it = table_ref(rd, i, 7, ctx%tabs)
+                if (.not. rd%failed()) then
+                    this%tables = [this%tables, ctx%tabs(it)%tab]
+                    mu%activation = size(this%tables)
+                end if
+            end if
+        else
+            mu = muscle_t(law=muscle_hill)
+            call line_card(rd, ctx, i, 'muscle', mu%line_attach_t, i + 1, 7, keep)
+            call rd%real(i, 4, 'maximum isometric force F0', 'N', mu%hill%f0, zero, 1.0e5_wp)
+            call rd%real(i, 5, 'optimal fibre length', 'm', mu%hill%lopt, 1.0e-3_wp, one)
+            if (.not. rd%is_blank(i, 6)) mu%history = history_ref(rd, i, 6, this%activations)
+            if (mu%history > 0) then
+                mu%hill%srs_q = this%activations(mu%history)%srs_q
+                mu%hill%srs_range = this%activations(mu%history)%srs_range
+            end if
+            call rd%real(i, 7, 'damping', 'N s/m', mu%hill%damping, zero, 1.0e5_wp, default=zero)
+        end if
+        if (.not. keep .or. rd%failed()) return
+        this%nread = this%nread + 1
+        this%items(this%nread) = mu
+    end subroutine muscle_read_card
+
+    !> The muscles read: no room left over.
+    subroutine muscle_end_cards(this, rd, ctx)
+        class(muscle_family_t), intent(inout) :: this   !! the family; out: items trimmed to the muscles read
+        type(deck_reader_t), intent(inout) :: rd        !! the deck (unused)
+        type(card_context_t), intent(inout) :: ctx      !! the deck's cards (unused)
+        this%items = this%items(1:this%nread)
+    end subroutine muscle_end_cards
+
+    !> An ACTIVATE card: the activation history of Hill-type muscles. A
+    !! blank onset is the sled pulse onset: the first time the prescribed
+    !! translational acceleration of the root body exceeds 1 g (never, when
+    !! it does not).
+    subroutine activation_card(rd, ctx, i, activations)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(in) :: ctx  !! the tree, motions and time span (the pulse onset)
+        integer, intent(in) :: i  !! the card's first deck line
+        type(activation_t), allocatable, intent(inout) :: activations(:)  !! the histories read; out: this card's added
+        type(activation_t) :: ah
+        ah = activation_t()
+        call rd%name(i, 1, 'history name', ah%name)
+        if (rd%failed()) return
+        call rd%real(i, 2, 'pre-activation u0', '-', ah%u0, zero, one)
+        call rd%real(i, 3, 'reflex activation u1', '-', ah%u1, zero, one)
+        if (rd%is_blank(i, 4)) then
+            ah%t_onset = ctx%pulse_onset()
+        else
+            call rd%real(i, 4, 'pulse onset', 's', ah%t_onset, -1.0e4_wp, 1.0e4_wp)
+        end if
+        call rd%real(i, 5, 'reflex delay', 's', ah%delay, zero, 10.0_wp)
+        call rd%real(i, 6, 'rise time', 's', ah%rise, zero, 10.0_wp, default=zero)
+        call rd%real(i + 1, 1, 'activation time constant', 's', ah%tau_act, 1.0e-4_wp, 10.0_wp, default=0.015_wp)
+        call rd%real(i + 1, 2, 'deactivation time constant', 's', ah%tau_deact, 1.0e-4_wp, 10.0_wp, &
+                     default=0.05_wp)
+        call rd%real(i + 1, 3, 'short-range stiffness q', '-', ah%srs_q, zero, 1.0e3_wp, default=zero)
+        call rd%real(i + 1, 4, 'short-range stiffness range', 'lopt', ah%srs_range, 1.0e-4_wp, one, &
+                     default=0.01_wp)
+        if (rd%failed()) return
+        activations = [activations, ah]
+    end subroutine activation_card
+
+    !> Activation history named in field f (an ACTIVATE card).
+    integer function history_ref(rd, i, f, hist) result(ih)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i, f
+        type(activation_t), intent(in) :: hist(:)
+        character(len=10) :: s
+        ih = 0
+        call rd%name(i, f, 'activation history', s)
+        if (rd%failed()) return
+        do ih = size(hist), 1, -1
+            if (hist(ih)%name == s) exit
+        end do
+        if (ih == 0) call rd%fail(rd%context(i, f, 'activation history')//': found "'//trim(s)// &
+                                  '"; expected the name of an ACTIVATE card')
+    end function history_ref
+
+    !> VIA muscle body x y z: the next via point of a muscle's path (MUSCLE or
+    !! HILL card of that name), in order from body a to body b, moved onto
+    !! a merged body as the muscle's ends are; a VIA card of a muscle the
+    !! scene dropped is dropped with it.
+    subroutine via_card(rd, cards, i, muscles, bnames, bmap)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        integer, intent(in) :: i
+        type(muscle_t), intent(inout) :: muscles(:)
+        character(len=10), intent(in) :: bnames(:)
+        type(body_map_t), intent(in) :: bmap
+        character(len=10) :: nm, other
+        real(wp) :: p(3)
+        integer :: e, kb, f, k
+        logical :: defined
+        call rd%name(i, 1, 'muscle name', nm)
+        kb = body_ref(rd, i, 2, 'body', bnames, .true.)
+        do f = 1, 3
+            call rd%real(i, 2 + f, 'via point', 'm', p(f), -big_length, big_length)
+        end do
+        if (rd%failed()) return
+        do e = size(muscles), 1, -1       ! (a loop: no temporary of the name component)
+            if (muscles(e)%name == nm) exit
+        end do
+        if (e == 0) then
+            defined = .false.
+            do k = 1, size(cards)
+                if (cards(k)%key /= 'MUSCLE' .and. cards(k)%key /= 'HILL') cycle
+                call rd%name(cards(k)%first, 1, 'muscle name', other)
+                defined = defined .or. other == nm
+            end do
+            if (.not. defined) call rd%fail(rd%context(i, 1, 'muscle name')//': found "'//trim(nm)// &
+                                            '"; expected the name of a MUSCLE or HILL card')
+            return
+        end if
+        associate (m => muscles(e))
+            if (m%nvia == max_via) then
+                call rd%fail(rd%context(i, 1, 'muscle name')//': muscle "'//trim(nm)//'" has '// &
+                             trim(int_str(max_via))//' via points already; expected at most '// &
+                             trim(int_str(max_via))//' VIA cards per muscle')
+                return
+            end if
+            if (kb > 0) then
+                p = p + bmap%shift(:, kb)
+                kb = bmap%new(kb)
+            end if
+            m%nvia = m%nvia + 1
+            m%via_body(m%nvia) = kb
+            m%via_point(:, m%nvia) = p
+        end associate
+    end subroutine via_card
 
 end module hn_muscle_family

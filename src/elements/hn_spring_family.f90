@@ -1,8 +1,10 @@
 !> The SPRINGS family: linear spring-dampers between two points
 !! (hn_line_elements) behind the element-family interface. Output per
-!! spring: its tension [N].
+!! spring: its tension [N]. The family reads its SPRING cards.
 module hn_spring_family
     use hn_kinds, only: wp, zero
+    use hn_deck_reader, only: deck_reader_t
+    use hn_element_cards, only: card_context_t, line_card, big_modulus
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -18,7 +20,10 @@ module hn_spring_family
     !> The springs of a model.
     type, extends(element_family_t) :: spring_family_t
         type(spring_t), allocatable :: items(:)
+        integer :: nread = 0   !! springs read from the deck so far (items holds room for every card until end_cards)
     contains
+        procedure :: read_card => spring_read_card
+        procedure :: end_cards => spring_end_cards
         procedure :: count => spring_count
         procedure :: ncomp => spring_ncomp
         procedure :: set_neutral => spring_neutral
@@ -197,5 +202,38 @@ contains
             allocate (items(0))
         end select
     end function springs_of
+
+    !> A SPRING card: name, bodies, stiffness, damping; the attachment
+    !! points and free length on its continuation card. Kept unless both
+    !! ends are on one merged body.
+    subroutine spring_read_card(this, rd, ctx, i, key)
+        class(spring_family_t), intent(inout) :: this   !! the family; out: the spring added
+        type(deck_reader_t), intent(inout) :: rd        !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(inout) :: ctx      !! the deck's bodies; out: ninternal counted
+        integer, intent(in) :: i                        !! the card's first deck line
+        character(len=*), intent(in) :: key             !! the card name (SPRING)
+        type(spring_t) :: sp
+        logical :: keep
+        ! room for every SPRING card, trimmed by end_cards (appending one by one is quadratic)
+        if (this%nread == 0 .and. size(this%items) < ctx%ncards(key)) then
+            deallocate (this%items)
+            allocate (this%items(ctx%ncards(key)))
+        end if
+        sp = spring_t()
+        call line_card(rd, ctx, i, 'spring', sp%line_attach_t, i, 6, keep)
+        call rd%real(i, 4, 'stiffness', 'N/m', sp%stiffness, zero, big_modulus)
+        call rd%real(i, 5, 'damping', 'N s/m', sp%damping, zero, big_modulus, default=zero)
+        if (.not. keep .or. rd%failed()) return
+        this%nread = this%nread + 1
+        this%items(this%nread) = sp
+    end subroutine spring_read_card
+
+    !> The springs read: no room left over.
+    subroutine spring_end_cards(this, rd, ctx)
+        class(spring_family_t), intent(inout) :: this   !! the family; out: items trimmed to the springs read
+        type(deck_reader_t), intent(inout) :: rd        !! the deck (unused)
+        type(card_context_t), intent(inout) :: ctx      !! the deck's cards (unused)
+        this%items = this%items(1:this%nread)
+    end subroutine spring_end_cards
 
 end module hn_spring_family

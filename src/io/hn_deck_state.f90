@@ -1,17 +1,21 @@
-!> What the card groups of the deck reader share: a card with its
-!! continuation cards (`card_t`), the grouping of deck lines into cards
-!! (`group_cards`, by the card registry hn_cards), where each deck body went
-!! (`body_map_t`), the named tables (`named_table_t`), and the located
-!! references of one card to bodies, coordinates, tables and families. The
-!! modules hn_deck_<group> read their cards with these and the field access
-!! of hn_deck_reader.
+!> What the card groups of the deck reader share: the grouping of deck
+!! lines into cards (`group_cards`, by the card registry hn_cards), the
+!! only card of a kind (`single`), scene notes, and the located references
+!! of one card to bodies, coordinates and families. The types the groups
+!! pass along (`deck_state_t`: the cards `card_t`, where each deck body
+!! went `body_map_t`, the named tables `named_table_t`) and the references
+!! an element family needs to read its own cards live one layer down, in
+!! hn_element_cards, and are re-exported here. The modules hn_deck_<group>
+!! read their cards with these and the field access of hn_deck_reader.
 module hn_deck_state
-    use hn_kinds, only: wp, one, deg
+    use hn_kinds, only: wp
     use hn_case, only: case_t
     use hn_deck_reader, only: deck_reader_t, int_str, upper
     use hn_cards, only: card_known, card_ncont, card_repeats
     use hn_families, only: family_name, family_index
-    use hn_tables, only: table_t
+    use hn_element_cards, only: deck_state_t, card_t, body_map_t, named_table_t, family_card_t, coord_names, big_length, &
+                                big_modulus, body_ref, coord_ref, table_ref, active_coordinate, locked_error, unit_of, &
+                                unit_factor, unit_limit
     implicit none
     private
 
@@ -19,57 +23,22 @@ module hn_deck_state
               group_cards, single, add_scene_note, k_old, locked_error, active_ref, family_ref, body_ref, coord_ref, &
               table_ref, unit_of, unit_factor, unit_limit, join, real_str
 
-    !> The coordinates of a body in deck order.
-    character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
-    real(wp), parameter :: big_length = 10.0_wp     !! largest coordinate of a point [m]
-    real(wp), parameter :: big_modulus = 1.0e13_wp  !! largest modulus or stiffness accepted
     integer, parameter :: max_table_points = 100000 !! points of one TABLE
     real(wp), parameter :: tiny_value = 1.0e-30_wp  !! a table whose values are all below this is zero in effect
-
-    !> One card with its continuation cards: deck lines first .. first+ncont.
-    type :: card_t
-        character(len=8) :: key = ''
-        integer :: first = 0
-        integer :: ncont = 0
-    end type card_t
-
-    !> Where each body named in the deck went: its number in the reduced
-    !! tree and the shift of points given in its frame (MERGE); the card line
-    !! of the MERGE that absorbed it (0: not absorbed).
-    type :: body_map_t
-        integer, allocatable :: new(:)
-        real(wp), allocatable :: shift(:, :)
-        integer, allocatable :: merged_by(:)
-        integer, allocatable :: locked_by(:, :)   !! (coordinate, deck body): the LOCK or SCENE card line that locked it (0: none)
-    end type body_map_t
-
-    !> A named table of the deck.
-    type :: named_table_t
-        character(len=10) :: name = ''
-        type(table_t) :: tab
-        integer :: line = 0
-        character(len=160) :: warning = ''   !! a scale that makes the table zero in effect
-    end type named_table_t
-
-    !> What the card groups pass along: the deck's cards, the names of its
-    !! bodies and where each went, its named tables.
-    type :: deck_state_t
-        type(card_t), allocatable :: cards(:)
-        character(len=10), allocatable :: bnames(:)   !! the deck's bodies, in deck order
-        type(body_map_t) :: bmap
-        type(named_table_t), allocatable :: tabs(:)
-    end type deck_state_t
 
 contains
 
     !> Split the lines into cards, checking names (the card registry),
     !! continuation counts and that TITLE comes first (a deck; not a few
-    !! card images for one card group, title_first false).
-    subroutine group_cards(rd, cards, title_first)
+    !! card images for one card group, title_first false). `more` are the
+    !! cards of element families the registry does not list (families a
+    !! model built in code holds, model_add_family: their `deck_cards`).
+    subroutine group_cards(rd, cards, title_first, more)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
         type(card_t), allocatable, intent(out) :: cards(:)  !! the cards, each with the count of its continuation cards
         logical, intent(in), optional :: title_first  !! refuse a first card other than TITLE (default: yes)
-        integer :: i, nc, need, npts, ios
+        type(family_card_t), intent(in), optional :: more(:)  !! cards of families outside the registry
+        integer :: i, nc, need, npts, ios, kmore
         character(len=8) :: key
         character(len=10) :: s
         logical :: title
@@ -91,7 +60,13 @@ contains
                 return
             end if
             if (key == 'END') exit
-            if (.not. card_known(key)) then
+            kmore = 0
+            if (present(more)) then
+                do kmore = size(more), 1, -1       ! (a loop: no temporary of the key component)
+                    if (more(kmore)%key == key) exit
+                end do
+            end if
+            if (.not. card_known(key) .and. kmore == 0) then
                 call rd%fail(rd%where(i)//', columns 1-8: found unknown card "'//trim(key)// &
                              '"; expected one of TITLE CONTROL BODY JOINT ... (docs/deck-format.md)')
                 return
@@ -101,6 +76,7 @@ contains
                 return
             end if
             need = card_ncont(key)
+            if (kmore > 0) need = more(kmore)%ncont
             if (need < 0) then
                 s = rd%raw(i, 2)
                 read (s, *, iostat=ios) npts
@@ -175,26 +151,10 @@ contains
         k = body_ref(rd, i, 1, 'body', bnames, .false.)
     end function k_old
 
-    !> Error: card i addresses coordinate m of deck body kold, which a LOCK
-    !! or SCENE card locked (named with its location).
-    subroutine locked_error(rd, i, bnames, bmap, kold, m)
-        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        integer, intent(in) :: i  !! the card's first deck line
-        integer, intent(in) :: kold  !! the body in deck order
-        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
-        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
-        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
-        character(len=:), allocatable :: by
-        by = ' (LOCK or SCENE card)'
-        if (bmap%locked_by(m, kold) > 0) by = ' by the '//trim(rd%key(bmap%locked_by(m, kold)))//' card at '// &
-                                             rd%where(bmap%locked_by(m, kold))
-        call rd%fail(rd%context(i, 2, 'coordinate')//': '//trim(bnames(kold))//'.'//coord_names(m)// &
-                     ' is locked'//by//'; expected an active coordinate, or the neutral value')
-    end subroutine locked_error
-
     !> Body (in the reduced tree) and coordinate of an INITIAL/PRESCRIB/LIMIT
-    !! card (fields F1, F2). A body absorbed by MERGE has no coordinates (an
-    !! error). A locked coordinate gives j = 0 when allow_locked, else an error.
+    !! card (fields F1, F2), in the case's tree (active_coordinate of
+    !! hn_element_cards). A locked coordinate gives j = 0 when allow_locked,
+    !! else an error.
     subroutine active_ref(rd, i, cs, bnames, bmap, kb, m, j, allow_locked)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
         integer, intent(in) :: i  !! the card's first deck line
@@ -205,20 +165,7 @@ contains
         integer, intent(out) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
         integer, intent(out) :: j  !! the model coordinate (0: a locked one)
         logical, intent(in) :: allow_locked  !! a locked coordinate gives j = 0 (otherwise an error)
-        integer :: kold
-        j = 0
-        kold = body_ref(rd, i, 1, 'body', bnames, .false.)
-        m = coord_ref(rd, i, 2)
-        kb = 1
-        if (rd%failed()) return
-        if (bmap%merged_by(kold) > 0) then
-            call rd%fail(rd%context(i, 1, 'body')//': body '//trim(bnames(kold))//' was merged by the MERGE card at '// &
-                         rd%where(bmap%merged_by(kold))//'; its coordinates no longer exist')
-            return
-        end if
-        kb = bmap%new(kold)
-        j = cs%model%tree%dof_index(m, kb)
-        if (j == 0 .and. .not. allow_locked) call locked_error(rd, i, bnames, bmap, kold, m)
+        call active_coordinate(rd, i, cs%model%tree, bnames, bmap, kb, m, j, allow_locked)
     end subroutine active_ref
 
     !> Element family named s in field F2 of line i (an error when unknown).
@@ -232,85 +179,6 @@ contains
         if (fam == 0) call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
                                    join(family_name))
     end function family_ref
-
-    !> Body named in field f (R allowed when allow_inertial: returns 0).
-    integer function body_ref(rd, i, f, what, bnames, allow_inertial) result(kb)
-        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        integer, intent(in) :: i  !! the card's first deck line
-        integer, intent(in) :: f  !! the field (F1 .. F7)
-        character(len=*), intent(in) :: what  !! what the field holds (messages)
-        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
-        logical, intent(in) :: allow_inertial  !! R (the inertial frame) allowed, as body 0
-        character(len=10) :: s
-        kb = 1
-        call rd%name(i, f, what, s)
-        if (rd%failed()) return
-        if (allow_inertial .and. (s == 'R' .or. s == 'INERTIAL')) then
-            kb = 0
-            return
-        end if
-        kb = findloc(bnames, s, dim=1)
-        if (kb == 0) then
-            call rd%fail(rd%context(i, f, what)//': found "'//trim(s)//'"; expected a body defined '// &
-                         'on a BODY card'//merge(' or R', '     ', allow_inertial))
-            kb = 1
-        end if
-    end function body_ref
-
-    !> Coordinate named in field f: TX TY TZ RX RY RZ -> 1..6.
-    integer function coord_ref(rd, i, f) result(m)
-        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        integer, intent(in) :: i  !! the card's first deck line
-        integer, intent(in) :: f  !! the field (F1 .. F7)
-        character(len=10) :: s
-        m = 1
-        call rd%name(i, f, 'coordinate', s)
-        if (rd%failed()) return
-        m = findloc(coord_names, s(1:2), dim=1)
-        if (m == 0 .or. len_trim(s) /= 2) then
-            call rd%fail(rd%context(i, f, 'coordinate')//': found "'//trim(s)//'"; expected TX TY TZ RX RY or RZ')
-            m = 1
-        end if
-    end function coord_ref
-
-    !> Table named in field f.
-    integer function table_ref(rd, i, f, tabs) result(it)
-        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        integer, intent(in) :: i  !! the card's first deck line
-        integer, intent(in) :: f  !! the field (F1 .. F7)
-        type(named_table_t), intent(in) :: tabs(:)  !! the deck's named tables (TABLE, PULSE)
-        character(len=10) :: s
-        integer :: k
-        it = 1
-        call rd%name(i, f, 'table', s)
-        if (rd%failed()) return
-        it = 0
-        do k = 1, size(tabs)
-            if (tabs(k)%name == s) it = k
-        end do
-        if (it == 0) then
-            call rd%fail(rd%context(i, f, 'table')//': found "'//trim(s)//'"; expected the name of a TABLE or PULSE card')
-            it = 1
-        end if
-    end function table_ref
-
-    !> Deck unit of coordinate m and its factor to SI.
-    pure function unit_of(m) result(u)
-        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
-        character(len=3) :: u
-        u = merge('m  ', 'deg', m <= 3)
-    end function unit_of
-
-    pure real(wp) function unit_factor(m) result(f)
-        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
-        f = merge(one, deg, m <= 3)
-    end function unit_factor
-
-    !> Largest magnitude accepted for a coordinate value in deck units.
-    pure real(wp) function unit_limit(m) result(f)
-        integer, intent(in) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
-        f = merge(big_length, 3600.0_wp, m <= 3)
-    end function unit_limit
 
     pure function join(list) result(s)
         character(len=*), intent(in) :: list(:)  !! the words

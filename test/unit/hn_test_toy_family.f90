@@ -5,8 +5,19 @@
 !! else in the code changed for the loads, the structured Jacobian, the
 !! channels, the plausibility checks and the scaling to use it. Output per
 !! spring: its generalized force [N or N m].
+!!
+!! It reads its own deck card (`read_card`), which it names itself
+!! (`deck_cards`, as a family outside the registry does):
+!!
+!!   CSPRING   body      coord     k         c         x0        name
+!!
+!! a spring on coordinate `coord` (TX ... RZ) of `body`, stiffness k
+!! [N/m or N m/rad], damping c [N s/m or N m s/rad] (blank: 0), neutral
+!! value x0 [m or deg] (blank: 0); a card on a locked coordinate is refused.
 module hn_test_toy_family
     use hn_kinds, only: wp, zero, half
+    use hn_deck_reader, only: deck_reader_t
+    use hn_element_cards, only: card_context_t, family_card_t, active_coordinate, unit_of, unit_factor, unit_limit
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -30,6 +41,8 @@ module hn_test_toy_family
     type, extends(element_family_t) :: coord_spring_family_t
         type(coord_spring_t), allocatable :: items(:)
     contains
+        procedure :: deck_cards => toy_deck_cards
+        procedure :: read_card => toy_read_card
         procedure :: count => toy_count
         procedure :: ncomp => toy_ncomp
         procedure :: set_neutral => toy_neutral
@@ -186,5 +199,31 @@ contains
         real(wp), intent(in) :: factor                        !! the factor
         this%items%k = factor*this%items%k
     end subroutine toy_stiffen
+
+    !> Its one card, CSPRING, with no continuation card, read in deck order.
+    pure function toy_deck_cards(this) result(c)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        type(family_card_t), allocatable :: c(:)
+        c = [family_card_t('CSPRING', 0, 0)]
+    end function toy_deck_cards
+
+    !> A CSPRING card: one spring more.
+    subroutine toy_read_card(this, rd, ctx, i, key)
+        class(coord_spring_family_t), intent(inout) :: this   !! the family; out: the spring added
+        type(deck_reader_t), intent(inout) :: rd              !! the deck: located field access, the first error
+        type(card_context_t), intent(inout) :: ctx            !! the deck's bodies and the reduced tree
+        integer, intent(in) :: i                              !! the card's first deck line
+        character(len=*), intent(in) :: key                   !! the card name (CSPRING)
+        type(coord_spring_t) :: s
+        integer :: kb, m
+        call active_coordinate(rd, i, ctx%tree, ctx%bnames, ctx%bmap, kb, m, s%dof, .false.)
+        call rd%real(i, 3, 'stiffness k', 'N/m or N m/rad', s%k, zero, 1.0e9_wp)
+        call rd%real(i, 4, 'damping c', 'N s/m or N m s/rad', s%c, zero, 1.0e9_wp, default=zero)
+        call rd%real(i, 5, 'neutral value', unit_of(m), s%x0, -unit_limit(m), unit_limit(m), default=zero)
+        call rd%name(i, 6, 'spring name', s%name)
+        if (rd%failed()) return
+        s%x0 = s%x0*unit_factor(m)
+        this%items = [this%items, s]
+    end subroutine toy_read_card
 
 end module hn_test_toy_family
