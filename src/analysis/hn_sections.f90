@@ -25,13 +25,15 @@ module hn_sections
 
     integer, parameter, public :: section_name_len = 7   !! longest load-cell name (channel names of 11 characters)
 
-    !> A section: its name, the body whose subtree it cuts off and the point
-    !! its moment is taken about.
+    !> A section: its name, the body whose subtree it cuts off, the body
+    !! whose axes it reports in (the cell's mounting) and the point its
+    !! moment is taken about.
     type :: section_t
         character(len=section_name_len) :: name = ''
         integer :: body = 0                !! the body (its subtree is the part above the section)
+        integer :: frame = 0               !! the body whose axes give the point and the components
         logical :: at_joint = .true.       !! the point is the body's joint point (else `point`)
-        real(wp) :: point(3) = zero        !! the point in body axes from the body's mass centre [m]
+        real(wp) :: point(3) = zero        !! the point in the frame body's axes from its mass centre [m]
     end type section_t
 
 contains
@@ -59,7 +61,7 @@ contains
         if (sec%at_joint) then
             p = kin%joint(:, sec%body)
         else
-            p = kin%r(:, sec%body) + matmul(kin%s(:, :, sec%body), sec%point)
+            p = kin%r(:, sec%frame) + matmul(kin%s(:, :, sec%frame), sec%point)
         end if
     end function section_point
 

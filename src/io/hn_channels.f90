@@ -16,7 +16,7 @@
 !! head's joint point, in head axes: the negative of the head's section load
 !! (hn_sections, the subtree's Newton-Euler balance); tension (Fz) and
 !! flexion (My) positive. A LOADCELL card's channels are the section load of
-!! its body, in that body's axes and in SAE J211 axes.
+!! its body, in its frame body's axes and in SAE J211 axes.
 !!
 !! The three-dimensional kinematics relative to T1 (head relative to T1 and
 !! to R as Bryant angles and rotation vectors, the head's translation in
@@ -411,7 +411,7 @@ contains
         do k = 1, ncells(cs)
             b = cs%loadcells(k)%body
             call section_load(cs%model, ws%kin, acc, alpha, t, b, section_point(ws%kin, cs%loadcells(k)), f, mo)
-            sb = transpose(ws%kin%s(:, :, b))
+            sb = transpose(ws%kin%s(:, :, cs%loadcells(k)%frame))
             hs%cell(1:3, k) = matmul(sb, f)
             hs%cell(4:6, k) = matmul(sb, mo)
             hs%cell(7:9, k) = j211*hs%cell(1:3, k)

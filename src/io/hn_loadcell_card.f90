@@ -4,8 +4,10 @@
 !!
 !!   LOADCELL  F1 name     1 to 7 characters (channels NAME_FX ... NAME_JMZ)
 !!             F2 body     the body at the base of the subtree
-!!             F3-F5 point x, y, z in the body's axes from its mass centre [m];
-!!                         all three blank: the body's joint point
+!!             F3-F5 point x, y, z in the frame body's axes from its mass
+!!                         centre [m]; all three blank: the body's joint point
+!!             F6 frame    the body whose axes give the point and the load's
+!!                         components (the cell's mounting); blank: the body
 module hn_loadcell_card
     use hn_kinds, only: wp
     use hn_case, only: case_t
@@ -64,6 +66,18 @@ contains
                 return
             end if
             sec%body = bmap%new(kb)
+            sec%frame = sec%body
+            if (.not. rd%is_blank(i, 6)) then
+                kb = body_ref(rd, i, 6, 'frame body', bnames, .false.)
+                if (rd%failed()) return
+                if (bmap%merged_by(kb) > 0) then
+                    call rd%fail(rd%context(i, 6, 'frame body')//': found "'//trim(bnames(kb))//'", merged into '// &
+                                 'another body by the MERGE card at '//rd%where(bmap%merged_by(kb))// &
+                                 '; expected a body of the tree')
+                    return
+                end if
+                sec%frame = bmap%new(kb)
+            end if
             if (any([(.not. rd%is_blank(i, f), f=3, 5)])) then
                 sec%at_joint = .false.
                 do f = 3, 5
