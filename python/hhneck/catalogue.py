@@ -107,9 +107,9 @@ SPECIMEN_NOTES = {
     "start posture held by HOLD POSTURE in place of the labs' positioning cables. Reference: the corridor "
     "outline's midline; ISO/TS 18571 over the 0.3–126 ms the corridors cover.",
     "Kang 2018 front 14 km/h": "T1 potted and driven rearward by the source's pulse, muscles passive, posture "
-    "held as for Stemper, SAE J211 axes; the load cell a LOADCELL card on T1 at the potting centre as the set-up "
-    "placed it (81 mm behind, 229 mm below the head's mass centre), the load on the specimen, from its value at "
-    "t = 0 (the data are tared). Reference: the corridor's midline; window 0 to 1.2 × the time of its "
+    "held as for Stemper, SAE J211 axes; the load cell a LOADCELL card cutting the potted T1 from C7 (the load on "
+    "the neck and head, in T1's axes) about the potting centre as the set-up placed it (81 mm behind, 229 mm below "
+    "the head's mass centre), from its value at t = 0 (the data are tared). Reference: the corridor's midline; window 0 to 1.2 × the time of its "
     "largest magnitude (the source notebook's).",
     "Kang 2018 side 14 km/h": "T1 driven toward the specimen's right (the direction the data's signs fit), "
     "otherwise (load cell included) as the front case. Reference: the mean of PMHS1 and PMHS2; window as the front case.",
