@@ -58,37 +58,37 @@ contains
             end if
             sec = section_t()
             sec%name = s(1:section_name_len)
-            kb = body_ref(rd, i, 2, 'body', bnames, .false.)
-            if (rd%failed()) return
-            if (bmap%merged_by(kb) > 0) then
-                call rd%fail(rd%context(i, 2, 'body')//': found "'//trim(bnames(kb))//'", merged into another '// &
-                             'body by the MERGE card at '//rd%where(bmap%merged_by(kb))//'; expected a body of the tree')
-                return
-            end if
-            sec%body = bmap%new(kb)
+            sec%body = tree_body(i, 2, 'body')
             sec%frame = sec%body
-            if (.not. rd%is_blank(i, 6)) then
-                kb = body_ref(rd, i, 6, 'frame body', bnames, .false.)
-                if (rd%failed()) return
-                if (bmap%merged_by(kb) > 0) then
-                    call rd%fail(rd%context(i, 6, 'frame body')//': found "'//trim(bnames(kb))//'", merged into '// &
-                                 'another body by the MERGE card at '//rd%where(bmap%merged_by(kb))// &
-                                 '; expected a body of the tree')
-                    return
-                end if
-                sec%frame = bmap%new(kb)
-            end if
+            if (.not. rd%is_blank(i, 6)) sec%frame = tree_body(i, 6, 'frame body')
+            if (rd%failed()) return
             if (any([(.not. rd%is_blank(i, f), f=3, 5)])) then
                 sec%at_joint = .false.
                 do f = 3, 5
                     call rd%real(i, f, 'point '//achar(iachar('x') + f - 3), 'm', sec%point(f - 2), -point_max, point_max)
                 end do
                 if (rd%failed()) return
-                sec%point = sec%point + bmap%shift(:, kb)
+                sec%point = sec%point + bmap%shift(:, kb)   ! the frame body's deck frame -> its tree frame
             end if
             cs%loadcells = [cs%loadcells, sec]
             lines = [lines, i]
         end do
+    contains
+        !> The tree body a field names (kb: its deck body); a body MERGE
+        !! absorbed is refused.
+        integer function tree_body(i, f, what) result(k)
+            integer, intent(in) :: i, f
+            character(len=*), intent(in) :: what
+            k = 1
+            kb = body_ref(rd, i, f, what, bnames, .false.)
+            if (rd%failed()) return
+            if (bmap%merged_by(kb) > 0) then
+                call rd%fail(rd%context(i, f, what)//': found "'//trim(bnames(kb))//'", merged into another '// &
+                             'body by the MERGE card at '//rd%where(bmap%merged_by(kb))//'; expected a body of the tree')
+                return
+            end if
+            k = bmap%new(kb)
+        end function tree_body
     end subroutine loadcell_cards
 
 end module hn_loadcell_card
