@@ -6,8 +6,7 @@ Cases in it now: the quasi-static segment tests of Panjabi et al. 2001 (21
 curves) and Nightingale et al. 2007 (3), set up by hhneck.segments; the
 specimen sled tests of Stemper 2004 (rear, 7 channels, with two variants of
 its set-up) and Kang 2018 (front and side, the head's 3 kinematic channels
-each; their load-cell channels are not rated yet), set up by
-hhneck.specimens. The NBDL volunteer sleds are rated by hhneck-compare-nbdl
+and the T1 load cell's 3 each), set up by hhneck.specimens. The NBDL volunteer sleds are rated by hhneck-compare-nbdl
 (docs/validation.md); the catalogue's table quotes them.
 
 Command: hhneck-catalogue [--quick] [--exe HHNECK] [--jobs N] [--out DIR]
@@ -108,10 +107,12 @@ SPECIMEN_NOTES = {
     "start posture held by HOLD POSTURE in place of the labs' positioning cables. Reference: the corridor "
     "outline's midline; ISO/TS 18571 over the 0.3–126 ms the corridors cover.",
     "Kang 2018 front 14 km/h": "T1 potted and driven rearward by the source's pulse, muscles passive, posture "
-    "held as for Stemper, SAE J211 axes. Reference: the corridor's midline; window 0 to 1.2 × the time of its "
+    "held as for Stemper, SAE J211 axes; the load cell a LOADCELL card cutting the potted T1 from C7 (the load on "
+    "the neck and head, in T1's axes) about the potting centre as the set-up placed it (81 mm behind, 229 mm below "
+    "the head's mass centre), from its value at t = 0 (the data are tared). Reference: the corridor's midline; window 0 to 1.2 × the time of its "
     "largest magnitude (the source notebook's).",
     "Kang 2018 side 14 km/h": "T1 driven toward the specimen's right (the direction the data's signs fit), "
-    "otherwise as the front case. Reference: the mean of PMHS1 and PMHS2; window as the front case.",
+    "otherwise (load cell included) as the front case. Reference: the mean of PMHS1 and PMHS2; window as the front case.",
 }
 #: the SAFER HBM v11's published ISO/TS 18571 on a case (mean of its channels), where there is one
 SAFER = {"Kang 2018 side 14 km/h": "0.684 (6 channels: kinematics 0.75, loads 0.62)"}
@@ -138,7 +139,7 @@ def specimen_section(cases, variants, figdir, relto):
                   "lowest, %s, %.3f).%s%s" % (
                       len(rated), mean, "met" if mean >= 0.75 and rated[low]["overall"] >= 0.5 else "not met", low,
                       rated[low]["overall"],
-                      " Not rated (the model has no load-cell channel at T1 yet): %s." % ", ".join(not_rated)
+                      " Not rated: %s." % ", ".join(not_rated)
                       if not_rated else "",
                       " The SAFER HBM's published score: %s." % SAFER[title] if title in SAFER else ""), ""]
         fig = _case_figure(title, rated, figdir)
@@ -238,7 +239,7 @@ def main(argv=None):
     cases = {"Stemper 2004 rear 1.8 m/s": (specimens.rate_stemper(specimens.run_stemper(work, a.exe), a.data), [])}
     for d in ("front", "side"):
         cases["Kang 2018 %s 14 km/h" % d] = (specimens.rate_kang(d, specimens.run_kang(d, work, a.exe), a.data),
-                                            specimens.KANG_NOT_RATED[d])
+                                            [])
     variants = {}
     if not a.quick:
         for sup, mus in (("NONE", "PASSIVE"), ("HOLD", "REFLEX")):

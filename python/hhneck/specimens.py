@@ -20,13 +20,15 @@ Set-up (decisions of the README's "Ambiguities" named by number):
 * the model's posture as shipped (its C7 neutral angle gives the T1 slope;
   the source's 25 deg T1 anterior angle is not imposed).
 
-Channels (their signs as the README derives them): segment angles
-C2-C3 ... C6-C7 = -(change of the upper body's RY relative to the lower)
-(extension positive), head-T1 angle = -(change of HEAD_THETY - T1_THETY),
-retraction = HEAD_DX [mm] (head mass centre relative to T1, R's x, from the
-start). Reference: each corridor outline's midline (hhneck.specimen_data),
-rated by ISO/TS 18571 over the times the corridor covers (0.3-126 ms), no
-offsets.
+Channels, every one the Fortran run's own (docs/output-format.md; their
+signs as the README derives them): segment angles C2-C3 ... C6-C7 =
+-(change of the upper body's planar angle about y relative to the lower
+one, its parent: C2_PY for C2-C3 ... C6_PY for C6-C7; extension positive), head-T1 angle = -(change of HT1_RY, the head's Bryant y angle in
+T1's axes), retraction = HT1_DX [mm] (head mass centre relative to T1 in
+T1's axes, from the start). The motion is sagittal, where the planar and
+Bryant angles and the film's angle differences are one angle. Reference:
+each corridor outline's midline (hhneck.specimen_data), rated by ISO/TS
+18571 over the times the corridor covers (0.3-126 ms), no offsets.
 
 Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
 * the potted body is T1 (4: the FE model is potted at T3, the data speak of
@@ -37,15 +39,25 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   condition); side: toward the specimen's right (J211 +y = the model's -y),
   the direction the data's signs fit (5), so that nothing is mirrored;
 * no pretension ring (8); none of the notebook's offsets or time shifts (7);
+* the load cell (4, "Initial position"): a LOADCELL card cutting T1 from
+  C7 (the subtree of C7: the neck and head, what the potted T1 carries; the
+  model's T1 holds 20 kg of the volunteer's torso, which no specimen has),
+  in T1's axes (the cell is mounted on the sled), about the potting centre
+  as the set-up placed it, 81 mm behind and 229 mm below the head's mass centre at the start
+  (KANG_CELL_POINT, in T1's axes from T1's mass centre; the model's head
+  sits 54 mm ahead of and 175 mm above T1's mass centre, so the point is
+  below and behind T1); read in SAE J211 axes as the load on the part above
+  the cell (T1CELL_JFX ... _JMZ), from its value at t = 0: the data start
+  at zero (the cells were tared with the specimen in place), the model's
+  cell starts at the specimen's weight;
 * rated: the head kinematics (front: x- and z-acceleration, rotation about
-  y; side: y- and z-acceleration, rotation about x), in SAE J211 axes (x
-  forward, y right, z down: the model's y and z change sign; the head's
-  rotation about x is the first Bryant angle of its matrix relative to R,
-  from the start, and about y -HEAD_THETY); the load-cell channels are not
-  rated: the model has no section load channel at T1 yet. Reference: the
-  corridor's midline (front) or the mean of PMHS1 and PMHS2 (side); window
-  0 to 1.2 x the time of the reference's largest magnitude, as the source's
-  notebook rates.
+  y; side: y- and z-acceleration, rotation about x) and the load cell
+  (front: Fx, Fz, My; side: Mx, Fy, Fz), all in SAE J211 axes (x forward,
+  y right, z down: the model's y and z change sign; the head's rotations
+  are HEADL_RX and -HEADL_RY, its Bryant angles in R, from the start).
+  Reference: the corridor's midline (front) or the mean of PMHS1 and PMHS2
+  (side); window 0 to 1.2 x the time of the reference's largest magnitude,
+  as the source's notebook rates.
 
 API: stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
 kang_deck, run_kang, rate_kang; rate_channel.
@@ -121,11 +133,10 @@ def run_stemper(workdir=None, exe=None, support="HOLD", muscles="PASSIVE"):
     with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
         c = {n: np.asarray(f["channels"][n][:], dtype=float) for n in
-             ["C%d_RY" % k for k in range(2, 7)] + ["HEAD_THETY", "T1_THETY", "HEAD_DX"]}
-    out = {"seg_angle_C%d_C%d" % (k, k + 1): (t, -(c["C%d_RY" % k] - c["C%d_RY" % k][0])) for k in range(2, 7)}
-    rel = c["HEAD_THETY"] - c["T1_THETY"]
-    out["head_T1_angle"] = (t, -(rel - rel[0]))
-    out["head_T1_retraction"] = (t, c["HEAD_DX"])
+             ["C%d_PY" % k for k in range(2, 7)] + ["HT1_RY", "HT1_DX"]}
+    out = {"seg_angle_C%d_C%d" % (k, k + 1): (t, -(c["C%d_PY" % k] - c["C%d_PY" % k][0])) for k in range(2, 7)}
+    out["head_T1_angle"] = (t, -(c["HT1_RY"] - c["HT1_RY"][0]))
+    out["head_T1_retraction"] = (t, c["HT1_DX"])
     return out
 
 
@@ -152,10 +163,19 @@ def rate_channel(g, ref, lo, hi, t, m):
     return sc
 
 
-KANG_CHANNELS = {"front": ["head_acc_x", "head_acc_z", "head_rot_y"],
-                 "side": ["head_acc_y", "head_acc_z", "head_rot_x"]}
-KANG_NOT_RATED = {"front": ["loadcell_force_x", "loadcell_force_z", "loadcell_moment_y"],
-                  "side": ["loadcell_moment_x", "loadcell_force_y", "loadcell_force_z"]}
+KANG_CHANNELS = {"front": ["head_acc_x", "head_acc_z", "head_rot_y", "loadcell_force_x", "loadcell_force_z",
+                           "loadcell_moment_y"],
+                 "side": ["head_acc_y", "head_acc_z", "head_rot_x", "loadcell_moment_x", "loadcell_force_y",
+                          "loadcell_force_z"]}
+#: the Kang load cell's point in T1's axes from T1's mass centre [m]: the
+#: potting centre 81 mm behind and 229 mm below the head's mass centre
+#: (README "Initial position"), the head's mass centre being 54.0 mm ahead of
+#: and 175.3 mm above T1's in the model deck at the start
+#: (test_specimens checks it against the run)
+KANG_CELL_POINT = (0.054 - 0.081, 0.0, 0.1753 - 0.229)
+#: the data's cell channel and the run's J211 channel of it
+KANG_CELL = {"loadcell_force_x": "T1CELL_JFX", "loadcell_force_y": "T1CELL_JFY", "loadcell_force_z": "T1CELL_JFZ",
+             "loadcell_moment_x": "T1CELL_JMX", "loadcell_moment_y": "T1CELL_JMY"}
 
 
 def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
@@ -183,7 +203,8 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
     lines += ["INCLUDE   input/head_neck_54dof.inp",
               "TABLE     KANG      %-10d1.0       1.0       CSV" % len(t),
               "          kang_pulse.csv",
-              "PRESCRIB  T1        %s        ACCEL     KANG      0.0       0.0" % driven]
+              "PRESCRIB  T1        %s        ACCEL     KANG      0.0       0.0" % driven,
+              "LOADCELL  T1CELL    C7        %-10.4f%-10.4f%-10.4fT1" % KANG_CELL_POINT]
     lines += ["PRESCRIB  T1        %s        CONSTANT" % c for c in ("TX", "TY", "TZ", "RX", "RY", "RZ")
               if c != driven]
     for act in ("FLEX", "EXT"):
@@ -195,13 +216,6 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
     return deck
 
 
-def head_bryant_x(rotation):
-    """The head's first Bryant angle (about R's x) [deg] from /bodies/rotation
-    samples of the head (nt, 3, 3; h5py [t, j, i] = S_ij)."""
-    s = np.transpose(rotation, (0, 2, 1))
-    return np.degrees(np.arctan2(-s[:, 1, 2], s[:, 2, 2]))
-
-
 def run_kang(direction, workdir=None, exe=None, support="HOLD"):
     """Run a Kang deck; {channel: (t [ms], model in SAE J211 axes)}."""
     import h5py
@@ -210,11 +224,12 @@ def run_kang(direction, workdir=None, exe=None, support="HOLD"):
     h5 = _run(kang_deck(work, direction, support), work, exe)
     with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
-        c = {n: np.asarray(f["channels"][n][:], dtype=float) for n in ("HEAD_AX", "HEAD_AY", "HEAD_AZ", "HEAD_THETY")}
-        names = [str(n) for n in f["model"].attrs["bodies"]]
-        rx = head_bryant_x(f["bodies/rotation"][:, names.index("HEAD")])
+        c = {n: np.asarray(f["channels"][n][:], dtype=float) for n in
+             ("HEAD_AX", "HEAD_AY", "HEAD_AZ", "HEADL_RX", "HEADL_RY") + tuple(KANG_CELL.values())}
     out = {"head_acc_x": (t, c["HEAD_AX"]), "head_acc_y": (t, -c["HEAD_AY"]), "head_acc_z": (t, -c["HEAD_AZ"]),
-           "head_rot_y": (t, -(c["HEAD_THETY"] - c["HEAD_THETY"][0])), "head_rot_x": (t, rx - rx[0])}
+           "head_rot_y": (t, -(c["HEADL_RY"] - c["HEADL_RY"][0])), "head_rot_x": (t, c["HEADL_RX"] - c["HEADL_RX"][0])}
+    for ch, name in KANG_CELL.items():
+        out[ch] = (t, c[name] - c[name][0])
     return {k: out[k] for k in KANG_CHANNELS[direction]}
 
 

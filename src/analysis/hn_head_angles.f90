@@ -2,15 +2,17 @@
 !! (body axes -> R, as hn_rotation): the Bryant angles of the model's own
 !! sequence (Cardan x-y-z, body-fixed: S = Rx(alpha) Ry(beta) Rz(gamma),
 !! the sequence of every joint's RX, RY, RZ coordinates) and the total
-!! rotation angle (the magnitude of the rotation vector, 0 to pi); and the
-!! signed extreme of a sampled curve (the value of largest magnitude).
+!! rotation angle (the magnitude of the rotation vector, 0 to pi); the
+!! planar angles (the rotation projected on the three planes of the axes);
+!! and the signed extreme of a sampled curve (the value of largest
+!! magnitude).
 module hn_head_angles
     use hn_kinds, only: wp, one, pi
     use hn_rotation, only: rotation_vector, norm3
     implicit none
     private
 
-    public :: bryant_angles, bryant_angles_near, rotation_angle, signed_extreme, extreme_index
+    public :: bryant_angles, bryant_angles_near, rotation_angle, planar_angles, signed_extreme, extreme_index
 
 contains
 
@@ -61,6 +63,19 @@ contains
         real(wp), intent(in) :: s(3, 3)   !! rotation matrix (orthonormal, det +1)
         a = norm3(rotation_vector(s))
     end function rotation_angle
+
+    !> Planar angles of S [rad], each in (-pi, pi]: the rotation seen in one
+    !! plane of the reference axes. About x (the y-z plane, lateral
+    !! bending): the angle of the body's z axis, atan2(-S23, S33); about y
+    !! (the x-z plane, flexion): the body's z axis, atan2(S13, S33); about
+    !! z (the x-y plane, twist): the body's x axis, atan2(S21, S11). A
+    !! rotation about one axis alone gives its angle there and zero in the
+    !! other two; the angle about x equals the first Bryant angle.
+    pure function planar_angles(s) result(q)
+        real(wp), intent(in) :: s(3, 3)   !! rotation matrix (orthonormal, det +1)
+        real(wp) :: q(3)
+        q = [atan2(-s(2, 3), s(3, 3)), atan2(s(1, 3), s(3, 3)), atan2(s(2, 1), s(1, 1))]
+    end function planar_angles
 
     !> The value of largest magnitude of x, its sign kept.
     pure real(wp) function signed_extreme(x) result(e)

@@ -4,6 +4,7 @@ module hn_case
     use hn_kinds, only: wp, zero
     use hn_model, only: model_t
     use hn_deck_reader, only: deck_line_t, path_len
+    use hn_sections, only: section_t
     implicit none
     private
 
@@ -30,6 +31,7 @@ module hn_case
         integer :: t1 = 0                           !! body reported as T1 (NIC, relative motion)
         character(len=4) :: occupant = 'H50M'       !! CRITERIA: occupant whose Nij intercepts and neck reference values apply
         character(len=8) :: nic_frame = 'INERTIAL'  !! CRITERIA: NIC's x-accelerations, INERTIAL (global x) or HEAD (head x axis)
+        type(section_t), allocatable :: loadcells(:)  !! LOADCELL cards: the sections whose loads are channels
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
         real(wp) :: wall_limit = zero               !! RUNLIMIT: stop after this wall time [s] (0 = none)
         integer :: step_limit = 0                   !! RUNLIMIT: stop after this many steps (0 = none)

@@ -1,6 +1,6 @@
 !> The control cards of a deck: TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT,
-!! H5FILE, EVENTS, HOLD, DUMP (`control_cards`), HEADNECK and CRITERIA
-!! (`report_cards`, after the bodies) and RUNLIMIT (`runlimit_card`).
+!! H5FILE, EVENTS, HOLD, DUMP (`control_cards`), HEADNECK, CRITERIA and
+!! LOADCELL (`report_cards`, after the bodies) and RUNLIMIT (`runlimit_card`).
 module hn_deck_control
     use hn_kinds, only: wp, zero
     use hn_case, only: case_t
@@ -8,6 +8,7 @@ module hn_deck_control
     use hn_linsolve, only: solver_cholesky, solver_names, solver_code
     use hn_integrators, only: integrator_names
     use hn_criteria_card, only: criteria_card
+    use hn_loadcell_card, only: loadcell_cards
     use hn_deck_state, only: card_t, body_map_t, single, body_ref, join, real_str
     implicit none
     private
@@ -201,7 +202,7 @@ contains
     end subroutine control_cards
 
     !> HEADNECK: the bodies reported as head and T1 (their merged bodies
-    !! when MERGE absorbed them).
+    !! when MERGE absorbed them); CRITERIA; the LOADCELL cards.
     subroutine report_cards(rd, cards, cs, bnames, bmap)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
         type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
@@ -221,6 +222,7 @@ contains
         end if
         ic = single(rd, cards, 'CRITERIA', .false.)
         if (ic > 0) call criteria_card(rd, cards(ic)%first, cs)
+        call loadcell_cards(rd, cards, cs, bnames, bmap)
     end subroutine report_cards
 
 end module hn_deck_control

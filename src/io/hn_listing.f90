@@ -301,10 +301,14 @@ contains
         character(len=200) :: s, h1, h2
         c0 = 1
         do while (c0 <= ch%n)
+            if (.not. ch%listed(c0)) then      ! a channel of the result file only
+                c0 = c0 + 1
+                cycle
+            end if
             grp = ch%group(c0)
             c1 = c0
             do while (c1 < ch%n)
-                if (ch%group(c1 + 1) /= grp .or. c1 - c0 + 1 >= cols_per_table) exit
+                if (ch%group(c1 + 1) /= grp .or. .not. ch%listed(c1 + 1) .or. c1 - c0 + 1 >= cols_per_table) exit
                 c1 = c1 + 1
             end do
             h1 = '    TIME '
@@ -353,6 +357,7 @@ contains
         call me%put('')
         call me%put('   CHANNEL                  UNITS          MAXIMUM   AT (MS)      MINIMUM   AT (MS)')
         do k = 1, ch%n
+            if (.not. ch%listed(k)) cycle
             write (s, '(3x,a24,1x,a12,a11,f10.2,2x,a11,f10.2)') ch%name(k), ch%units(k), num(vmax(k)), &
                 1000*tmax(k), num(vmin(k)), 1000*tmin(k)
             call me%put(s)

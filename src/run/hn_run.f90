@@ -17,7 +17,7 @@ module hn_run
     use hn_families, only: fam_limits
     use hn_limit_family, only: ranges_of
     use hn_integrators, only: integrator_t, new_integrator, spectral_radius, interpolate_hermite
-    use hn_channels, only: channel_set_t, channels_define, channels_compute, channel_index
+    use hn_channels, only: channel_set_t, channels_define, channels_compute, channels_start, channel_index
     use hn_results, only: results_t
     use hn_listing, only: listing_t
     use hn_dump, only: dump_record
@@ -199,8 +199,7 @@ contains
         end if
         me%en0 = energy_terms(me%sys%model, me%sys%ws, y(2*nf + 1:))
         me%ch%e0 = me%en0%total
-        me%ch%head_r0 = me%sys%ws%kin%r(:, me%cs%head) - me%sys%ws%kin%r(:, me%cs%t1)
-        me%ch%t1_r0 = me%sys%ws%kin%r(:, me%cs%t1)
+        call channels_start(me%cs, me%sys%ws, me%ch)
         if (len_trim(h5name) > 0) then
             call me%out%open(me%cs, me%ch, trim(h5name), code_version, stat, msg, me%res%file_note)
             if (stat /= stat_ok) then

@@ -1,7 +1,10 @@
-"""The Stemper 2004 specimen set-up of the catalogue (python/hhneck/specimens.py):
-its deck takes the source's pulse and passive muscles, the T1 drive gives
-the pulse's velocity change, and the rated channels agree with a second
-computation from the result file's body positions and the joints' angles."""
+"""The Stemper 2004 and Kang 2018 specimen set-ups of the catalogue
+(python/hhneck/specimens.py): the decks take the source's pulses and passive
+muscles, the T1 drive gives the pulse's velocity change, the rated channels
+(the Fortran run's own) agree with a second computation from the result
+file's body positions, rotation matrices and joint angles, and the Kang
+load cell sits where the set-up put it and reads the specimen's weight at
+the start."""
 import os
 
 import h5py
@@ -76,28 +79,14 @@ def test_rating_uses_the_corridor_midline(stemper):
         assert np.allclose(s["reference"], 0.5 * (s["lower"] + s["upper"]))
 
 
-def test_head_bryant_x_of_known_matrices():
-    """The first Bryant angle of Rx(a) Ry(b) Rz(c), stored as the result
-    file stores S (h5py [t, j, i] = S_ij)."""
-    def rx(a):
-        return np.array([[1, 0, 0], [0, np.cos(a), -np.sin(a)], [0, np.sin(a), np.cos(a)]])
-
-    def ry(b):
-        return np.array([[np.cos(b), 0, np.sin(b)], [0, 1, 0], [-np.sin(b), 0, np.cos(b)]])
-
-    def rz(c):
-        return np.array([[np.cos(c), -np.sin(c), 0], [np.sin(c), np.cos(c), 0], [0, 0, 1]])
-    angles = [(-0.9, 0.3, 0.5), (0.2, -1.2, -2.0), (1.4, 0.0, 0.1)]
-    stored = np.array([(rx(a) @ ry(b) @ rz(c)).T for a, b, c in angles])
-    assert np.allclose(specimens.head_bryant_x(stored), np.degrees([a for a, _, _ in angles]), atol=1e-12)
-
-
 @pytest.mark.parametrize("direction", ["front", "side"])
 def test_kang_drive_and_signs(tmp_path, direction):
     """Front: T1 driven rearward (-x), side: toward the specimen's right (the
     model's -y), each by the pulse's velocity change; the head's answer has
     the data's signs (front: rearward x-acceleration, flexion negative in
-    J211; side: +y acceleration, left bending negative)."""
+    J211, the cell's Fx negative and My positive; side: +y acceleration,
+    left bending negative); the head's angles are those of its matrices; the
+    load cell's point and its start value by hand."""
     model = specimens.run_kang(direction, str(tmp_path), hhneck_executable())
     with h5py.File(tmp_path / ("kang_%s_hold.h5" % direction), "r") as f:
         t = f["time"][:]
@@ -113,6 +102,10 @@ def test_kang_drive_and_signs(tmp_path, direction):
         assert ax[np.argmax(np.abs(ax))] < 0
         tm, ry = model["head_rot_y"]
         assert ry.min() < -30.0
+        # the sled pushes the specimen rearward, the cell resists the flexion (the data's signs)
+        tm, fx = model["loadcell_force_x"]
+        tm, my = model["loadcell_moment_y"]
+        assert fx[np.argmax(np.abs(fx))] < 0 and my[np.argmax(np.abs(my))] > 0
     else:
         tm, aj = model["head_acc_y"]
         assert np.allclose(aj, -ay) and aj[np.argmax(np.abs(aj))] > 0
@@ -120,5 +113,26 @@ def test_kang_drive_and_signs(tmp_path, direction):
         assert rx.min() < -30.0 and rx[0] == 0.0
     rated = specimens.rate_kang(direction, model)
     assert sorted(rated) == sorted(specimens.KANG_CHANNELS[direction])
+    assert any(ch.startswith("loadcell_") for ch in rated)
     for sc in rated.values():
         assert sc["grid"][0] >= 0.0 and 0.0 <= sc["overall"] <= 1.0
+    with h5py.File(tmp_path / ("kang_%s_hold.h5" % direction), "r") as f:
+        names = [str(n) for n in f["model"].attrs["bodies"]]
+        rot = f["bodies/rotation"][:, names.index("HEAD")]       # [t, j, i] = S_ij
+        pos = f["bodies/position"][0]
+        mass = f["model/mass"][:]
+        ch = {n: f["channels"][n][:] for n in ("HEADL_RX", "HEADL_RY", "T1CELL_JFZ", "T1CELL_JFX", "T1CELL_JMY")}
+    # the head's Bryant angles in R against its stored matrices: x = atan2(-S23, S33), y = asin(S13)
+    s = np.transpose(rot, (0, 2, 1))
+    assert np.allclose(ch["HEADL_RX"], np.degrees(np.arctan2(-s[:, 1, 2], s[:, 2, 2])), atol=1e-9)
+    assert np.allclose(ch["HEADL_RY"], np.degrees(np.arcsin(s[:, 0, 2])), atol=1e-9)
+    # the cell 81 mm behind and 229 mm below the head's mass centre at the start (T1's axes = R's)
+    cell = np.array(specimens.KANG_CELL_POINT) + pos[names.index("T1")]
+    assert np.allclose(1e3 * (pos[names.index("HEAD")] - cell), [81.0, 0.0, 229.0], atol=0.5)
+    # held at rest at the start: the cell carries the weight of C7 ... head, J211 z down
+    w = 9.80665 * mass[names.index("C7"):].sum()
+    assert ch["T1CELL_JFZ"][0] == pytest.approx(-w, rel=1e-6)
+    assert abs(ch["T1CELL_JFX"][0]) < 1e-6 * w
+    # rated from the start value: the data are tared
+    tm, fz = model["loadcell_force_z"]
+    assert fz[0] == 0.0 and np.allclose(fz, ch["T1CELL_JFZ"] - ch["T1CELL_JFZ"][0])
