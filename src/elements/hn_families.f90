@@ -9,8 +9,8 @@
 !! Adding a family: its module (a type extending `element_family_t` of
 !! hn_element_family, which reads the family's own cards, `read_card`), one
 !! `fam_*` number, one name, its cards in `family_cards`, one case in
-!! `new_family`; its cards in the card registry hn_cards
-!! (docs/architecture.md, "Adding an element family").
+!! `new_family`; the card registry hn_cards takes the cards from
+!! `family_cards` (docs/architecture.md, "Adding an element family").
 module hn_families
     use hn_discs, only: disc_t
     use hn_line_elements, only: ligament_t, muscle_t, spring_t

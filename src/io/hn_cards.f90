@@ -4,8 +4,10 @@
 !! card names (`card_known`), its grouping of continuation cards
 !! (`card_ncont`) and its dispatch to the card groups (`deck_passes`) read
 !! this table; docs/deck-format.md has one `### NAME`
-!! section per card of it (test/scripts/deck_cards.sh). An element card
-!! takes its continuation count from the family registry (hn_families).
+!! section per card of it and of the family registry (test/scripts/deck_cards.sh).
+!! The element families' cards are not in this table: they are the family
+!! registry's (hn_families: name, continuation cards, one family each), in
+!! the elements group, and may repeat.
 !!
 !! Adding a card: one line in `cards` and its handler in the module of its
 !! group, called from that group's pass (docs/architecture.md, "Adding a
@@ -26,7 +28,6 @@ module hn_cards
 
     !> Continuation count of a card whose count is not fixed.
     integer, parameter, public :: ncont_computed = -1   !! computed from the card (TABLE: its points, or CSV)
-    integer, parameter, public :: ncont_family = -2     !! the family registry's count (an element card)
 
     !> One card: its name, its continuation cards, its group, whether it may repeat.
     type :: card_info_t
@@ -62,15 +63,6 @@ module hn_cards
         card_info_t('PRESCRIB', 0, grp_coordinates, .true.), &
         card_info_t('TABLE', ncont_computed, grp_tables, .true.), &
         card_info_t('PULSE', 0, grp_tables, .true.), &
-        card_info_t('DISC', ncont_family, grp_elements, .true.), &
-        card_info_t('LIGAMENT', ncont_family, grp_elements, .true.), &
-        card_info_t('MUSCLE', ncont_family, grp_elements, .true.), &
-        card_info_t('HILL', ncont_family, grp_elements, .true.), &
-        card_info_t('VIA', ncont_family, grp_elements, .true.), &
-        card_info_t('ACTIVATE', ncont_family, grp_elements, .true.), &
-        card_info_t('LIMIT', ncont_family, grp_elements, .true.), &
-        card_info_t('ROM', ncont_family, grp_elements, .true.), &
-        card_info_t('SPRING', ncont_family, grp_elements, .true.), &
         card_info_t('SCALE', 0, grp_elements, .true.), &
         card_info_t('FAMILY', 0, grp_elements, .true.), &
         card_info_t('FORCE', 1, grp_loads, .true.), &
@@ -114,28 +106,26 @@ contains
         k = 0
     end function card_index
 
-    !> Whether `key` names a card.
+    !> Whether `key` names a card (of this table or of an element family).
     pure logical function card_known(key) result(yes)
         character(len=*), intent(in) :: key     !! card name (upper case)
-        yes = card_index(key) > 0
+        yes = card_index(key) > 0 .or. card_continuations(key) >= 0
     end function card_known
 
     !> Continuation cards card `key` takes (ncont_computed: TABLE; 0 when it is no card).
     pure integer function card_ncont(key) result(n)
         character(len=*), intent(in) :: key     !! card name (upper case)
         integer :: k
-        n = 0
+        n = max(0, card_continuations(key))
         k = card_index(key)
-        if (k == 0) return
-        n = cards(k)%ncont
-        if (n == ncont_family) n = card_continuations(key)
+        if (k > 0) n = cards(k)%ncont
     end function card_ncont
 
     !> Group of card `key` (grp_control ... grp_changes; 0 when it is no card).
     pure integer function card_group(key) result(g)
         character(len=*), intent(in) :: key     !! card name (upper case)
         integer :: k
-        g = 0
+        g = merge(grp_elements, 0, card_continuations(key) >= 0)
         k = card_index(key)
         if (k > 0) g = cards(k)%group
     end function card_group
@@ -144,7 +134,7 @@ contains
     pure logical function card_repeats(key) result(yes)
         character(len=*), intent(in) :: key     !! card name (upper case)
         integer :: k
-        yes = .false.
+        yes = card_continuations(key) >= 0
         k = card_index(key)
         if (k > 0) yes = cards(k)%repeats
     end function card_repeats

@@ -1,5 +1,6 @@
 #!/bin/sh
-# The card registry (src/io/hn_cards.f90) and the deck format
+# The card registries (src/io/hn_cards.f90 and, for the element families'
+# cards, src/elements/hn_families.f90) and the deck format
 # (docs/deck-format.md) list the same cards: every registry card has a
 # `### NAME` section (a section may name several, "### FORCE, COUPLE"),
 # and every section names registry cards (INCLUDE, read by hn_deck_reader
@@ -10,9 +11,13 @@ HHNECK=${HHNECK:-none}
 . test/scripts/lib/checks.sh
 
 compare() {   # compare REGISTRY DOC: one line per card missing on either side, exit 1 on any
-    python3 - "$1" "$2" <<'PY'
+    python3 - "$1" "$2" src/elements/hn_families.f90 <<'PY'
 import re, sys
 reg = set(re.findall(r"card_info_t\('([A-Z0-9]+)'", open(sys.argv[1], encoding='utf-8').read()))
+families = set(re.findall(r"family_card_t\('([A-Z0-9]+)'", open(sys.argv[3], encoding='utf-8').read()))
+if not families:
+    print('no family_card_t lines in ' + sys.argv[3]); sys.exit(1)
+reg |= families
 doc = set()
 for line in open(sys.argv[2], encoding='utf-8'):
     m = re.match(r'###\s+([A-Z0-9, ]+?)\s+—', line)
