@@ -17,9 +17,8 @@ from its own 0.1 ms grid onto the grid points its curve covers; Kang: 0 to
 1.2 x the time of the reference's largest magnitude, as hhneck.specimens
 rates), empty cells elsewhere. The model channel of each column is a
 RATED card: the sign changes and "from the start" of hhneck.specimens.
-Not rated here: Kang side's head rotation about x (the first Bryant angle
-of the head's matrix, computed in Python by hhneck.specimens; no model
-channel yet), and the load-cell channels (no section-load channel yet).
+The rated channels and their model channels are those of the catalogue
+(hhneck.specimens.CHANNELS), load cells included.
 
 Parameters (PARAMS): scale factors of the passive elements, within bounds
 from reference/parameters.md where sourced (VAXIAL: the disc damping range
@@ -52,21 +51,16 @@ PARAMS = [
 ]
 QUICK_PARAMS = PARAMS[4:5]
 
-# case: (data file stem, [(column, source channel, model channel, scale, subtracted, START)], Kang window)
-CASES = {
-    "stemper": ("stemper2004_1p8ms",
-                [("SEG%d%d" % (k, k + 1), "seg_angle_C%d_C%d" % (k, k + 1), "C%d_RY" % k, -1.0, "", True)
-                 for k in range(2, 7)]
-                + [("HEADT1", "head_T1_angle", "HEAD_THETY", -1.0, "T1_THETY", True),
-                   ("RETRACT", "head_T1_retraction", "HEAD_DX", 1.0, "", False)], False),
-    "kang_front": ("kang2018_front",
-                   [("AX", "head_acc_x", "HEAD_AX", 1.0, "", False),
-                    ("AZ", "head_acc_z", "HEAD_AZ", -1.0, "", False),
-                    ("ROTY", "head_rot_y", "HEAD_THETY", -1.0, "", True)], True),
-    "kang_side": ("kang2018_side",
-                  [("AY", "head_acc_y", "HEAD_AY", -1.0, "", False),
-                   ("AZ", "head_acc_z", "HEAD_AZ", -1.0, "", False)], True),
-}
+# case: (data file stem, Kang window); the rated channels are hhneck.specimens.CHANNELS,
+# each a reference column C01, C02, ... of the case's CSV
+CASES = {"stemper": ("stemper2004_1p8ms", False), "kang_front": ("kang2018_front", True),
+         "kang_side": ("kang2018_side", True)}
+
+
+def case_channels(case):
+    """[(column, data channel, model channel, scale, subtracted, from the start)] of `case`."""
+    return [("C%02d" % (k + 1), name, run, scale, "", start)
+            for k, (name, run, scale, start) in enumerate(specimens.CHANNELS[case])]
 
 
 def _field(x):
@@ -81,7 +75,8 @@ def _field(x):
 
 def write_reference(case, path, data_dir=segments.DATA_DIR):
     """The reference CSV of `case` (module docstring); its RATED card lines."""
-    stem, chans, kang = CASES[case]
+    stem, kang = CASES[case]
+    chans = case_channels(case)
     src = os.path.join(data_dir, stem + "_experiment.csv")
     curves = []
     for col, ch, *_ in chans:

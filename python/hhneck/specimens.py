@@ -59,7 +59,8 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   (side); window 0 to 1.2 x the time of the reference's largest magnitude,
   as the source's notebook rates.
 
-API: stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
+API: CHANNELS (the rated channels: the data's and the run's); model_channels;
+stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
 kang_deck, run_kang, rate_kang; rate_channel.
 """
 import os
@@ -70,8 +71,35 @@ import numpy as np
 
 from . import iso18571, segments, specimen_data
 
-STEMPER_CHANNELS = ["seg_angle_C%d_C%d" % (k, k + 1) for k in range(2, 7)] + ["head_T1_angle",
-                                                                               "head_T1_retraction"]
+#: every rated channel of each case: (the data's channel, the run's
+#: channel, the scale to the data's sign, whether taken from its value at
+#: the start); the module docstring says why each is what it is. The
+#: catalogue's runs and the calibration's RATED cards (hhneck.calibration)
+#: both read this table.
+CHANNELS = {
+    "stemper": [("seg_angle_C%d_C%d" % (k, k + 1), "C%d_PY" % k, -1.0, True) for k in range(2, 7)]
+    + [("head_T1_angle", "HT1_RY", -1.0, True), ("head_T1_retraction", "HT1_DX", 1.0, False)],
+    "kang_front": [("head_acc_x", "HEAD_AX", 1.0, False), ("head_acc_z", "HEAD_AZ", -1.0, False),
+                   ("head_rot_y", "HEADL_RY", -1.0, True), ("loadcell_force_x", "T1CELL_JFX", 1.0, True),
+                   ("loadcell_force_z", "T1CELL_JFZ", 1.0, True), ("loadcell_moment_y", "T1CELL_JMY", 1.0, True)],
+    "kang_side": [("head_acc_y", "HEAD_AY", -1.0, False), ("head_acc_z", "HEAD_AZ", -1.0, False),
+                  ("head_rot_x", "HEADL_RX", 1.0, True), ("loadcell_moment_x", "T1CELL_JMX", 1.0, True),
+                  ("loadcell_force_y", "T1CELL_JFY", 1.0, True), ("loadcell_force_z", "T1CELL_JFZ", 1.0, True)],
+}
+STEMPER_CHANNELS = [c[0] for c in CHANNELS["stemper"]]
+
+
+def model_channels(case, h5):
+    """The rated channels of `case` from its result file:
+    {data channel: (t [ms], model value in the data's signs)} (CHANNELS)."""
+    import h5py
+    with h5py.File(h5, "r") as f:
+        t = f["time"][:] * 1e3
+        out = {}
+        for name, run, scale, start in CHANNELS[case]:
+            v = np.asarray(f["channels"][run][:], dtype=float)
+            out[name] = (t, scale * (v - v[0] if start else v))
+    return out
 
 
 def _run(deck, workdir, exe):
@@ -126,18 +154,9 @@ def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.D
 
 def run_stemper(workdir=None, exe=None, support="HOLD", muscles="PASSIVE"):
     """Run the Stemper deck; {channel: (t [ms], model value)} in the data's signs."""
-    import h5py
     work = workdir or tempfile.mkdtemp(prefix="hhneck-stemper-")
     os.makedirs(work, exist_ok=True)
-    h5 = _run(stemper_deck(work, support, muscles), work, exe)
-    with h5py.File(h5, "r") as f:
-        t = f["time"][:] * 1e3
-        c = {n: np.asarray(f["channels"][n][:], dtype=float) for n in
-             ["C%d_PY" % k for k in range(2, 7)] + ["HT1_RY", "HT1_DX"]}
-    out = {"seg_angle_C%d_C%d" % (k, k + 1): (t, -(c["C%d_PY" % k] - c["C%d_PY" % k][0])) for k in range(2, 7)}
-    out["head_T1_angle"] = (t, -(c["HT1_RY"] - c["HT1_RY"][0]))
-    out["head_T1_retraction"] = (t, c["HT1_DX"])
-    return out
+    return model_channels("stemper", _run(stemper_deck(work, support, muscles), work, exe))
 
 
 def rate_stemper(model, data_dir=segments.DATA_DIR):
@@ -163,19 +182,14 @@ def rate_channel(g, ref, lo, hi, t, m):
     return sc
 
 
-KANG_CHANNELS = {"front": ["head_acc_x", "head_acc_z", "head_rot_y", "loadcell_force_x", "loadcell_force_z",
-                           "loadcell_moment_y"],
-                 "side": ["head_acc_y", "head_acc_z", "head_rot_x", "loadcell_moment_x", "loadcell_force_y",
-                          "loadcell_force_z"]}
+KANG_CHANNELS = {d: [c[0] for c in CHANNELS["kang_" + d]] for d in ("front", "side")}
 #: the Kang load cell's point in T1's axes from T1's mass centre [m]: the
 #: potting centre 81 mm behind and 229 mm below the head's mass centre
 #: (README "Initial position"), the head's mass centre being 54.0 mm ahead of
 #: and 175.3 mm above T1's in the model deck at the start
 #: (test_specimens checks it against the run)
 KANG_CELL_POINT = (0.054 - 0.081, 0.0, 0.1753 - 0.229)
-#: the data's cell channel and the run's J211 channel of it
-KANG_CELL = {"loadcell_force_x": "T1CELL_JFX", "loadcell_force_y": "T1CELL_JFY", "loadcell_force_z": "T1CELL_JFZ",
-             "loadcell_moment_x": "T1CELL_JMX", "loadcell_moment_y": "T1CELL_JMY"}
+
 
 
 def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
@@ -218,19 +232,9 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
 
 def run_kang(direction, workdir=None, exe=None, support="HOLD"):
     """Run a Kang deck; {channel: (t [ms], model in SAE J211 axes)}."""
-    import h5py
     work = workdir or tempfile.mkdtemp(prefix="hhneck-kang-")
     os.makedirs(work, exist_ok=True)
-    h5 = _run(kang_deck(work, direction, support), work, exe)
-    with h5py.File(h5, "r") as f:
-        t = f["time"][:] * 1e3
-        c = {n: np.asarray(f["channels"][n][:], dtype=float) for n in
-             ("HEAD_AX", "HEAD_AY", "HEAD_AZ", "HEADL_RX", "HEADL_RY") + tuple(KANG_CELL.values())}
-    out = {"head_acc_x": (t, c["HEAD_AX"]), "head_acc_y": (t, -c["HEAD_AY"]), "head_acc_z": (t, -c["HEAD_AZ"]),
-           "head_rot_y": (t, -(c["HEADL_RY"] - c["HEADL_RY"][0])), "head_rot_x": (t, c["HEADL_RX"] - c["HEADL_RX"][0])}
-    for ch, name in KANG_CELL.items():
-        out[ch] = (t, c[name] - c[name][0])
-    return {k: out[k] for k in KANG_CHANNELS[direction]}
+    return model_channels("kang_" + direction, _run(kang_deck(work, direction, support), work, exe))
 
 
 def rate_kang(direction, model, data_dir=segments.DATA_DIR):

@@ -6,7 +6,7 @@ curves it rated (CURVES card) and prints each channel's scores to six
 digits; the package, given those curves, gives the same scores. Two kinds
 of case: the NBDL 15 g volunteers (their mean on the RATING window) and the
 Stemper 2004 specimen case with a reference CSV and RATED cards
-(hhneck.calibration). Then the leave-one-out command's quick form: the
+(hhneck.calibration), whose case mean is the catalogue's. Then the leave-one-out command's quick form: the
 table it writes, the fitted value within its bounds, and the prediction
 equal to an evaluation of the left-out case at the fitted value."""
 import os
@@ -18,7 +18,7 @@ import pandas as pd
 import pytest
 
 from conftest import hhneck_executable
-from hhneck import calibration, iso18571, segments
+from hhneck import calibration, iso18571, segments, specimens
 
 # printed to 6 decimals: the rounding is 5e-7; the tolerance is far above it
 # and far below a score difference that matters (1e-3)
@@ -99,9 +99,16 @@ def test_reference_case_agrees_with_the_package(tmp_path):
     assert worst <= TOL, worst
     # no result file and no listing of the member run in the work folder
     assert not list(tmp_path.glob("*.h5"))
-    # the reference CSV carries each channel on its own rows: SEG23 starts later than SEG45
+    # the reference CSV carries each channel on its own rows: C01 (C2-C3) starts later than C03 (C4-C5)
     ref = pd.read_csv(tmp_path / "stemper_reference.csv")
-    assert ref.SEG45.first_valid_index() < ref.SEG23.first_valid_index()
+    assert ref.C03.first_valid_index() < ref.C01.first_valid_index()
+    # the same channels as the catalogue (hhneck.specimens.CHANNELS): the
+    # Fortran case mean is the catalogue's mean over the same channels, to the
+    # resampling of the reference onto the CSV's common grid (within 0.005;
+    # a wrong channel, sign or start moves a channel's score by far more)
+    mean = calibration.parse_listing(listing)["cases"]
+    catalogue = specimens.rate_stemper(specimens.run_stemper(str(tmp_path / "run"), hhneck_executable()))
+    assert abs(list(mean.values())[0] - np.mean([c["overall"] for c in catalogue.values()])) < 0.005
 
 
 def test_leave_one_out_quick(tmp_path, monkeypatch):
