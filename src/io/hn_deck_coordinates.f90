@@ -7,7 +7,7 @@ module hn_deck_coordinates
     use hn_deck_reader, only: deck_reader_t
     use hn_model, only: neutral_coordinates
     use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
-    use hn_deck_state, only: deck_state_t, add_scene_note, k_old, locked_error, active_ref, body_ref, coord_ref, &
+    use hn_deck_state, only: deck_state_t, add_scene_note, k_old, locked_error, active_coordinate, body_ref, coord_ref, &
                              table_ref, unit_of, unit_factor, unit_limit
     implicit none
     private
@@ -82,7 +82,7 @@ contains
             i = st%cards(k)%first
             select case (st%cards(k)%key)
             case ('INITIAL')
-                call active_ref(rd, i, cs, st%bnames, st%bmap, kb, m, j, .true.)
+                call active_coordinate(rd, i, cs%model%tree, st%bnames, st%bmap, kb, m, j, .true.)
                 if (rd%failed()) return
                 if (j == 0) then
                     call rd%real(i, 3, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
@@ -102,7 +102,7 @@ contains
                 cs%x0(j) = v*fac
                 cs%xd0(j) = vd*fac
             case ('PRESCRIB')
-                call active_ref(rd, i, cs, st%bnames, st%bmap, kb, m, j, .true.)
+                call active_coordinate(rd, i, cs%model%tree, st%bnames, st%bmap, kb, m, j, .true.)
                 if (rd%failed()) return
                 if (j == 0) then
                     call rd%name(i, 3, 'kind', s)

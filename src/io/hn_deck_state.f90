@@ -20,7 +20,7 @@ module hn_deck_state
     private
 
     public :: deck_state_t, coord_names, big_length, big_modulus, max_table_points, tiny_value, card_t, body_map_t, named_table_t, &
-              group_cards, single, add_scene_note, k_old, locked_error, active_ref, family_ref, body_ref, coord_ref, &
+              group_cards, single, add_scene_note, k_old, locked_error, active_coordinate, family_ref, body_ref, coord_ref, &
               table_ref, unit_of, unit_factor, unit_limit, join, real_str
 
     integer, parameter :: max_table_points = 100000 !! points of one TABLE
@@ -150,23 +150,6 @@ contains
         character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
         k = body_ref(rd, i, 1, 'body', bnames, .false.)
     end function k_old
-
-    !> Body (in the reduced tree) and coordinate of an INITIAL/PRESCRIB/LIMIT
-    !! card (fields F1, F2), in the case's tree (active_coordinate of
-    !! hn_element_cards). A locked coordinate gives j = 0 when allow_locked,
-    !! else an error.
-    subroutine active_ref(rd, i, cs, bnames, bmap, kb, m, j, allow_locked)
-        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
-        integer, intent(in) :: i  !! the card's first deck line
-        type(case_t), intent(in) :: cs  !! the run case the cards fill
-        character(len=10), intent(in) :: bnames(:)  !! the names of the deck's bodies, in deck order
-        type(body_map_t), intent(in) :: bmap  !! where each deck body went (MERGE), what locked its coordinates
-        integer, intent(out) :: kb  !! the body in the reduced tree
-        integer, intent(out) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
-        integer, intent(out) :: j  !! the model coordinate (0: a locked one)
-        logical, intent(in) :: allow_locked  !! a locked coordinate gives j = 0 (otherwise an error)
-        call active_coordinate(rd, i, cs%model%tree, bnames, bmap, kb, m, j, allow_locked)
-    end subroutine active_ref
 
     !> Element family named s in field F2 of line i (an error when unknown).
     integer function family_ref(rd, i, s) result(fam)
