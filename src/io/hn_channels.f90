@@ -191,10 +191,12 @@ module hn_channels
 
 contains
 
-    !> The channel list of a case.
-    subroutine channels_define(cs, ch)
+    !> The channel list of a case; with `only`, just the channels named
+    !! there (a calibration member's rated channels).
+    subroutine channels_define(cs, ch, only)
         type(case_t), intent(in) :: cs          !! the case (its model's bodies and elements)
         type(channel_set_t), intent(out) :: ch  !! the channels, values zero
+        character(len=*), intent(in), optional :: only(:)  !! the only channels wanted (by name; kept in the set's order)
         type(channel_t), allocatable :: c(:)
         type(family_channel_t), allocatable :: fc(:)
         integer :: k, e, m, n, f
@@ -234,6 +236,7 @@ contains
             end do
         end associate
         c(n + 1:) = energy_channels
+        if (present(only)) c = pack(c, [(any(only == c(k)%name), k=1, size(c))])
         ch%n = size(c)
         ch%list = c
         ch%name = c%name

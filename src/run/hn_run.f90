@@ -116,6 +116,8 @@ module hn_run
         integer :: nev_out = 0                      !! evaluations made for outputs
         logical :: pending_restart = .false.        !! restart the integrator before its next step
         logical :: keep = .false.                   !! keep every sample in the result (benchmarks, sweeps)
+        logical :: rated = .false.                  !! only the named channels (a calibration member): no
+                                                    !! listing rows, histories, peaks or injury criteria
         logical :: running = .false.
         integer(i8) :: clock0 = 0_i8
     contains
@@ -136,14 +138,15 @@ contains
     !> Run the case from start to end (or to the failure that stops it),
     !! writing the listing on unit lu and results to h5name ('' for none).
     !! With keep_samples, every channel at every sample is returned in res.
-    subroutine run_execute(me, cs, lu, h5name, res, keep_samples)
+    subroutine run_execute(me, cs, lu, h5name, res, keep_samples, only)
         class(run_state_t), intent(inout) :: me
         type(case_t), intent(in) :: cs                !! the case to run
         integer, intent(in) :: lu                     !! listing unit
         character(len=*), intent(in) :: h5name        !! result file name ('' for none)
         type(run_result_t), intent(out) :: res        !! what happened
         logical, intent(in), optional :: keep_samples !! keep every channel at every sample in res
-        call me%start(cs, lu, h5name, keep_samples)
+        character(len=*), intent(in), optional :: only(:) !! compute only these channels (no listing tables, criteria)
+        call me%start(cs, lu, h5name, keep_samples, only)
         do while (me%is_running())
             call me%advance_to(me%next_output_time())
             if (me%is_running()) call me%output()
@@ -153,12 +156,13 @@ contains
 
     !> Listing header and model summary, initial state, posture holding,
     !! integrator, result file and output schedule.
-    subroutine run_start(me, cs, lu, h5name, keep_samples)
+    subroutine run_start(me, cs, lu, h5name, keep_samples, only)
         class(run_state_t), intent(inout) :: me
         type(case_t), intent(in) :: cs                !! the case to run
         integer, intent(in) :: lu                     !! listing unit
         character(len=*), intent(in) :: h5name        !! result file name ('' for none)
         logical, intent(in), optional :: keep_samples !! keep every channel at every sample
+        character(len=*), intent(in), optional :: only(:) !! compute only these channels (no listing tables, criteria)
         real(wp), allocatable :: y(:)
         integer :: stat, nf
         character(len=msglen) :: msg
@@ -166,13 +170,14 @@ contains
         me%cs = cs
         me%keep = .false.
         if (present(keep_samples)) me%keep = keep_samples
+        me%rated = present(only)
         if (allocated(me%cs%subtitles)) then
             call me%lst%start(lu, me%cs%model%title, code_version, me%cs%subtitles)
         else
             call me%lst%start(lu, me%cs%model%title, code_version)
         end if
         call me%lst%echo_deck(me%cs%deck)
-        call channels_define(me%cs, me%ch)
+        call channels_define(me%cs, me%ch, only)
         call model_ode_init(me%sys, me%cs%model)
         nf = me%sys%ws%nfree
         allocate (y(state_size(me%sys)))
@@ -389,8 +394,10 @@ contains
             call me%track_peaks(t)
             if (abs(t - (cs%t_start + me%ks*cs%sample_dt)) <= me%tol) call me%record_sample(t)
             if (abs(t - (cs%t_start + me%kp*cs%print_dt)) <= me%tol) then
-                me%res%nrows = me%res%nrows + 1
-                call me%rows%add([t, me%ch%value])
+                if (.not. me%rated) then
+                    me%res%nrows = me%res%nrows + 1
+                    call me%rows%add([t, me%ch%value])
+                end if
                 me%kp = me%kp + 1
                 call me%out%flush(me%ch)
             end if
@@ -415,7 +422,7 @@ contains
         if (me%out%failed()) call me%fail(exit_output, me%out%error())
         me%ks = me%ks + 1
         k = me%ks
-        call me%crit%add([me%ch%value(me%icol), me%ch%head_x_acc(1:2)])
+        if (.not. me%rated) call me%crit%add([me%ch%value(me%icol), me%ch%head_x_acc(1:2)])
         if (me%keep) then
             me%res%samples_t(k) = t
             me%res%samples(:, k) = me%ch%value
@@ -607,7 +614,7 @@ contains
             me%res%samples = me%res%samples(:, 1:me%ks)
             me%res%samples_head_s = me%res%samples_head_s(:, :, 1:me%ks)
         end if
-        if (me%rows%m > 0) then
+        if (me%rows%m > 0 .and. .not. me%rated) then
             allocate (cols(me%crit%n, ncriteria_columns))
             do k = 1, ncriteria_columns
                 cols(:, k) = me%crit%column(k)

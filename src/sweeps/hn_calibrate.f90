@@ -50,7 +50,7 @@ module hn_calibrate
     use hn_sweep, only: sweep_t, sweep_param_t, read_sweep_lines, sweep_member_case, sweep_design, spread_value, &
                         field_text, par_field
     use hn_run, only: run_state_t, run_result_t, exit_ok
-    use hn_channels, only: channel_set_t, channels_define
+    use hn_channels, only: channel_set_t, channels_define, chname_len
     use hn_filters, only: cfc_filter
     use hn_tables, only: resample
     use hn_optimize, only: restarted_nelder_mead
@@ -935,7 +935,8 @@ contains
     end subroutine member_histories
 
     !> Run case c at parameter values v as a sweep member: no result file,
-    !! the listing to /dev/null, every channel's samples kept in res.
+    !! the listing to /dev/null (its header only: no tables, peaks or
+    !! criteria), only the rated channels computed, their samples kept in res.
     subroutine run_member(cal, c, v, cs, ch, res, ok)
         type(calibration_t), intent(in) :: cal   !! the calibration
         integer, intent(in) :: c                 !! the case
@@ -946,17 +947,25 @@ contains
         logical, intent(out) :: ok               !! the run is complete
         integer :: stat, lu
         character(len=msglen) :: msg
+        character(len=chname_len), allocatable :: rated(:)
         ok = .false.
         call sweep_member_case(cal%sw(c), v, cs, stat, msg)
         if (stat /= stat_ok) return
+        ! the rated channels alone: the CHANNEL cards' or the RATED cards' (and what they subtract)
+        if (cal%ref(c)%on) then
+            rated = [character(len=chname_len) :: cal%ref(c)%channel, &
+                     pack(cal%ref(c)%minus, len_trim(cal%ref(c)%minus) > 0)]
+        else
+            rated = [character(len=chname_len) :: cal%channels%name]
+        end if
         open (newunit=lu, file='/dev/null', action='write')
         block
             type(run_state_t) :: run         ! a fresh run object for every case
-            call run%execute(cs, lu, '', res, keep_samples=.true.)
+            call run%execute(cs, lu, '', res, keep_samples=.true., only=rated)
         end block
         close (lu)
         if (res%exit_code /= exit_ok) return
-        call channels_define(cs, ch)
+        call channels_define(cs, ch, rated)
         ok = .true.
     end subroutine run_member
 
