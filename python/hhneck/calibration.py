@@ -37,6 +37,7 @@ import sys
 import numpy as np
 
 from . import segments, specimen_data, specimens
+from .deck_fields import number_field
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
 
@@ -61,16 +62,6 @@ def case_channels(case):
     """[(column, data channel, model channel, scale, subtracted, from the start)] of `case`."""
     return [("C%02d" % (k + 1), name, run, scale, "", start)
             for k, (name, run, scale, start) in enumerate(specimens.CHANNELS[case])]
-
-
-def _field(x):
-    """A number in a 10-column field."""
-    s = "%.6g" % x
-    if "e" not in s and "." not in s:
-        s += ".0"
-    if len(s) > 10:
-        s = "%.3E" % x
-    return "%-10s" % s
 
 
 def write_reference(case, path, data_dir=segments.DATA_DIR):
@@ -102,7 +93,7 @@ def write_reference(case, path, data_dir=segments.DATA_DIR):
             f.write(",".join(["%.4f" % t] + ["%.9g" % c[1][i] if c[2][i] else "" for c in cols]) + "\n")
     rated = []
     for col, _, model, scale, minus, start in chans:
-        rated.append(("RATED     %-10s%-10s%s%-10s%s" % (col, model, _field(scale), minus,
+        rated.append(("RATED     %-10s%-10s%s%-10s%s" % (col, model, number_field(scale), minus,
                                                          "START" if start else "")).rstrip())
     return rated
 
@@ -133,12 +124,12 @@ def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, va
     lines.append("RATING    0.0       200.0     60        10.0      ISO18571")
     lines.append("FIT       NELDER    %-10d%-10d%-10d" % (0 if values is not None else evals, starts, seed))
     for p in params:
-        lines.append(("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], _field(p[4]),
-                                                               _field(p[5]), p[6])).rstrip())
+        lines.append(("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], number_field(p[4]),
+                                                               number_field(p[5]), p[6])).rstrip())
     if values is not None:
         vals = list(values)
         for k in range(0, len(vals), 7):
-            lines.append("VALUES    " + "".join(_field(v) for v in vals[k:k + 7]))
+            lines.append("VALUES    " + "".join(number_field(v) for v in vals[k:k + 7]))
         lines.append("CURVES    %s_curves.csv" % name)
     path = os.path.join(workdir, name + ".inp")
     with open(path, "w") as f:

@@ -9,23 +9,14 @@ import argparse
 import math
 import sys
 
-from .deck_fields import CardError, held, write_decks
-
-def fmt(v):
-    s = "%.6g" % v
-    if "e" in s:
-        m, e = s.split("e")
-        s = m + "E" + str(int(e))
-    elif "." not in s:
-        s += "."
-    return s
+from .deck_fields import CardError, held, number_text, write_decks
 
 def table(name, pts, tscale="0.001", vscale="1.0"):
     out = ["%-8s  %-10s%-10d%-10s%-10s" % ("TABLE", name, len(pts), tscale, vscale)]
     for i in range(0, len(pts), 3):
         row = " " * 10
         for (t, v) in pts[i:i + 3]:
-            row += "%-10s%-10s" % (fmt(round(t, 4)), fmt(round(v, 3)))
+            row += "%-10s%-10s" % (number_text(round(t, 4)), number_text(round(v, 3)))
         out.append(row.rstrip())
     return out
 

@@ -91,6 +91,29 @@ def field_text(value, where="a field"):
     return "%-10s" % value
 
 
+def number_text(value, digits=6):
+    """A number as a deck field's text: %g with `digits` significant digits,
+    a decimal point always, the exponent as E (1.5E-5)."""
+    s = "%.*g" % (digits, value)
+    if "e" in s:
+        m, e = s.split("e")
+        s = m + "E" + str(int(e))
+    elif "." not in s:
+        s += "."
+    return s
+
+
+def number_field(value, where="a field"):
+    """A number in a field: number_text with the most significant digits
+    (6 down to 1) that fit its 10 columns, left-aligned; CardError naming
+    `where` when none does."""
+    for digits in range(6, 0, -1):
+        s = number_text(value, digits)
+        if len(s) <= FIELD:
+            return field_text(s, where)
+    return field_text(number_text(value, 1), where)
+
+
 def set_field(line, n, value):
     """The card image with field n replaced by `value` (text, left-aligned;
     field_text())."""
