@@ -27,7 +27,8 @@ module hn_families
     implicit none
     private
 
-    public :: new_family, family_index, family_names_text, family_card_t, family_cards, card_continuations
+    public :: new_family, family_index, family_names_text, family_card_t, family_cards, card_continuations, &
+              family_card_index
 
     !> The families, in evaluation order.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
@@ -107,9 +108,17 @@ contains
         character(len=*), intent(in) :: key     !! card name
         integer :: k
         n = -1
-        do k = 1, size(family_cards)
-            if (family_cards(k)%key == key) n = family_cards(k)%ncont
-        end do
+        k = family_card_index(key)
+        if (k > 0) n = family_cards(k)%ncont
     end function card_continuations
+
+    !> Place of card `key` in `family_cards`, 0 when no family of the registry reads it.
+    pure integer function family_card_index(key) result(k)
+        character(len=*), intent(in) :: key     !! card name
+        do k = 1, size(family_cards)
+            if (family_cards(k)%key == key) return
+        end do
+        k = 0
+    end function family_card_index
 
 end module hn_families

@@ -8,7 +8,7 @@ module hn_deck_elements
     use hn_case, only: case_t
     use hn_deck_reader, only: deck_reader_t
     use hn_model, only: model_t, family_items, family_items_text, scale_family, max_family_items
-    use hn_families, only: family_name, family_index, family_cards
+    use hn_families, only: family_name, family_index, family_cards, family_card_index
     use hn_element_cards, only: card_context_t, family_card_t, card_first, card_in_order, card_last
     use hn_deck_state, only: deck_state_t, add_scene_note, family_ref, join
     implicit none
@@ -76,14 +76,13 @@ contains
         integer, intent(out) :: f, order
         type(family_card_t), allocatable :: own(:)
         integer :: k
-        f = 0
         order = 0
-        do k = 1, size(family_cards)
-            if (family_cards(k)%key /= key) cycle
+        k = family_card_index(key)
+        if (k > 0) then
             f = family_cards(k)%family
             order = family_cards(k)%order
             return
-        end do
+        end if
         do f = 1, size(model%family)
             own = model%family(f)%f%deck_cards()
             do k = 1, size(own)
