@@ -187,23 +187,24 @@ contains
         end do
     end subroutine limit_plausibility
 
-    !> C0, C1, ROMK.
+    !> C0, C1, ROMK, ROMT0.
     pure subroutine limit_items(this, items)
         class(limit_family_t), intent(in) :: this     !! the family
         character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
         items = ''
-        items(1:3) = [character(len=item_len) :: 'C0', 'C1', 'ROMK']
+        items(1:4) = [character(len=item_len) :: 'C0', 'C1', 'ROMK', 'ROMT0']
     end subroutine limit_items
 
-    !> Scale C0 or C1 of every damper, or K of every range.
+    !> Scale C0 or C1 of every damper, or K or t0 of every range.
     pure subroutine limit_scale(this, item, factor)
         class(limit_family_t), intent(inout) :: this   !! the family
-        character(len=*), intent(in) :: item           !! C0, C1 or ROMK
+        character(len=*), intent(in) :: item           !! C0, C1, ROMK or ROMT0
         real(wp), intent(in) :: factor                 !! the factor
         select case (item)
         case ('C0'); this%items%c0 = factor*this%items%c0
         case ('C1'); this%items%c1 = factor*this%items%c1
         case ('ROMK'); this%ranges%k = factor*this%ranges%k
+        case ('ROMT0'); this%ranges%t0 = factor*this%ranges%t0
         end select
     end subroutine limit_scale
 

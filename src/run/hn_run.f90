@@ -77,6 +77,7 @@ module hn_run
         real(wp) :: energy_residual = zero   !! largest |energy balance residual| [J]
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
         integer :: nrows = 0                             !! rows of the listing's time histories
+        real(wp), allocatable :: range_peak(:)           !! largest excess beyond each joint's range (ROM cards) [rad]
         real(wp), allocatable :: samples_t(:), samples(:, :)  !! (optional) every channel at every sample
         real(wp), allocatable :: samples_head_s(:, :, :)      !! (optional) head rotation matrix (head axes -> R) at every sample
         type(assessment_t) :: criteria                   !! injury criteria of the run
@@ -602,6 +603,11 @@ contains
         call system_clock(c1, rate)
         if (me%clock0 > 0) me%res%wall = real(c1 - me%clock0, wp)/real(rate, wp)
         me%res%nevals_output = me%nev_out
+        if (allocated(me%rom_peak)) then
+            me%res%range_peak = me%rom_peak
+        else
+            allocate (me%res%range_peak(0))
+        end if
         me%res%nevals = me%sys%nevals - me%nev_out
         if (allocated(me%integ)) then
             me%res%nsteps = me%integ%steps()

@@ -31,7 +31,12 @@
 !! set whose neck stands without its muscles (largest real part at rest,
 !! muscles off, below the card's limit, default 0: the osteoligamentous
 !! column buckles under far less than the head's weight), which gets
-!! J = 2 + 0.1 s (limit - lp). The study itself (the volunteer files, the
+!! J = 2 + 0.1 s (limit - lp). With a RANGES card of weight wr, J_c gains
+!! wr G_c, G_c the sum over the joints' ranges (ROM cards) of
+!! max(0, e_k/e_m - (1 - m)), e_k the joint's largest excess beyond its
+!! physiological range in the run and e_m the margin past which a run
+!! warns (hn_joint_limits range_margin, 5 deg): a fit kept inside the
+!! ranges the runs are checked against. The study itself (the volunteer files, the
 !! channels they are compared with, the rating window, the filter, the
 !! peaks and their windows) is the deck's RATING, CHANNEL and PEAK cards;
 !! nothing of it is compiled in.
@@ -43,7 +48,7 @@
 !! Member runs are those of the sweep (sweep_member_case, run_state_t):
 !! no result file, the listing to /dev/null.
 module hn_calibrate
-    use hn_kinds, only: wp, zero, one, msglen
+    use hn_kinds, only: wp, zero, one, msglen, deg
     use hn_status, only: stat_ok, stat_bad_input
     use hn_case, only: case_t, deck_line_t, path_len
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
@@ -59,10 +64,11 @@ module hn_calibrate
     use hn_iso18571, only: iso18571_rating_t, iso18571_rating, iso18571_min_samples
     use hn_rest_modes, only: rest_mode_t, rest_modes
     use hn_model, only: fam_muscles
+    use hn_joint_limits, only: range_margin
     implicit none
     private
 
-    public :: calibration_t, reference_case_t, read_calibration, evaluate, calibrate, member_histories
+    public :: calibration_t, reference_case_t, read_calibration, evaluate, calibrate, member_histories, range_score
     integer, parameter, public :: metric_cora = 1, metric_iso18571 = 2   !! RATING F5
 
     real(wp), parameter :: failed_objective = 10.0_wp        !! J of a parameter set whose run fails
@@ -86,6 +92,13 @@ module hn_calibrate
         logical, allocatable :: from_start(:)           !! (rated) less its value at the start (F5 START)
     end type reference_case_t
 
+    !> The joints of one run past their physiological ranges (ROM cards).
+    type, public :: range_score_t
+        real(wp) :: term = zero      !! G_c: sum of max(0, e_k/e_m - (1 - m)) [-]
+        integer :: past = 0          !! joints past their range by more than e_m (the run's warnings)
+        real(wp) :: largest = zero   !! the largest excess [rad]
+    end type range_score_t
+
     !> A calibration: its cases (deck, volunteers or reference, weight, the
     !! sweep that binds the parameters to that deck), the study (rated
     !! channels, peaks, rating window, filter, metric) and the optimizer's
@@ -108,6 +121,7 @@ module hn_calibrate
         real(wp) :: peak_weight = 0.02_wp           !! w of the objective (FIT F5)
         real(wp) :: time_weight = zero              !! wt of the objective (FIT F6)
         real(wp) :: peak_margin = zero              !! m of the objective: P counts |z| above 1 - m (FIT F7)
+        real(wp) :: range_weight = zero             !! wr of the objective (RANGES F1): the joints past their ranges
         logical :: passive = .false.                !! PASSIVE card: the neck without its muscles must not stand
         real(wp) :: passive_limit = zero            !! its largest real part at rest must be above this (PASSIVE F1) [1/s]
         real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
@@ -127,9 +141,10 @@ contains
     !! 41-80); PEAK cards (channel, MIN or MAX, window start and end, the
     !! name in columns 51-80); PARAM cards as in a sweep deck; optional
     !! PASSIVE [limit] (a set whose neck stands without its muscles is not
-    !! run); optional VALUES cards (up to 7 values each, in PARAM order), the
+    !! run); optional RANGES weight (the joints past their ranges in J);
+    !! optional VALUES cards (up to 7 values each, in PARAM order), the
     !! point scored when max-evaluations is 0 (default: the decks' own
-    !! values); optional CURVES file (columns 11-80: the rated curves of
+    !! values), else a starting point tried before the LHS points; optional CURVES file (columns 11-80: the rated curves of
     !! that point written as CSV). Each case's parameters are bound to its own deck through a
     !! sweep (same checks); every CHANNEL must be a channel of every case
     !! deck, and every volunteer file is read (docs/sweeps.md).
@@ -154,7 +169,7 @@ contains
         logical, allocatable :: is_ref(:)
         character(len=:), allocatable :: dname
         real(wp) :: w
-        integer :: i, c, k, nfit, f, rating_line, cfc, bad_peak, bad_channel, nwin, nmin, i1, i2
+        integer :: i, c, k, nfit, f, rating_line, values_line, cfc, bad_peak, bad_channel, nwin, nmin, i1, i2
         real(wp) :: x
         real(wp), allocatable :: v0(:)
         rd%top = source
@@ -163,7 +178,7 @@ contains
         allocate (cal%decks(0), cal%data(0), params(0), cal%values(0), cal%channels(0), cal%peaks(0))
         allocate (channel_line(0), peak_line(0), data_line(0), peak_channel(0), rated_line(0), rated_case(0), &
                   is_ref(0), cal%weight(0))
-        nfit = 0; rating_line = 0
+        nfit = 0; rating_line = 0; values_line = 0
         do i = 1, rd%nlines
             if (rd%failed()) exit
             select case (rd%key(i))
@@ -285,11 +300,14 @@ contains
                 rated_line = [rated_line, i]
                 rated_case = [rated_case, size(cal%decks)]
             case ('CURVES'); cal%curves = rd%text(i, 11)
+            case ('RANGES')
+                call rd%real(i, 1, 'range weight', '-', cal%range_weight, zero, 1.0e3_wp)
             case ('PASSIVE')
                 cal%passive = .true.
                 call rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
                              -100.0_wp, 100.0_wp, default=zero)
             case ('VALUES')
+                if (values_line == 0) values_line = i
                 do f = 1, 7
                     if (rd%is_blank(i, f)) cycle
                     call rd%real(i, f, 'parameter value', '-', x, -1.0e30_wp, 1.0e30_wp)
@@ -299,7 +317,7 @@ contains
             case default
                 call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(rd%key(i))// &
                              '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, PASSIVE, '// &
-                             'VALUES, CURVES or END')
+                             'RANGES, VALUES, CURVES or END')
             end select
         end do
         ! a PEAK card names a CHANNEL card's channel (before or after it)
@@ -317,6 +335,9 @@ contains
         if (.not. rd%failed() .and. .not. all(is_ref) .and. (size(cal%channels) == 0 .or. size(cal%peaks) == 0)) &
             call rd%fail(source//': expected at least one CHANNEL and one PEAK card (the deck has a case of '// &
                          'volunteers, a DATA directory)')
+        if (.not. rd%failed() .and. values_line > 0 .and. size(cal%values) /= size(params)) &
+            call rd%fail(rd%where(values_line)//' (VALUES card): found '//trim(int_str(size(cal%values)))// &
+                         ' values on the VALUES cards; expected one per PARAM card, '//trim(int_str(size(params))))
         stat = rd%stat; errmsg = rd%errmsg
         if (stat /= stat_ok) return
         allocate (cal%sw(size(cal%decks)), cal%vol(size(cal%decks)), cal%ref(size(cal%decks)))
@@ -585,7 +606,7 @@ contains
     !! metric enters J. With `curves`, the rated curves (the samples each
     !! rating is given: reference and model) are written to that unit as
     !! CSV rows case,channel,time_ms,reference,model.
-    subroutine evaluate(cal, v, j, sc, ok, growth, passive_growth, curves)
+    subroutine evaluate(cal, v, j, sc, ok, growth, passive_growth, curves, ranges)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
         real(wp), intent(out) :: j                   !! the objective
@@ -594,8 +615,10 @@ contains
         real(wp), intent(out), optional :: growth    !! largest real part at rest over the cases [1/s]
         real(wp), intent(out), optional :: passive_growth !! the same without the muscles (PASSIVE card) [1/s]
         integer, intent(in), optional :: curves      !! unit of the rated curves' CSV (written when present)
+        type(range_score_t), intent(out), optional :: ranges(:) !! (ncase) the joints past their ranges in each run
         real(wp), allocatable :: y(:, :)
-        real(wp) :: rsum, psum, tsum, wsum, lmax, lp
+        real(wp) :: rsum, psum, tsum, gsum, wsum, lmax, lp
+        type(range_score_t) :: rg
         integer :: c
         type(case_t) :: cs
         type(run_result_t) :: res
@@ -617,10 +640,13 @@ contains
             end if
         end if
         j = failed_objective
-        rsum = zero; psum = zero; tsum = zero; wsum = zero
+        rsum = zero; psum = zero; tsum = zero; gsum = zero; wsum = zero
         do c = 1, size(cal%sw)
             call run_member(cal, c, v, cs, ch, res, ok)
             if (.not. ok) return
+            rg = range_score(res%range_peak, cal%peak_margin)
+            if (present(ranges)) ranges(c) = rg
+            gsum = gsum + cal%weight(c)*rg%term
             if (cal%ref(c)%on) then
                 call score_reference(cal%ref(c), ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c), c, curves)
             else
@@ -636,8 +662,21 @@ contains
             rsum = rsum + cal%weight(c)*case_rating(cal, sc(c))
             wsum = wsum + cal%weight(c)
         end do
-        j = (one - rsum/wsum) + (cal%peak_weight*psum + cal%time_weight*tsum)/wsum
+        j = (one - rsum/wsum) + (cal%peak_weight*psum + cal%time_weight*tsum + cal%range_weight*gsum)/wsum
     end subroutine evaluate
+
+    !> The joints of a run past their physiological ranges: G, the sum over
+    !! the ranges of max(0, e_k/e_m - (1 - m)) (e_k the largest excess of
+    !! range k, e_m = range_margin, m the peak margin), the number past
+    !! the margin (those a run warns of) and the largest excess.
+    pure function range_score(peak, m) result(rg)
+        real(wp), intent(in) :: peak(:)          !! (range) largest excess beyond each range [rad]
+        real(wp), intent(in) :: m                !! margin kept inside e_m, as a fraction of it
+        type(range_score_t) :: rg
+        rg%term = sum(max(zero, peak/range_margin - (one - m)))
+        rg%past = count(peak > range_margin)
+        rg%largest = maxval([zero, peak])
+    end function range_score
 
     !> The mean rating of a case's channels by the calibration's metric.
     pure real(wp) function case_rating(cal, sc) result(r)
@@ -753,7 +792,7 @@ contains
         u = min(one, max(zero, u))
     end function unit_of
 
-    !> Run the calibration: the LHS starting points, then Nelder-Mead from
+    !> Run the calibration: the VALUES point (when given) and the LHS starting points, then Nelder-Mead from
     !! the best, restarted about its best point while a restart gains more
     !! than 1e-4 and evaluations are left; the history and the result on
     !! unit lu.
@@ -766,6 +805,7 @@ contains
         real(wp), allocatable :: design(:, :)
         real(wp) :: u0(size(cal%sw(1)%params)), ubest(size(u0)), j, jstart, lmax, lp
         type(score_t) :: sc(size(cal%sw))
+        type(range_score_t) :: rg(size(cal%sw))
         logical :: ok
         integer :: r, k, nnm, cu, ios
         logical :: curves_open
@@ -773,8 +813,14 @@ contains
         associate (par => cal%sw(1)%params)
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
-            write (lu, '(a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T; W ', cal%peak_weight, &
-                ', WT ', cal%time_weight, ', PEAK MARGIN M ', cal%peak_margin
+            if (cal%range_weight > zero) then
+                write (lu, '(a,es10.3,a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T + WR G; W ', &
+                    cal%peak_weight, ', WT ', cal%time_weight, ', WR ', cal%range_weight, ', PEAK MARGIN M ', &
+                    cal%peak_margin
+            else
+                write (lu, '(a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T; W ', cal%peak_weight, &
+                    ', WT ', cal%time_weight, ', PEAK MARGIN M ', cal%peak_margin
+            end if
             write (lu, '(a)') 'R: '//trim(merge('MEAN ISO 18571 OVERALL RATING', 'MEAN CORA-STYLE RATING       ', &
                                                 cal%metric == metric_iso18571))//' OF THE RATED CHANNELS'
             if (cal%max_evals == 0) then                 ! score the decks as they are, or at VALUES
@@ -790,17 +836,19 @@ contains
                     end if
                 end if
                 if (curves_open) then
-                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, curves=cu)
+                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, curves=cu, ranges=rg)
                     close (cu)
                 else
-                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp)
+                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, ranges=rg)
                 end if
                 nevals = 1
-                call score_report(cal, sc, jbest, lu)
+                call score_report(cal, sc, rg, jbest, lu)
                 call rest_report(lmax, lp)
                 return
             end if
             design = sweep_design(cal%sw(1))
+            if (size(cal%values) == size(par)) design = reshape([cal%values, reshape(design, [size(design)])], &
+                                                                [size(par), size(design, 2) + 1])
             jstart = huge(one)
             nevals = 0
             do r = 1, size(design, 2)
@@ -816,8 +864,8 @@ contains
                                        ubest, jbest, nnm)
             vbest = values_of(ubest)
             write (lu, '(a,f9.5,a,i0,a)') 'BEST OBJECTIVE ', jbest, ' AFTER ', nevals, ' EVALUATIONS'
-            call evaluate(cal, vbest, j, sc, ok, lmax, lp)
-            call score_report(cal, sc, j, lu)
+            call evaluate(cal, vbest, j, sc, ok, lmax, lp, ranges=rg)
+            call score_report(cal, sc, rg, j, lu)
             call rest_report(lmax, lp)
             do k = 1, size(par)
                 write (lu, '(a,a10,a,a10,a,es12.5,a,es12.5,a)') 'PARAM ', par(k)%name, ' = ', field_text(vbest(k)), &
@@ -869,9 +917,10 @@ contains
     !> The ratings and peaks of every case, three significant digits; each
     !! channel's ISO 18571 scores (overall, corridor, phase, magnitude,
     !! slope) to six digits.
-    subroutine score_report(cal, sc, j, lu)
+    subroutine score_report(cal, sc, rg, j, lu)
         type(calibration_t), intent(in) :: cal   !! the calibration
         type(score_t), intent(in) :: sc(:)       !! (case) the scores
+        type(range_score_t), intent(in) :: rg(:) !! (case) the joints past their ranges
         real(wp), intent(in) :: j                !! the objective
         integer, intent(in) :: lu                !! listing unit
         integer :: c, k
@@ -901,6 +950,8 @@ contains
                     sc(c)%iso(k)%overall, '  CORRIDOR ', sc(c)%iso(k)%corridor, '  PHASE ', sc(c)%iso(k)%phase, &
                     '  MAGNITUDE ', sc(c)%iso(k)%magnitude, '  SLOPE ', sc(c)%iso(k)%slope
             end do
+            write (lu, '(2x,a,i0,a,f5.1,a,f5.1,a,f8.4)') 'RANGES: ', rg(c)%past, ' JOINT(S) PAST THEIR RANGE BY MORE '// &
+                'THAN ', range_margin/deg, ' DEG; LARGEST EXCESS ', rg(c)%largest/deg, ' DEG; G ', rg(c)%term
             if (cal%ref(c)%on) cycle
             do k = 1, size(cal%peaks)
                 write (lu, '(2x,a16,a,es10.3,a,f6.1,a,es10.3,a,es9.2,a,f6.1,a,f5.1,a,f6.2)') cal%peaks(k)%name, &
