@@ -17,8 +17,12 @@ Set-up (decisions of the README's "Ambiguities" named by number):
   yet, so HOLD POSTURE's constant generalized forces stand in for it
   (SUPPORT = "HOLD"); SUPPORT = "NONE" runs without (the muscle-free neck
   then sags under gravity from t = 0);
-* the model's posture as shipped (its C7 neutral angle gives the T1 slope;
-  the source's 25 deg T1 anterior angle is not imposed).
+* the T1 slope as the source potted it (25 deg: "anterior of the T1
+  vertebra body oriented 25 degree with respect to the vertical"), a tilt
+  of the potted body: T1's pitch held at (slope - the model deck's T1
+  slope, its C7 NEUTRAL RY, 23.8 deg) by its PRESCRIB CONSTANT card, so the
+  whole column turns with T1 and the neck's own posture (the discs'
+  neutral shape) stays the model deck's; t1_slope= sets another.
 
 Channels, every one the Fortran run's own (docs/output-format.md; their
 signs as the README derives them): segment angles C2-C3 ... C6-C7 =
@@ -38,6 +42,8 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
 * front: T1 accelerated rearward (a_x = -pulse, the source's boundary
   condition); side: toward the specimen's right (J211 +y = the model's -y),
   the direction the data's signs fit (5), so that nothing is mirrored;
+* the T1 slope 24 deg (the source's "T1 endplate angle 24 +- 5 deg"), as
+  for Stemper a tilt of the potted T1;
 * no pretension ring (8); none of the notebook's offsets or time shifts (7);
 * the load cell (4, "Initial position"): a LOADCELL card cutting T1 from
   C7 (the subtree of C7: the neck and head, what the potted T1 carries; the
@@ -113,11 +119,32 @@ def _run(deck, workdir, exe):
     return deck[:-4] + ".h5"
 
 
-def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.DATA_DIR):
+#: the T1 slope [deg] of each source's potting (module docstring)
+T1_SLOPE = {"stemper": 25.0, "kang": 24.0}
+
+
+def model_t1_slope(model_deck=os.path.join(segments.ROOT, "input", "head_neck_54dof.inp")):
+    """The model deck's T1 slope [deg]: its NEUTRAL card of C7 RY."""
+    for line in open(model_deck):
+        if line.startswith("NEUTRAL") and line[10:20].strip() == "C7" and line[20:30].strip() == "RY":
+            return float(line[30:40])
+    raise ValueError("%s: no NEUTRAL card of C7 RY (the T1 slope)" % model_deck)
+
+
+def _held_t1(driven, t1_slope):
+    """PRESCRIB CONSTANT cards of the potted T1's coordinates but `driven`:
+    its pitch RY the tilt that gives the T1 slope t1_slope [deg]."""
+    tilt = t1_slope - model_t1_slope()
+    return ["PRESCRIB  T1        %s        CONSTANT  %s" % (c, "%-10.4f" % tilt if c == "RY" else "")
+            for c in ("TX", "TY", "TZ", "RX", "RY", "RZ") if c != driven]
+
+
+def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.DATA_DIR,
+                 t1_slope=T1_SLOPE["stemper"]):
     """Write the Stemper 1.8 m/s deck and its two-column pulse table into
     workdir; returns the deck's path. support: HOLD or NONE; muscles:
     PASSIVE (activation zero) or REFLEX (the model deck's volunteer
-    activation histories)."""
+    activation histories); t1_slope: the potted T1's slope [deg]."""
     t, a = specimen_data.read_pulse(os.path.join(data_dir, "stemper2004_1p8ms_pulse.csv"))
     pulse = os.path.join(workdir, "stemper_pulse.csv")
     with open(pulse, "w") as f:
@@ -139,7 +166,7 @@ def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.D
               "TABLE     STEMPER   %-10d1.0       1.0       CSV" % len(t),
               "          %s" % os.path.basename(pulse),
               "PRESCRIB  T1        TX        ACCEL     STEMPER   0.0       0.0"]
-    lines += ["PRESCRIB  T1        %s        CONSTANT" % c for c in ("TY", "TZ", "RX", "RY", "RZ")]
+    lines += [c.rstrip() for c in _held_t1("TX", t1_slope)]
     if muscles == "PASSIVE":
         for act in ("FLEX", "EXT"):
             for k, field in ((2, "U0"), (3, "U1")):
@@ -192,9 +219,10 @@ KANG_CELL_POINT = (0.054 - 0.081, 0.0, 0.1753 - 0.229)
 
 
 
-def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
+def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1_slope=T1_SLOPE["kang"]):
     """Write the Kang 2018 deck of `direction` (front or side) and its pulse
-    table into workdir; returns the deck's path."""
+    table into workdir; returns the deck's path. t1_slope: the potted T1's
+    slope [deg]."""
     t, a = specimen_data.read_pulse(os.path.join(data_dir, "kang2018_sled_pulse.csv"))
     # a TABLE's times increase strictly: the digitised pulse repeats 2.752 ms
     # (30.65 and 35.27 m/s^2), merged into their mean
@@ -219,8 +247,7 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR):
               "          kang_pulse.csv",
               "PRESCRIB  T1        %s        ACCEL     KANG      0.0       0.0" % driven,
               "LOADCELL  T1CELL    C7        %-10.4f%-10.4f%-10.4fT1" % KANG_CELL_POINT]
-    lines += ["PRESCRIB  T1        %s        CONSTANT" % c for c in ("TX", "TY", "TZ", "RX", "RY", "RZ")
-              if c != driven]
+    lines += [c.rstrip() for c in _held_t1(driven, t1_slope)]
     for act in ("FLEX", "EXT"):
         for k, field in ((2, "U0"), (3, "U1")):
             lines.append("CHANGE    %-10sFIELD%d    ACTIVATE  %-10sSET       0.0" % (act[:4] + field, k, act))

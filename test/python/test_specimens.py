@@ -25,6 +25,10 @@ def stemper(tmp_path_factory):
 def test_deck_cards(tmp_path):
     deck = specimens.stemper_deck(str(tmp_path))
     text = open(deck).read()
+    # the potted T1 tilted to the source's slope, 25 deg, less the model deck's 23.8 on C7
+    assert specimens.model_t1_slope() == 23.8
+    assert "PRESCRIB  T1        RY        CONSTANT  1.2000" in text.splitlines()
+    assert "CONSTANT  -2.0000" in open(specimens.stemper_deck(str(tmp_path), t1_slope=21.8)).read()
     assert "HOLD      POSTURE" in text and "PRESCRIB  T1        TX        ACCEL     STEMPER" in text
     for card in ("CHANGE    FLEXU0    FIELD2    ACTIVATE  FLEX      SET       0.0",
                  "CHANGE    EXTU1     FIELD3    ACTIVATE  EXT       SET       0.0"):
@@ -53,10 +57,12 @@ def test_channels_against_body_positions_and_joint_angles(stemper):
     with h5py.File(work / "stemper_hold_passive.h5", "r") as f:
         t = f["time"][:] * 1e3
         pos = f["bodies/position"][:]
+        s1 = np.transpose(f["bodies/rotation"][:, 0], (0, 2, 1))          # T1's S_ij at every sample
         ry = {b: f["channels"]["%s_RY" % b][:] for b in ("C7", "C6", "C5", "C4", "C3", "C2", "C1", "HEAD")}
         ry_any = {b: (f["channels"]["%s_RX" % b][:], f["channels"]["%s_RZ" % b][:]) for b in ry}
-    # retraction: head mass centre x minus T1's, from the start, in mm
-    hand = 1e3 * ((pos[:, 8, 0] - pos[:, 0, 0]) - (pos[0, 8, 0] - pos[0, 0, 0]))
+    # retraction: head mass centre x minus T1's in T1's axes, from the start, in mm
+    rel = np.einsum("tji,tj->ti", s1, pos[:, 8, :] - pos[:, 0, :])
+    hand = 1e3 * (rel[:, 0] - rel[0, 0])
     tm, retr = model["head_T1_retraction"]
     assert np.allclose(retr, hand, atol=0.01)
     # the motion stays in the sagittal plane (x and z rotations zero), so the
@@ -119,6 +125,7 @@ def test_kang_drive_and_signs(tmp_path, direction):
     with h5py.File(tmp_path / ("kang_%s_hold.h5" % direction), "r") as f:
         names = [str(n) for n in f["model"].attrs["bodies"]]
         rot = f["bodies/rotation"][:, names.index("HEAD")]       # [t, j, i] = S_ij
+        st1 = f["bodies/rotation"][0, names.index("T1")].T       # T1's S_ij at the start
         pos = f["bodies/position"][0]
         mass = f["model/mass"][:]
         ch = {n: f["channels"][n][:] for n in ("HEADL_RX", "HEADL_RY", "T1CELL_JFZ", "T1CELL_JFX", "T1CELL_JMY")}
@@ -126,13 +133,18 @@ def test_kang_drive_and_signs(tmp_path, direction):
     s = np.transpose(rot, (0, 2, 1))
     assert np.allclose(ch["HEADL_RX"], np.degrees(np.arctan2(-s[:, 1, 2], s[:, 2, 2])), atol=1e-9)
     assert np.allclose(ch["HEADL_RY"], np.degrees(np.arcsin(s[:, 0, 2])), atol=1e-9)
-    # the cell 81 mm behind and 229 mm below the head's mass centre at the start (T1's axes = R's)
-    cell = np.array(specimens.KANG_CELL_POINT) + pos[names.index("T1")]
-    assert np.allclose(1e3 * (pos[names.index("HEAD")] - cell), [81.0, 0.0, 229.0], atol=0.5)
-    # held at rest at the start: the cell carries the weight of C7 ... head, J211 z down
+    # the cell 81 mm behind and 229 mm below the head's mass centre at the start, in T1's axes
+    # (T1 tilted by the potting's slope less the model's: 0.2 deg about y)
+    tilt = np.radians(specimens.T1_SLOPE["kang"] - specimens.model_t1_slope())
+    assert np.allclose(st1, [[np.cos(tilt), 0, np.sin(tilt)], [0, 1, 0], [-np.sin(tilt), 0, np.cos(tilt)]],
+                       atol=1e-12)
+    head = st1.T @ (pos[names.index("HEAD")] - pos[names.index("T1")])
+    assert np.allclose(1e3 * (head - np.array(specimens.KANG_CELL_POINT)), [81.0, 0.0, 229.0], atol=0.5)
+    # held at rest at the start: the cell carries the weight of C7 ... head, in T1's J211 axes
+    # (x forward, z down: the weight's components along T1's tilted axes)
     w = 9.80665 * mass[names.index("C7"):].sum()
-    assert ch["T1CELL_JFZ"][0] == pytest.approx(-w, rel=1e-6)
-    assert abs(ch["T1CELL_JFX"][0]) < 1e-6 * w
+    assert ch["T1CELL_JFZ"][0] == pytest.approx(-w * np.cos(tilt), rel=1e-6)
+    assert ch["T1CELL_JFX"][0] == pytest.approx(-w * np.sin(tilt), rel=1e-6)
     # rated from the start value: the data are tared
     tm, fz = model["loadcell_force_z"]
     assert fz[0] == 0.0 and np.allclose(fz, ch["T1CELL_JFZ"] - ch["T1CELL_JFZ"][0])
