@@ -33,10 +33,11 @@
 !! column buckles under far less than the head's weight), which gets
 !! J = 2 + 0.1 s (limit - lp). With a RANGES card of weight wr, J_c gains
 !! wr G_c, G_c the sum over the joints' ranges (ROM cards) of
-!! max(0, e_k/e_m - (1 - m)), e_k the joint's largest excess beyond its
-!! physiological range in the run and e_m the margin past which a run
-!! warns (hn_joint_limits range_margin, 5 deg): a fit kept inside the
-!! ranges the runs are checked against. The study itself (the volunteer files, the
+!! max(0, e_k/e_m - (1 - mr)), e_k the joint's largest excess beyond its
+!! physiological range in the run, e_m the margin past which a run warns
+!! (hn_joint_limits range_margin, 5 deg) and mr a margin kept inside it
+!! (RANGES F2, default 0): a fit kept inside the ranges the runs are
+!! checked against. The study itself (the volunteer files, the
 !! channels they are compared with, the rating window, the filter, the
 !! peaks and their windows) is the deck's RATING, CHANNEL and PEAK cards;
 !! nothing of it is compiled in.
@@ -94,7 +95,7 @@ module hn_calibrate
 
     !> The joints of one run past their physiological ranges (ROM cards).
     type, public :: range_score_t
-        real(wp) :: term = zero      !! G_c: sum of max(0, e_k/e_m - (1 - m)) [-]
+        real(wp) :: term = zero      !! G_c: sum of max(0, e_k/e_m - (1 - mr)) [-]
         integer :: past = 0          !! joints past their range by more than e_m (the run's warnings)
         real(wp) :: largest = zero   !! the largest excess [rad]
     end type range_score_t
@@ -122,6 +123,7 @@ module hn_calibrate
         real(wp) :: time_weight = zero              !! wt of the objective (FIT F6)
         real(wp) :: peak_margin = zero              !! m of the objective: P counts |z| above 1 - m (FIT F7)
         real(wp) :: range_weight = zero             !! wr of the objective (RANGES F1): the joints past their ranges
+        real(wp) :: range_inside = zero             !! mr: G counts each excess above (1 - mr) e_m (RANGES F2)
         logical :: passive = .false.                !! PASSIVE card: the neck without its muscles must not stand
         real(wp) :: passive_limit = zero            !! its largest real part at rest must be above this (PASSIVE F1) [1/s]
         real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
@@ -141,7 +143,7 @@ contains
     !! 41-80); PEAK cards (channel, MIN or MAX, window start and end, the
     !! name in columns 51-80); PARAM cards as in a sweep deck; optional
     !! PASSIVE [limit] (a set whose neck stands without its muscles is not
-    !! run); optional RANGES weight (the joints past their ranges in J);
+    !! run); optional RANGES weight [margin] (the joints past their ranges in J);
     !! optional VALUES cards (up to 7 values each, in PARAM order), the
     !! point scored when max-evaluations is 0 (default: the decks' own
     !! values), else a starting point tried before the LHS points; optional CURVES file (columns 11-80: the rated curves of
@@ -302,6 +304,7 @@ contains
             case ('CURVES'); cal%curves = rd%text(i, 11)
             case ('RANGES')
                 call rd%real(i, 1, 'range weight', '-', cal%range_weight, zero, 1.0e3_wp)
+                call rd%real(i, 2, 'range margin', '-', cal%range_inside, zero, 0.9_wp, default=zero)
             case ('PASSIVE')
                 cal%passive = .true.
                 call rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
@@ -644,7 +647,7 @@ contains
         do c = 1, size(cal%sw)
             call run_member(cal, c, v, cs, ch, res, ok)
             if (.not. ok) return
-            rg = range_score(res%range_peak, cal%peak_margin)
+            rg = range_score(res%range_peak, cal%range_inside)
             if (present(ranges)) ranges(c) = rg
             gsum = gsum + cal%weight(c)*rg%term
             if (cal%ref(c)%on) then
@@ -667,7 +670,7 @@ contains
 
     !> The joints of a run past their physiological ranges: G, the sum over
     !! the ranges of max(0, e_k/e_m - (1 - m)) (e_k the largest excess of
-    !! range k, e_m = range_margin, m the peak margin), the number past
+    !! range k, e_m = range_margin, m the margin kept inside it), the number past
     !! the margin (those a run warns of) and the largest excess.
     pure function range_score(peak, m) result(rg)
         real(wp), intent(in) :: peak(:)          !! (range) largest excess beyond each range [rad]
@@ -814,9 +817,9 @@ contains
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
             if (cal%range_weight > zero) then
-                write (lu, '(a,es10.3,a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T + WR G; W ', &
-                    cal%peak_weight, ', WT ', cal%time_weight, ', WR ', cal%range_weight, ', PEAK MARGIN M ', &
-                    cal%peak_margin
+                write (lu, '(a,es10.3,a,es10.3,a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T '// &
+                    '+ WR G; W ', cal%peak_weight, ', WT ', cal%time_weight, ', WR ', cal%range_weight, &
+                    ', PEAK MARGIN M ', cal%peak_margin, ', RANGE MARGIN MR ', cal%range_inside
             else
                 write (lu, '(a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T; W ', cal%peak_weight, &
                     ', WT ', cal%time_weight, ', PEAK MARGIN M ', cal%peak_margin
