@@ -129,6 +129,24 @@ module hn_calibrate
         real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
     end type calibration_t
 
+    !> What the reading of a calibration deck keeps from card to card: the
+    !! deck itself and where each card was, for the checks across cards
+    !! and the located messages of each case's binding to its sweep.
+    type :: calibration_deck_t
+        type(deck_reader_t) :: rd                        !! the deck: card images, located field access, the first error
+        type(deck_line_t), allocatable :: params(:)      !! the PARAM cards, the sweep of every case
+        integer, allocatable :: data_line(:)             !! (case) the line of its DATA card
+        logical, allocatable :: is_ref(:)                !! (DATA card) it names a reference CSV
+        integer, allocatable :: rated_line(:)            !! (RATED card) its line
+        integer, allocatable :: rated_case(:)            !! (RATED card) the case it rates
+        integer, allocatable :: channel_line(:)          !! (CHANNEL card) its line
+        integer, allocatable :: peak_line(:)             !! (PEAK card) its line
+        character(len=10), allocatable :: peak_channel(:)    !! (PEAK card) the channel it names (F1)
+        integer :: nfit = 0                              !! FIT cards read
+        integer :: rating_line = 0                       !! the line of the RATING card (0: none yet)
+        integer :: values_line = 0                       !! the line of the first VALUES card (0: none)
+    end type calibration_deck_t
+
 contains
 
     !> Read a calibration deck: TITLE; CASE path (columns 11-70) [weight
@@ -157,217 +175,380 @@ contains
         integer, intent(out) :: stat             !! stat_ok, or stat_bad_input
         character(len=msglen), intent(out) :: errmsg !! the deck line, columns and what was expected
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for CASE decks and INCLUDE files
-        type(deck_reader_t) :: rd
-        type(deck_line_t), allocatable :: params(:), sl(:)
-        type(data_channel_t) :: dc
-        type(peak_t) :: pk
-        type(case_t) :: cs
-        type(channel_set_t) :: chs
-        character(len=10) :: s, opt
-        character(len=:), allocatable :: ctext, found
-        character(len=msglen) :: msg
-        character(len=10), allocatable :: peak_channel(:)
-        integer, allocatable :: channel_line(:), peak_line(:), data_line(:), rated_line(:), rated_case(:)
-        logical, allocatable :: is_ref(:)
-        character(len=:), allocatable :: dname
-        real(wp) :: w
-        integer :: i, c, k, nfit, f, rating_line, values_line, cfc, bad_peak, bad_channel, nwin, nmin, i1, i2
-        real(wp) :: x
-        real(wp), allocatable :: v0(:)
-        rd%top = source
-        if (present(include_path)) rd%search = include_path
-        call read_card_images(rd, path, source, 0)
-        allocate (cal%decks(0), cal%data(0), params(0), cal%values(0), cal%channels(0), cal%peaks(0))
-        allocate (channel_line(0), peak_line(0), data_line(0), peak_channel(0), rated_line(0), rated_case(0), &
-                  is_ref(0), cal%weight(0))
-        nfit = 0; rating_line = 0; values_line = 0
-        do i = 1, rd%nlines
-            if (rd%failed()) exit
-            select case (rd%key(i))
-            case ('TITLE'); cal%title = adjustl(rd%lines(i)%text(11:80))
-            case ('CASE')
-                cal%decks = [character(len=path_len) :: cal%decks, adjustl(rd%lines(i)%text(11:70))]
-                call rd%real(i, 7, 'case weight', '-', w, 1.0e-6_wp, 1.0e6_wp, default=one)
-                cal%weight = [cal%weight, w]
-            case ('DATA')
-                if (size(cal%data) /= size(cal%decks) - 1) then
-                    call rd%fail(rd%where(i)//' (DATA card): expected one DATA card after each CASE card')
-                    exit
-                end if
-                ! found as an INCLUDE file is: next to the calibration deck, in the
-                ! working directory, then on the include path (-I, HHNECK_PATH)
-                dname = trim(adjustl(rd%lines(i)%text(11:80)))
-                is_ref = [is_ref, is_csv(dname)]
-                call rd%find_file(dname, rd%lines(i)%source, found, msg, directory=.not. is_ref(size(is_ref)))
-                if (len(found) == 0) then
-                    call rd%fail(rd%where(i)//' (DATA card): '//trim(msg))
-                    exit
-                end if
-                cal%data = [character(len=path_len) :: cal%data, found]
-                data_line = [data_line, i]
-            case ('FIT')
-                nfit = nfit + 1
-                call rd%name(i, 1, 'optimizer', s)
-                if (s /= 'NELDER' .and. .not. rd%failed()) call rd%fail(rd%context(i, 1, 'optimizer')// &
-                                                                       ': found "'//trim(s)//'"; expected NELDER')
-                call rd%int(i, 2, 'maximum evaluations', cal%max_evals, 0, 100000)
-                call rd%int(i, 3, 'starting points', cal%nstart, 2, 10000)
-                call rd%int(i, 4, 'seed', cal%seed, 1, 2147483646)
-                call rd%real(i, 5, 'peak weight', '-', cal%peak_weight, zero, 1.0e3_wp, default=0.02_wp)
-                call rd%real(i, 6, 'peak-time weight', '-', cal%time_weight, zero, 1.0e3_wp, default=zero)
-                call rd%real(i, 7, 'peak margin', 'SD', cal%peak_margin, zero, 0.9_wp, default=zero)
-            case ('RATING')
-                if (rating_line > 0) then
-                    call rd%fail(rd%where(i)//', columns 1-8 (RATING card): found a second RATING card; '// &
-                                 'expected one (the RATING card at '//rd%where(rating_line)//' has it)')
-                    exit
-                end if
-                rating_line = i
-                call rd%real(i, 1, 'window start', 'ms', cal%window(1), zero, 1.0e6_wp)
-                call rd%real(i, 2, 'window end', 'ms', cal%window(2), zero, 1.0e6_wp)
-                if (.not. rd%failed() .and. .not. cal%window(2) > cal%window(1)) &
-                    call rd%fail(rd%context(i, 2, 'window end')//': found '//trim(rd%raw(i, 2))// &
-                                 ' ms; expected a time after the window start '//trim(rd%raw(i, 1))//' ms')
-                call rd%int(i, 3, 'CFC class', cfc, 1, 100000)
-                if (.not. rd%failed() .and. all(cfc /= [60, 180, 600, 1000])) &
-                    call rd%fail(rd%context(i, 3, 'CFC class')//': found '//trim(rd%raw(i, 3))// &
-                                 '; expected 60, 180, 600 or 1000 (SAE J211/1)')
-                cal%cfc = real(cfc, wp)
-                call rd%real(i, 4, 'peak-time tolerance', 'ms', cal%time_tolerance, 1.0e-3_wp, 1.0e6_wp)
-                if (.not. rd%failed() .and. .not. rd%is_blank(i, 5)) then
-                    call rd%choice(i, 5, 'metric', [character(len=10) :: 'CORA', 'ISO18571'], opt)
-                    if (opt == 'ISO18571') cal%metric = metric_iso18571
-                end if
-            case ('CHANNEL')
-                dc = data_channel_t()
-                call rd%name(i, 1, 'channel', dc%name)
-                call rd%choice(i, 2, 'from the file', [character(len=10) :: 'VALUE', 'RATE'], opt)
-                dc%derivative = opt == 'RATE'
-                if (.not. rd%failed() .and. .not. rd%is_blank(i, 3)) then
-                    call rd%choice(i, 3, 'conversion', [character(len=10) :: 'DEG-RAD'], opt)
-                    dc%deg_to_rad = .true.
-                end if
-                dc%file = rd%text(i, 41)
-                if (.not. rd%failed() .and. len_trim(dc%file) == 0) &
-                    call rd%fail(columns(i, 41, 'data file')//': found a blank; expected the name of the file '// &
-                                 'of the channel''s runs in each DATA directory')
-                if (rd%failed()) exit
-                k = channel_number(dc%name)
-                if (k > 0) then
-                    call rd%fail(rd%context(i, 1, 'channel')//': found "'//trim(dc%name)//'" again; expected '// &
-                                 'one CHANNEL card per channel (the CHANNEL card at '// &
-                                 rd%where(channel_line(k))//' has it)')
-                    exit
-                end if
-                cal%channels = [cal%channels, dc]
-                channel_line = [channel_line, i]
-            case ('PEAK')
-                pk = peak_t()
-                call rd%name(i, 1, 'channel', s)
-                call rd%choice(i, 2, 'extreme', [character(len=10) :: 'MIN', 'MAX'], opt)
-                pk%sign = merge(-one, one, opt == 'MIN')
-                call rd%real(i, 3, 'window start', 'ms', pk%window(1), zero, 1.0e6_wp)
-                call rd%real(i, 4, 'window end', 'ms', pk%window(2), zero, 1.0e6_wp)
-                if (.not. rd%failed() .and. .not. pk%window(2) > pk%window(1)) &
-                    call rd%fail(rd%context(i, 4, 'window end')//': found '//trim(rd%raw(i, 4))// &
-                                 ' ms; expected a time after the window start '//trim(rd%raw(i, 3))//' ms')
-                ctext = rd%text(i, 51)
-                if (.not. rd%failed() .and. (len(ctext) == 0 .or. len(ctext) > peak_name_len)) &
-                    call rd%fail(columns(i, 51, 'peak name')//': found "'//ctext//'"; expected a name of 1 to '// &
-                                 trim(int_str(peak_name_len))//' characters')
-                if (rd%failed()) exit
-                pk%name = ctext
-                k = peak_number(pk%name)
-                if (k > 0) then
-                    call rd%fail(columns(i, 51, 'peak name')//': found "'//trim(pk%name)//'" again; expected '// &
-                                 'one PEAK card per name (the PEAK card at '//rd%where(peak_line(k))//' has it)')
-                    exit
-                end if
-                cal%peaks = [cal%peaks, pk]
-                peak_line = [peak_line, i]
-                peak_channel = [character(len=10) :: peak_channel, s]
-            case ('PARAM'); params = [params, rd%lines(i)]
-            case ('RATED')
-                if (size(cal%decks) == 0 .or. size(is_ref) /= size(cal%decks)) then
-                    call rd%fail(rd%where(i)//', columns 1-8 (RATED card): expected RATED cards after the DATA '// &
-                                 'card of a case (a reference CSV)')
-                    exit
-                end if
-                if (.not. is_ref(size(is_ref))) then
-                    call rd%fail(rd%where(i)//', columns 1-8 (RATED card): the DATA card before it names a '// &
-                                 'directory of volunteer runs; expected RATED cards after the DATA card of a '// &
-                                 'reference CSV (a name ending in .csv)')
-                    exit
-                end if
-                rated_line = [rated_line, i]
-                rated_case = [rated_case, size(cal%decks)]
-            case ('CURVES'); cal%curves = rd%text(i, 11)
-            case ('RANGES')
-                call rd%real(i, 1, 'range weight', '-', cal%range_weight, zero, 1.0e3_wp)
-                call rd%real(i, 2, 'range margin', '-', cal%range_inside, zero, 0.9_wp, default=zero)
-            case ('PASSIVE')
-                cal%passive = .true.
-                call rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
-                             -100.0_wp, 100.0_wp, default=zero)
-            case ('VALUES')
-                if (values_line == 0) values_line = i
-                do f = 1, 7
-                    if (rd%is_blank(i, f)) cycle
-                    call rd%real(i, f, 'parameter value', '-', x, -1.0e30_wp, 1.0e30_wp)
-                    cal%values = [cal%values, x]
-                end do
+        type(calibration_deck_t) :: st
+        integer :: i
+        st%rd%top = source
+        if (present(include_path)) st%rd%search = include_path
+        call read_card_images(st%rd, path, source, 0)
+        allocate (cal%decks(0), cal%data(0), cal%values(0), cal%channels(0), cal%peaks(0), cal%weight(0))
+        allocate (st%params(0), st%channel_line(0), st%peak_line(0), st%data_line(0), st%peak_channel(0), &
+                  st%rated_line(0), st%rated_case(0), st%is_ref(0))
+        do i = 1, st%rd%nlines
+            if (st%rd%failed()) exit
+            select case (st%rd%key(i))
+            case ('TITLE'); call read_title_card(st, cal, i)
+            case ('CASE'); call read_case_card(st, cal, i)
+            case ('DATA'); call read_data_card(st, cal, i)
+            case ('RATED'); call read_rated_card(st, cal, i)
+            case ('FIT'); call read_fit_card(st, cal, i)
+            case ('RATING'); call read_rating_card(st, cal, i)
+            case ('CHANNEL'); call read_channel_card(st, cal, i)
+            case ('PEAK'); call read_peak_card(st, cal, i)
+            case ('PARAM'); call read_param_card(st, i)
+            case ('PASSIVE'); call read_passive_card(st, cal, i)
+            case ('RANGES'); call read_ranges_card(st, cal, i)
+            case ('VALUES'); call read_values_card(st, cal, i)
+            case ('CURVES'); call read_curves_card(st, cal, i)
             case ('END'); exit
-            case default
-                call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(rd%key(i))// &
-                             '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, PASSIVE, '// &
-                             'RANGES, VALUES, CURVES or END')
+            case default; call unknown_card(st, i)
             end select
         end do
-        ! a PEAK card names a CHANNEL card's channel (before or after it)
-        do k = 1, size(cal%peaks)
-            if (rd%failed()) exit
-            cal%peaks(k)%curve = channel_number(peak_channel(k))
-            if (cal%peaks(k)%curve == 0) &
-                call rd%fail(rd%context(peak_line(k), 1, 'channel')//': found "'//trim(peak_channel(k))// &
-                             '"; expected the channel of a CHANNEL card')
-        end do
-        if (.not. rd%failed() .and. (size(cal%decks) == 0 .or. size(cal%data) /= size(cal%decks) .or. nfit /= 1 &
-                                     .or. rating_line == 0)) &
-            call rd%fail(source//': expected at least one CASE card, each followed by its DATA card, one FIT card '// &
-                         'and one RATING card')
-        if (.not. rd%failed() .and. .not. all(is_ref) .and. (size(cal%channels) == 0 .or. size(cal%peaks) == 0)) &
-            call rd%fail(source//': expected at least one CHANNEL and one PEAK card (the deck has a case of '// &
-                         'volunteers, a DATA directory)')
-        if (.not. rd%failed() .and. values_line > 0 .and. size(cal%values) /= size(params)) &
-            call rd%fail(rd%where(values_line)//' (VALUES card): found '//trim(int_str(size(cal%values)))// &
-                         ' values on the VALUES cards; expected one per PARAM card, '//trim(int_str(size(params))))
-        stat = rd%stat; errmsg = rd%errmsg
+        call check_calibration_cards(st, cal, source)
+        stat = st%rd%stat; errmsg = st%rd%errmsg
         if (stat /= stat_ok) return
+        call bind_cases(st, cal, path, source, stat, errmsg, include_path)
+    end subroutine read_calibration
+
+    !> TITLE: the calibration's title (columns 11-80).
+    subroutine read_title_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        cal%title = adjustl(st%rd%lines(i)%text(11:80))
+    end subroutine read_title_card
+
+    !> CASE: a case deck (columns 11-70) and its weight (F7, default 1).
+    subroutine read_case_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        real(wp) :: w
+        cal%decks = [character(len=path_len) :: cal%decks, adjustl(st%rd%lines(i)%text(11:70))]
+        call st%rd%real(i, 7, 'case weight', '-', w, 1.0e-6_wp, 1.0e6_wp, default=one)
+        cal%weight = [cal%weight, w]
+    end subroutine read_case_card
+
+    !> DATA: the last case's volunteer directory or reference CSV (a name
+    !! ending in .csv), found as an INCLUDE file is: next to the calibration
+    !! deck, in the working directory, then on the include path (-I,
+    !! HHNECK_PATH); one DATA card after each CASE card.
+    subroutine read_data_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        character(len=:), allocatable :: dname, found
+        character(len=msglen) :: msg
+        if (size(cal%data) /= size(cal%decks) - 1) then
+            call st%rd%fail(st%rd%where(i)//' (DATA card): expected one DATA card after each CASE card')
+            return
+        end if
+        dname = trim(adjustl(st%rd%lines(i)%text(11:80)))
+        st%is_ref = [st%is_ref, is_csv(dname)]
+        call st%rd%find_file(dname, st%rd%lines(i)%source, found, msg, directory=.not. st%is_ref(size(st%is_ref)))
+        if (len(found) == 0) then
+            call st%rd%fail(st%rd%where(i)//' (DATA card): '//trim(msg))
+            return
+        end if
+        cal%data = [character(len=path_len) :: cal%data, found]
+        st%data_line = [st%data_line, i]
+    end subroutine read_data_card
+
+    !> RATED: a card of the last case, whose DATA card names a reference
+    !! CSV; its fields are read with the CSV (rated_columns).
+    subroutine read_rated_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(in) :: cal         !! the calibration so far (its cases)
+        integer, intent(in) :: i                       !! the card's line
+        if (size(cal%decks) == 0 .or. size(st%is_ref) /= size(cal%decks)) then
+            call st%rd%fail(st%rd%where(i)//', columns 1-8 (RATED card): expected RATED cards after the DATA '// &
+                            'card of a case (a reference CSV)')
+            return
+        end if
+        if (.not. st%is_ref(size(st%is_ref))) then
+            call st%rd%fail(st%rd%where(i)//', columns 1-8 (RATED card): the DATA card before it names a '// &
+                            'directory of volunteer runs; expected RATED cards after the DATA card of a '// &
+                            'reference CSV (a name ending in .csv)')
+            return
+        end if
+        st%rated_line = [st%rated_line, i]
+        st%rated_case = [st%rated_case, size(cal%decks)]
+    end subroutine read_rated_card
+
+    !> FIT NELDER max-evaluations starting-points seed [peak-weight
+    !! [peak-time-weight [peak-margin]]] (one card: check_calibration_cards).
+    subroutine read_fit_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        character(len=10) :: s
+        associate (rd => st%rd)
+            st%nfit = st%nfit + 1
+            call rd%name(i, 1, 'optimizer', s)
+            if (s /= 'NELDER' .and. .not. rd%failed()) call rd%fail(rd%context(i, 1, 'optimizer')// &
+                                                                   ': found "'//trim(s)//'"; expected NELDER')
+            call rd%int(i, 2, 'maximum evaluations', cal%max_evals, 0, 100000)
+            call rd%int(i, 3, 'starting points', cal%nstart, 2, 10000)
+            call rd%int(i, 4, 'seed', cal%seed, 1, 2147483646)
+            call rd%real(i, 5, 'peak weight', '-', cal%peak_weight, zero, 1.0e3_wp, default=0.02_wp)
+            call rd%real(i, 6, 'peak-time weight', '-', cal%time_weight, zero, 1.0e3_wp, default=zero)
+            call rd%real(i, 7, 'peak margin', 'SD', cal%peak_margin, zero, 0.9_wp, default=zero)
+        end associate
+    end subroutine read_fit_card
+
+    !> RATING window-start window-end CFC-class peak-time-tolerance [CORA
+    !! or ISO18571]: one card.
+    subroutine read_rating_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        character(len=10) :: opt
+        integer :: cfc
+        associate (rd => st%rd)
+            if (st%rating_line > 0) then
+                call rd%fail(rd%where(i)//', columns 1-8 (RATING card): found a second RATING card; '// &
+                             'expected one (the RATING card at '//rd%where(st%rating_line)//' has it)')
+                return
+            end if
+            st%rating_line = i
+            call rd%real(i, 1, 'window start', 'ms', cal%window(1), zero, 1.0e6_wp)
+            call rd%real(i, 2, 'window end', 'ms', cal%window(2), zero, 1.0e6_wp)
+            if (.not. rd%failed() .and. .not. cal%window(2) > cal%window(1)) &
+                call rd%fail(rd%context(i, 2, 'window end')//': found '//trim(rd%raw(i, 2))// &
+                             ' ms; expected a time after the window start '//trim(rd%raw(i, 1))//' ms')
+            call rd%int(i, 3, 'CFC class', cfc, 1, 100000)
+            if (.not. rd%failed() .and. all(cfc /= [60, 180, 600, 1000])) &
+                call rd%fail(rd%context(i, 3, 'CFC class')//': found '//trim(rd%raw(i, 3))// &
+                             '; expected 60, 180, 600 or 1000 (SAE J211/1)')
+            cal%cfc = real(cfc, wp)
+            call rd%real(i, 4, 'peak-time tolerance', 'ms', cal%time_tolerance, 1.0e-3_wp, 1.0e6_wp)
+            if (.not. rd%failed() .and. .not. rd%is_blank(i, 5)) then
+                call rd%choice(i, 5, 'metric', [character(len=10) :: 'CORA', 'ISO18571'], opt)
+                if (opt == 'ISO18571') cal%metric = metric_iso18571
+            end if
+        end associate
+    end subroutine read_rating_card
+
+    !> CHANNEL channel VALUE-or-RATE [DEG-RAD] file (columns 41-80): a
+    !! rated channel, one card per channel.
+    subroutine read_channel_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        type(data_channel_t) :: dc
+        character(len=10) :: opt
+        integer :: k
+        associate (rd => st%rd)
+            dc = data_channel_t()
+            call rd%name(i, 1, 'channel', dc%name)
+            call rd%choice(i, 2, 'from the file', [character(len=10) :: 'VALUE', 'RATE'], opt)
+            dc%derivative = opt == 'RATE'
+            if (.not. rd%failed() .and. .not. rd%is_blank(i, 3)) then
+                call rd%choice(i, 3, 'conversion', [character(len=10) :: 'DEG-RAD'], opt)
+                dc%deg_to_rad = .true.
+            end if
+            dc%file = rd%text(i, 41)
+            if (.not. rd%failed() .and. len_trim(dc%file) == 0) &
+                call rd%fail(columns(rd, i, 41, 'data file')//': found a blank; expected the name of the file '// &
+                             'of the channel''s runs in each DATA directory')
+            if (rd%failed()) return
+            k = channel_number(cal, dc%name)
+            if (k > 0) then
+                call rd%fail(rd%context(i, 1, 'channel')//': found "'//trim(dc%name)//'" again; expected '// &
+                             'one CHANNEL card per channel (the CHANNEL card at '// &
+                             rd%where(st%channel_line(k))//' has it)')
+                return
+            end if
+        end associate
+        cal%channels = [cal%channels, dc]
+        st%channel_line = [st%channel_line, i]
+    end subroutine read_channel_card
+
+    !> PEAK channel MIN-or-MAX window-start window-end name (columns
+    !! 51-80): a peak, one card per name; its channel, a CHANNEL card's
+    !! before or after it, is found by check_calibration_cards.
+    subroutine read_peak_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        type(peak_t) :: pk
+        character(len=10) :: s, opt
+        character(len=:), allocatable :: ctext
+        integer :: k
+        associate (rd => st%rd)
+            pk = peak_t()
+            call rd%name(i, 1, 'channel', s)
+            call rd%choice(i, 2, 'extreme', [character(len=10) :: 'MIN', 'MAX'], opt)
+            pk%sign = merge(-one, one, opt == 'MIN')
+            call rd%real(i, 3, 'window start', 'ms', pk%window(1), zero, 1.0e6_wp)
+            call rd%real(i, 4, 'window end', 'ms', pk%window(2), zero, 1.0e6_wp)
+            if (.not. rd%failed() .and. .not. pk%window(2) > pk%window(1)) &
+                call rd%fail(rd%context(i, 4, 'window end')//': found '//trim(rd%raw(i, 4))// &
+                             ' ms; expected a time after the window start '//trim(rd%raw(i, 3))//' ms')
+            ctext = rd%text(i, 51)
+            if (.not. rd%failed() .and. (len(ctext) == 0 .or. len(ctext) > peak_name_len)) &
+                call rd%fail(columns(rd, i, 51, 'peak name')//': found "'//ctext//'"; expected a name of 1 to '// &
+                             trim(int_str(peak_name_len))//' characters')
+            if (rd%failed()) return
+            pk%name = ctext
+            k = peak_number(cal, pk%name)
+            if (k > 0) then
+                call rd%fail(columns(rd, i, 51, 'peak name')//': found "'//trim(pk%name)//'" again; expected '// &
+                             'one PEAK card per name (the PEAK card at '//rd%where(st%peak_line(k))//' has it)')
+                return
+            end if
+        end associate
+        cal%peaks = [cal%peaks, pk]
+        st%peak_line = [st%peak_line, i]
+        st%peak_channel = [character(len=10) :: st%peak_channel, s]
+    end subroutine read_peak_card
+
+    !> PARAM: a fitted parameter, kept for each case's sweep (bind_cases).
+    subroutine read_param_card(st, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        integer, intent(in) :: i                       !! the card's line
+        st%params = [st%params, st%rd%lines(i)]
+    end subroutine read_param_card
+
+    !> PASSIVE [limit]: a set whose neck stands without its muscles is not run.
+    subroutine read_passive_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        cal%passive = .true.
+        call st%rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
+                        -100.0_wp, 100.0_wp, default=zero)
+    end subroutine read_passive_card
+
+    !> RANGES weight [margin]: the joints past their ranges in J.
+    subroutine read_ranges_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        call st%rd%real(i, 1, 'range weight', '-', cal%range_weight, zero, 1.0e3_wp)
+        call st%rd%real(i, 2, 'range margin', '-', cal%range_inside, zero, 0.9_wp, default=zero)
+    end subroutine read_ranges_card
+
+    !> VALUES: up to 7 parameter values, in PARAM order (their count:
+    !! check_calibration_cards).
+    subroutine read_values_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        integer :: f
+        real(wp) :: x
+        if (st%values_line == 0) st%values_line = i
+        do f = 1, 7
+            if (st%rd%is_blank(i, f)) cycle
+            call st%rd%real(i, f, 'parameter value', '-', x, -1.0e30_wp, 1.0e30_wp)
+            cal%values = [cal%values, x]
+        end do
+    end subroutine read_values_card
+
+    !> CURVES file (columns 11-80): the rated curves of an evaluation alone.
+    subroutine read_curves_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        cal%curves = st%rd%text(i, 11)
+    end subroutine read_curves_card
+
+    !> A card the calibration deck does not have.
+    subroutine unknown_card(st, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        integer, intent(in) :: i                       !! the card's line
+        call st%rd%fail(st%rd%where(i)//', columns 1-8: found "'//trim(st%rd%key(i))// &
+                        '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, PASSIVE, '// &
+                        'RANGES, VALUES, CURVES or END')
+    end subroutine unknown_card
+
+    !> The checks across cards, after the last: each PEAK card's channel a
+    !! CHANNEL card's (its curve), at least one CASE each with its DATA, one
+    !! FIT and one RATING card, CHANNEL and PEAK cards when a case has
+    !! volunteers, one value per PARAM card on the VALUES cards.
+    subroutine check_calibration_cards(st, cal, source)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards
+        type(calibration_t), intent(inout) :: cal      !! the calibration: its peaks' curves set
+        character(len=*), intent(in) :: source         !! the deck's name in messages
+        integer :: k
+        associate (rd => st%rd)
+            do k = 1, size(cal%peaks)
+                if (rd%failed()) exit
+                cal%peaks(k)%curve = channel_number(cal, st%peak_channel(k))
+                if (cal%peaks(k)%curve == 0) &
+                    call rd%fail(rd%context(st%peak_line(k), 1, 'channel')//': found "'//trim(st%peak_channel(k))// &
+                                 '"; expected the channel of a CHANNEL card')
+            end do
+            if (.not. rd%failed() .and. (size(cal%decks) == 0 .or. size(cal%data) /= size(cal%decks) .or. &
+                                         st%nfit /= 1 .or. st%rating_line == 0)) &
+                call rd%fail(source//': expected at least one CASE card, each followed by its DATA card, one FIT '// &
+                             'card and one RATING card')
+            if (.not. rd%failed() .and. .not. all(st%is_ref) .and. (size(cal%channels) == 0 .or. &
+                                                                  size(cal%peaks) == 0)) &
+                call rd%fail(source//': expected at least one CHANNEL and one PEAK card (the deck has a case of '// &
+                             'volunteers, a DATA directory)')
+            if (.not. rd%failed() .and. st%values_line > 0 .and. size(cal%values) /= size(st%params)) &
+                call rd%fail(rd%where(st%values_line)//' (VALUES card): found '//trim(int_str(size(cal%values)))// &
+                             ' values on the VALUES cards; expected one per PARAM card, '// &
+                             trim(int_str(size(st%params))))
+        end associate
+    end subroutine check_calibration_cards
+
+    !> Each case bound to its deck through a sweep of the PARAM cards (its
+    !! parameters' nominal values that deck's), then its data read: a
+    !! reference CSV (reference_case) or the volunteers (volunteer_case).
+    subroutine bind_cases(st, cal, path, source, stat, errmsg, include_path)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
+        type(calibration_t), intent(inout) :: cal      !! the calibration: its sweeps and cases' data
+        character(len=*), intent(in) :: path           !! the calibration deck's file
+        character(len=*), intent(in) :: source         !! its name in messages
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
+        character(len=msglen), intent(out) :: errmsg   !! the deck line, columns and what was expected
+        character(len=*), intent(in), optional :: include_path(:)  !! directories searched for CASE decks and INCLUDE files
+        type(deck_line_t), allocatable :: sl(:)
+        type(case_t) :: cs
+        type(channel_set_t) :: chs
+        real(wp), allocatable :: v0(:)
+        integer :: c
+        stat = stat_ok; errmsg = ''
         allocate (cal%sw(size(cal%decks)), cal%vol(size(cal%decks)), cal%ref(size(cal%decks)))
         do c = 1, size(cal%decks)
-            sl = [line_of('TITLE     '//cal%title), line_of('BASE      '//trim(cal%decks(c))), &
-                  line_of('DESIGN    LHS       '//int_field(cal%nstart)//int_field(cal%seed)), params]
-            if (present(include_path)) then
-                call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, include_path, path)
-            else
-                call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, path=path)
-            end if
+            sl = [line_of('TITLE     '//cal%title, source), line_of('BASE      '//trim(cal%decks(c)), source), &
+                  line_of('DESIGN    LHS       '//int_field(cal%nstart)//int_field(cal%seed), source), st%params]
+            call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, include_path, path)
             if (stat /= stat_ok) return
             v0 = cal%sw(c)%params%nominal
             call sweep_member_case(cal%sw(c), v0, cs, stat, errmsg)
             if (stat /= stat_ok) return
             call channels_define(cs, chs)
-            if (is_ref(c)) then
-                call reference_case(c)
-                if (stat /= stat_ok) return
-                cycle
+            if (st%is_ref(c)) then
+                call reference_case(st, cal, c, chs, stat, errmsg)
+            else
+                call volunteer_case(st, cal, c, chs, stat, errmsg)
             end if
+            if (stat /= stat_ok) return
+        end do
+    end subroutine bind_cases
+
+    !> The volunteers of case c: every CHANNEL a channel of its deck, their
+    !! runs read from its DATA directory, the RATING window holding enough
+    !! of their times, their mean curves ones the metric can rate.
+    subroutine volunteer_case(st, cal, c, chs, stat, errmsg)
+        type(calibration_deck_t), intent(in) :: st     !! the deck and its cards, all valid
+        type(calibration_t), intent(inout) :: cal      !! the calibration: cal%vol(c) read
+        integer, intent(in) :: c                       !! the case
+        type(channel_set_t), intent(in) :: chs         !! the channels of its deck
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
+        character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
+        integer :: k, bad_channel, bad_peak, nwin, nmin, i1, i2
+        associate (rd => st%rd)
+            stat = stat_ok
             ! every rated channel is one of the case's channels
             do k = 1, size(cal%channels)
                 if (findloc(chs%name, cal%channels(k)%name, dim=1) == 0) then
                     stat = stat_bad_input
-                    errmsg = rd%context(channel_line(k), 1, 'channel')//': found "'//trim(cal%channels(k)%name)// &
-                             '"; expected a channel of the case deck '//trim(cal%decks(c))//' (docs/output-format.md)'
+                    errmsg = rd%context(st%channel_line(k), 1, 'channel')//': found "'// &
+                             trim(cal%channels(k)%name)//'"; expected a channel of the case deck '// &
+                             trim(cal%decks(c))//' (docs/output-format.md)'
                     return
                 end if
             end do
@@ -375,188 +556,231 @@ contains
                                  bad_channel, bad_peak)
             if (stat /= stat_ok) then
                 if (bad_channel > 0) then
-                    errmsg = columns(channel_line(bad_channel), 41, 'data file')//', in the directory of the DATA '// &
-                             'card at '//rd%where(data_line(c))//': '//errmsg
+                    errmsg = columns(rd, st%channel_line(bad_channel), 41, 'data file')//', in the directory of '// &
+                             'the DATA card at '//rd%where(st%data_line(c))//': '//errmsg
                 else if (bad_peak > 0) then
-                    errmsg = rd%context(peak_line(bad_peak), 3, 'window start')//': '//errmsg
+                    errmsg = rd%context(st%peak_line(bad_peak), 3, 'window start')//': '//errmsg
                 end if
                 return
             end if
             call window_samples(cal%vol(c)%t, cal%window, nwin, nmin)
             if (nwin < nmin) then
                 stat = stat_bad_input
-                errmsg = rd%context(rating_line, 2, 'window end')//': the window '//trim(rd%raw(rating_line, 1))// &
-                         ' to '//trim(rd%raw(rating_line, 2))//' ms holds '//trim(int_str(nwin))// &
-                         ' times of the volunteer data of the DATA card at '//rd%where(data_line(c))// &
-                         '; expected at least '//trim(int_str(nmin))//' (the rating''s largest lag, '// &
-                         trim(field_text(max_lag))//' ms, in samples, plus 2)'
+                errmsg = rd%context(st%rating_line, 2, 'window end')//': the window '// &
+                         trim(rd%raw(st%rating_line, 1))//' to '//trim(rd%raw(st%rating_line, 2))//' ms holds '// &
+                         trim(int_str(nwin))//' times of the volunteer data of the DATA card at '// &
+                         rd%where(st%data_line(c))//'; expected at least '//trim(int_str(nmin))// &
+                         ' (the rating''s largest lag, '//trim(field_text(max_lag))//' ms, in samples, plus 2)'
                 return
             end if
             if (cal%metric == metric_iso18571) then
                 call window_rows(cal%vol(c)%t, cal%window, i1, i2)
                 do k = 1, size(cal%channels)
-                    call iso_check(cal%vol(c)%mean(i1:i2, k), cal%vol(c)%t, 'the volunteers'' mean of '// &
-                                   trim(cal%channels(k)%name)//' on the RATING window', data_line(c))
+                    call iso_check(st, cal%vol(c)%mean(i1:i2, k), cal%vol(c)%t, 'the volunteers'' mean of '// &
+                                   trim(cal%channels(k)%name)//' on the RATING window', st%data_line(c), stat, errmsg)
                     if (stat /= stat_ok) return
                 end do
             end if
-        end do
-    contains
-        !> The rated channels of reference case c: its CSV read, its RATED
-        !! cards (or every column under its own name) checked against the
-        !! CSV and the case deck's channels, each curve one the metric can rate.
-        subroutine reference_case(c)
-            integer, intent(in) :: c
-            integer :: m, n, r, l, col
-            character(len=10) :: column, chan, minus, fs
-            real(wp) :: sc
-            associate (rf => cal%ref(c))
-                rf%on = .true.
-                call read_reference_csv(trim(cal%data(c)), rf%data, stat, errmsg)
-                if (stat /= stat_ok) then
-                    errmsg = rd%where(data_line(c))//' (DATA card): '//errmsg
+        end associate
+    end subroutine volunteer_case
+
+    !> The rated channels of reference case c: its CSV read, its RATED
+    !! cards (or every column under its own name) checked against the
+    !! CSV and the case deck's channels, each curve one the metric can rate.
+    subroutine reference_case(st, cal, c, chs, stat, errmsg)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
+        type(calibration_t), intent(inout) :: cal      !! the calibration: cal%ref(c) read
+        integer, intent(in) :: c                       !! the case
+        type(channel_set_t), intent(in) :: chs         !! the channels of its deck
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
+        character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
+        integer :: m, n, nwin, nmin
+        associate (rf => cal%ref(c))
+            rf%on = .true.
+            call read_reference_csv(trim(cal%data(c)), rf%data, stat, errmsg)
+            if (stat /= stat_ok) then
+                errmsg = st%rd%where(st%data_line(c))//' (DATA card): '//errmsg
+                return
+            end if
+            n = count(st%rated_case == c)
+            if (n == 0) n = size(rf%data%name)
+            allocate (rf%column(n), rf%col(n), rf%channel(n), rf%scale(n), rf%minus(n), rf%from_start(n))
+            rf%scale = one; rf%minus = ''; rf%from_start = .false.
+            if (count(st%rated_case == c) == 0) then
+                rf%column = rf%data%name
+                rf%channel = rf%data%name
+                do m = 1, n
+                    rf%col(m) = m
+                    if (findloc(chs%name, rf%channel(m), dim=1) == 0) then
+                        stat = stat_bad_input
+                        errmsg = st%rd%where(st%data_line(c))//' (DATA card): column "'//trim(rf%channel(m))// &
+                                 '" of '//trim(cal%data(c))//' is no channel of the case deck '// &
+                                 trim(cal%decks(c))//'; expected RATED cards naming the model channel of '// &
+                                 'each column, or columns named as channels (docs/output-format.md)'
+                        return
+                    end if
+                end do
+            else
+                call rated_columns(st, c, cal%data(c), cal%decks(c), chs, rf, stat, errmsg)
+                if (stat /= stat_ok) return
+            end if
+            do m = 1, n
+                associate (d => rf%data, k => rf%col(m))
+                    if (cal%metric == metric_iso18571) then
+                        call iso_check(st, d%mean(d%first(k):d%last(k), k), d%t, 'reference "'//trim(d%name(k))// &
+                                       '"', st%data_line(c), stat, errmsg)
+                    else
+                        call window_samples(d%t(d%first(k):d%last(k)), [d%t(d%first(k)), d%t(d%last(k))], &
+                                            nwin, nmin)
+                        if (nwin < nmin) then
+                            stat = stat_bad_input
+                            errmsg = st%rd%where(st%data_line(c))//' (DATA card): reference "'//trim(d%name(k))// &
+                                     '" of '//trim(cal%data(c))//' holds '//trim(int_str(nwin))// &
+                                     ' times; expected at least '//trim(int_str(nmin))// &
+                                     ' for the CORA-style rating (its largest lag, 30 ms, in samples, plus 2)'
+                        end if
+                    end if
+                end associate
+                if (stat /= stat_ok) return
+            end do
+        end associate
+    end subroutine reference_case
+
+    !> The RATED cards of reference case c, in their order: CSV column,
+    !! model channel, [scale], [subtracted channel], [START], each column
+    !! one of the CSV's and rated once, each channel one of the case deck's.
+    subroutine rated_columns(st, c, data, deck, chs, rf, stat, errmsg)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
+        integer, intent(in) :: c                       !! the case
+        character(len=*), intent(in) :: data           !! its reference CSV
+        character(len=*), intent(in) :: deck           !! its case deck
+        type(channel_set_t), intent(in) :: chs         !! the channels of its deck
+        type(reference_case_t), intent(inout) :: rf    !! its reference, the CSV read: the rated channels set
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
+        character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
+        integer :: m, r, l, col
+        character(len=10) :: column, chan, minus, fs
+        real(wp) :: sc
+        stat = stat_ok
+        associate (rd => st%rd)
+            m = 0
+            do r = 1, size(st%rated_line)
+                if (st%rated_case(r) /= c) cycle
+                l = st%rated_line(r)
+                m = m + 1
+                call rd%name(l, 1, 'CSV column', column)
+                call rd%name(l, 2, 'channel', chan)
+                call rd%real(l, 3, 'scale', '-', sc, -1.0e6_wp, 1.0e6_wp, default=one)
+                minus = ''
+                if (.not. rd%is_blank(l, 4)) call rd%name(l, 4, 'subtracted channel', minus)
+                fs = ''
+                if (.not. rd%failed() .and. .not. rd%is_blank(l, 5)) &
+                    call rd%choice(l, 5, 'origin', [character(len=10) :: 'START'], fs)
+                if (rd%failed()) then
+                    stat = rd%stat; errmsg = rd%errmsg; return
+                end if
+                col = findloc(rf%data%name, column, dim=1)
+                if (col == 0) then
+                    stat = stat_bad_input
+                    errmsg = rd%context(l, 1, 'CSV column')//': found "'//trim(column)//'"; expected a '// &
+                             'channel column of '//trim(data)
                     return
                 end if
-                n = count(rated_case == c)
-                if (n == 0) n = size(rf%data%name)
-                allocate (rf%column(n), rf%col(n), rf%channel(n), rf%scale(n), rf%minus(n), rf%from_start(n))
-                rf%scale = one; rf%minus = ''; rf%from_start = .false.
-                if (count(rated_case == c) == 0) then
-                    rf%column = rf%data%name
-                    rf%channel = rf%data%name
-                    do m = 1, n
-                        rf%col(m) = m
-                        if (findloc(chs%name, rf%channel(m), dim=1) == 0) then
-                            stat = stat_bad_input
-                            errmsg = rd%where(data_line(c))//' (DATA card): column "'//trim(rf%channel(m))// &
-                                     '" of '//trim(cal%data(c))//' is no channel of the case deck '// &
-                                     trim(cal%decks(c))//'; expected RATED cards naming the model channel of '// &
-                                     'each column, or columns named as channels (docs/output-format.md)'
-                            return
-                        end if
-                    end do
-                else
-                    m = 0
-                    do r = 1, size(rated_line)
-                        if (rated_case(r) /= c) cycle
-                        l = rated_line(r)
-                        m = m + 1
-                        call rd%name(l, 1, 'CSV column', column)
-                        call rd%name(l, 2, 'channel', chan)
-                        call rd%real(l, 3, 'scale', '-', sc, -1.0e6_wp, 1.0e6_wp, default=one)
-                        minus = ''
-                        if (.not. rd%is_blank(l, 4)) call rd%name(l, 4, 'subtracted channel', minus)
-                        fs = ''
-                        if (.not. rd%failed() .and. .not. rd%is_blank(l, 5)) &
-                            call rd%choice(l, 5, 'origin', [character(len=10) :: 'START'], fs)
-                        if (rd%failed()) then
-                            stat = rd%stat; errmsg = rd%errmsg; return
-                        end if
-                        col = findloc(rf%data%name, column, dim=1)
-                        if (col == 0) then
-                            stat = stat_bad_input
-                            errmsg = rd%context(l, 1, 'CSV column')//': found "'//trim(column)//'"; expected a '// &
-                                     'channel column of '//trim(cal%data(c))
-                            return
-                        end if
-                        if (any(rf%column(1:m - 1) == column)) then
-                            stat = stat_bad_input
-                            errmsg = rd%context(l, 1, 'CSV column')//': found "'//trim(column)//'" again; '// &
-                                     'expected one RATED card per column'
-                            return
-                        end if
-                        if (findloc(chs%name, chan, dim=1) == 0) then
-                            stat = stat_bad_input
-                            errmsg = rd%context(l, 2, 'channel')//': found "'//trim(chan)//'"; expected a '// &
-                                     'channel of the case deck '//trim(cal%decks(c))//' (docs/output-format.md)'
-                            return
-                        end if
-                        if (len_trim(minus) > 0 .and. findloc(chs%name, minus, dim=1) == 0) then
-                            stat = stat_bad_input
-                            errmsg = rd%context(l, 4, 'subtracted channel')//': found "'//trim(minus)// &
-                                     '"; expected a channel of the case deck '//trim(cal%decks(c))
-                            return
-                        end if
-                        rf%column(m) = column; rf%col(m) = col; rf%channel(m) = chan; rf%scale(m) = sc
-                        rf%minus(m) = minus; rf%from_start(m) = fs == 'START'
-                    end do
+                if (any(rf%column(1:m - 1) == column)) then
+                    stat = stat_bad_input
+                    errmsg = rd%context(l, 1, 'CSV column')//': found "'//trim(column)//'" again; '// &
+                             'expected one RATED card per column'
+                    return
                 end if
-                do m = 1, n
-                    associate (d => rf%data, k => rf%col(m))
-                        if (cal%metric == metric_iso18571) then
-                            call iso_check(d%mean(d%first(k):d%last(k), k), d%t, 'reference "'//trim(d%name(k))// &
-                                           '"', data_line(c))
-                        else
-                            call window_samples(d%t(d%first(k):d%last(k)), [d%t(d%first(k)), d%t(d%last(k))], &
-                                                nwin, nmin)
-                            if (nwin < nmin) then
-                                stat = stat_bad_input
-                                errmsg = rd%where(data_line(c))//' (DATA card): reference "'//trim(d%name(k))// &
-                                         '" of '//trim(cal%data(c))//' holds '//trim(int_str(nwin))// &
-                                         ' times; expected at least '//trim(int_str(nmin))// &
-                                         ' for the CORA-style rating (its largest lag, 30 ms, in samples, plus 2)'
-                            end if
-                        end if
-                    end associate
-                    if (stat /= stat_ok) return
-                end do
-            end associate
-        end subroutine reference_case
-        !> stat_bad_input with the DATA card's location when ISO 18571 cannot
-        !! rate against curve r (times spaced as t): too short, constant.
-        subroutine iso_check(r, t, what, line)
-            real(wp), intent(in) :: r(:), t(:)
-            character(len=*), intent(in) :: what
-            integer, intent(in) :: line
-            type(iso18571_rating_t) :: rt
-            character(len=msglen) :: m
-            call iso18571_rating(r, r, (t(2) - t(1))*1.0e-3_wp, rt, stat, m)
-            if (stat /= stat_ok) errmsg = rd%where(line)//' (DATA card): '//what//': '//trim(m)// &
-                                          ' (RATING F5 ISO18571 needs at least '// &
-                                          trim(int_str(iso18571_min_samples))//' samples at 10 kHz)'
-        end subroutine iso_check
-        !> A DATA name ending in .csv (any case): a reference CSV.
-        pure logical function is_csv(name)
-            character(len=*), intent(in) :: name
-            integer :: n
-            n = len_trim(name)
-            is_csv = .false.
-            if (n > 4) is_csv = any(name(n - 3:n) == ['.csv', '.CSV', '.Csv'])
-        end function is_csv
-        function line_of(text) result(l)
-            character(len=*), intent(in) :: text
-            type(deck_line_t) :: l
-            l%text = text
-            l%source = source
-            l%line = 0
-        end function line_of
-        function int_field(n) result(f)
-            integer, intent(in) :: n
-            character(len=10) :: f
-            write (f, '(i0)') n
-        end function int_field
-        !> The number of the CHANNEL card of channel `name` so far (0: none).
-        integer function channel_number(name) result(n)
-            character(len=*), intent(in) :: name
-            do n = size(cal%channels), 1, -1
-                if (cal%channels(n)%name == name) return
+                if (findloc(chs%name, chan, dim=1) == 0) then
+                    stat = stat_bad_input
+                    errmsg = rd%context(l, 2, 'channel')//': found "'//trim(chan)//'"; expected a '// &
+                             'channel of the case deck '//trim(deck)//' (docs/output-format.md)'
+                    return
+                end if
+                if (len_trim(minus) > 0 .and. findloc(chs%name, minus, dim=1) == 0) then
+                    stat = stat_bad_input
+                    errmsg = rd%context(l, 4, 'subtracted channel')//': found "'//trim(minus)// &
+                             '"; expected a channel of the case deck '//trim(deck)
+                    return
+                end if
+                rf%column(m) = column; rf%col(m) = col; rf%channel(m) = chan; rf%scale(m) = sc
+                rf%minus(m) = minus; rf%from_start(m) = fs == 'START'
             end do
-        end function channel_number
-        !> The number of the PEAK card named `name` so far (0: none).
-        integer function peak_number(name) result(n)
-            character(len=*), intent(in) :: name
-            do n = size(cal%peaks), 1, -1
-                if (cal%peaks(n)%name == name) return
-            end do
-        end function peak_number
-        !> "stdin line 12, columns 41-80 (CHANNEL card, 'data file')".
-        function columns(i, c1, what) result(s)
-            integer, intent(in) :: i, c1
-            character(len=*), intent(in) :: what
-            character(len=:), allocatable :: s
-            s = rd%where(i)//', columns '//trim(int_str(c1))//'-80 ('//trim(rd%key(i))//' card, '''//what//''')'
-        end function columns
-    end subroutine read_calibration
+        end associate
+    end subroutine rated_columns
+
+    !> stat_bad_input with the DATA card's location when ISO 18571 cannot
+    !! rate against curve r (times spaced as t): too short, constant.
+    subroutine iso_check(st, r, t, what, line, stat, errmsg)
+        type(calibration_deck_t), intent(in) :: st     !! the deck (the DATA card's location)
+        real(wp), intent(in) :: r(:)                   !! the curve
+        real(wp), intent(in) :: t(:)                   !! its times, evenly spaced [ms]
+        character(len=*), intent(in) :: what           !! what the curve is, in the message
+        integer, intent(in) :: line                    !! the DATA card's line
+        integer, intent(out) :: stat                   !! stat_ok, or the rating's error
+        character(len=msglen), intent(inout) :: errmsg !! on an error: the DATA card, the curve and why
+        type(iso18571_rating_t) :: rt
+        character(len=msglen) :: m
+        call iso18571_rating(r, r, (t(2) - t(1))*1.0e-3_wp, rt, stat, m)
+        if (stat /= stat_ok) errmsg = st%rd%where(line)//' (DATA card): '//what//': '//trim(m)// &
+                                      ' (RATING F5 ISO18571 needs at least '// &
+                                      trim(int_str(iso18571_min_samples))//' samples at 10 kHz)'
+    end subroutine iso_check
+
+    !> A DATA name ending in .csv (any case): a reference CSV.
+    pure logical function is_csv(name)
+        character(len=*), intent(in) :: name   !! the DATA card's name
+        integer :: n
+        n = len_trim(name)
+        is_csv = .false.
+        if (n > 4) is_csv = any(name(n - 3:n) == ['.csv', '.CSV', '.Csv'])
+    end function is_csv
+
+    !> A card image of a case's sweep, made by the calibration (line 0).
+    pure function line_of(text, source) result(l)
+        character(len=*), intent(in) :: text     !! the card
+        character(len=*), intent(in) :: source   !! the calibration deck's name in messages
+        type(deck_line_t) :: l
+        l%text = text
+        l%source = source
+        l%line = 0
+    end function line_of
+
+    !> n as a left-justified field of 10 columns.
+    pure function int_field(n) result(f)
+        integer, intent(in) :: n   !! the number
+        character(len=10) :: f
+        write (f, '(i0)') n
+    end function int_field
+
+    !> The number of the CHANNEL card of channel `name` so far (0: none).
+    pure integer function channel_number(cal, name) result(n)
+        type(calibration_t), intent(in) :: cal   !! the calibration so far
+        character(len=*), intent(in) :: name     !! the channel
+        do n = size(cal%channels), 1, -1
+            if (cal%channels(n)%name == name) return
+        end do
+    end function channel_number
+
+    !> The number of the PEAK card named `name` so far (0: none).
+    pure integer function peak_number(cal, name) result(n)
+        type(calibration_t), intent(in) :: cal   !! the calibration so far
+        character(len=*), intent(in) :: name     !! the peak's name
+        do n = size(cal%peaks), 1, -1
+            if (cal%peaks(n)%name == name) return
+        end do
+    end function peak_number
+
+    !> "stdin line 12, columns 41-80 (CHANNEL card, 'data file')".
+    function columns(rd, i, c1, what) result(s)
+        type(deck_reader_t), intent(in) :: rd    !! the deck
+        integer, intent(in) :: i                 !! the card's line
+        integer, intent(in) :: c1                !! the first column of its text
+        character(len=*), intent(in) :: what     !! what the text is
+        character(len=:), allocatable :: s
+        s = rd%where(i)//', columns '//trim(int_str(c1))//'-80 ('//trim(rd%key(i))//' card, '''//what//''')'
+    end function columns
 
     !> Largest real part of the eigenvalues at rest (hn_rest_modes: the
     !! start state of every volunteer case, posture held as the case holds
