@@ -210,8 +210,8 @@ contains
     end subroutine read_calibration
 
     !> TITLE: the calibration's title (columns 11-80).
-    subroutine read_title_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+    pure subroutine read_title_card(st, cal, i)
+        type(calibration_deck_t), intent(in) :: st     !! the deck and its cards so far
         type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
         integer, intent(in) :: i                       !! the card's line
         cal%title = adjustl(st%rd%lines(i)%text(11:80))
@@ -403,7 +403,7 @@ contains
     end subroutine read_peak_card
 
     !> PARAM: a fitted parameter, kept for each case's sweep (bind_cases).
-    subroutine read_param_card(st, i)
+    pure subroutine read_param_card(st, i)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
         integer, intent(in) :: i                       !! the card's line
         st%params = [st%params, st%rd%lines(i)]
@@ -446,7 +446,7 @@ contains
 
     !> CURVES file (columns 11-80): the rated curves of an evaluation alone.
     subroutine read_curves_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_deck_t), intent(in) :: st     !! the deck and its cards so far
         type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
         integer, intent(in) :: i                       !! the card's line
         cal%curves = st%rd%text(i, 11)
