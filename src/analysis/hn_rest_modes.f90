@@ -7,7 +7,7 @@
 module hn_rest_modes
     use hn_kinds, only: wp, zero, msglen
     use hn_status, only: stat_ok, stat_singular
-    use hn_model, only: model_t
+    use hn_model, only: model_t, hold_unreleased
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, inertia_forces_free, state_size
     use hn_lapack, only: dgeev
     use hn_iteration_matrix, only: fd_jacobian
@@ -27,7 +27,8 @@ contains
     !> Jacobian J = dg/dy (2 nf x 2 nf) of the model at time t and state
     !! (x, xd) of all active coordinates, by central differences. With
     !! `hold`, the posture-holding forces are first set so that the free
-    !! accelerations vanish at that state (HOLD POSTURE, as a run does).
+    !! accelerations vanish at that state (HOLD POSTURE, as a run does) and
+    !! act in full (a release time of the model is ignored: s = 1).
     subroutine rest_jacobian(model, t, x, xd, hold, jac, ifree, stat, errmsg)
         type(model_t), intent(in) :: model              !! the model
         real(wp), intent(in) :: t                       !! time [s]
@@ -47,6 +48,7 @@ contains
         allocate (y(state_size(sys)), g(state_size(sys)), full(state_size(sys), state_size(sys)))
         call coordinates_to_state(sys%ws, x, xd, y)
         if (hold) then
+            call hold_unreleased(sys%model)   ! the held state: s = 1, whatever a release says
             call sys%rhs(t, y, g, stat, errmsg)
             if (stat /= stat_ok) return
             sys%model%q_hold(sys%ws%ifree) = sys%model%q_hold(sys%ws%ifree) - &

@@ -5,8 +5,20 @@
 !! are the energy-audit integrals: energy dissipated (discs, springs, joint
 !! dampers), energy absorbed by the muscles, work of the applied tables and
 !! work done by the prescribed motions.
+!!
+!! Posture holding released (HOLD POSTURE with a release time): the holding
+!! forces s(t) q_hold have the potential e_hold = -s(t) q_hold . x, whose
+!! explicit change in time is the work of the release, W_r = integral of
+!! -sdot q_hold . x dt. It is counted with the applied-load work (the third
+!! quadrature, W_APPLIED): the release is an applied load changing in time
+!! like the force and couple tables, and the state, its four quadratures, the
+!! channels and every listing without a release stay as they were. A step
+!! release makes sdot a delta, so W_r is integrated by parts:
+!! W_r = (1 - s) q_hold . x + integral of (s - 1) q_hold . xdot dt, the
+!! integrand finite on both sides of the step and zero before the release
+!! (hn_forces adds it to p_applied; energy_terms adds the first term).
 module hn_dynamics
-    use hn_kinds, only: wp, zero, msglen, deg
+    use hn_kinds, only: wp, zero, one, msglen, deg
     use hn_status, only: stat_ok, stat_gimbal
     use hn_model, only: model_t
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities, body_kinematics, kinetic_energy
@@ -315,14 +327,15 @@ contains
     end function inertia_forces_free
 
     !> Energy terms from the workspace of the evaluation at a state and the
-    !! state's four energy-audit integrals equad.
+    !! state's four energy-audit integrals equad; the holding potential and
+    !! the release work with the evaluation's release factor s (module doc).
     pure function energy_terms(model, ws, equad) result(e)
         type(model_t), intent(in) :: model        !! the model (masses, gravity, holding forces)
         type(dyn_workspace_t), intent(in) :: ws   !! the evaluation at the state (kinematics, element energy)
         real(wp), intent(in) :: equad(nenergy)    !! the state's energy-audit integrals E [J]
         type(energy_t) :: e
         integer :: k, root
-        real(wp) :: dv(3), ir(3, 3), om(3)
+        real(wp) :: dv(3), ir(3, 3), om(3), qx
         e%kinetic = kinetic_energy(model%tree, ws%kin)
         root = findloc(model%tree%parent, 0, dim=1)
         do k = 1, model%tree%nbody
@@ -335,10 +348,15 @@ contains
                             0.5_wp*dot_product(om, matmul(ir, om))
         end do
         e%elastic = ws%eo%u_elastic
-        e%hold = -dot_product(model%q_hold, ws%x)
+        qx = dot_product(model%q_hold, ws%x)
+        e%hold = -qx
         e%dissipated = equad(1)
         e%muscle = equad(2)
         e%applied = equad(3)
+        if (ws%eo%hold_factor /= one) then      ! released in part or in full
+            e%hold = zero - ws%eo%hold_factor*qx  ! zero - : +0, not -0, once released
+            e%applied = e%applied + (one - ws%eo%hold_factor)*qx
+        end if
         e%prescribed = equad(4)
         e%total = e%kinetic + e%gravity + e%elastic + e%hold + e%dissipated + e%muscle - e%applied - e%prescribed
     end function energy_terms

@@ -1,10 +1,11 @@
 !> Assembly of the applied loads of a model at one instant: gravity, the
 !! element families (each family's `add_loads`, once per family, in the
-!! registry's order), posture-holding generalized forces and applied load
-!! tables, as body loads and generalized forces; plus each element's output.
+!! registry's order), posture-holding generalized forces (times their
+!! release factor s(t), hn_model's hold_factor) and applied load tables, as
+!! body loads and generalized forces; plus each element's output.
 module hn_forces
-    use hn_kinds, only: wp, zero
-    use hn_model, only: model_t
+    use hn_kinds, only: wp, zero, one
+    use hn_model, only: model_t, hold_factor
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t, loads_clear
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
@@ -32,7 +33,10 @@ module hn_forces
         real(wp) :: u_elastic = zero                !! energy stored in discs, ligaments, springs [J]
         real(wp) :: p_diss = zero                   !! power dissipated by discs, springs, joint dampers [W]
         real(wp) :: p_muscle = zero                 !! power absorbed by the muscles [W]
-        real(wp) :: p_applied = zero                !! power of the applied force and couple tables [W]
+        !> power of the applied force and couple tables, and of the release of the holding forces,
+        !! (s - 1) q_hold . xdot (hn_dynamics' energy_terms) [W]
+        real(wp) :: p_applied = zero
+        real(wp) :: hold_factor = one               !! the release factor s(t) on q_hold
     end type element_output_t
 
 contains
@@ -70,7 +74,14 @@ contains
         do k = 1, model%tree%nbody
             loads%force(:, k) = model%tree%mass(k)*model%gravity
         end do
-        loads%q = model%q_hold
+        if (model%hold_stepped .or. t >= model%hold_release) then
+            eo%hold_factor = hold_factor(model, t)
+            loads%q = eo%hold_factor*model%q_hold
+            eo%p_applied = (eo%hold_factor - one)*dot_product(model%q_hold, xd)
+        else
+            eo%hold_factor = one
+            loads%q = model%q_hold
+        end if
 
         do f = 1, size(model%family)
             if (model%family_on(f)) call model%family(f)%f%add_loads(t, kin, x, xd, loads, eo%fam(f)%v, &

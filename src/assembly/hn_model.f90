@@ -1,8 +1,9 @@
 !> The model: body tree, which coordinates are prescribed and how, gravity,
 !! element families (one slot per family of the registry hn_families) and
-!! applied loads. Everything a dynamics evaluation reads.
+!! applied loads, the posture-holding forces and their release. Everything a
+!! dynamics evaluation reads.
 module hn_model
-    use hn_kinds, only: wp, zero, g_std
+    use hn_kinds, only: wp, zero, one, g_std
     use hn_tree, only: body_tree_t
     use hn_motion, only: motion_t
     use hn_applied, only: applied_load_t
@@ -16,6 +17,7 @@ module hn_model
 
     public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, family_items_text
     public :: scale_family, model_set_family, model_add_family
+    public :: hold_factor, hold_pass, hold_unreleased, hold_breakpoints
     ! the registry's names, for the modules that know the model only
     public :: max_family_items, nfamilies, family_name, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
 
@@ -29,7 +31,10 @@ module hn_model
         !> the element families: the registry's in its order (fam_*), then any added by model_add_family
         type(family_slot_t), allocatable :: family(:)
         type(applied_load_t), allocatable :: applied(:)
-        real(wp), allocatable :: q_hold(:)             !! (n) constant generalized forces (posture holding)
+        real(wp), allocatable :: q_hold(:)             !! (n) generalized forces holding the start posture, full value
+        real(wp) :: hold_release = huge(one)           !! HOLD POSTURE release time t_r [s] (huge: never released)
+        real(wp) :: hold_duration = zero               !! release duration t_d [s] (0: a step at t_r)
+        logical :: hold_stepped = .false.              !! the run has passed the step at t_r: s(t_r) = 0 (hold_pass)
         logical, allocatable :: family_on(:)           !! (size(family)) element families switched on
         integer :: solver = solver_gauss               !! solver of a_ij xddot = f
         character(len=8) :: jacobian = 'STRUCT'        !! Jacobian of the stiff integrators: STRUCT (from the elements) or FD
@@ -120,6 +125,71 @@ contains
             call model%family(f)%f%set_neutral(kin)
         end do
     end subroutine model_set_neutral
+
+    !> The factor s(t) on the posture-holding forces q_hold: 1 before the
+    !! release time t_r (and always when never released); with a duration
+    !! t_d > 0, s = 1 - (3 u^2 - 2 u^3), u = (t - t_r)/t_d, over [t_r, t_r +
+    !! t_d] (C1-continuous), 0 after; with t_d = 0 a step: 0 after t_r, and
+    !! at t_r itself 1 (the limit from the left, for the step that ends
+    !! there) until the run has passed the step (hold_pass), then 0.
+    pure real(wp) function hold_factor(model, t) result(s)
+        type(model_t), intent(in) :: model       !! the model (its release time and duration)
+        real(wp), intent(in) :: t                !! time [s]
+        real(wp) :: u
+        if (model%hold_stepped) then
+            s = zero
+        else if (t < model%hold_release) then
+            s = one
+        else if (model%hold_duration > zero) then
+            u = min((t - model%hold_release)/model%hold_duration, one)
+            s = one - u*u*(3.0_wp - 2.0_wp*u)
+        else if (t > model%hold_release) then
+            s = zero
+        else
+            s = one
+        end if
+    end function hold_factor
+
+    !> The run has reached time t and restarts there: when t is a step
+    !! release's time t_r (within tol), the holding forces are off from now
+    !! on, t_r included (the limit from the right).
+    pure subroutine hold_pass(model, t, tol)
+        type(model_t), intent(inout) :: model    !! the model; out: hold_stepped set at a step release
+        real(wp), intent(in) :: t                !! the time reached [s]
+        real(wp), intent(in) :: tol              !! time tolerance of a breakpoint [s]
+        if (model%hold_duration == zero .and. abs(t - model%hold_release) <= tol) model%hold_stepped = .true.
+    end subroutine hold_pass
+
+    !> Hold the posture for good: no release (an analysis of the held state).
+    pure subroutine hold_unreleased(model)
+        type(model_t), intent(inout) :: model    !! the model; out: never released
+        model%hold_release = huge(one)
+        model%hold_duration = zero
+        model%hold_stepped = .false.
+    end subroutine hold_unreleased
+
+    !> The breakpoints tb with the release times t_r (and t_r + t_d of a
+    !! smooth release) that lie in (t_start, t_end) inserted, in order; a
+    !! time within same_time of one already there is not repeated.
+    pure function hold_breakpoints(model, tb, t_start, t_end, same_time) result(tbr)
+        type(model_t), intent(in) :: model       !! the model (its release)
+        real(wp), intent(in) :: tb(:)            !! breakpoints, ascending [s]
+        real(wp), intent(in) :: t_start          !! start of the run [s]
+        real(wp), intent(in) :: t_end            !! end of the run [s]
+        real(wp), intent(in) :: same_time        !! times closer than this are one breakpoint [s]
+        real(wp), allocatable :: tbr(:)
+        real(wp) :: tr(2)
+        integer :: k, i
+        tbr = tb
+        if (model%hold_release >= huge(one)) return
+        tr = [model%hold_release, model%hold_release + model%hold_duration]
+        do k = 1, merge(2, 1, model%hold_duration > zero)
+            if (tr(k) <= t_start .or. tr(k) >= t_end) cycle
+            if (any(abs(tbr - tr(k)) <= same_time)) cycle
+            i = count(tbr < tr(k))
+            tbr = [tbr(1:i), tr(k), tbr(i + 1:)]
+        end do
+    end function hold_breakpoints
 
     !> Properties of a family that a FAMILY parameter may scale.
     pure function family_items(f) result(items)

@@ -25,7 +25,7 @@ module hn_case
         character(len=8) :: integrator = 'RK4'
         real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-8_wp
         real(wp), allocatable :: x0(:), xd0(:)      !! initial active coordinates and rates
-        logical :: hold_posture = .false.           !! constant generalized forces hold the start posture
+        logical :: hold_posture = .false.           !! generalized forces hold the start posture (released: model%hold_release)
         character(len=8) :: events = 'TIME'         !! NONE, TIME (table breakpoints) or STATE (also one-way switches)
         integer :: head = 0                         !! body reported as the head
         integer :: t1 = 0                           !! body reported as T1 (NIC, relative motion)

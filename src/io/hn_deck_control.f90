@@ -178,12 +178,7 @@ contains
             cs%events = s(1:8)
         end if
         ic = single(rd, cards, 'HOLD', .false.)
-        if (ic > 0) then
-            call rd%name(cards(ic)%first, 1, 'option', s)
-            if (s /= 'POSTURE' .and. .not. rd%failed()) &
-                call rd%fail(rd%context(cards(ic)%first, 1, 'option')//': found "'//trim(s)//'"; expected POSTURE')
-            cs%hold_posture = .true.
-        end if
+        if (ic > 0) call hold_card(rd, cards(ic)%first, cs)
         allocate (cs%dump_times(0))
         do k = 1, size(cards)
             if (cards(k)%key /= 'DUMP') cycle
@@ -200,6 +195,32 @@ contains
                 call rd%fail(rd%where(i)//', columns 11-80 (DUMP card): found no times; expected 1 to 7 times [s]')
         end do
     end subroutine control_cards
+
+    !> HOLD POSTURE t_r t_d: the start posture held by constant generalized
+    !! forces, released at t_r [s] (blank: never) as a step (t_d blank or 0)
+    !! or smoothly over t_d [s]. F2 and F3 belong to F1 POSTURE, the only
+    !! option; a duration without a release time is refused.
+    subroutine hold_card(rd, i, cs)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the HOLD card's image
+        type(case_t), intent(inout) :: cs  !! the run case (its times read); out: hold_posture and the model's release
+        character(len=10) :: s
+        call rd%name(i, 1, 'option', s)
+        if (s /= 'POSTURE' .and. .not. rd%failed()) &
+            call rd%fail(rd%context(i, 1, 'option')//': found "'//trim(s)//'"; expected POSTURE')
+        cs%hold_posture = .true.
+        if (rd%failed()) return
+        if (.not. rd%is_blank(i, 2)) then
+            call rd%real(i, 2, 'release time', 's', cs%model%hold_release, cs%t_start, cs%t_end)
+            call rd%real(i, 3, 'release duration', 's', cs%model%hold_duration, zero, 1.0e4_wp, default=zero)
+            ! a step at the start: the run starts released (its first evaluation is after the step)
+            cs%model%hold_stepped = cs%model%hold_duration == zero .and. cs%model%hold_release <= cs%t_start
+        else if (.not. rd%is_blank(i, 3)) then
+            call rd%fail(rd%context(i, 3, 'release duration')//': found "'//trim(rd%raw(i, 3))// &
+                         '" without a release time; expected the release time [s] in F2 (columns 21-30), '// &
+                         'or F3 blank (never released)')
+        end if
+    end subroutine hold_card
 
     !> HEADNECK: the bodies reported as head and T1 (their merged bodies
     !! when MERGE absorbed them); CRITERIA; the LOADCELL cards.

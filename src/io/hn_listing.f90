@@ -153,7 +153,7 @@ contains
         class(listing_t), intent(inout) :: me
         type(case_t), intent(in) :: cs   !! the run case (model tables, run control)
         character(len=160) :: s
-        character(len=12) :: pname, status
+        character(len=12) :: pname, status, num
         integer :: k, j, f, n, nfree, npres
         associate (tr => cs%model%tree, md => cs%model)
             n = tr%ndof
@@ -223,7 +223,20 @@ contains
                     end do
                 end if
             end if
-            if (cs%hold_posture) call me%put('   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE)')
+            if (cs%hold_posture .and. md%hold_release >= huge(md%hold_release)) then
+                call me%put('   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE)')
+            else if (cs%hold_posture) then
+                write (num, '(f12.4)') md%hold_release
+                s = '   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE), RELEASED AT T = '// &
+                    trim(adjustl(num))//' S'
+                if (md%hold_duration > zero) then
+                    write (num, '(f12.4)') md%hold_duration
+                    s = trim(s)//' OVER '//trim(adjustl(num))//' S'
+                else
+                    s = trim(s)//' AS A STEP'
+                end if
+                call me%put(trim(s))
+            end if
             call me%put('')
             write (s, '(a,a,a,es10.3,a,es10.3,a,es10.3,a,es9.2,a,es9.2)') '   INTEGRATOR ', trim(cs%integrator), &
                 '   STEP', cs%h, ' S   PRINT', cs%print_dt, ' S   SAMPLE', cs%sample_dt, ' S   RTOL', cs%rtol, &

@@ -22,6 +22,7 @@ module hn_run
     use hn_listing, only: listing_t
     use hn_dump, only: dump_record
     use hn_breakpoints, only: case_breakpoints
+    use hn_model, only: hold_breakpoints, hold_pass
     use hn_tree, only: dof_label
     use hn_assessment, only: assessment_t, assess, criteria_input_t, criteria_input_from, criteria_channels, &
                              ncriteria_columns
@@ -263,6 +264,8 @@ contains
             if (me%nsw > 0) call switching_functions(me%sys%model, cs%t_start, me%sys%ws%kin, me%sys%ws%x, me%sw_old)
             me%ib = 1
             me%tol = time_match*max(cs%sample_dt, 1.0e-6_wp)
+            ! the release of the holding forces (a step, or a ramp's ends), whatever EVENTS says
+            me%tb = hold_breakpoints(cs%model, me%tb, cs%t_start, cs%t_end, me%tol)
             me%ks = 0; me%kp = 0; me%kd = 1
         end associate
         associate (nrom => size(ranges_of(me%cs%model%family(fam_limits)%f)))
@@ -309,6 +312,7 @@ contains
             ! that outputs inside the step that reached it can still be
             ! interpolated from that step
             if (me%pending_restart) then
+                call hold_pass(me%sys%model, me%integ%current_time(), me%tol)
                 call me%integ%restart(me%sys, stat, msg)
                 me%pending_restart = .false.
                 if (stat /= stat_ok) then
