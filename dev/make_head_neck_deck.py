@@ -191,22 +191,24 @@ MUSCLE_DAMPING = 0.1  # damping along the line per newton of F0, s/m (A)
 # delay, FITTED; onset blank = the sled pulse onset found from the prescribed T1 motion;
 # rise time A; time constants Thelen 2003 (OpenSim Thelen2003Muscle defaults)
 FLEXORS = ("SCM", "LCOL", "LCAP")
-ACT = {"FLEX": dict(u0=0.225073, u1=0.990414, delay=0.0470787),
-       "EXT": dict(u0=0.177418, u1=0.722726, delay=0.0594841)}
+ACT = {"FLEX": dict(u0=0.289119, u1=0.918328, delay=0.0710725),
+       "EXT": dict(u0=0.299439, u1=0.396477, delay=0.0405781)}
 ACT_RISE, ACT_TAU, DEACT_TAU = 0.020, 0.015, 0.050
 # short-range stiffness of the active fibres, k = q F / L0 (Bergmark 1989; Cholewicki &
 # McGill 1996: q 10-40; q = 20, the geometric middle), over a stretch of 1 % of lopt (A)
 SRS_Q, SRS_RANGE = 20.0, 0.01
 # FITTED scale factors (SCALE cards) on the values of this script; the output of
-# hhneck --calibrate < input/calibrate_nbdl.inp (docs/validation.md), copied here
+# hhneck --calibrate < input/calibrate_nbdl12g.inp (docs/validation.md), copied here
 FITTED_SCALES = [
-    ("SIGMA", "MUSCLES", "F0", 1.05349),      # sigma_max / 0.5 MPa
-    ("VBEND", "DISCS", "VBEND", 12.3265),     # disc retardation time of shear, bending, torsion / 5 ms
-    ("VAXIAL", "DISCS", "VAXIAL", 0.784006),  # disc axial damping / 2500 N s/m (bounded by Izambert 2003)
-    ("ETENSION", "DISCS", "ETENSION", 0.336657),  # disc axial stiffness in tension / in compression
-    ("SHEAR", "DISCS", "G", 1.48696),         # disc shear stiffness / 300 N/mm
-    ("AXIAL", "DISCS", "E", 1.14424),         # disc axial stiffness / 500 N/mm
-    ("ROMK", "LIMITS", "ROMK", 0.169192),    # range-of-motion stiffness / 50 N m/rad
+    ("SIGMA", "MUSCLES", "F0", 0.987032),      # sigma_max / 0.5 MPa
+    ("VBEND", "DISCS", "VBEND", 16.0132),     # disc retardation time of shear, bending, torsion / 5 ms
+    ("VAXIAL", "DISCS", "VAXIAL", 0.696057),  # disc axial damping / 2500 N s/m (bounded by Izambert 2003)
+    ("ETENSION", "DISCS", "ETENSION", 0.163812),  # disc axial stiffness in tension / in compression
+    ("SHEAR", "DISCS", "G", 0.380328),         # disc shear stiffness / 300 N/mm
+    ("AXIAL", "DISCS", "E", 1.4211),         # disc axial stiffness / 500 N/mm
+    ("ROMK", "LIMITS", "ROMK", 9.67701),    # range-of-motion stiffness / 50 N m/rad
+    ("ROMT0", "LIMITS", "ROMT0", 0.726178),       # range-of-motion stiffening excess / 3 deg
+    ("LIMC1", "LIMITS", "C1", 1.53842),          # joint-limit dampers' ramp beyond a limit / 100 N m s/rad per rad
 ]
 # the calibration's PARAM names of the ACTIVATE FLEX and EXT fields
 FITTED_ACT = {"BRACEF": ("FLEX", "u0"), "REFLEXF": ("FLEX", "u1"), "DELAYF": ("FLEX", "delay"),
@@ -428,7 +430,7 @@ for c in rom_cards:
     w(c)
 w("*")
 w("* FITTED FACTORS: scale factors on the values above, fitted by the calibration")
-w("* (hhneck --calibrate < input/calibrate_nbdl.inp; reference/parameters.md).")
+w("* (hhneck --calibrate < input/calibrate_nbdl12g.inp; reference/parameters.md).")
 w("*         name      family    item      factor")
 for (name, fam, item, value) in FITTED_SCALES:
     w(card("SCALE", name, fam, item, value))

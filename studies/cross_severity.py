@@ -43,7 +43,7 @@ def score_deck(sev, values):
     deck = open("input/calibrate_nbdl%s.inp" % sev).read().splitlines()
     # scored as a run, not fitted: the PASSIVE condition is the fit's, so it is left out
     deck = [("FIT       NELDER    0         2         1" if l.startswith("FIT") else l) for l in deck
-            if not l.startswith("PASSIVE")]
+            if not l.startswith(("PASSIVE", "VALUES"))]   # the deck's own VALUES are its fit's starting point
     for i in range(0, len(values), 7):
         deck.append("VALUES    " + "".join(field_text(v) for v in values[i:i + 7]))
     return deck

@@ -12,11 +12,15 @@ Set-up (decisions of the README's "Ambiguities" named by number):
 * muscles passive: both activation histories of the model deck set to zero
   (u0 = u1 = 0, by CHANGE cards); the specimens' muscles were left attached
   (README), so their passive Hill-type force-length and damping stay;
-* the start posture held as the labs held it until the pulse (positioning
-  cables, or the FE set-up's settling, 2): the model has no support element
-  yet, so HOLD POSTURE's constant generalized forces stand in for it
-  (SUPPORT = "HOLD"); SUPPORT = "NONE" runs without (the muscle-free neck
-  then sags under gravity from t = 0);
+* the start posture held (2): HOLD POSTURE's generalized forces through
+  the test (SUPPORT = "HOLD", the default). The labs cut their positioning
+  cables at the pulse; SUPPORT = "RELEASE" does that (HOLD POSTURE released
+  as a step at t = 0), but the model's start posture is its unstressed
+  neutral, so at the release no element carries the head's weight and the
+  neck starts in free fall (the Kang cell reads 0 N at t = 0, not the
+  specimen's weight): the specimens were in equilibrium, preloaded, when
+  their cables were cut, and a start settled under gravity with that
+  preload is not built. "NONE" writes no card (the same motion as RELEASE);
 * the T1 slope as the source potted it (25 deg: "anterior of the T1
   vertebra body oriented 25 degree with respect to the vertical"), a tilt
   of the potted body: T1's pitch held at (slope - the model deck's T1
@@ -139,10 +143,23 @@ def _held_t1(driven, t1_slope):
             for c in ("TX", "TY", "TZ", "RX", "RY", "RZ") if c != driven]
 
 
+def _support_cards(support):
+    """The cards of the start posture's support: RELEASE, held at rest until
+    the pulse (t = 0) and free from it, as the labs' positioning support
+    was cut at the pulse (HOLD POSTURE released at 0 as a step); HOLD, held
+    through the test (HOLD POSTURE's constant forces); NONE, no support (free
+    from rest at t = 0: the same motion as RELEASE, without the statement)."""
+    cards = {"RELEASE": ["HOLD      POSTURE   0.0"], "HOLD": ["HOLD      POSTURE"], "NONE": []}
+    if support not in cards:
+        raise ValueError("support: RELEASE, HOLD or NONE, not %r" % support)
+    return cards[support]
+
+
 def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.DATA_DIR,
                  t1_slope=T1_SLOPE["stemper"]):
     """Write the Stemper 1.8 m/s deck and its two-column pulse table into
-    workdir; returns the deck's path. support: HOLD or NONE; muscles:
+    workdir; returns the deck's path. support: RELEASE, HOLD or NONE
+    (_support_cards); muscles:
     PASSIVE (activation zero) or REFLEX (the model deck's volunteer
     activation histories); t1_slope: the potted T1's slope [deg]."""
     t, a = specimen_data.read_pulse(os.path.join(data_dir, "stemper2004_1p8ms_pulse.csv"))
@@ -158,10 +175,7 @@ def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.D
         "OUTPUT    1.0E-4",
         "H5FILE    %s.h5" % name,
     ]
-    if support == "HOLD":
-        lines.append("HOLD      POSTURE")
-    elif support != "NONE":
-        raise ValueError("support: HOLD or NONE, not %r" % support)
+    lines += _support_cards(support)
     lines += ["INCLUDE   input/head_neck_54dof.inp",
               "TABLE     STEMPER   %-10d1.0       1.0       CSV" % len(t),
               "          %s" % os.path.basename(pulse),
@@ -232,16 +246,13 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1
         f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % (tt, sign * aa) for tt, aa in zip(t, a)))
     driven = {"front": "TX", "side": "TY"}[direction]
     name = "kang_%s_%s" % (direction, support.lower())
-    lines = ["TITLE     KANG 2018 %s MINI-SLED 14 KM/H, T1 POTTED (%s, MUSCLES PASSIVE)" % (
+    lines = ["TITLE     KANG 2018 %s SLED 14 KM/H, T1 POTTED (%s, MUSCLES PASSIVE)" % (
                  direction.upper(), support),
              "CONTROL   0.2       1.0E-4    0.005     ROS34PW2  1.0E-3    1.0E-5",
              "SOLVER    ABA       STRUCT",
              "OUTPUT    1.0E-4",
              "H5FILE    %s.h5" % name]
-    if support == "HOLD":
-        lines.append("HOLD      POSTURE")
-    elif support != "NONE":
-        raise ValueError("support: HOLD or NONE, not %r" % support)
+    lines += _support_cards(support)
     lines += ["INCLUDE   input/head_neck_54dof.inp",
               "TABLE     KANG      %-10d1.0       1.0       CSV" % len(t),
               "          kang_pulse.csv",

@@ -29,13 +29,14 @@ def test_deck_cards(tmp_path):
     assert specimens.model_t1_slope() == 23.8
     assert "PRESCRIB  T1        RY        CONSTANT  1.2000" in text.splitlines()
     assert "CONSTANT  -2.0000" in open(specimens.stemper_deck(str(tmp_path), t1_slope=21.8)).read()
-    assert "HOLD      POSTURE" in text and "PRESCRIB  T1        TX        ACCEL     STEMPER" in text
+    assert "HOLD      POSTURE" in text.splitlines() and "PRESCRIB  T1        TX        ACCEL     STEMPER" in text
     for card in ("CHANGE    FLEXU0    FIELD2    ACTIVATE  FLEX      SET       0.0",
                  "CHANGE    EXTU1     FIELD3    ACTIVATE  EXT       SET       0.0"):
         assert card in text
     rows = open(tmp_path / "stemper_pulse.csv").read().splitlines()
     assert len(rows) == 1 + 113 and "TABLE     STEMPER   113" in text
     assert "HOLD" not in open(specimens.stemper_deck(str(tmp_path), support="NONE")).read()
+    assert "HOLD      POSTURE   0.0" in open(specimens.stemper_deck(str(tmp_path), support="RELEASE")).read().splitlines()
     with pytest.raises(ValueError):
         specimens.stemper_deck(str(tmp_path), support="CABLES")
 
