@@ -60,12 +60,15 @@ def linear_model(model):
 
 def variant(deck, cases, hold_tension, passive):
     """The calibration deck on the given case copies, without PARAM ETENSION
-    when the tension fraction is held and without the PASSIVE card if asked."""
+    when the tension fraction is held and without the PASSIVE card if asked;
+    without the deck's VALUES cards (its own fit's starting point, one value
+    per PARAM card of that deck): each variant starts from its LHS points."""
     out = []
     for l in deck.splitlines():
         if is_card(l, "CASE"):
             l = "%-10s%s" % ("CASE", cases[l[10:].strip()])
-        elif (is_card(l, "PARAM", "ETENSION") and hold_tension) or (is_card(l, "PASSIVE") and not passive):
+        elif ((is_card(l, "PARAM", "ETENSION") and hold_tension) or (is_card(l, "PASSIVE") and not passive)
+              or is_card(l, "VALUES")):
             continue
         out.append(l)
     return "\n".join(out) + "\n"

@@ -88,11 +88,12 @@ def test_unknown_channel_is_named():
 
 
 def test_reads_a_reference_file_of_schema_1():
-    # reference/outputs/*.h5: /channels one (nt, nch) dataset, names and units
-    # one space-separated text each (units with '_' for blanks), no schema_version
-    # (the NBDL and rear references are still of schema 1; the case decks'
-    # were rewritten at schema 2 when their integrator changed)
-    path = os.path.join(ROOT, "reference", "outputs", "nbdl15g.h5")
+    # the reference files before schema 2: /channels one (nt, nch) dataset, names
+    # and units one space-separated text each (units with '_' for blanks), no
+    # schema_version; test/python/data/schema1/nbdl15g.h5 is the NBDL 15 g
+    # reference of that schema (two of its channels), kept when the references
+    # were regenerated at schema 2
+    path = os.path.join(ROOT, "test", "python", "data", "schema1", "nbdl15g.h5")
     df = hr.read_channels(path, ["OC_MY", "HEAD_AX"])
     assert df.attrs["schema_version"] == 1
     assert df.attrs["units"] == {"OC_MY": "N m", "HEAD_AX": "g"}
