@@ -87,20 +87,26 @@ def test_unknown_channel_is_named():
         hr.read_channels(os.path.join(ROOT, "reference", "outputs", "case6-1.h5"), ["OC_FZ", "NO_SUCH"])
 
 
-def test_reads_a_reference_file_of_schema_1():
+def test_reads_a_reference_file_of_schema_1(tmp_path):
     # the reference files before schema 2: /channels one (nt, nch) dataset, names
     # and units one space-separated text each (units with '_' for blanks), no
-    # schema_version; test/python/data/schema1/nbdl15g.h5 is the NBDL 15 g
-    # reference of that schema (two of its channels), kept when the references
-    # were regenerated at schema 2
-    path = os.path.join(ROOT, "test", "python", "data", "schema1", "nbdl15g.h5")
-    df = hr.read_channels(path, ["OC_MY", "HEAD_AX"])
+    # schema_version; written here in that layout from two channels of the
+    # NBDL 15 g reference (the references are now of schema 2)
+    new = hr.read_channels(os.path.join(ROOT, "reference", "outputs", "nbdl15g.h5"), ["OC_MY", "HEAD_AX"])
+    path = tmp_path / "schema1.h5"
+    with h5py.File(path, "w") as f:
+        f.attrs["code"] = "HHNECK 0.3.0"
+        f["time"] = new.index.to_numpy()
+        f["channels"] = new[["OC_MY", "HEAD_AX"]].to_numpy()
+        f["channels"].attrs["names"] = np.bytes_("OC_MY HEAD_AX")
+        f["channels"].attrs["units"] = np.bytes_("N_m g")
+    df = hr.read_channels(str(path), ["HEAD_AX", "OC_MY"])
     assert df.attrs["schema_version"] == 1
     assert df.attrs["units"] == {"OC_MY": "N m", "HEAD_AX": "g"}
-    with h5py.File(path, "r") as f:
-        names = f["channels"].attrs["names"].decode().split()
-        assert np.array_equal(df["OC_MY"].to_numpy(), f["channels"][:, names.index("OC_MY")])
-        assert np.array_equal(df.index.to_numpy(), f["time"][:])
+    assert new.attrs["schema_version"] == 2 and new.attrs["units"] == df.attrs["units"]
+    assert np.array_equal(df["OC_MY"].to_numpy(), new["OC_MY"].to_numpy())
+    assert np.array_equal(df["HEAD_AX"].to_numpy(), new["HEAD_AX"].to_numpy())
+    assert np.array_equal(df.index.to_numpy(), new.index.to_numpy())
 
 
 def test_read_bodies_as_the_deck_says(result_file):
