@@ -74,14 +74,9 @@ contains
         do k = 1, model%tree%nbody
             loads%force(:, k) = model%tree%mass(k)*model%gravity
         end do
-        if (model%hold_stepped .or. t >= model%hold_release) then
-            eo%hold_factor = hold_factor(model, t)
-            loads%q = eo%hold_factor*model%q_hold
-            eo%p_applied = (eo%hold_factor - one)*dot_product(model%q_hold, xd)
-        else
-            eo%hold_factor = one
-            loads%q = model%q_hold
-        end if
+        eo%hold_factor = hold_factor(model, t)
+        loads%q = eo%hold_factor*model%q_hold
+        if (eo%hold_factor /= one) eo%p_applied = (eo%hold_factor - one)*dot_product(model%q_hold, xd)
 
         do f = 1, size(model%family)
             if (model%family_on(f)) call model%family(f)%f%add_loads(t, kin, x, xd, loads, eo%fam(f)%v, &
