@@ -233,11 +233,11 @@ contains
         end do
     end subroutine disc_plausibility
 
-    !> E, VISCOUS, G, VAXIAL, VBEND, ETENSION.
+    !> E, VISCOUS, G, VAXIAL, VBEND, ETENSION, BEND (the second moments Ix, Iy), TORSION (J).
     pure subroutine disc_items(this, items)
         class(disc_family_t), intent(in) :: this      !! the family
         character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
-        items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION']
+        items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION', 'BEND', 'TORSION']
     end subroutine disc_items
 
     !> Scale one property of every disc (d2b not given becomes d2 from here on).
@@ -255,6 +255,10 @@ contains
         case ('VBEND'); this%items%d2b = factor*this%items%d2b    ! shear, bending, torsion damping
         case ('G'); this%items%g = factor*this%items%g
         case ('ETENSION'); this%items%ft = factor*this%items%ft   ! axial stiffness in tension / d1's
+        case ('BEND')        ! bending stiffness (and its damping) in both planes
+            this%items%ix = factor*this%items%ix
+            this%items%iy = factor*this%items%iy
+        case ('TORSION'); this%items%j = factor*this%items%j       ! torsion stiffness (and its damping)
         end select
     end subroutine disc_scale
 
