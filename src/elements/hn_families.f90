@@ -24,6 +24,7 @@ module hn_families
     use hn_muscle_family, only: muscle_family_t
     use hn_limit_family, only: limit_family_t
     use hn_spring_family, only: spring_family_t
+    use hn_nz_family, only: nz_family_t, nz_spring_t
     implicit none
     private
 
@@ -32,11 +33,11 @@ module hn_families
 
     !> The families, in evaluation order.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
-                                  fam_limits = 4, fam_springs = 5, nfamilies = 5
+                                  fam_limits = 4, fam_springs = 5, fam_nz = 6, nfamilies = 6
     integer, parameter, public :: family_name_len = 9
     !> Their names on FAMILY, SCALE, STIFFEN and CHANGE cards and in the listing.
     character(len=family_name_len), parameter, public :: family_name(nfamilies) = &
-        [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS']
+        [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS', 'NZSPRINGS']
 
     !> Every card of every family (VIA and ACTIVATE complete the muscles):
     !! key, family, continuation cards, and when it is read (the default
@@ -51,13 +52,14 @@ module hn_families
         family_card_t('ACTIVATE', fam_muscles, 1, card_first), &
         family_card_t('LIMIT', fam_limits, 0), &
         family_card_t('ROM', fam_limits, 0), &
-        family_card_t('SPRING', fam_springs, 1)]
+        family_card_t('SPRING', fam_springs, 1), &
+        family_card_t('NZSPRING', fam_nz, 0)]
 
 contains
 
     !> A family of kind f with no elements.
     pure subroutine new_family(f, slot)
-        integer, intent(in) :: f                    !! family (fam_discs ... fam_springs)
+        integer, intent(in) :: f                    !! family (fam_discs ... fam_nz)
         type(family_slot_t), intent(out) :: slot    !! the slot, holding an empty family of that kind
         ! the empty arrays are allocated with size 0 (not taken from a
         ! zero-size array constructor, whose result gfortran copies into an
@@ -70,6 +72,7 @@ contains
         type(joint_limit_t), allocatable :: jl(:)
         type(joint_range_t), allocatable :: jr(:)
         type(spring_t), allocatable :: sp(:)
+        type(nz_spring_t), allocatable :: nz(:)
         select case (f)
         case (fam_discs)
             allocate (d(0)); allocate (slot%f, source=disc_family_t(items=d))
@@ -81,6 +84,8 @@ contains
             allocate (jl(0), jr(0)); allocate (slot%f, source=limit_family_t(items=jl, ranges=jr))
         case (fam_springs)
             allocate (sp(0)); allocate (slot%f, source=spring_family_t(items=sp))
+        case (fam_nz)
+            allocate (nz(0)); allocate (slot%f, source=nz_family_t(items=nz))
         end select
     end subroutine new_family
 
@@ -92,7 +97,7 @@ contains
         f = findloc(family_name, name(1:min(len(name), family_name_len)), dim=1)
     end function family_index
 
-    !> The family names as text: "DISCS, LIGAMENTS, MUSCLES, LIMITS or SPRINGS".
+    !> The family names as text: "DISCS, LIGAMENTS, MUSCLES, LIMITS, SPRINGS or NZSPRINGS".
     pure function family_names_text() result(s)
         character(len=:), allocatable :: s
         integer :: f

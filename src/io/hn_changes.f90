@@ -187,7 +187,7 @@ contains
         if (len_trim(c%item) == 0) what = what//'s'
         if (len_trim(c%key2) > 0) what = what//' with '//trim(c%key2)//' in F2'
         second = 'field F2 of the card'
-        if (any(c%target == [character(len=10) :: 'NEUTRAL', 'INITIAL', 'PRESCRIB', 'LIMIT', 'ROM'])) &
+        if (any(c%target == [character(len=10) :: 'NEUTRAL', 'INITIAL', 'PRESCRIB', 'LIMIT', 'ROM', 'NZSPRING'])) &
             second = 'the coordinate'
         if (size(cands) == 0) then
             s = 'found 0 '//what//' in the deck; expected exactly one'

@@ -223,6 +223,7 @@ contains
         call unique_fields(rd, cards, ['PRESCRIB'], 2, 'body and coordinate', per_coordinate)
         call unique_fields(rd, cards, ['LIMIT'], 2, 'body and coordinate', per_coordinate)
         call unique_fields(rd, cards, ['ROM'], 2, 'body and coordinate', per_coordinate)
+        call unique_fields(rd, cards, ['NZSPRING'], 2, 'body and coordinate', per_coordinate)
         call unique_fields(rd, cards, [character(len=8) :: 'INITIAL', 'PRESCRIB'], 2, 'body and coordinate', &
                            'no INITIAL card for a prescribed coordinate (the PRESCRIB card gives its motion; '// &
                            'with ACCEL also its initial value and rate, F5 and F6)', across=.true.)

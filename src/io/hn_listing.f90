@@ -196,7 +196,7 @@ contains
             end do
             call me%put('')
             call me%put('   ELEMENTS')
-            write (s, '(a,5(3x,a,1x,i3,1x,a))') '  ', &
+            write (s, '(a,*(3x,a,1x,i3,1x,a))') '  ', &
                 (trim(family_name(f)), family_count(md, f), merge('(ON) ', '(OFF)', md%family_on(f)), f=1, nfamilies)
             call me%put(s)
             write (s, '(a,i3)') '   APPLIED FORCE/COUPLE TABLES', size(md%applied)
