@@ -11,8 +11,10 @@ upper body (for OC-C2: C1 and the head) is free in all six coordinates, a
 pure moment about one of the lower body's axes is ramped on the upper body
 (COUPLE card, frame R), no gravity, no muscles (the specimens were cleaned
 of them), and only the elements joining the specimen's bodies: the discs,
-ligaments, joint-limit dampers and range-of-motion resistance of the model
-deck, with its fitted SCALE factors of those families. The deck is written
+ligaments, joint-limit dampers, range-of-motion resistance and neutral-zone
+springs (NZSPRING) of the model deck, with its SCALE factors of those
+families. write_deck and run_case can drop given cards (drop=("NZSPRING",):
+the other elements alone, as hhneck.fit_joints needs them). The deck is written
 from the model deck (input/head_neck_54dof.inp) card for card, nothing
 retyped, so a change of the model is a change of every segment test.
 
@@ -75,8 +77,14 @@ T_NEG = 2.0 * RAMP + HOLD              # start of the negative loading ramp
 T_END = 3.0 * RAMP + 2.0 * HOLD
 #: element and coordinate cards of the model deck a segment deck takes
 ELEMENT_CARDS = ("DISC", "LIGAMENT")
-UPPER_CARDS = ("JOINT", "BODYPI", "NEUTRAL", "LIMIT", "ROM")
-SCALED_FAMILIES = ("DISCS", "LIGAMENTS", "LIMITS")
+UPPER_CARDS = ("JOINT", "BODYPI", "NEUTRAL", "LIMIT", "ROM", "NZSPRING")
+SCALED_FAMILIES = ("DISCS", "LIGAMENTS", "LIMITS", "NZSPRINGS")
+#: the joint-resistance cards of the upper bodies that disc_only leaves out
+JOINT_RESISTANCE_CARDS = ("LIMIT", "ROM", "NZSPRING")
+#: card -> the element family whose SCALE cards go with it when write_deck
+#: drops the card (a SCALE card of a family without elements, or of one the
+#: program does not know yet, would not be the model without those cards)
+CARD_FAMILY = {"LIGAMENT": "LIGAMENTS", "NZSPRING": "NZSPRINGS"}
 
 
 def _fields(line):
@@ -100,25 +108,32 @@ def card_blocks(path):
     return blocks
 
 
-def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None):
+def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None, drop=()):
     """Write the deck of one segment test (module docstring) to `path`:
     `segment` a key of SEGMENTS, `motion` of MOTIONS, `peak` the moment [N m].
     disc_only keeps the discs alone (the closed-form check of the tests).
+    drop: card names (e.g. ("NZSPRING",)) left out of the model deck's cards
+    that the segment would otherwise take, with the SCALE cards of their
+    family (CARD_FAMILY: "NZSPRING" drops the NZSPRINGS SCALE cards too).
     Returns the channel names of the upper bodies' rotation coordinate."""
     lower, uppers = SEGMENTS[segment]
     coord, _, vec = MOTIONS[motion]
     bodies = (lower,) + uppers
+    drop = tuple(drop)
+    dropped_families = [CARD_FAMILY[d] for d in drop if d in CARD_FAMILY]
     kept = []
     for b in card_blocks(model):
         f = _fields(b[0])
         card = f[0]
+        if card in drop or (card == "SCALE" and f[2] in dropped_families):
+            continue
         if card == "BODY" and f[1] in bodies:
             line = b[0]
             if f[1] == lower:              # the fixed lower body: the root, its frame the lab's
                 line = line[:20] + "R".ljust(10) + line[30:]
             kept.append([line])
         elif card in UPPER_CARDS and f[1] in uppers:
-            if disc_only and card in ("LIMIT", "ROM"):
+            if disc_only and card in JOINT_RESISTANCE_CARDS:
                 continue
             kept.append(b)
         elif card in ELEMENT_CARDS and f[2] in bodies and f[3] in bodies:
@@ -174,12 +189,17 @@ def default_executable():
     return exe
 
 
-def run_case(segment, motion, peak, workdir, exe=None, disc_only=False):
+def run_case(segment, motion, peak, workdir, exe=None, disc_only=False, drop=(), model=MODEL_DECK):
     """Write and run one segment test in `workdir`; returns (t [s], rotation
-    [deg] of the upper body relative to the lower, in the data's sign)."""
-    name = "%s_%s_%gNm%s" % (segment, motion, peak, "_disc" if disc_only else "")
+    [deg] of the upper body relative to the lower, in the data's sign).
+    drop: card names left out of the deck (write_deck); model: the model
+    deck the segment's cards are taken from. The files are named after the
+    case (segment, motion, peak, and _disc or _no<card> for each dropped
+    card)."""
+    name = "%s_%s_%gNm%s%s" % (segment, motion, peak, "_disc" if disc_only else "",
+                               "".join("_no" + d.lower() for d in drop))
     deck = os.path.join(workdir, name + ".inp")
-    channels = write_deck(deck, segment, motion, peak, disc_only=disc_only)
+    channels = write_deck(deck, segment, motion, peak, model=model, disc_only=disc_only, drop=drop)
     exe = exe or default_executable()
     with open(deck) as fin, open(os.path.join(workdir, name + ".txt"), "w") as fout:
         res = subprocess.run([exe], stdin=fin, stdout=fout, stderr=subprocess.PIPE, text=True, cwd=workdir)

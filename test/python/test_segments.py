@@ -14,14 +14,19 @@ from hhneck import segments
 
 def _disc_card(deck, name):
     """(d1, h, G, Ix, Iy, J) of the DISC card `name` of a deck, times its
-    SCALE factors of E (d1) and G."""
+    SCALE factors of E (d1), G, BEND (Ix, Iy) and TORSION (J)."""
     lines = open(deck).read().splitlines()
     k = next(i for i, l in enumerate(lines) if l.startswith("DISC") and l[10:20].strip() == name)
     f = lambda line, j: float(line[10 * j:10 * j + 10])      # noqa: E731
     h, d1 = f(lines[k], 5), f(lines[k], 6)
     g, ix, iy, j = (f(lines[k + 2], i) for i in range(1, 5))
-    scale = {l[30:40].strip(): float(l[40:50]) for l in lines if l.startswith("SCALE") and "DISCS" in l}
-    return d1 * scale.get("E", 1.0), h, g * scale.get("G", 1.0), ix, iy, j
+    scale = {}
+    for l in lines:
+        if l.startswith("SCALE") and l[20:30].strip() == "DISCS":
+            item = l[30:40].strip()
+            scale[item] = scale.get(item, 1.0) * float(l[40:50])
+    bend, torsion = scale.get("BEND", 1.0), scale.get("TORSION", 1.0)
+    return d1 * scale.get("E", 1.0), h, g * scale.get("G", 1.0), ix * bend, iy * bend, j * torsion
 
 
 @pytest.fixture(scope="module")
