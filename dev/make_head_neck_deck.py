@@ -18,6 +18,16 @@ are read from the listing of the calibration (the PARAM lines of
 hhneck --calibrate < input/calibrate_nbdl.inp > FIT.txt); without it, the
 copy of that output below is used.
 
+Neutral-zone springs: when reference/nz_springs.csv exists (or the file of
+--nz-springs CSV; --nz-springs none: no springs), one NZSPRING card per row
+of it follows the ROM cards. The discs' own bending and torsion are scaled
+to DISC_ROT_FRACTION by two SCALE cards (NZBEND, NZTORS) beside the fitted
+ones, written in either case. The constants come from hhneck-fit-joints
+(python/hhneck/fit_joints.py), whose runs of the segment tests must see the
+discs so scaled; so the flow is: this script (the two SCALE cards) ->
+hhneck-fit-joints (drops the NZSPRING cards in its runs; writes the CSV) ->
+this script again (the NZSPRING cards).
+
 Pure arithmetic on the published numbers: no solver code lives here.
 """
 import math
@@ -247,8 +257,35 @@ def read_fit(listing):
 POSTURES = ("straight", "seated", "seated-held")
 POSTURE, T1_SLOPE, LORDOSIS = "seated", 23.8, 16.2
 
+# ---------------------------------------------------------------- neutral zone
+# The discs' own linear bending (Ix, Iy) and torsion (J) kept at 20 % (A): the
+# neutral-zone springs (NZSPRING cards, fitted by hhneck-fit-joints to the
+# segment tests) carry the rest of the segment's rotational stiffness. Written
+# as SCALE cards NZBEND and NZTORS beside the fitted ones; not a calibration
+# result, so not in FITTED_SCALES (--fit leaves them alone).
+DISC_ROT_FRACTION = 0.2
+NZ_SPRINGS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "reference",
+                          "nz_springs.csv")
+NZ_MLIN = 100.0       # N m: the law continues linearly beyond it (the card's default)
+
+
+def read_nz_springs(path):
+    """The rows of reference/nz_springs.csv (hhneck-fit-joints; comment lines
+    skipped): [(body, coord, M0+, ths+, M0-, ths-)], M0 in N m, ths in deg."""
+    import csv
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    out = []
+    for r in rows:
+        vals = tuple(float(r[k]) for k in ("m0_plus", "ths_plus_deg", "m0_minus", "ths_minus_deg"))
+        if r["coord"] not in ("RX", "RY", "RZ") or not all(v > 0 for v in vals):
+            raise ValueError("%s: a row with coord %r and constants %s" % (path, r["coord"], vals))
+        out.append((r["body"], r["coord"]) + vals)
+    return out
+
+
 USAGE = ("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING] [--posture straight|seated|seated-held]\n"
-         "                              [--t1-slope DEG] [--lordosis DEG]")
+         "                              [--t1-slope DEG] [--lordosis DEG] [--nz-springs CSV|none]")
 args = sys.argv[1:]
 while args:
     a = args.pop(0)
@@ -265,6 +302,10 @@ while args:
         T1_SLOPE = float(args.pop(0))
     elif a == "--lordosis":
         LORDOSIS = float(args.pop(0))
+    elif a == "--nz-springs":
+        NZ_SPRINGS = args.pop(0)
+        if NZ_SPRINGS != "none" and not os.path.exists(NZ_SPRINGS):
+            sys.exit("make_head_neck_deck.py: no file %s" % NZ_SPRINGS)
     else:
         sys.exit(USAGE)
 POSTURE_RY = {"C7": T1_SLOPE}
@@ -428,12 +469,36 @@ w("* a real joint. A run warns when a joint goes more than 5 deg past its range.
 w("*         body      coord     min (deg) max (deg) K         t0 (deg)")
 for c in rom_cards:
     w(c)
+if NZ_SPRINGS != "none" and os.path.exists(NZ_SPRINGS):
+    try:
+        nz = read_nz_springs(NZ_SPRINGS)
+    except (KeyError, ValueError) as e:
+        sys.exit("make_head_neck_deck.py: %s" % e)
+    unknown = sorted({r[0] for r in nz} - set(names[1:]))
+    if unknown:
+        sys.exit("make_head_neck_deck.py: %s names no joint body: %s" % (NZ_SPRINGS, " ".join(unknown)))
+    w("*")
+    w("* NEUTRAL-ZONE SPRINGS on the joint rotations: D = x - x_neutral; for D >= 0")
+    w("* Q = -M0+ sinh(D/ths+), for D < 0 Q = +M0- sinh(-D/ths-), continued linearly")
+    w("* beyond |Q| = Mlin (%.0f N m). M0 (N m) and ths (deg) of each side fitted by" % NZ_MLIN)
+    w("* hhneck-fit-joints (reference/nz_springs.csv) to the segment tests of Panjabi")
+    w("* et al. 2001 (0.33-1 N m) and Nightingale et al. 2007 (C4-C5, C6-C7 flexion-")
+    w("* extension, to 3.5 N m), less the moment the other elements carry there (the")
+    w("* discs' bending and torsion at %.0f %%, NZBEND and NZTORS below); C7-T1 takes" % (100 * DISC_ROT_FRACTION))
+    w("* the C6-C7 values (A). + is the coordinate's positive direction.")
+    w("*         body      coord     M0+ (N m) ths+(deg) M0- (N m) ths-(deg) Mlin (N m)")
+    for (body, coord, m0p, thp, m0m, thm) in nz:
+        w(card("NZSPRING", body, coord, m0p, thp, m0m, thm, NZ_MLIN))
 w("*")
 w("* FITTED FACTORS: scale factors on the values above, fitted by the calibration")
 w("* (hhneck --calibrate < input/calibrate_nbdl12g.inp; reference/parameters.md).")
 w("*         name      family    item      factor")
 for (name, fam, item, value) in FITTED_SCALES:
     w(card("SCALE", name, fam, item, value))
+w("* NOT FITTED: the discs' own linear bending and torsion kept at %.0f %% (A; the" % (100 * DISC_ROT_FRACTION))
+w("* neutral-zone springs carry the rest of the segments' rotational stiffness)")
+w(card("SCALE", "NZBEND", "DISCS", "BEND", DISC_ROT_FRACTION))
+w(card("SCALE", "NZTORS", "DISCS", "TORSION", DISC_ROT_FRACTION))
 w("*")
 w(card("HEADNECK", "HEAD", "T1"))
 if POSTURE != "straight":
