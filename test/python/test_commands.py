@@ -38,7 +38,7 @@ def test_the_command_table():
     assert sorted(COMMANDS) == sorted("hhneck-" + n for n in (
         "animate", "xdmf", "compare-nbdl", "plot-sensitivity", "plot-corridor", "plot-work-precision", "export",
         "results", "iso18571", "compare-listing", "compare-sweeps", "nbdl-tables", "case-decks", "run-deck",
-        "segments", "catalogue", "calibrate-catalogue"))
+        "segments", "catalogue", "calibrate-catalogue", "fit-joints"))
     for cmd, (module, func) in COMMANDS.items():
         assert module.startswith("hhneck.") and func == "main", cmd
         assert cmd == "hhneck-" + module.split(".")[1].replace("_", "-") or cmd in (
