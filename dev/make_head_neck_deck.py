@@ -18,15 +18,16 @@ are read from the listing of the calibration (the PARAM lines of
 hhneck --calibrate < input/calibrate_nbdl.inp > FIT.txt); without it, the
 copy of that output below is used.
 
-Neutral-zone springs: when reference/nz_springs.csv exists (or the file of
---nz-springs CSV; --nz-springs none: no springs), one NZSPRING card per row
-of it follows the ROM cards. The discs' own bending and torsion are scaled
-to DISC_ROT_FRACTION by two SCALE cards (NZBEND, NZTORS) beside the fitted
-ones, written in either case. The constants come from hhneck-fit-joints
-(python/hhneck/fit_joints.py), whose runs of the segment tests must see the
-discs so scaled; so the flow is: this script (the two SCALE cards) ->
-hhneck-fit-joints (drops the NZSPRING cards in its runs; writes the CSV) ->
-this script again (the NZSPRING cards).
+Neutral-zone springs (not in the shipped deck): with --nz-springs CSV (or
+when reference/nz_springs.csv exists; --nz-springs none: never), the discs'
+own bending and torsion are scaled to DISC_ROT_FRACTION by two SCALE cards
+(NZBEND, NZTORS) beside the fitted ones and, once the CSV exists, one
+NZSPRING card per row of it follows the ROM cards. The constants come from
+hhneck-fit-joints (python/hhneck/fit_joints.py), whose runs of the segment
+tests must see the discs so scaled; so the flow is: this script with
+--nz-springs CSV not yet written (the two SCALE cards) -> hhneck-fit-joints
+(drops the NZSPRING cards in its runs; writes the CSV) -> this script again
+(the NZSPRING cards).
 
 Pure arithmetic on the published numbers: no solver code lives here.
 """
@@ -258,12 +259,15 @@ POSTURES = ("straight", "seated", "seated-held")
 POSTURE, T1_SLOPE, LORDOSIS = "seated", 23.8, 16.2
 
 # ---------------------------------------------------------------- neutral zone
-# The discs' own linear bending (Ix, Iy) and torsion (J) kept at 20 % (A): the
-# neutral-zone springs (NZSPRING cards, fitted by hhneck-fit-joints to the
-# segment tests) carry the rest of the segment's rotational stiffness. Written
-# as SCALE cards NZBEND and NZTORS beside the fitted ones; not a calibration
-# result, so not in FITTED_SCALES (--fit leaves them alone).
-DISC_ROT_FRACTION = 0.2
+# With neutral-zone springs (--nz-springs CSV, or reference/nz_springs.csv when
+# it exists) the discs' own linear bending (Ix, Iy) and torsion (J) are kept at
+# 2 % (A): at 20 % they alone turn a subaxial segment less than the data at
+# 0.33 N m, where the springs can only add stiffness; the neutral-zone springs
+# (NZSPRING cards, fitted by hhneck-fit-joints to the segment tests) carry the
+# rest of the segment's rotational stiffness. Written as SCALE cards NZBEND and
+# NZTORS beside the fitted ones; not a calibration result, so not in
+# FITTED_SCALES (--fit leaves them alone). The shipped deck has no springs.
+DISC_ROT_FRACTION = 0.02
 NZ_SPRINGS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "reference",
                           "nz_springs.csv")
 NZ_MLIN = 100.0       # N m: the law continues linearly beyond it (the card's default)
@@ -271,7 +275,8 @@ NZ_MLIN = 100.0       # N m: the law continues linearly beyond it (the card's de
 
 def read_nz_springs(path):
     """The rows of reference/nz_springs.csv (hhneck-fit-joints; comment lines
-    skipped): [(body, coord, M0+, ths+, M0-, ths-)], M0 in N m, ths in deg."""
+    skipped): [(body, coord, M0+, ths+, M0-, ths-, Mlin)], M0 and Mlin in N m,
+    ths in deg (Mlin NZ_MLIN where the file has no mlin column)."""
     import csv
     with open(path, newline="") as f:
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
@@ -280,10 +285,11 @@ def read_nz_springs(path):
         vals = tuple(float(r[k]) for k in ("m0_plus", "ths_plus_deg", "m0_minus", "ths_minus_deg"))
         if r["coord"] not in ("RX", "RY", "RZ") or not all(v > 0 for v in vals):
             raise ValueError("%s: a row with coord %r and constants %s" % (path, r["coord"], vals))
-        out.append((r["body"], r["coord"]) + vals)
+        out.append((r["body"], r["coord"]) + vals + (float(r.get("mlin") or NZ_MLIN),))
     return out
 
 
+NZ_EXPLICIT = False
 USAGE = ("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING] [--posture straight|seated|seated-held]\n"
          "                              [--t1-slope DEG] [--lordosis DEG] [--nz-springs CSV|none]")
 args = sys.argv[1:]
@@ -303,9 +309,9 @@ while args:
     elif a == "--lordosis":
         LORDOSIS = float(args.pop(0))
     elif a == "--nz-springs":
+        # a file not written yet: the discs at DISC_ROT_FRACTION, no springs (hhneck-fit-joints' first pass)
         NZ_SPRINGS = args.pop(0)
-        if NZ_SPRINGS != "none" and not os.path.exists(NZ_SPRINGS):
-            sys.exit("make_head_neck_deck.py: no file %s" % NZ_SPRINGS)
+        NZ_EXPLICIT = True
     else:
         sys.exit(USAGE)
 POSTURE_RY = {"C7": T1_SLOPE}
@@ -469,7 +475,8 @@ w("* a real joint. A run warns when a joint goes more than 5 deg past its range.
 w("*         body      coord     min (deg) max (deg) K         t0 (deg)")
 for c in rom_cards:
     w(c)
-if NZ_SPRINGS != "none" and os.path.exists(NZ_SPRINGS):
+NZ_MODEL = NZ_SPRINGS != "none" and (NZ_EXPLICIT or os.path.exists(NZ_SPRINGS))
+if NZ_MODEL and os.path.exists(NZ_SPRINGS):
     try:
         nz = read_nz_springs(NZ_SPRINGS)
     except (KeyError, ValueError) as e:
@@ -480,25 +487,26 @@ if NZ_SPRINGS != "none" and os.path.exists(NZ_SPRINGS):
     w("*")
     w("* NEUTRAL-ZONE SPRINGS on the joint rotations: D = x - x_neutral; for D >= 0")
     w("* Q = -M0+ sinh(D/ths+), for D < 0 Q = +M0- sinh(-D/ths-), continued linearly")
-    w("* beyond |Q| = Mlin (%.0f N m). M0 (N m) and ths (deg) of each side fitted by" % NZ_MLIN)
+    w("* beyond |Q| = Mlin (the data's largest moment). M0 (N m), ths (deg) fitted by")
     w("* hhneck-fit-joints (reference/nz_springs.csv) to the segment tests of Panjabi")
     w("* et al. 2001 (0.33-1 N m) and Nightingale et al. 2007 (C4-C5, C6-C7 flexion-")
     w("* extension, to 3.5 N m), less the moment the other elements carry there (the")
     w("* discs' bending and torsion at %.0f %%, NZBEND and NZTORS below); C7-T1 takes" % (100 * DISC_ROT_FRACTION))
     w("* the C6-C7 values (A). + is the coordinate's positive direction.")
     w("*         body      coord     M0+ (N m) ths+(deg) M0- (N m) ths-(deg) Mlin (N m)")
-    for (body, coord, m0p, thp, m0m, thm) in nz:
-        w(card("NZSPRING", body, coord, m0p, thp, m0m, thm, NZ_MLIN))
+    for (body, coord, m0p, thp, m0m, thm, mlin) in nz:
+        w(card("NZSPRING", body, coord, m0p, thp, m0m, thm, mlin))
 w("*")
 w("* FITTED FACTORS: scale factors on the values above, fitted by the calibration")
 w("* (hhneck --calibrate < input/calibrate_nbdl12g.inp; reference/parameters.md).")
 w("*         name      family    item      factor")
 for (name, fam, item, value) in FITTED_SCALES:
     w(card("SCALE", name, fam, item, value))
-w("* NOT FITTED: the discs' own linear bending and torsion kept at %.0f %% (A; the" % (100 * DISC_ROT_FRACTION))
-w("* neutral-zone springs carry the rest of the segments' rotational stiffness)")
-w(card("SCALE", "NZBEND", "DISCS", "BEND", DISC_ROT_FRACTION))
-w(card("SCALE", "NZTORS", "DISCS", "TORSION", DISC_ROT_FRACTION))
+if NZ_MODEL:
+    w("* NOT FITTED: the discs' own linear bending and torsion kept at %.0f %% (A; the" % (100 * DISC_ROT_FRACTION))
+    w("* neutral-zone springs carry the rest of the segments' rotational stiffness)")
+    w(card("SCALE", "NZBEND", "DISCS", "BEND", DISC_ROT_FRACTION))
+    w(card("SCALE", "NZTORS", "DISCS", "TORSION", DISC_ROT_FRACTION))
 w("*")
 w(card("HEADNECK", "HEAD", "T1"))
 if POSTURE != "straight":

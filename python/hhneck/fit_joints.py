@@ -97,7 +97,7 @@ GRID = 41                 # points of the log grids of ths and M0
 TOL = 1e-12               # golden section: width of the final bracket in log ths and log M0
 CSV_COLUMNS = ("body", "coord", "m0_plus", "ths_plus_deg", "m0_minus", "ths_minus_deg",
                "n_plus", "rms_plus_deg", "sources_plus", "n_minus", "rms_minus_deg", "sources_minus",
-               "method_plus", "method_minus", "segment")
+               "method_plus", "method_minus", "segment", "mlin")
 SIDES = ((+1, "plus"), (-1, "minus"))
 
 
@@ -351,11 +351,14 @@ def fit_joints(exe=None, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, 
     os.makedirs(work, exist_ok=True)
     runs = run_others(_cases(), exe, model, work, jobs, data_dir)
     fits = {c: fit_case(pts, peak, t, rot, c[1]) for c, (pts, peak, t, rot, _) in runs.items()}
+    peaks = {c: r[1] for c, r in runs.items()}
     rows = []
     for body, seg in JOINTS:
         for coord, motion in COORD_MOTION:
             f = fits[(seg, motion)]
-            rows.append({"body": body, "coord": coord, "segment": seg, "motion": motion, +1: f[+1], -1: f[-1]})
+            # Mlin: the largest moment of the data; beyond it the law goes on linearly (no extrapolated sinh)
+            rows.append({"body": body, "coord": coord, "segment": seg, "motion": motion, +1: f[+1], -1: f[-1],
+                         "mlin": peaks[(seg, motion)]})
     return rows, {c: r[-1] for c, r in runs.items()}
 
 
@@ -379,7 +382,7 @@ def write_csv(path, rows):
             p, m = r[+1], r[-1]
             w.writerow([r["body"], r["coord"], _num(p["m0"]), _num(p["ths"]), _num(m["m0"]), _num(m["ths"]),
                         p["n"], _num(p["rms"]), p["sources"], m["n"], _num(m["rms"]), m["sources"],
-                        p["method"], m["method"], r["segment"]])
+                        p["method"], m["method"], r["segment"], _num(r.get("mlin", MLIN))])
 
 
 def read_csv(path):

@@ -189,12 +189,16 @@ def _program_takes(tmp_path, lines):
 
 
 def test_generator_disc_rotation_scales_and_no_springs_without_a_csv(tmp_path):
-    lines = _generate("--nz-springs", "none")
+    """--nz-springs with a file not written yet: the discs' rotation scaled,
+    no springs (the fitter's first pass); --nz-springs none: the shipped deck."""
+    lines = _generate("--nz-springs", str(tmp_path / "not_yet.csv"))
     assert not any(l.startswith("NZSPRING") for l in lines)
     scales = [l for l in lines if l.startswith("SCALE")]
-    assert "SCALE     NZBEND    DISCS     BEND      0.2" in scales
-    assert "SCALE     NZTORS    DISCS     TORSION   0.2" in scales
+    assert "SCALE     NZBEND    DISCS     BEND      0.02" in scales
+    assert "SCALE     NZTORS    DISCS     TORSION   0.02" in scales
     _program_takes(tmp_path, lines)
+    with open(segments.MODEL_DECK) as f:
+        assert _generate("--nz-springs", "none") == f.read().splitlines()
 
 
 def test_generator_refuses_a_row_of_an_unknown_body(tmp_path):
@@ -260,20 +264,20 @@ def test_others_of_a_disc_alone_are_its_closed_form(tmp_path):
 
 def test_check_refuses_a_model_deck_without_springs(tmp_path, capsys):
     deck = tmp_path / "m.inp"
-    deck.write_text("\n".join(_generate("--nz-springs", "none")) + "\n")
+    deck.write_text("\n".join(_generate("--nz-springs", str(tmp_path / "not_yet.csv"))) + "\n")
     assert fj.main(["--check", "--model", str(deck), "--work", str(tmp_path)]) == 1
     assert "has no NZSPRING card" in capsys.readouterr().err
 
 
 def test_fitted_springs_bring_one_segment_to_its_data(tmp_path):
     """C4-C5 axial rotation, end to end: the others' run (the generated
-    deck, discs' torsion at 0.2, no springs), the fit of both sides, the
+    deck, discs' torsion at 0.02, no springs), the fit of both sides, the
     NZSPRING card of C4 RZ added to the deck, and the run with it turns by
     the data's rotation at each Panjabi moment, within the fit's residual
     (its rms over 1 %) plus 2 %; the others alone turn 1.4 to 1.8 times as
     far."""
     exe = hhneck_executable()
-    lines = _generate("--nz-springs", "none")
+    lines = _generate("--nz-springs", str(tmp_path / "not_yet.csv"))
     deck0 = tmp_path / "m0.inp"
     deck0.write_text("\n".join(lines) + "\n")
     seg, motion = "C4_C5", "axial_rotation"
