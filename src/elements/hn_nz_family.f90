@@ -22,7 +22,7 @@ module hn_nz_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
-                                 warning_len, check_range
+                                 warning_len, add_warning
     implicit none
     private
 
@@ -30,6 +30,7 @@ module hn_nz_family
 
     real(wp), parameter :: ref_nz_stiffness = 10.0_wp   !! N m/rad: the order of a neutral zone's slope (segment data)
     real(wp), parameter :: default_mlin = 100.0_wp      !! N m: where the law turns linear unless the card says
+    real(wp), parameter :: far_nz = 100.0_wp            !! "two orders of magnitude" above ref_nz_stiffness
 
     !> One neutral-zone spring on a joint rotation.
     type :: nz_spring_t
@@ -234,18 +235,25 @@ contains
         tab%group = ''
     end function nz_table
 
-    !> Springs whose neutral-zone slope M0/ths is two orders of magnitude from a segment's.
+    !> Springs whose neutral-zone slope M0/ths is two orders of magnitude
+    !! above a segment's (a units slip: M0 in N mm, ths in rad); a slope far
+    !! below is the element's purpose (a neutral zone the other elements carry).
     pure subroutine nz_plausibility(this, tree, warnings)
         class(nz_family_t), intent(in) :: this        !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused: the label names the joint)
         character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the family's added
+        character(len=warning_len) :: w
         integer :: e, s
+        real(wp) :: slope
         character(len=1), parameter :: sname(2) = ['+', '-']
         do e = 1, size(this%items)
             do s = 1, 2
-                call check_range('neutral-zone spring on '//trim(this%items(e)%label)//' '//sname(s)// &
-                                 ' slope M0/ths', this%items(e)%m0(s)/this%items(e)%ths(s), ref_nz_stiffness, &
-                                 'N m/rad', warnings)
+                slope = this%items(e)%m0(s)/this%items(e)%ths(s)
+                if (slope <= far_nz*ref_nz_stiffness) cycle
+                write (w, '(4a,es10.3,a,es9.2,a)') 'neutral-zone spring on ', trim(this%items(e)%label), ' ', &
+                    sname(s)//' slope M0/ths = ', slope, ' N m/rad is two or more orders of magnitude above '// &
+                    'a segment''s ', ref_nz_stiffness, ' (check units)'
+                call add_warning(warnings, w)
             end do
         end do
     end subroutine nz_plausibility
