@@ -7,8 +7,9 @@
 reference/ holds no 8 g time histories, only the 8 g peaks of
 reference/reference-data.md section 3 (n = 10 runs, each CFC 60). The deck
 input/nbdl8g.inp drives T1 with the 12 g mean drive scaled to the 8 g mean T1
-peak (hhneck-nbdl-tables). This runs it (and the 12 g and 15 g decks,
-whose peaks were fitted: calibration) and prints, per severity, the model's
+peak (hhneck-nbdl-tables). This runs it (and the 12 g and 15 g decks:
+the shipped set is fitted to the 12 g runs, calibration; 15 g is its
+prediction) and prints, per severity, the model's
 peaks with the same definitions as section 3 -- T1 and head x-acceleration
 (least), head angular acceleration (largest) and deceleration (least), head
 angular velocity and flexion (largest), each channel CFC 60, 30-250 ms --
@@ -164,7 +165,7 @@ def main():
     tmp = tempfile.mkdtemp()
     res = {sev: model_peaks(given.get(sev) or run_deck(sev, tmp)) for sev in SEVERITIES}
     head = ("| peak | 8 g model (prediction) | 8 g volunteers | z | 12 g model (calibration) | 12 g volunteers"
-            " | z | 15 g model (calibration) | 15 g volunteers | z |")
+            " | z | 15 g model (prediction) | 15 g volunteers | z |")
     lines = [head, "|---" * 10 + "|"]
     count = {s: 0 for s in SEVERITIES}
     for label, _, _ in ROWS:
