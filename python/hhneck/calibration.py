@@ -45,7 +45,7 @@ GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 
 PARAMS = [
     ("AXIAL", "FIELD4", "SCALE", "AXIAL", 0.3, 3.0, "LOG", "assumed"),
     ("SHEAR", "FIELD4", "SCALE", "SHEAR", 0.3, 3.0, "LOG", "assumed"),
-    ("VBEND", "FIELD4", "SCALE", "VBEND", 0.2, 20.0, "LOG", "assumed"),
+    ("VBEND", "FIELD4", "SCALE", "VBEND", 0.5, 100.0, "LOG", "assumed (the NBDL calibration deck's)"),
     ("VAXIAL", "FIELD4", "SCALE", "VAXIAL", 0.0128, 0.8376, "LOG", "S13 (Izambert 2003, 32-2094 N s/m)"),
     ("ROMK", "FIELD4", "SCALE", "ROMK", 0.05, 5.0, "LOG", "assumed"),
     ("LIGK", "FAMILY", "LIGAMENTS", "L1", 0.5, 2.0, "LOG", "assumed"),
