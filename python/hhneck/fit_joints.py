@@ -2,14 +2,14 @@
 Panjabi et al. 2001 and Nightingale et al. 2007 (hhneck.segments; data in
 shared/data/pmhs_neck).
 
-The NZSPRING law (docs/deck-format.md once the program reads it): on the
-joint rotation coordinate x of a body relative to its parent, D = x -
-x_neutral; for D >= 0 Q = -M0+ sinh(D/ths+), for D < 0 Q = +M0- sinh(-D/ths-)
-(M0 in N m, ths in deg), continued linearly with its slope beyond |Q| = Mlin
-(100 N m). The "+" side is the coordinate's positive direction: flexion is
-+RY of the upper body, left lateral bending -RX, left axial rotation +RZ
-(segments.MOTIONS: the data's positive direction is the coordinate's times
-MOTIONS[motion][1]).
+The NZSPRING law (docs/deck-format.md): on the joint rotation coordinate x
+of a body relative to its parent, D = x - x_neutral; for D >= 0
+Q = -M0+ sinh(D/ths+), for D < 0 Q = +M0- sinh(-D/ths-) (M0 in N m, ths in
+deg), continued linearly with its slope beyond |Q| = Mlin (here the data's
+largest moment of the case, the mlin column). The "+" side is the
+coordinate's positive direction: flexion is +RY of the upper body, left
+lateral bending -RX, left axial rotation +RZ (segments.MOTIONS: the data's
+positive direction is the coordinate's times MOTIONS[motion][1]).
 
 What is fitted, for every joint (HEAD on C1 = C0-C1, C1 on C2 = C1-C2, C2 on
 C3 = C2-C3 ... C6 on C7 = C6-C7; C7 on T1 takes the C6-C7 values, an
@@ -43,24 +43,16 @@ axial_rotation), each side separately:
 Output: reference/nz_springs.csv (a comment line naming the command, then
 body, coord, m0_plus, ths_plus_deg, m0_minus, ths_minus_deg, n_plus,
 rms_plus_deg, sources_plus, n_minus, rms_minus_deg, sources_minus,
-method_plus, method_minus, segment), a table on standard output, and the
-dropped and extrapolated points.
+method_plus, method_minus, segment, mlin), a table on standard output, and
+the dropped and extrapolated points.
 
-The flow (the order matters: the "others" must see the discs' bending and
-torsion at the deck's DISC_ROT_FRACTION, 0.2):
-
-    python3 dev/make_head_neck_deck.py > input/head_neck_54dof.inp
-        # the SCALE NZBEND DISCS BEND 0.2 and NZTORS DISCS TORSION 0.2 cards,
-        # and NZSPRING cards when reference/nz_springs.csv exists
-    hhneck-fit-joints            # the others' runs drop the NZSPRING cards
-        # -> reference/nz_springs.csv
-    python3 dev/make_head_neck_deck.py > input/head_neck_54dof.inp
-        # now with one NZSPRING card per row of the CSV
-    hhneck-fit-joints --check    # the segment cases with the NZSPRING cards
-
-Since the others' runs drop the NZSPRING cards, fitting again on a deck
-that has them gives the same constants. --check (needs a program that reads
-NZSPRING cards) runs each segment case with the cards and reports the
+The flow is dev/fit_model.sh: the model deck at the calibration's starting
+point with the discs' bending and torsion at DISC_ROT_FRACTION of
+dev/make_head_neck_deck.py (the others must see them so: 60 % in the
+shipped model), this command, the deck with the springs, the NBDL
+calibration, the deck with its fit. Since the others' runs drop the
+NZSPRING cards, fitting again on a deck that has them gives the same
+constants. --check runs each segment case with the cards and reports the
 rotation at each data moment against the data (model/data).
 
 Command: hhneck-fit-joints [--exe HHNECK] [--model DECK] [--data DIR]
