@@ -227,9 +227,10 @@ contains
 
     !> Body (in the reduced tree) and coordinate of a card whose fields F1,
     !! F2 name a body and one of its coordinates (INITIAL, PRESCRIB, LIMIT,
-    !! ...). A body absorbed by MERGE has no coordinates (an error). A locked
-    !! coordinate gives j = 0 when allow_locked, else an error.
-    subroutine active_coordinate(rd, i, tree, bnames, bmap, kb, m, j, allow_locked)
+    !! ...). A body absorbed by MERGE has no coordinates: an error, or with
+    !! `merged` present merged = .true. and j = 0 (an element card dropped). A
+    !! locked coordinate gives j = 0 when allow_locked, else an error.
+    subroutine active_coordinate(rd, i, tree, bnames, bmap, kb, m, j, allow_locked, merged)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
         integer, intent(in) :: i  !! the card's first deck line
         type(body_tree_t), intent(in) :: tree  !! the reduced tree (its coordinate numbers)
@@ -239,11 +240,19 @@ contains
         integer, intent(out) :: m  !! the coordinate (1 .. 6: TX TY TZ RX RY RZ)
         integer, intent(out) :: j  !! the model coordinate (0: a locked one)
         logical, intent(in) :: allow_locked  !! a locked coordinate gives j = 0 (otherwise an error)
+        logical, intent(out), optional :: merged  !! the body was absorbed by MERGE (then no error; m, j = 0)
         integer :: kold
         j = 0
-        kold = body_ref(rd, i, 1, 'body', bnames, .false.)
-        m = coord_ref(rd, i, 2)
         kb = 1
+        m = 0
+        kold = body_ref(rd, i, 1, 'body', bnames, .false.)
+        if (present(merged)) then
+            merged = .false.
+            if (rd%failed()) return
+            merged = bmap%merged_by(kold) > 0
+            if (merged) return
+        end if
+        m = coord_ref(rd, i, 2)
         if (rd%failed()) return
         if (bmap%merged_by(kold) > 0) then
             call rd%fail(rd%context(i, 1, 'body')//': body '//trim(bnames(kold))//' was merged by the MERGE card at '// &

@@ -7,7 +7,7 @@
 module hn_limit_family
     use hn_kinds, only: wp, zero, deg
     use hn_deck_reader, only: deck_reader_t
-    use hn_element_cards, only: card_context_t, body_ref, active_coordinate, unit_of, unit_factor, unit_limit, &
+    use hn_element_cards, only: card_context_t, active_coordinate, unit_of, unit_factor, unit_limit, &
                                 big_modulus, coord_names
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
@@ -284,14 +284,11 @@ contains
         type(joint_limit_t) :: lim
         type(joint_range_t) :: r
         integer :: kb, m, j
+        logical :: merged
         ! a body absorbed by MERGE or a locked coordinate: the element would do nothing
-        if (ctx%bmap%merged_by(body_ref(rd, i, 1, 'body', ctx%bnames, .false.)) > 0) then
-            jf%ndropped = jf%ndropped + 1
-            return
-        end if
-        call active_coordinate(rd, i, ctx%tree, ctx%bnames, ctx%bmap, kb, m, j, .true.)
+        call active_coordinate(rd, i, ctx%tree, ctx%bnames, ctx%bmap, kb, m, j, .true., merged)
         if (rd%failed()) return
-        if (j == 0) then
+        if (merged .or. j == 0) then
             jf%ndropped = jf%ndropped + 1
             return
         end if

@@ -17,7 +17,7 @@
 module hn_nz_family
     use hn_kinds, only: wp, zero, one, half, deg
     use hn_deck_reader, only: deck_reader_t
-    use hn_element_cards, only: card_context_t, body_ref, active_coordinate, coord_names
+    use hn_element_cards, only: card_context_t, active_coordinate, coord_names
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -85,22 +85,31 @@ contains
         end if
     end function linear_from
 
+    !> Where coordinate x lies on the spring's law: its side s (1 = +,
+    !! 2 = -), the excursion |D| and the excursion dl where the law turns linear.
+    elemental subroutine law_point(sp, x, s, a, dl)
+        type(nz_spring_t), intent(in) :: sp
+        real(wp), intent(in) :: x
+        integer, intent(out) :: s
+        real(wp), intent(out) :: a, dl
+        s = side(x - sp%xn)
+        a = abs(x - sp%xn)
+        dl = linear_from(sp%m0(s), sp%ths(s), sp%mlin)
+    end subroutine law_point
+
     !> Generalized force Q of the spring at coordinate x [N m] (module doc).
     elemental real(wp) function nz_moment(sp, x) result(q)
         type(nz_spring_t), intent(in) :: sp   !! the spring
         real(wp), intent(in) :: x             !! its coordinate [rad]
-        real(wp) :: d, a, dl
+        real(wp) :: a, dl
         integer :: s
-        d = x - sp%xn
-        s = side(d)
-        a = abs(d)
-        dl = linear_from(sp%m0(s), sp%ths(s), sp%mlin)
+        call law_point(sp, x, s, a, dl)
         if (a <= dl) then
             q = sp%m0(s)*sinh(a/sp%ths(s))
         else
-            q = sp%mlin + sp%m0(s)*cosh(dl/sp%ths(s))/sp%ths(s)*(a - dl)
+            q = sp%mlin + nz_slope(sp, x)*(a - dl)
         end if
-        q = -sign(one, d)*q
+        q = -sign(one, x - sp%xn)*q
     end function nz_moment
 
     !> Stiffness -dQ/dx of the spring at coordinate x [N m/rad].
@@ -109,9 +118,7 @@ contains
         real(wp), intent(in) :: x             !! its coordinate [rad]
         real(wp) :: a, dl
         integer :: s
-        s = side(x - sp%xn)
-        a = abs(x - sp%xn)
-        dl = linear_from(sp%m0(s), sp%ths(s), sp%mlin)
+        call law_point(sp, x, s, a, dl)
         k = sp%m0(s)*cosh(min(a, dl)/sp%ths(s))/sp%ths(s)
     end function nz_slope
 
@@ -119,16 +126,13 @@ contains
     elemental real(wp) function nz_energy(sp, x) result(u)
         type(nz_spring_t), intent(in) :: sp   !! the spring
         real(wp), intent(in) :: x             !! its coordinate [rad]
-        real(wp) :: a, dl, e, kl
+        real(wp) :: a, dl, e
         integer :: s
-        s = side(x - sp%xn)
-        a = abs(x - sp%xn)
-        dl = linear_from(sp%m0(s), sp%ths(s), sp%mlin)
+        call law_point(sp, x, s, a, dl)
         u = sp%m0(s)*sp%ths(s)*(cosh(min(a, dl)/sp%ths(s)) - one)
         if (a > dl) then
             e = a - dl
-            kl = sp%m0(s)*cosh(dl/sp%ths(s))/sp%ths(s)
-            u = u + sp%mlin*e + half*kl*e**2
+            u = u + sp%mlin*e + half*nz_slope(sp, x)*e**2
         end if
     end function nz_energy
 
@@ -316,17 +320,18 @@ contains
         character(len=*), intent(in) :: key         !! the card name (NZSPRING)
         type(nz_spring_t) :: sp
         integer :: kb, m, j
+        logical :: merged
         ! room for every card, trimmed by end_cards (appending one by one is quadratic)
         if (this%nread == 0 .and. size(this%items) < ctx%ncards(key)) then
             deallocate (this%items)
             allocate (this%items(ctx%ncards(key)))
         end if
-        if (ctx%bmap%merged_by(body_ref(rd, i, 1, 'body', ctx%bnames, .false.)) > 0) then
+        call active_coordinate(rd, i, ctx%tree, ctx%bnames, ctx%bmap, kb, m, j, .true., merged)
+        if (rd%failed()) return
+        if (merged) then
             this%ndropped = this%ndropped + 1
             return
         end if
-        call active_coordinate(rd, i, ctx%tree, ctx%bnames, ctx%bmap, kb, m, j, .true.)
-        if (rd%failed()) return
         if (m <= 3) then
             call rd%fail(rd%context(i, 2, 'coordinate')//': found '//coord_names(m)//'; expected a rotation '// &
                          '(RX, RY or RZ): NZSPRING cards hold joint rotations')
