@@ -12,19 +12,28 @@ from conftest import hhneck_executable
 from hhneck import segments
 
 
-def _disc_card(deck, name):
-    """(d1, h, G, Ix, Iy, J) of the DISC card `name` of a deck, times its
-    SCALE factors of E (d1), G, BEND (Ix, Iy) and TORSION (J)."""
+def _disc_and_scales(deck, name):
+    """The card lines of the DISC card `name` of a deck (its three cards)
+    and the product of the deck's SCALE factors of DISCS per item."""
     lines = open(deck).read().splitlines()
     k = next(i for i, l in enumerate(lines) if l.startswith("DISC") and l[10:20].strip() == name)
-    f = lambda line, j: float(line[10 * j:10 * j + 10])      # noqa: E731
-    h, d1 = f(lines[k], 5), f(lines[k], 6)
-    g, ix, iy, j = (f(lines[k + 2], i) for i in range(1, 5))
     scale = {}
     for l in lines:
         if l.startswith("SCALE") and l[20:30].strip() == "DISCS":
-            item = l[30:40].strip()
-            scale[item] = scale.get(item, 1.0) * float(l[40:50])
+            scale[l[30:40].strip()] = scale.get(l[30:40].strip(), 1.0) * float(l[40:50])
+    return lines[k:k + 3], scale
+
+
+def _field(line, j):
+    return float(line[10 * j:10 * j + 10])
+
+
+def _disc_card(deck, name):
+    """(d1, h, G, Ix, Iy, J) of the DISC card `name` of a deck, times its
+    SCALE factors of E (d1), G, BEND (Ix, Iy) and TORSION (J)."""
+    card, scale = _disc_and_scales(deck, name)
+    h, d1 = _field(card[0], 5), _field(card[0], 6)
+    g, ix, iy, j = (_field(card[2], i) for i in range(1, 5))
     bend, torsion = scale.get("BEND", 1.0), scale.get("TORSION", 1.0)
     return d1 * scale.get("E", 1.0), h, g * scale.get("G", 1.0), ix * bend, iy * bend, j * torsion
 
@@ -34,13 +43,8 @@ def _relaxation_time(deck, name):
     `name` of a deck: d2 (d2b not given) times its SCALE factors VISCOUS and
     VBEND over d1 times E. Under a moment ramp of rate r the disc alone turns
     (M - tau r)/K, its Kelvin-Voigt lag."""
-    lines = open(deck).read().splitlines()
-    k = next(i for i, l in enumerate(lines) if l.startswith("DISC") and l[10:20].strip() == name)
-    d1, d2 = float(lines[k][60:70]), float(lines[k][70:80])
-    scale = {}
-    for l in lines:
-        if l.startswith("SCALE") and l[20:30].strip() == "DISCS":
-            scale[l[30:40].strip()] = scale.get(l[30:40].strip(), 1.0) * float(l[40:50])
+    card, scale = _disc_and_scales(deck, name)
+    d1, d2 = _field(card[0], 6), _field(card[0], 7)
     return d2 * scale.get("VISCOUS", 1.0) * scale.get("VBEND", 1.0) / (d1 * scale.get("E", 1.0))
 
 
