@@ -2,10 +2,17 @@
 # The shipped model deck from its fits, in order (docs/validation.md):
 #   1. the model deck at the calibration's starting point (the PARAM values of
 #      the VALUES cards of input/calibrate_nbdl12g.inp), the discs' bending and
-#      torsion at DISC_ROT_FRACTION of dev/make_head_neck_deck.py;
+#      torsion at DISC_ROT_FRACTION of dev/make_head_neck_deck.py, the upper-
+#      cervical cards as sourced (--upper-cervical none);
 #   2. hhneck-fit-joints on it: the neutral-zone springs fitted to the segment
 #      tests (Panjabi 2001, Nightingale 2007) less the other elements' moment,
-#      its runs with the NZSPRING cards dropped -> reference/nz_springs.csv;
+#      its runs with the NZSPRING cards dropped -> reference/nz_springs.csv
+#      (with UPPER_CERVICAL=1 in the environment, first the upper-cervical
+#      factors, hhneck.upper_cervical -> reference/upper_cervical.csv, and the
+#      springs on the deck with them: an experiment, docs/validation.md "The
+#      upper cervical joints"; the shipped model is fitted without; SUBOCCIPITAL=1
+#      adds the suboccipital muscles, --suboccipital yes, in every step, the
+#      same section's other experiment);
 #   3. hhneck --calibrate < input/calibrate_nbdl12g.inp on the model deck with
 #      those springs: muscles, damping and the discs' and stops' factors fitted
 #      to the NBDL 12 g volunteers -> the listing FIT;
@@ -27,12 +34,18 @@ awk '/^PARAM /{name[++n] = substr($0, 11, 10); gsub(/ /, "", name[n])}
                                                         if (v != "") val[++m] = v}}
      END {if (m != n) {print "fit_model.sh: " m " VALUES for " n " PARAM cards" > "/dev/stderr"; exit 1}
           for (k = 1; k <= n; k++) print "PARAM " name[k] " = " val[k]}' input/calibrate_nbdl12g.inp > "$start"
-python3 dev/make_head_neck_deck.py --fit "$start" --nz-springs reference/nz_springs.csv > input/head_neck_54dof.inp.new
+if [ "${UPPER_CERVICAL:-0}" = 1 ]; then upper=reference/upper_cervical.csv; flag=--upper-cervical
+else upper=none; flag=; fi
+if [ "${SUBOCCIPITAL:-0}" = 1 ]; then sub=yes; else sub=no; fi
+python3 dev/make_head_neck_deck.py --fit "$start" --nz-springs reference/nz_springs.csv --upper-cervical none \
+    --suboccipital $sub > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
-HHNECK=$exe hhneck-fit-joints
-python3 dev/make_head_neck_deck.py --fit "$start" > input/head_neck_54dof.inp.new
+HHNECK=$exe hhneck-fit-joints $flag
+python3 dev/make_head_neck_deck.py --fit "$start" --upper-cervical $upper --suboccipital $sub \
+    > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
 "$exe" --calibrate < input/calibrate_nbdl12g.inp > "$fit"
-python3 dev/make_head_neck_deck.py --fit "$fit" > input/head_neck_54dof.inp.new
+python3 dev/make_head_neck_deck.py --fit "$fit" --upper-cervical $upper --suboccipital $sub \
+    > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
-echo "fit_model.sh: input/head_neck_54dof.inp written from reference/nz_springs.csv and $fit" >&2
+echo "fit_model.sh: input/head_neck_54dof.inp written from reference/nz_springs.csv (upper cervical: $upper) and $fit" >&2

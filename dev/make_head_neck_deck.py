@@ -27,6 +27,16 @@ come from hhneck-fit-joints (python/hhneck/fit_joints.py), whose runs of the
 segment tests drop the NZSPRING cards and must see the discs so scaled; the
 whole flow, from the segment data to the muscles' fit, is dev/fit_model.sh.
 
+--suboccipital yes adds the four suboccipital muscles per side (SUBOCCIPITAL_MUSCLES;
+an experiment, not the shipped model).
+
+Upper-cervical factors (an experiment, not the shipped model: docs/validation.md
+"The upper cervical joints"): with --upper-cervical CSV (the file
+hhneck-fit-joints --upper-cervical writes, reference/upper_cervical.csv) the
+C2-C1 and C1-HEAD discs' flexion bending and torsion and their ligaments are
+scaled by its factors through hhneck.upper_cervical.scale_cards, the function
+the fit runs its cases with; without it (or with none), the cards as sourced.
+
 Pure arithmetic on the published numbers: no solver code lives here.
 """
 import math
@@ -36,6 +46,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 from hhneck.deck_fields import CardError, check_cards  # noqa: E402
+from hhneck import upper_cervical  # noqa: E402
 
 # ---------------------------------------------------------------- sources
 SOURCES = """\
@@ -187,6 +198,21 @@ MUSCLES = [
     ("LCOL", lambda s: at("T1", 0.012, s * 0.008, 0.0), lambda s: at("C2", 0.010, s * 0.006, 0.0), 1.1, 0.05),
     ("LCAP", lambda s: at("C5", 0.012, s * 0.012, 0.0), lambda s: at("HEAD", 0.015, s * 0.010, 0.005, OC), 1.0, 0.05),
 ]
+# The suboccipital muscles (an experiment, --suboccipital yes; not in the shipped model:
+# docs/validation.md "The upper cervical joints"): extensors of C0-C2 on EXT, straight.
+# Sectional areas of rectus capitis posterior major and obliquus capitis inferior from
+# MRI of 109 adults (Xu et al., Int J Morphol, 30-degree oblique sagittal section, men:
+# 1.83 and 2.55 cm^2; S15), minor and superior oblique 0.8 cm^2 (A); attachments and
+# optimal lengths A.
+SUBOCCIPITAL_MUSCLES = [
+    ("RCPMAJ", lambda s: at("C2", -0.040, s * 0.005, 0.005), lambda s: at("HEAD", -0.040, s * 0.025, 0.010, OC),
+     1.8, 0.04),
+    ("RCPMIN", lambda s: at("C1", -0.040, s * 0.004, 0.0), lambda s: at("HEAD", -0.035, s * 0.010, 0.010, OC),
+     0.8, 0.02),
+    ("OCI", lambda s: at("C2", -0.040, s * 0.006, 0.0), lambda s: at("C1", -0.005, s * 0.040, 0.0), 2.5, 0.045),
+    ("OCS", lambda s: at("C1", -0.005, s * 0.040, 0.0), lambda s: at("HEAD", -0.035, s * 0.040, 0.015, OC),
+     0.8, 0.03),
+]
 # Muscles that run along the vertebral column (deep and intermediate posterior
 # layers, prevertebral muscles) follow it through a via point on every vertebra
 # they pass, where the straight neutral line crosses that vertebra's mass-centre
@@ -294,8 +320,10 @@ def read_nz_springs(path):
 
 
 NZ_EXPLICIT = False
+UPPER_CERVICAL = "none"
 USAGE = ("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING] [--posture straight|seated|seated-held]\n"
-         "                              [--t1-slope DEG] [--lordosis DEG] [--nz-springs CSV|none]")
+         "                              [--t1-slope DEG] [--lordosis DEG] [--nz-springs CSV|none]\n"
+         "                              [--upper-cervical CSV|none] [--suboccipital yes|no]")
 args = sys.argv[1:]
 while args:
     a = args.pop(0)
@@ -316,6 +344,11 @@ while args:
         # a file not written yet: the discs at DISC_ROT_FRACTION, no springs (hhneck-fit-joints' first pass)
         NZ_SPRINGS = args.pop(0)
         NZ_EXPLICIT = True
+    elif a == "--upper-cervical":
+        UPPER_CERVICAL = args.pop(0)
+    elif a == "--suboccipital" and args[0] in ("yes", "no"):
+        if args.pop(0) == "yes":
+            MUSCLES = MUSCLES + SUBOCCIPITAL_MUSCLES
     else:
         sys.exit(USAGE)
 POSTURE_RY = {"C7": T1_SLOPE}
@@ -427,7 +460,11 @@ for name in names[1:]:
 w("*")
 w("* MUSCLES: Hill-type (contractile element with force-length and force-velocity")
 w("* relations, passive element, damping along the line; docs/deck-format.md),")
-w("* six groups per side, origins and insertions A (simplified anatomy).")
+if len(MUSCLES) == 6:
+    w("* six groups per side, origins and insertions A (simplified anatomy).")
+else:
+    w("* %d groups per side (the last four suboccipital, S15), origins and" % len(MUSCLES))
+    w("* insertions A (simplified anatomy).")
 w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (FITTED scale); PCSA, optimal fibre" % (SIGMA_MAX / 1e6))
 w("* length A; damping %.2f s/m x F0 (A). The paper's passive muscle (eq 11) stays" % MUSCLE_DAMPING)
 w("* available as the MUSCLE card. Muscles along the column (%s)" % ", ".join(VIA_MUSCLES))
@@ -523,8 +560,14 @@ if POSTURE != "straight":
             w(card("NEUTRAL", name, "RY", round(POSTURE_RY[name], 4)))
         else:
             w(card("INITIAL", name, "RY", round(POSTURE_RY[name], 4), 0.0))
+lines = "\n".join(out).split("\n")
+if UPPER_CERVICAL != "none":
+    try:
+        lines = upper_cervical.scale_cards(lines, *upper_cervical.read_csv(UPPER_CERVICAL))
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit("make_head_neck_deck.py: %s; not written" % e)
 try:
-    lines = check_cards("\n".join(out).split("\n"), "the model deck")
+    lines = check_cards(lines, "the model deck")
 except CardError as e:
     sys.exit("make_head_neck_deck.py: %s; not written" % e)
 print("\n".join(lines))

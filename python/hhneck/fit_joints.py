@@ -55,8 +55,16 @@ NZSPRING cards, fitting again on a deck that has them gives the same
 constants. --check runs each segment case with the cards and reports the
 rotation at each data moment against the data (model/data).
 
+With --upper-cervical the factors of hhneck.upper_cervical (the C2-C1 and
+C1-HEAD ligaments, and those discs' flexion bending and torsion) are fitted
+first, on the deck without them (refused on one that has them), written to
+reference/upper_cervical.csv, and the springs fitted on the deck with them
+(an option, not the shipped model's flow: docs/validation.md, "The upper
+cervical joints").
+
 Command: hhneck-fit-joints [--exe HHNECK] [--model DECK] [--data DIR]
-[--csv PATH] [--work DIR] [--jobs N] [--check]
+[--csv PATH] [--work DIR] [--jobs N] [--check] [--upper-cervical
+[--upper-csv PATH]]
 """
 import argparse
 import csv
@@ -68,7 +76,7 @@ import time
 
 import numpy as np
 
-from . import segments
+from . import segments, upper_cervical
 
 CSV_PATH = os.path.join(segments.ROOT, "reference", "nz_springs.csv")
 #: (body, segment of the data) per joint; C7 on T1 takes C6-C7 (ASSUMED)
@@ -455,6 +463,11 @@ def main(argv=None):
     p.add_argument("--model", default=segments.MODEL_DECK, help="the model deck (default input/head_neck_54dof.inp)")
     p.add_argument("--data", default=segments.DATA_DIR, help="the pmhs_neck data folder")
     p.add_argument("--csv", default=CSV_PATH, help="the table to write (default reference/nz_springs.csv)")
+    p.add_argument("--upper-cervical", action="store_true",
+                   help="first fit the upper-cervical factors (hhneck.upper_cervical) on the deck without them, "
+                        "then the springs on the deck with them")
+    p.add_argument("--upper-csv", default=upper_cervical.CSV_PATH,
+                   help="where --upper-cervical writes its factors (default reference/upper_cervical.csv)")
     p.add_argument("--work", help="working directory for the decks, listings and result files")
     p.add_argument("--jobs", type=int, help="runs at a time (default: the number of cores)")
     p.add_argument("--check", action="store_true",
@@ -478,15 +491,36 @@ def main(argv=None):
             ratios.size, float(np.exp(np.mean(np.log(ratios)))), ratios.min(), ratios.max(),
             time.perf_counter() - t0))
         return 0
-    rows, walls = fit_joints(a.exe, a.model, a.data, a.work, a.jobs)
+    work = a.work or tempfile.mkdtemp(prefix="hhneck-fit-joints-")
+    os.makedirs(work, exist_ok=True)
+    exe = a.exe or segments.default_executable()
+    model = a.model
+    if a.upper_cervical:
+        try:
+            upper = upper_cervical.fit_factors(exe, a.model, a.data, os.path.join(work, "upper_cervical"))
+        except ValueError as e:
+            print("hhneck-fit-joints: %s" % e, file=sys.stderr)
+            return 1
+        upper_cervical.write_csv(a.upper_csv, upper)
+        for name, r in upper.items():
+            print("%s = %.3g: %s %s turns %.3g deg at the data's largest moment (wanted %.3g), springs dropped"
+                  % (name, r["value"], r["segment"].replace("_", "-"), r["motion"], r["model_deg"],
+                     r["target_deg"]))
+        with open(a.model) as f:
+            lines = upper_cervical.scale_cards(f.read().splitlines(), upper["f_rot"]["value"],
+                                               upper["f_lig"]["value"])
+        model = os.path.join(work, "model_upper_cervical.inp")
+        with open(model, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    rows, walls = fit_joints(exe, model, a.data, work, a.jobs)
     write_csv(a.csv, rows)
     print("\n".join(table(rows)))
     notes = point_notes(rows)
     if notes:
         print("\npoints dropped or extrapolated:")
         print("\n".join(notes))
-    print("\nwrote %s (%d rows); %d runs of the others (NZSPRING dropped), %.1f s in all" % (
-        a.csv, len(rows), len(walls), time.perf_counter() - t0))
+    print("\nwrote %s%s (%d rows); %d runs of the others (NZSPRING dropped), %.1f s in all" % (
+        a.upper_csv + " and " if a.upper_cervical else "", a.csv, len(rows), len(walls), time.perf_counter() - t0))
     return 0
 
 
