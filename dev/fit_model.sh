@@ -12,7 +12,9 @@
 #      springs on the deck with them: an experiment, docs/validation.md "The
 #      upper cervical joints"; the shipped model is fitted without; SUBOCCIPITAL=1
 #      adds the suboccipital muscles, --suboccipital yes, in every step, the
-#      same section's other experiment);
+#      same section's other experiment; SEGMENTAL=1 the segmental muscles with
+#      the subaxial discs' bending at 0.2, --segmental yes --sub-bend 0.2,
+#      docs/validation.md "Segmental muscles");
 #   3. hhneck --calibrate < input/calibrate_nbdl12g.inp on the model deck with
 #      those springs: muscles, damping and the discs' and stops' factors fitted
 #      to the NBDL 12 g volunteers -> the listing FIT;
@@ -37,15 +39,16 @@ awk '/^PARAM /{name[++n] = substr($0, 11, 10); gsub(/ /, "", name[n])}
 if [ "${UPPER_CERVICAL:-0}" = 1 ]; then upper=reference/upper_cervical.csv; flag=--upper-cervical
 else upper=none; flag=; fi
 if [ "${SUBOCCIPITAL:-0}" = 1 ]; then sub=yes; else sub=no; fi
+if [ "${SEGMENTAL:-0}" = 1 ]; then seg="--segmental yes --sub-bend 0.2"; else seg=; fi
 python3 dev/make_head_neck_deck.py --fit "$start" --nz-springs reference/nz_springs.csv --upper-cervical none \
-    --suboccipital $sub > input/head_neck_54dof.inp.new
+    --suboccipital $sub $seg > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
 HHNECK=$exe hhneck-fit-joints $flag
-python3 dev/make_head_neck_deck.py --fit "$start" --upper-cervical $upper --suboccipital $sub \
+python3 dev/make_head_neck_deck.py --fit "$start" --upper-cervical $upper --suboccipital $sub $seg \
     > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
 "$exe" --calibrate < input/calibrate_nbdl12g.inp > "$fit"
-python3 dev/make_head_neck_deck.py --fit "$fit" --upper-cervical $upper --suboccipital $sub \
+python3 dev/make_head_neck_deck.py --fit "$fit" --upper-cervical $upper --suboccipital $sub $seg \
     > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
 echo "fit_model.sh: input/head_neck_54dof.inp written from reference/nz_springs.csv (upper cervical: $upper) and $fit" >&2

@@ -27,8 +27,10 @@ come from hhneck-fit-joints (python/hhneck/fit_joints.py), whose runs of the
 segment tests drop the NZSPRING cards and must see the discs so scaled; the
 whole flow, from the segment data to the muscles' fit, is dev/fit_model.sh.
 
---suboccipital yes adds the four suboccipital muscles per side (SUBOCCIPITAL_MUSCLES;
-an experiment, not the shipped model).
+--suboccipital yes adds the four suboccipital muscles per side (SUBOCCIPITAL_MUSCLES),
+--segmental yes two segmental muscles per subaxial level and side (segmental_muscles),
+--sub-bend F scales the subaxial discs' own bending Ix, Iy (SUB_BEND): experiments, not
+the shipped model (docs/validation.md "Segmental muscles").
 
 Upper-cervical factors (an experiment, not the shipped model: docs/validation.md
 "The upper cervical joints"): with --upper-cervical CSV (the file
@@ -213,6 +215,26 @@ SUBOCCIPITAL_MUSCLES = [
     ("OCS", lambda s: at("C1", -0.005, s * 0.040, 0.0), lambda s: at("HEAD", -0.035, s * 0.040, 0.015, OC),
      0.8, 0.03),
 ]
+# Segmental muscles (--segmental yes; docs/validation.md "Segmental muscles"): at every
+# subaxial level (T1-C7 ... C3-C2) per side a multifidus-like extensor from the lower
+# vertebra's lamina to the upper one's spinous process (MU, 1.0 cm^2, lopt 0.02 m) and an
+# intertransversarius between the transverse processes (IT, 0.4 cm^2, lopt 0.015 m), on
+# EXT, straight; PCSA, attachments and lengths A. Active, their short-range stiffness
+# stabilises each level the way the long muscles cannot (they span many levels).
+SEGMENTAL_LEVELS = (("T1", "C7"), ("C7", "C6"), ("C6", "C5"), ("C5", "C4"), ("C4", "C3"), ("C3", "C2"))
+
+
+def segmental_muscles():
+    """The MU and IT muscles of every subaxial level, as MUSCLES rows."""
+    rows = []
+    for lo, up in SEGMENTAL_LEVELS:
+        rows.append(("MU" + up, (lambda b: lambda s: at(b, -0.020, s * 0.020, 0.0))(lo),
+                     (lambda b: lambda s: at(b, -0.040, s * 0.004, 0.0))(up), 1.0, 0.02))
+        rows.append(("IT" + up, (lambda b: lambda s: at(b, 0.0, s * 0.030, 0.0))(lo),
+                     (lambda b: lambda s: at(b, 0.0, s * 0.030, 0.0))(up), 0.4, 0.015))
+    return rows
+
+
 # Muscles that run along the vertebral column (deep and intermediate posterior
 # layers, prevertebral muscles) follow it through a via point on every vertebra
 # they pass, where the straight neutral line crosses that vertebra's mass-centre
@@ -321,9 +343,13 @@ def read_nz_springs(path):
 
 NZ_EXPLICIT = False
 UPPER_CERVICAL = "none"
+# the subaxial discs' (T1-C7 ... C3-C2) own bending Ix, Iy as a fraction of DISC_ROT_FRACTION's
+# (--sub-bend F; 1 = as the other discs)
+SUB_BEND = 1.0
 USAGE = ("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING] [--posture straight|seated|seated-held]\n"
          "                              [--t1-slope DEG] [--lordosis DEG] [--nz-springs CSV|none]\n"
-         "                              [--upper-cervical CSV|none] [--suboccipital yes|no]")
+         "                              [--upper-cervical CSV|none] [--suboccipital yes|no]\n"
+         "                              [--segmental yes|no] [--sub-bend F]")
 args = sys.argv[1:]
 while args:
     a = args.pop(0)
@@ -346,6 +372,11 @@ while args:
         NZ_EXPLICIT = True
     elif a == "--upper-cervical":
         UPPER_CERVICAL = args.pop(0)
+    elif a == "--segmental" and args[0] in ("yes", "no"):
+        if args.pop(0) == "yes":
+            MUSCLES = MUSCLES + segmental_muscles()
+    elif a == "--sub-bend":
+        SUB_BEND = float(args.pop(0))
     elif a == "--suboccipital" and args[0] in ("yes", "no"):
         if args.pop(0) == "yes":
             MUSCLES = MUSCLES + SUBOCCIPITAL_MUSCLES
@@ -463,8 +494,8 @@ w("* relations, passive element, damping along the line; docs/deck-format.md),")
 if len(MUSCLES) == 6:
     w("* six groups per side, origins and insertions A (simplified anatomy).")
 else:
-    w("* %d groups per side (the last four suboccipital, S15), origins and" % len(MUSCLES))
-    w("* insertions A (simplified anatomy).")
+    w("* %d groups per side (beyond the first six: segmental MU, IT; suboccipital" % len(MUSCLES))
+    w("* S15), origins and insertions A (simplified anatomy).")
 w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (FITTED scale); PCSA, optimal fibre" % (SIGMA_MAX / 1e6))
 w("* length A; damping %.2f s/m x F0 (A). The paper's passive muscle (eq 11) stays" % MUSCLE_DAMPING)
 w("* available as the MUSCLE card. Muscles along the column (%s)" % ", ".join(VIA_MUSCLES))
@@ -566,6 +597,11 @@ if UPPER_CERVICAL != "none":
         lines = upper_cervical.scale_cards(lines, *upper_cervical.read_csv(UPPER_CERVICAL))
     except (OSError, ValueError, KeyError) as e:
         sys.exit("make_head_neck_deck.py: %s; not written" % e)
+if SUB_BEND != 1.0:
+    subaxial = [lo + up for lo, up in SEGMENTAL_LEVELS]
+    for i, line in enumerate(lines):
+        if line.startswith("DISC ") and line[10:20].strip() in subaxial:
+            lines[i + 2] = upper_cervical.scale_fields(lines[i + 2], (2, 3), SUB_BEND)
 try:
     lines = check_cards(lines, "the model deck")
 except CardError as e:

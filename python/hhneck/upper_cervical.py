@@ -42,7 +42,7 @@ through scale_cards, the same function the fit runs its cases on, and the
 deck says so in a comment line (MARKER). A deck that has the line is not
 fitted again (its cards would be scaled twice).
 
-API: scale_cards, deck_has_factors, range_edge, largest_factor, fit_factors, write_csv,
+API: scale_cards, scale_fields, deck_has_factors, range_edge, largest_factor, fit_factors, write_csv,
 read_csv.
 """
 import csv
@@ -63,12 +63,13 @@ BISECTIONS = 12
 MARKER = "* UPPER CERVICAL (hhneck.upper_cervical):"
 
 
-def _scaled(line, k, factor):
-    """The card image with its field k (0-based) times factor (at most 9
-    columns of digits: a blank column before the next field)."""
-    v = float(field(line, k)) * factor
-    text = next(t for t in (number_text(v, d) for d in range(6, 0, -1)) if len(t) <= 9)
-    return set_field(line, k, text)
+def scale_fields(line, ks, factor):
+    """The card image with each of its fields ks (0-based) times factor (at
+    most 9 columns of digits: a blank column before the next field)."""
+    for k in ks:
+        v = float(field(line, k)) * factor
+        line = set_field(line, k, next(t for t in (number_text(v, d) for d in range(6, 0, -1)) if len(t) <= 9))
+    return line
 
 
 def _joins(f):
@@ -91,14 +92,14 @@ def scale_cards(lines, f_rot, f_lig):
                 out.append("* Panjabi 2001 by hhneck-fit-joints before the neutral-zone springs).")
                 marked = True
             if f[0] == "LIGAMENT":
-                line = _scaled(_scaled(line, 4, f_lig), 5, f_lig)
+                line = scale_fields(line, (4, 5), f_lig)
                 out.append(line)
                 i += 1
                 continue
             out.append(line)                       # DISC: its second continuation holds G Ix Iy J k
             out.extend(lines[i + 1:i + 2])
             c = lines[i + 2]
-            c = _scaled(_scaled(c, 3, f_rot), 4, f_rot)
+            c = scale_fields(c, (3, 4), f_rot)
             out.append(c)
             i += 3
             continue

@@ -6,7 +6,8 @@ card to a ROM card's ends; the bisection finds the closed-form factor of a
 rotation M/(K f); the factors fitted on the shipped deck are the largest at
 which the segment case reaches its target (real runs at the factor and 5 %
 above it); the generator applies a CSV's factors only when asked; and the
-fitter refuses a deck that already carries them."""
+fitter refuses a deck that already carries them. The generator's muscle
+and disc variants: test_model_variants.py."""
 import os
 import subprocess
 import sys
@@ -166,27 +167,3 @@ def test_fitted_factors_are_the_largest_that_reach_the_target(tmp_path):
                                        str(tmp_path), data)
         assert got5 < want, (name, got5, want)
 
-
-def test_suboccipital_muscles_only_when_asked(tmp_path):
-    """--suboccipital yes: four more Hill muscles per side on EXT, F0 = the
-    source's sectional area x sigma_max (RCPMAJ 1.8 cm^2 x 0.5 MPa = 90 N,
-    OCI 2.5 cm^2: 125 N), joining the upper-cervical bodies; every other
-    card as without it; the program reads the deck."""
-    plain, sub = _generate(), _generate("--suboccipital", "yes")
-    assert _generate("--suboccipital", "no") == plain
-    hill = lambda lines: [l for l in lines if l.startswith("HILL")]  # noqa: E731
-    extra = [l for l in hill(sub) if l not in hill(plain)]
-    assert len(hill(sub)) == len(hill(plain)) + 8 and len(extra) == 8
-    f = {segments._fields(l)[1]: segments._fields(l) for l in extra}
-    assert sorted(f) == sorted(m + s for m in ("RCPMAJ", "RCPMIN", "OCI", "OCS") for s in "LR")
-    assert all(v[6] == "EXT" and {v[2], v[3]} <= {"C2", "C1", "HEAD"} for v in f.values())
-    assert float(f["RCPMAJL"][4]) == pytest.approx(90.0) and float(f["OCIR"][4]) == pytest.approx(125.0)
-    assert [l for l in sub if not l.startswith(("HILL", " ", "*"))] == \
-        [l for l in plain if not l.startswith(("HILL", " ", "*"))]
-    (tmp_path / "input").mkdir()
-    (tmp_path / "input" / "head_neck_54dof.inp").write_text("\n".join(sub) + "\n")
-    (tmp_path / "input" / "nbdl12g_t1.inp").write_text(open(os.path.join(ROOT, "input", "nbdl12g_t1.inp")).read())
-    with open(os.path.join(ROOT, "input", "nbdl12g.inp")) as fin:
-        r = subprocess.run([hhneck_executable(), "--check"], stdin=fin, capture_output=True, text=True,
-                           cwd=tmp_path)
-    assert r.returncode == 0, r.stderr
