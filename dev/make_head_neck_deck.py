@@ -47,7 +47,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.deck_fields import CardError, check_cards  # noqa: E402
+from hhneck.deck_fields import CardError, check_cards, scale_fields  # noqa: E402
 from hhneck import upper_cervical  # noqa: E402
 
 # ---------------------------------------------------------------- sources
@@ -601,7 +601,7 @@ if SUB_BEND != 1.0:
     subaxial = [lo + up for lo, up in SEGMENTAL_LEVELS]
     for i, line in enumerate(lines):
         if line.startswith("DISC ") and line[10:20].strip() in subaxial:
-            lines[i + 2] = upper_cervical.scale_fields(lines[i + 2], (2, 3), SUB_BEND)
+            lines[i + 2] = scale_fields(lines[i + 2], (2, 3), SUB_BEND)
 try:
     lines = check_cards(lines, "the model deck")
 except CardError as e:

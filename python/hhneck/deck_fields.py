@@ -122,6 +122,15 @@ def set_field(line, n, value):
     return (line[:10 * n] + text + line[10 * n + 10:]).rstrip()
 
 
+def scale_fields(line, ks, factor):
+    """The card image with each of its fields ks (0-based) times factor (at
+    most 9 columns of digits: a blank column before the next field)."""
+    for k in ks:
+        v = float(field(line, k)) * factor
+        line = set_field(line, k, next(t for t in (number_text(v, d) for d in range(6, 0, -1)) if len(t) <= 9))
+    return line
+
+
 def is_card(line, card, item=None):
     """True on a `card` image whose F1 is `item` (any F1 when item is None)."""
     return field(line, 0) == card and (item is None or field(line, 1) == item)

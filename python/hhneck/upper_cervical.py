@@ -42,7 +42,7 @@ through scale_cards, the same function the fit runs its cases on, and the
 deck says so in a comment line (MARKER). A deck that has the line is not
 fitted again (its cards would be scaled twice).
 
-API: scale_cards, scale_fields, deck_has_factors, range_edge, largest_factor, fit_factors, write_csv,
+API: scale_cards, deck_has_factors, range_edge, largest_factor, fit_factors, write_csv,
 read_csv.
 """
 import csv
@@ -51,7 +51,7 @@ import os
 import tempfile
 
 from . import segments
-from .deck_fields import field, number_text, set_field
+from .deck_fields import number_text, scale_fields
 
 CSV_PATH = os.path.join(segments.ROOT, "reference", "upper_cervical.csv")
 #: (lower, upper) body pairs of the atlanto-axial and atlanto-occipital joints
@@ -61,15 +61,6 @@ TARGETS = (("f_lig", ("C1_C2", "axial_rotation")), ("f_rot", ("C1_C2", "flexion_
 F_MIN = 1e-3
 BISECTIONS = 12
 MARKER = "* UPPER CERVICAL (hhneck.upper_cervical):"
-
-
-def scale_fields(line, ks, factor):
-    """The card image with each of its fields ks (0-based) times factor (at
-    most 9 columns of digits: a blank column before the next field)."""
-    for k in ks:
-        v = float(field(line, k)) * factor
-        line = set_field(line, k, next(t for t in (number_text(v, d) for d in range(6, 0, -1)) if len(t) <= 9))
-    return line
 
 
 def _joins(f):
