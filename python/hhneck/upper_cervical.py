@@ -180,9 +180,14 @@ def fit_factors(exe, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, work
     found = {"f_rot": 1.0, "f_lig": 1.0}
     out = {}
     for name, target in TARGETS:
+        runs = {}                                  # factor -> (model, wanted): each case run once
+
         def reached(v):
-            trial = dict(found, **{name: v})
-            return _rotation_reached(exe, scale_cards(base, trial["f_rot"], trial["f_lig"]), target, work, data)
+            if v not in runs:
+                trial = dict(found, **{name: v})
+                runs[v] = _rotation_reached(exe, scale_cards(base, trial["f_rot"], trial["f_lig"]), target,
+                                            work, data)
+            return runs[v]
         want = reached(1.0)[1]
         try:
             value = largest_factor(lambda v: reached(v)[0], want)
