@@ -77,6 +77,7 @@ import time
 import numpy as np
 
 from . import segments, upper_cervical
+from .deck_fields import write_deck
 
 CSV_PATH = os.path.join(segments.ROOT, "reference", "nz_springs.csv")
 #: (body, segment of the data) per joint; C7 on T1 takes C6-C7 (ASSUMED)
@@ -510,8 +511,7 @@ def main(argv=None):
             lines = upper_cervical.scale_cards(f.read().splitlines(), upper["f_rot"]["value"],
                                                upper["f_lig"]["value"])
         model = os.path.join(work, "model_upper_cervical.inp")
-        with open(model, "w") as f:
-            f.write("\n".join(lines) + "\n")
+        write_deck(model, lines)
     rows, walls = fit_joints(exe, model, a.data, work, a.jobs)
     write_csv(a.csv, rows)
     print("\n".join(table(rows)))

@@ -51,7 +51,7 @@ import os
 import tempfile
 
 from . import segments
-from .deck_fields import number_text, scale_fields
+from .deck_fields import number_text, scale_fields, write_deck
 
 CSV_PATH = os.path.join(segments.ROOT, "reference", "upper_cervical.csv")
 #: (lower, upper) body pairs of the atlanto-axial and atlanto-occipital joints
@@ -78,9 +78,11 @@ def scale_cards(lines, f_rot, f_lig):
         f = segments._fields(line)
         if line[:1] not in ("*", " ", "") and f[0] in ("DISC", "LIGAMENT") and _joins(f):
             if not marked:
-                out.append("%s discs C2-C1, C1-HEAD Iy, J x %s," % (MARKER, number_text(f_rot)))
-                out.append("* their ligaments' l1 and l2 x %s (reference/upper_cervical.csv: fitted to" % number_text(f_lig))
-                out.append("* Panjabi 2001 by hhneck-fit-joints before the neutral-zone springs).")
+                out.append(MARKER)
+                out.append("* discs C2-C1, C1-HEAD: Iy, J x %s; their ligaments: l1, l2 x %s" % (
+                    number_text(f_rot), number_text(f_lig)))
+                out.append("* (reference/upper_cervical.csv: fitted to Panjabi 2001 by hhneck-fit-joints")
+                out.append("* before the neutral-zone springs).")
                 marked = True
             if f[0] == "LIGAMENT":
                 line = scale_fields(line, (4, 5), f_lig)
@@ -129,8 +131,7 @@ def _rotation_reached(exe, lines, target, workdir, data):
     moment, rotation = data[target]
     peak = float(max(abs(moment)))
     model = os.path.join(workdir, "model.inp")
-    with open(model, "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_deck(model, lines)
     t, rot = segments.run_case(seg, motion, peak, workdir, exe, drop=("NZSPRING",), model=model)
     ends = segments.rotations_at(t, rot, peak, [peak, -peak])
     sides = [rotation[moment.argmax()], rotation[moment.argmin()]]
