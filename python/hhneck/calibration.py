@@ -1,14 +1,25 @@
-"""Calibration over the specimen cases of the catalogue, and its
-leave-one-out test: for each specimen case (Stemper 2004 rear, Kang 2018
-front and side; the decks of hhneck.specimens), fit the passive
-parameters to the other cases with `hhneck --calibrate` (ISO/TS 18571
-objective, RATING F5 ISO18571) and score the case left out with the fitted
-values: a prediction, since the case took no part in its fit.
+"""Calibration over the catalogue, and its leave-one-out test: for each
+group of cases -- a specimen case (Stemper 2004 rear, Kang 2018 front and
+side; the decks of hhneck.specimens) or, with --segments, a segment source
+(Panjabi 2001's 21 curves, Nightingale 2007's 3; the decks of
+hhneck.segments) -- fit the passive parameters to the other groups with
+`hhneck --calibrate` (ISO/TS 18571 objective, RATING F5 ISO18571; each
+group weighs 1, its curves equally) and score the group left out with the
+fitted values: a prediction, since it took no part in its fit.
 
     write_case(case, workdir) -> (deck, reference CSV, RATED card lines)
-    calibration_deck(cases, workdir, params, evals, starts, values=None) -> path
+    calibration_deck(name, cases, workdir, params, evals, starts, values=None, weights=None) -> path
     run_calibration(deck, workdir, exe=None) -> dict(values=, objective=, cases=)
-    leave_one_out(workdir, cases=CASES, params=PARAMS, evals=..., starts=...) -> rows
+    leave_one_out(workdir, groups=None, params=PARAMS, evals=..., starts=..., jobs=1) -> rows
+    volunteer_scores(params, values, workdir) -> (NBDL case means, largest real part at rest)
+    two_stage(workdir, evals, starts, nbdl_evals, nbdl_starts) -> dict (passive to the
+        catalogue, then the muscles to NBDL 12 g on that passive set)
+
+Segment cases (write_segment_case): the segment deck of hhneck.segments
+with protocol "sweep" (the whole moment-rotation curve on one rising
+moment ramp), its reference the data on the catalogue's 0.01 N m grid,
+each row at the time its moment is applied, rated row by row (RATED F6
+SAMPLES) as the catalogue rates rotation against moment.
 
 Reference CSVs: each case's rated channels, their reference curve (the
 corridor's midline or the specimens' mean, hhneck.specimen_data) and
@@ -26,7 +37,8 @@ of Izambert et al. 2003, S13), assumed otherwise (the spans the NBDL
 calibration deck uses; the ligaments' stiffness a factor 2 either way).
 The shipped model deck is not changed: the fitted values are reported.
 
-Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--evals N] [--starts N] [--table FILE]
+Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
+       [--table FILE]
 """
 import argparse
 import os
@@ -37,7 +49,7 @@ import sys
 import numpy as np
 
 from . import segments, specimen_data, specimens
-from .deck_fields import number_field
+from .deck_fields import is_card, number_field, set_field, write_deck
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
 
@@ -56,6 +68,68 @@ QUICK_PARAMS = PARAMS[4:5]
 # each a reference column C01, C02, ... of the case's CSV
 CASES = {"stemper": ("stemper2004_1p8ms", False), "kang_front": ("kang2018_front", True),
          "kang_side": ("kang2018_side", True)}
+#: the segment sources of the catalogue (hhneck.segments): source -> its peak moment [N m]
+SEGMENT_SOURCES = {"panjabi": 1.0, "nightingale": 3.5}
+
+
+def segment_cases(data_dir=segments.DATA_DIR):
+    """{source: [case name, ...]} of the segment tests: one case per curve of
+    the catalogue, named source_segment_motion (e.g. panjabi_C4_C5_lateral_bending)."""
+    out = {"panjabi": ["panjabi_%s_%s" % k for k in sorted(segments.load_panjabi(data_dir))],
+           "nightingale": ["nightingale_%s_flexion_extension" % seg
+                           for seg in sorted(segments.load_nightingale(data_dir))]}
+    return out
+
+
+def case_groups(data_dir=segments.DATA_DIR):
+    """{group: [case, ...]}: each segment source (its curves) and each specimen case
+    alone, the units the leave-one-out leaves out."""
+    groups = dict(segment_cases(data_dir))
+    groups.update({c: [c] for c in CASES})
+    return groups
+
+
+def _segment_key(case):
+    """(source, segment, motion) of a segment case's name."""
+    source, rest = case.split("_", 1)
+    seg = "_".join(rest.split("_")[:2])
+    return source, seg, rest[len(seg) + 1:]
+
+
+def write_segment_case(case, workdir, data_dir=segments.DATA_DIR):
+    """The deck of segment case `case` (protocol "sweep" of hhneck.segments)
+    and its reference CSV in workdir: (deck, reference, RATED card lines).
+    The reference: the data's mean rotation [deg] on the catalogue's 0.01 N m
+    grid from -M to +M (Nightingale with its lower and upper bounds), each
+    row at the time the sweep applies its moment; the model channel the
+    relative rotation of the top body to the fixed one (HT1_RX/RY/RZ: the
+    HEADNECK card of the segment deck names them), in the data's sign, less
+    its start value, its rows the rating's samples (SAMPLES: rotation as a
+    function of moment, as the catalogue rates it)."""
+    source, seg, motion = _segment_key(case)
+    peak = SEGMENT_SOURCES[source]
+    coord, sign, _ = segments.MOTIONS[motion]
+    grid = np.round(np.arange(-peak, peak + 1e-9, 0.01), 10)
+    cols = []
+    if source == "panjabi":
+        m, r = segments.load_panjabi(data_dir)[(seg, motion)]
+        cols.append(("C01", segments.reference_on(grid, m, r)))
+    else:
+        stats = segments.load_nightingale(data_dir)[seg]
+        lo, hi = (np.interp(grid, *stats[k]) for k in ("lower", "upper"))
+        cols += [("C01", np.interp(grid, *stats["mean"])), ("C01_LOW", np.minimum(lo, hi)),
+                 ("C01_HIGH", np.maximum(lo, hi))]
+    deck = os.path.join(workdir, case + ".inp")
+    segments.write_deck(deck, seg, motion, peak, protocol="sweep",
+                        title="CALIBRATION SEGMENT %s %s %s" % (source.upper(), seg, motion.upper()))
+    ref = case + "_reference.csv"
+    times = 1000.0 * segments.sweep_time(grid, peak)
+    with open(os.path.join(workdir, ref), "w") as f:
+        f.write(",".join(["time_ms"] + [c[0] for c in cols]) + "\n")
+        for i, t in enumerate(times):
+            f.write(",".join(["%.6f" % t] + ["%.9g" % c[1][i] for c in cols]) + "\n")
+    rated = [("RATED     C01       HT1_%-6s%s%-10sSTART     SAMPLES" % (coord, number_field(sign), ""))]
+    return os.path.basename(deck), ref, rated
 
 
 def case_channels(case):
@@ -99,8 +173,11 @@ def write_reference(case, path, data_dir=segments.DATA_DIR):
 
 
 def write_case(case, workdir, data_dir=segments.DATA_DIR):
-    """The specimen deck of `case` and its reference CSV in workdir:
-    (deck file name, reference file name, RATED card lines)."""
+    """The deck of `case` (a specimen case, or a segment case of
+    segment_cases) and its reference CSV in workdir: (deck file name,
+    reference file name, RATED card lines)."""
+    if case.split("_", 1)[0] in SEGMENT_SOURCES:
+        return write_segment_case(case, workdir, data_dir)
     if case == "stemper":
         deck = specimens.stemper_deck(workdir, data_dir=data_dir)
     else:
@@ -111,15 +188,18 @@ def write_case(case, workdir, data_dir=segments.DATA_DIR):
 
 
 def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, values=None, seed=1,
-                     data_dir=segments.DATA_DIR):
-    """A calibration deck fitting `params` to `cases` (ISO 18571 objective,
-    unit weights); with `values`, the deck scores that point only (FIT
+                     data_dir=segments.DATA_DIR, weights=None):
+    """A calibration deck fitting `params` to `cases` (ISO 18571 objective;
+    weights: {case: weight}, default 1 each); with `values`, the deck scores that point only (FIT
     with 0 evaluations, VALUES cards) and writes its rated curves
     (CURVES). Returns the deck's path."""
-    lines = ["TITLE     SPECIMEN CALIBRATION: %s" % " ".join(c.upper() for c in cases)]
+    weights = weights or {}
+    lines = [("TITLE     CATALOGUE CALIBRATION: %s" % " ".join(c.upper() for c in cases))[:80]]
     for case in cases:
         deck, ref, rated = write_case(case, workdir, data_dir)
-        lines += ["CASE      %s" % deck, "DATA      %s" % ref] + rated
+        w = weights.get(case, 1.0)
+        lines += [("CASE      %-60s%s" % (deck, number_field(w) if w != 1.0 else "")).rstrip(),
+                  "DATA      %s" % ref] + rated
     lines.append("*         window (ms; volunteer cases only) CFC tolerance metric")
     lines.append("RATING    0.0       200.0     60        10.0      ISO18571")
     lines.append("FIT       NELDER    %-10d%-10d%-10d" % (0 if values is not None else evals, starts, seed))
@@ -139,13 +219,18 @@ def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, va
 
 def parse_listing(text):
     """dict(objective=, values={PARAM: value}, cases={deck: mean rating},
-    channels={deck: {channel: ISO overall}}) of a calibration listing."""
-    out = dict(objective=None, values={}, cases={}, channels={})
+    channels={deck: {channel: ISO overall}}, rest=the largest real part at
+    rest [1/s] or None) of a calibration listing (a case not rated is absent
+    from cases)."""
+    out = dict(objective=None, values={}, cases={}, channels={}, rest=None)
     deck = None
     for line in text.splitlines():
         m = re.match(r"OBJECTIVE J =\s+(\S+)", line)
         if m:
             out["objective"] = float(m.group(1))
+        m = re.match(r"LARGEST REAL PART AT REST\s+([-+0-9.Ee]+) 1/S", line)
+        if m:
+            out["rest"] = float(m.group(1))
         m = re.match(r"PARAM (\S+)\s+= (\S+)", line)
         if m:
             out["values"][m.group(1)] = float(m.group(2))
@@ -175,57 +260,250 @@ def run_calibration(deck, workdir, exe=None):
     return out
 
 
-def leave_one_out(workdir, cases=tuple(CASES), params=PARAMS, evals=40, starts=8, exe=None):
-    """For each case: the shipped model's score on it, the fit on the
-    other cases (its objective, the values), and the fitted values' score
-    on the case left out. Rows of dicts."""
+def group_weights(groups):
+    """{case: weight}: each group (a segment source's curves, a specimen
+    case) weighs 1 in the objective, its cases equally."""
+    return {c: 1.0 / len(cases) for cases in groups.values() for c in cases}
+
+
+#: the NBDL calibration deck whose cases the volunteer scores rate (CORA-style, its RATING card)
+NBDL_DECK = os.path.join(segments.ROOT, "input", "calibrate_nbdl.inp")
+
+
+def model_deck_with(params, values, path, model=segments.MODEL_DECK):
+    """Write the model deck with `params` at `values` to `path`: a FIELDn
+    parameter (PARAM name, FIELDn, card, F1 item) sets field n of the one
+    card of the model deck with that F1 (as a sweep binds it), a FAMILY
+    parameter appends a SCALE card of its own (a factor on the family's
+    item)."""
+    lines = open(model).read().splitlines()
+    for p, v in zip(params, values):
+        if p[1].startswith("FIELD"):
+            hits = [k for k, l in enumerate(lines) if is_card(l, p[2], p[3])]
+            if len(hits) != 1:
+                raise ValueError("%s: %d %s cards of %s" % (model, len(hits), p[2], p[3]))
+            lines[hits[0]] = set_field(lines[hits[0]], int(p[1][5:]), number_field(v).strip())
+        else:
+            lines.append(("SCALE     %-10s%-10s%-10s%s" % (p[0], p[2], p[3], number_field(v))).rstrip())
+    write_deck(path, lines)
+
+
+def volunteer_scores(params, values, workdir, exe=None, nbdl=NBDL_DECK):
+    """The NBDL cases of the NBDL calibration deck (CORA-style, its own
+    study cards) with the model deck's `params` at `values` and every other
+    parameter as shipped: {case deck: mean rating}. The model deck with the
+    values goes to workdir/input/ (an INCLUDE is found next to the
+    calibration deck first) and the calibration deck, evaluate-only (FIT
+    with 0 evaluations, no VALUES: the decks' values), to workdir. Returns
+    (cases, rest): no cases when the set does not stand at rest (rest, the
+    largest real part at rest [1/s], above the calibration's -1 1/s)."""
+    os.makedirs(os.path.join(workdir, "input"), exist_ok=True)
+    model_deck_with(params, values, os.path.join(workdir, "input", os.path.basename(segments.MODEL_DECK)))
+    lines = []
+    for l in open(nbdl).read().splitlines():
+        if is_card(l, "VALUES") or is_card(l, "CURVES"):
+            continue
+        lines.append(set_field(l, 2, "0") if is_card(l, "FIT") else l)
+    deck = os.path.join(workdir, "nbdl_scores.inp")
+    write_deck(deck, lines)
+    out = run_calibration(deck, workdir, exe)
+    return out["cases"], out["rest"]
+
+
+def by_case(result, cases):
+    """{case: mean rating} of a calibration listing's numbers (parse_listing)
+    whose deck holds `cases` in this order (its CASE cards' order)."""
+    scores = list(result["cases"].values())
+    if len(scores) != len(cases):
+        raise RuntimeError("the listing rates %d cases, the deck has %d" % (len(scores), len(cases)))
+    return dict(zip(cases, scores))
+
+
+def _fold(args):
+    out, groups, workdir, params, evals, starts, exe = args
+    workdir = os.path.join(workdir, out)     # each fold its own folder: folds run at once
     os.makedirs(workdir, exist_ok=True)
-    rows = []
-    for out in cases:
-        rest = [c for c in cases if c != out]
-        shipped = run_calibration(calibration_deck("shipped_%s" % out, [out], workdir, params, values=[]), workdir,
-                                  exe)
-        fit = run_calibration(calibration_deck("fit_without_%s" % out, rest, workdir, params, evals, starts),
+    rest = {g: c for g, c in groups.items() if g != out}
+    rest_cases = [c for cs in rest.values() for c in cs]
+    w = group_weights(rest)
+    shipped = run_calibration(calibration_deck("shipped_%s" % out, groups[out], workdir, params, values=[]),
                               workdir, exe)
-        values = [fit["values"][p[0]] for p in params]
-        pred = run_calibration(calibration_deck("predict_%s" % out, [out], workdir, params, values=values),
-                               workdir, exe)
-        rows.append(dict(case=out, fitted_on=rest, shipped=list(shipped["cases"].values())[0],
-                         calibration=1.0 - fit["objective"], calibration_cases=fit["cases"],
-                         prediction=list(pred["cases"].values())[0], values=dict(zip([p[0] for p in params], values)),
-                         channels=list(pred["channels"].values())[0],
-                         shipped_channels=list(shipped["channels"].values())[0]))
-    return rows
+    fit = run_calibration(calibration_deck("fit_without_%s" % out, rest_cases, workdir, params, evals, starts,
+                                           weights=w), workdir, exe)
+    values = [fit["values"][p[0]] for p in params]
+    pred = run_calibration(calibration_deck("predict_%s" % out, groups[out], workdir, params, values=values),
+                           workdir, exe)
+    fitted = by_case(fit, rest_cases)
+    nbdl, rest_growth = volunteer_scores(params, values, os.path.join(workdir, "volunteers"), exe)
+    return dict(case=out, fitted_on=list(rest), shipped=float(np.mean(list(by_case(shipped, groups[out]).values()))),
+                calibration=1.0 - fit["objective"],
+                calibration_groups={g: float(np.mean([fitted[k] for k in c])) for g, c in rest.items()},
+                prediction=float(np.mean(list(by_case(pred, groups[out]).values()))),
+                values=dict(zip([p[0] for p in params], values)), volunteers=nbdl, rest=rest_growth,
+                channels=pred["channels"], shipped_channels=shipped["channels"])
+
+
+def leave_one_out(workdir, groups=None, params=PARAMS, evals=40, starts=8, exe=None, jobs=1):
+    """For each group of cases (case_groups: a segment source's curves, or
+    one specimen case): the shipped model's score on it, the fit of
+    `params` on the other groups (each group weighing 1: group_weights),
+    its objective and values, and the fitted values' score on the group
+    left out (a prediction), and on the NBDL volunteers (volunteer_scores:
+    a prediction too, the muscles as shipped). Folds run `jobs` at a time, each in its own
+    folder WORKDIR/GROUP. Rows of dicts.
+    groups: {group: [case, ...]} (default: every specimen case alone)."""
+    from concurrent.futures import ThreadPoolExecutor
+    groups = groups or {c: [c] for c in CASES}
+    os.makedirs(workdir, exist_ok=True)
+    args = [(g, groups, workdir, params, evals, starts, exe) for g in groups]
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        return list(pool.map(_fold, args))
 
 
 def table(rows, params):
     """The leave-one-out table as Markdown."""
     lines = ["| left out | fitted on | shipped model (ISO 18571) | calibration (mean over the fitted cases) | "
-             "prediction of the left-out case | fitted values |",
-             "|---|---|---|---|---|---|"]
+             "prediction of the left-out case | NBDL 15 g / 12 g at the fitted values (CORA-style) | fitted values |",
+             "|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %s | %s | %.3f | %.3f | %.3f | %s |" % (
+        lines.append("| %s | %s | %.3f | %.3f | %.3f | %s | %s |" % (
             r["case"], ", ".join(r["fitted_on"]), r["shipped"], r["calibration"], r["prediction"],
+            volunteer_text(r["volunteers"], r["rest"]),
             ", ".join("%s %.3g" % (p[0], r["values"][p[0]]) for p in params)))
     return "\n".join(lines) + "\n"
+
+
+#: the NBDL 12 g calibration deck (the shipped fit's) and its muscles' parameters
+NBDL12_DECK = os.path.join(segments.ROOT, "input", "calibrate_nbdl12g.inp")
+MUSCLE_PARAMS = ("SIGMA", "BRACEF", "REFLEXF", "DELAYF", "BRACEE", "REFLEXE", "DELAYE")
+
+
+def deck_params(path):
+    """The PARAM cards of a calibration deck as PARAMS-style tuples (name,
+    kind, target, item, low, high, spacing) and its VALUES in their order."""
+    from .deck_fields import field
+    params, values = [], []
+    for l in open(path).read().splitlines():
+        if is_card(l, "PARAM"):
+            params.append((field(l, 1), field(l, 2), field(l, 3), field(l, 4), float(field(l, 5)),
+                           float(field(l, 6)), field(l, 7)))
+        elif is_card(l, "VALUES"):
+            values += [float(field(l, k)) for k in range(1, 8) if field(l, k)]
+    return params, values
+
+
+def muscle_fit_deck(path, evals, starts, nbdl12=NBDL12_DECK):
+    """The NBDL 12 g calibration deck with the muscles' parameters alone
+    (MUSCLE_PARAMS, the others as the model deck has them), from the same
+    starting point (its VALUES of those parameters), `evals` evaluations
+    from `starts` starting points; written to `path`, its PARAM tuples returned."""
+    params, values = deck_params(nbdl12)
+    keep = [k for k, p in enumerate(params) if p[0] in MUSCLE_PARAMS]
+    lines = []
+    for l in open(nbdl12).read().splitlines():
+        if is_card(l, "VALUES") or (is_card(l, "PARAM") and l[10:20].strip() not in MUSCLE_PARAMS):
+            continue
+        if is_card(l, "FIT"):
+            l = set_field(set_field(l, 2, str(evals)), 3, str(starts))
+        lines.append(l)
+    vals = [values[k] for k in keep]
+    lines += ["VALUES    " + "".join(number_field(v) for v in vals[k:k + 7]) for k in range(0, len(vals), 7)]
+    write_deck(path, lines)
+    return [params[k] for k in keep]
+
+
+def two_stage(workdir, evals=150, starts=16, nbdl_evals=1000, nbdl_starts=100, exe=None, groups=None):
+    """The passive properties fitted to the whole catalogue (every segment
+    source and specimen case, each group weighing 1), then the muscles
+    (MUSCLE_PARAMS) fitted to the NBDL 12 g volunteers on that passive set
+    (the shipped fit's deck, starting point and objective, the other
+    parameters as shipped); scored on the NBDL 15 g and 12 g runs
+    (CORA-style) and on every catalogue group (ISO 18571). Returns a dict:
+    passive, muscles ({name: value}), catalogue ({group: mean} at the
+    final set), stage1 ({group: mean} at the passive fit, shipped muscles),
+    volunteers ({deck: mean}) and rest (1/s). groups: the catalogue's
+    groups fitted and scored (default case_groups(): all of them)."""
+    groups = groups or case_groups()
+    cases = [c for cs in groups.values() for c in cs]
+    d1, d2, d3 = (os.path.join(workdir, d) for d in ("passive", "muscles", "scores"))
+    for d in (d1, d2, d3):
+        os.makedirs(os.path.join(d, "input"), exist_ok=True)
+    fit = run_calibration(calibration_deck("passive_fit", cases, d1, PARAMS, evals, starts,
+                                           weights=group_weights(groups)), d1, exe)
+    passive = [fit["values"][p[0]] for p in PARAMS]
+    stage1 = by_case(fit, cases)
+    model = os.path.join("input", os.path.basename(segments.MODEL_DECK))
+    model_deck_with(PARAMS, passive, os.path.join(d2, model))
+    deck = os.path.join(d2, "muscle_fit.inp")
+    mparams = muscle_fit_deck(deck, nbdl_evals, nbdl_starts)
+    mfit = run_calibration(deck, d2, exe)
+    muscles = [mfit["values"][p[0]] for p in mparams]
+    allp, allv = list(PARAMS) + mparams, passive + muscles
+    volunteers, rest = volunteer_scores(allp, allv, os.path.join(d3, "volunteers"), exe)
+    model_deck_with(allp, allv, os.path.join(d3, model))
+    final = by_case(run_calibration(calibration_deck("catalogue", cases, d3, PARAMS, values=passive), d3, exe),
+                    cases)
+    mean = lambda sc, cs: float(np.mean([sc[c] for c in cs]))
+    return dict(passive=dict(zip([p[0] for p in PARAMS], passive)),
+                muscles=dict(zip([p[0] for p in mparams], muscles)),
+                stage1={g: mean(stage1, cs) for g, cs in groups.items()},
+                catalogue={g: mean(final, cs) for g, cs in groups.items()}, volunteers=volunteers, rest=rest)
+
+
+def two_stage_text(r):
+    """The two-stage fit's values and scores as Markdown."""
+    lines = ["passive set (fitted to the catalogue): " + ", ".join("%s %.3g" % kv for kv in r["passive"].items()),
+             "", "muscles (fitted to NBDL 12 g on it): " + ", ".join("%s %.3g" % kv for kv in r["muscles"].items()),
+             "", "| group | passive fit, shipped muscles (calibration) | final set |", "|---|---|---|"]
+    lines += ["| %s | %.3f | %.3f |" % (g, r["stage1"][g], r["catalogue"][g]) for g in r["catalogue"]]
+    lines += ["", "NBDL 15 g / 12 g (CORA-style; 12 g calibration of the muscles, 15 g prediction): " +
+              volunteer_text(r["volunteers"], r["rest"])]
+    return "\n".join(lines) + "\n"
+
+
+def volunteer_text(cases, rest):
+    """The NBDL cell of a table: the two case means, or why none."""
+    if not cases:
+        return "not run: unstable at rest (%+.3g 1/s)" % rest if rest is not None else "not rated"
+    return " / ".join("%.3f" % cases[k] for k in sorted(cases, key=lambda d: "15g" not in d))
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="hhneck-calibrate-catalogue",
                                  description="Leave-one-out calibration of the passive parameters over the "
-                                             "specimen cases (ISO/TS 18571).")
+                                             "specimen cases, and with --segments the segment sources "
+                                             "(ISO/TS 18571).")
     ap.add_argument("workdir", help="folder for the decks, references and listings (created)")
     ap.add_argument("--quick", action="store_true",
                     help="the test form: Stemper and Kang front, one parameter (ROMK), 2 starts, few evaluations")
     ap.add_argument("--evals", type=int, default=40, help="evaluations per fit (default 40)")
     ap.add_argument("--starts", type=int, default=8, help="LHS starting points per fit (default 8)")
     ap.add_argument("--table", help="write the Markdown table to this file too")
+    ap.add_argument("--segments", action="store_true",
+                    help="the whole catalogue: the segment sources (Panjabi, Nightingale) as groups beside the "
+                         "specimen cases")
+    ap.add_argument("--jobs", type=int, default=1, help="folds run at a time (default 1)")
+    ap.add_argument("--two-stage", action="store_true",
+                    help="instead of the leave-one-out: the passive parameters fitted to the whole catalogue, "
+                         "then the muscles to the NBDL 12 g volunteers on them (two_stage)")
+    ap.add_argument("--nbdl-evals", type=int, default=1000, help="evaluations of the muscles' fit (--two-stage)")
+    ap.add_argument("--nbdl-starts", type=int, default=100, help="its LHS starting points (--two-stage)")
     args = ap.parse_args(argv)
+    if args.two_stage:
+        r = two_stage(os.path.abspath(args.workdir), args.evals, args.starts, args.nbdl_evals, args.nbdl_starts)
+        text = two_stage_text(r)
+        sys.stdout.write(text)
+        if args.table:
+            with open(args.table, "w") as f:
+                f.write(text)
+        return 0
     if args.quick:
-        cases, params, evals, starts = ("stemper", "kang_front"), QUICK_PARAMS, 2, 2
+        groups, params, evals, starts = {c: [c] for c in ("stemper", "kang_front")}, QUICK_PARAMS, 2, 2
+    elif args.segments:
+        groups, params, evals, starts = case_groups(), PARAMS, args.evals, args.starts
     else:
-        cases, params, evals, starts = tuple(CASES), PARAMS, args.evals, args.starts
-    rows = leave_one_out(os.path.abspath(args.workdir), cases, params, evals, starts)
+        groups, params, evals, starts = {c: [c] for c in CASES}, PARAMS, args.evals, args.starts
+    rows = leave_one_out(os.path.abspath(args.workdir), groups, params, evals, starts, jobs=args.jobs)
     text = table(rows, params)
     sys.stdout.write(text)
     for p in params:

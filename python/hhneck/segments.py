@@ -26,6 +26,12 @@ relaxation time d2b/d1 = 0.062 s with the model's VBEND factor) lag the
 rotation by 0.3 % on a 20 s ramp (on a 1 s ramp the rotation still grew
 5.5 % during the hold), and the slowest segment mode (the head on C1) has a
 period near 0.2 s; the tests check the closed form within 1 %.
+The calibration's protocol (protocol="sweep", hhneck.calibration): 0 -> -M
+over 20 s, held 2 s, -M -> +M over 40 s (t = SWEEP_START .. SWEEP_START +
+2 RAMP), held to 64 s: the whole moment-rotation curve on one rising ramp,
+rotation as a function of time as the calibration's reference rows need it
+(the negative branch read unloading from -M, as a cyclic test passes it; the
+catalogue's loading branches differ from it by the viscous lag only).
 
 Signs of the data (README): flexion +, extension -; lateral bending and
 axial rotation "(+)L". In the project's axes (x forward, y left, z up) a
@@ -35,7 +41,7 @@ rotation +RZ; the moment vector of the positive direction is (0, 1, 0),
 relative to the lower one minus its neutral value (for OC-C2 the sum of the
 C1 and head angles about the same axis, exact for a planar motion).
 
-API: write_deck, run_case, rotation_curve, rotations_at, data_branches,
+API: moment_table, sweep_time, write_deck, run_case, rotation_curve, rotations_at, data_branches,
 rate_curve, catalogue (all cases; hhneck.catalogue writes docs/catalogue.md).
 Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
 (hhneck-catalogue writes the report).
@@ -75,6 +81,8 @@ MOTIONS = {
 RAMP, HOLD = 20.0, 2.0                # [s] the protocol of the module docstring
 T_NEG = 2.0 * RAMP + HOLD              # start of the negative loading ramp
 T_END = 3.0 * RAMP + 2.0 * HOLD
+SWEEP_START = RAMP + HOLD              # start of the rising ramp -M -> +M of protocol "sweep"
+PROTOCOLS = ("loading", "sweep")
 #: element and coordinate cards of the model deck a segment deck takes
 ELEMENT_CARDS = ("DISC", "LIGAMENT")
 UPPER_CARDS = ("JOINT", "BODYPI", "NEUTRAL", "LIMIT", "ROM", "NZSPRING")
@@ -108,14 +116,31 @@ def card_blocks(path):
     return blocks
 
 
-def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None, drop=()):
+def moment_table(peak, protocol="loading"):
+    """[(t [s], moment [N m])] of the moment protocol (module docstring)."""
+    if protocol == "loading":
+        return [(0.0, 0.0), (RAMP, peak), (RAMP + HOLD, peak), (T_NEG, 0.0), (T_NEG + RAMP, -peak), (T_END, -peak)]
+    if protocol == "sweep":
+        return [(0.0, 0.0), (RAMP, -peak), (SWEEP_START, -peak), (SWEEP_START + 2.0 * RAMP, peak), (T_END, peak)]
+    raise ValueError("protocol: one of %s, not %r" % (", ".join(PROTOCOLS), protocol))
+
+
+def sweep_time(moment, peak):
+    """The time [s] at which protocol "sweep" applies `moment` (array) on
+    its rising ramp."""
+    return SWEEP_START + (np.asarray(moment, dtype=float) + peak) / peak * RAMP
+
+
+def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None, drop=(),
+               protocol="loading"):
     """Write the deck of one segment test (module docstring) to `path`:
     `segment` a key of SEGMENTS, `motion` of MOTIONS, `peak` the moment [N m].
     disc_only keeps the discs alone (the closed-form check of the tests).
     drop: card names (e.g. ("NZSPRING",)) left out of the model deck's cards
     that the segment would otherwise take, with the SCALE cards of their
     family (CARD_FAMILY: "NZSPRING" drops the NZSPRINGS SCALE cards too).
-    Returns the channel names of the upper bodies' rotation coordinate."""
+    protocol: "loading" (the catalogue's) or "sweep" (the calibration's;
+    moment_table). Returns the channel names of the upper bodies' rotation coordinate."""
     lower, uppers = SEGMENTS[segment]
     coord, _, vec = MOTIONS[motion]
     bodies = (lower,) + uppers
@@ -146,7 +171,7 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
             kept.append(b)
     if not any(_fields(b[0])[0] == "DISC" for b in kept):
         raise ValueError("%s: no disc joins %s in %s" % (segment, " ".join(bodies), model))
-    table = [(0.0, 0.0), (RAMP, peak), (RAMP + HOLD, peak), (T_NEG, 0.0), (T_NEG + RAMP, -peak), (T_END, -peak)]
+    table = moment_table(peak, protocol)
     pts = "".join("%-10s%-10s" % ("%.6g" % t, "%.6g" % m) for t, m in table)
     head = [
         "TITLE     %s" % (title or "SEGMENT TEST %s %s TO %.3g N M" % (segment, motion.upper(), peak))[:70],
@@ -189,17 +214,19 @@ def default_executable():
     return exe
 
 
-def run_case(segment, motion, peak, workdir, exe=None, disc_only=False, drop=(), model=MODEL_DECK):
+def run_case(segment, motion, peak, workdir, exe=None, disc_only=False, drop=(), model=MODEL_DECK,
+             protocol="loading"):
     """Write and run one segment test in `workdir`; returns (t [s], rotation
     [deg] of the upper body relative to the lower, in the data's sign).
     drop: card names left out of the deck (write_deck); model: the model
-    deck the segment's cards are taken from. The files are named after the
-    case (segment, motion, peak, and _disc or _no<card> for each dropped
-    card)."""
-    name = "%s_%s_%gNm%s%s" % (segment, motion, peak, "_disc" if disc_only else "",
-                               "".join("_no" + d.lower() for d in drop))
+    deck the segment's cards are taken from; protocol: write_deck's. The
+    files are named after the case (segment, motion, peak, and _disc or
+    _no<card> for each dropped card, _sweep for protocol "sweep")."""
+    name = "%s_%s_%gNm%s%s%s" % (segment, motion, peak, "_disc" if disc_only else "",
+                                 "".join("_no" + d.lower() for d in drop), "_sweep" if protocol == "sweep" else "")
     deck = os.path.join(workdir, name + ".inp")
-    channels = write_deck(deck, segment, motion, peak, model=model, disc_only=disc_only, drop=drop)
+    channels = write_deck(deck, segment, motion, peak, model=model, disc_only=disc_only, drop=drop,
+                          protocol=protocol)
     exe = exe or default_executable()
     with open(deck) as fin, open(os.path.join(workdir, name + ".txt"), "w") as fout:
         res = subprocess.run([exe], stdin=fin, stdout=fout, stderr=subprocess.PIPE, text=True, cwd=workdir)

@@ -47,7 +47,9 @@
 !! ranges (LOG ranges in logarithms), points clamped to the bounds.
 !! Deterministic: the same deck gives the same fit on every machine.
 !! Member runs are those of the sweep (sweep_member_case, run_state_t):
-!! no result file, the listing to /dev/null.
+!! no result file, the listing to /dev/null; a volunteer case sampled at
+!! 0.1 ms or finer (its CFC filter), a reference case at its deck's OUTPUT
+!! interval (the curves its result file would hold: a segment test's 10 ms).
 module hn_calibrate
     use hn_kinds, only: wp, zero, one, msglen, deg
     use hn_status, only: stat_ok, stat_bad_input
@@ -62,7 +64,7 @@ module hn_calibrate
     use hn_optimize, only: restarted_nelder_mead
     use hn_rating, only: peak_t, corridor_t, score_t, score_curves, window_samples, max_lag, cora_rating
     use hn_volunteer_data, only: data_channel_t, read_volunteers, reference_data_t, read_reference_csv
-    use hn_iso18571, only: iso18571_rating_t, iso18571_rating, iso18571_min_samples
+    use hn_iso18571, only: iso18571_rating_t, iso18571_rating, iso18571_min_samples, iso18571_dt
     use hn_rest_modes, only: rest_mode_t, rest_modes
     use hn_model, only: fam_muscles
     use hn_joint_limits, only: range_margin
@@ -91,6 +93,7 @@ module hn_calibrate
         real(wp), allocatable :: scale(:)               !! (rated) its factor (F3, default 1)
         character(len=10), allocatable :: minus(:)      !! (rated) a channel subtracted (F4, '' none)
         logical, allocatable :: from_start(:)           !! (rated) less its value at the start (F5 START)
+        logical, allocatable :: as_samples(:)           !! (rated) its rows the rating's 10 kHz samples (F6 SAMPLES)
     end type reference_case_t
 
     !> The joints of one run past their physiological ranges (ROM cards).
@@ -153,7 +156,7 @@ contains
     !! (F7, default 1)] followed by DATA, the directory of that case's
     !! volunteers or a reference CSV (a name ending in .csv), then for a
     !! reference case optional RATED cards (CSV column, model channel,
-    !! [scale], [subtracted channel], [START]); FIT NELDER max-evaluations
+    !! [scale], [subtracted channel], [START], [SAMPLES]); FIT NELDER max-evaluations
     !! starting-points seed [peak-weight [peak-time-weight [peak-margin]]];
     !! RATING window-start window-end CFC-class peak-time-tolerance
     !! [CORA or ISO18571]; CHANNEL
@@ -576,7 +579,8 @@ contains
             if (cal%metric == metric_iso18571) then
                 call window_rows(cal%vol(c)%t, cal%window, i1, i2)
                 do k = 1, size(cal%channels)
-                    call iso_check(st, cal%vol(c)%mean(i1:i2, k), cal%vol(c)%t, 'the volunteers'' mean of '// &
+                    call iso_check(st, cal%vol(c)%mean(i1:i2, k), (cal%vol(c)%t(2) - cal%vol(c)%t(1))*1.0e-3_wp, &
+                                   'the volunteers'' mean of '// &
                                    trim(cal%channels(k)%name)//' on the RATING window', st%data_line(c), stat, errmsg)
                     if (stat /= stat_ok) return
                 end do
@@ -604,8 +608,9 @@ contains
             end if
             n = count(st%rated_case == c)
             if (n == 0) n = size(rf%data%name)
-            allocate (rf%column(n), rf%col(n), rf%channel(n), rf%scale(n), rf%minus(n), rf%from_start(n))
-            rf%scale = one; rf%minus = ''; rf%from_start = .false.
+            allocate (rf%column(n), rf%col(n), rf%channel(n), rf%scale(n), rf%minus(n), rf%from_start(n), &
+                      rf%as_samples(n))
+            rf%scale = one; rf%minus = ''; rf%from_start = .false.; rf%as_samples = .false.
             if (count(st%rated_case == c) == 0) then
                 rf%column = rf%data%name
                 rf%channel = rf%data%name
@@ -627,7 +632,8 @@ contains
             do m = 1, n
                 associate (d => rf%data, k => rf%col(m))
                     if (cal%metric == metric_iso18571) then
-                        call iso_check(st, d%mean(d%first(k):d%last(k), k), d%t, 'reference "'//trim(d%name(k))// &
+                        call iso_check(st, d%mean(d%first(k):d%last(k), k), rated_interval(rf, m), &
+                                       'reference "'//trim(d%name(k))// &
                                        '"', st%data_line(c), stat, errmsg)
                     else
                         call window_samples(d%t(d%first(k):d%last(k)), [d%t(d%first(k)), d%t(d%last(k))], &
@@ -647,7 +653,7 @@ contains
     end subroutine reference_case
 
     !> The RATED cards of reference case c, in their order: CSV column,
-    !! model channel, [scale], [subtracted channel], [START], each column
+    !! model channel, [scale], [subtracted channel], [START], [SAMPLES], each column
     !! one of the CSV's and rated once, each channel one of the case deck's.
     subroutine rated_columns(st, c, data, deck, chs, rf, stat, errmsg)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
@@ -659,7 +665,7 @@ contains
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
         character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
         integer :: m, r, l, col
-        character(len=10) :: column, chan, minus, fs
+        character(len=10) :: column, chan, minus, fs, smp
         real(wp) :: sc
         stat = stat_ok
         associate (rd => st%rd)
@@ -676,6 +682,9 @@ contains
                 fs = ''
                 if (.not. rd%failed() .and. .not. rd%is_blank(l, 5)) &
                     call rd%choice(l, 5, 'origin', [character(len=10) :: 'START'], fs)
+                smp = ''
+                if (.not. rd%failed() .and. .not. rd%is_blank(l, 6)) &
+                    call rd%choice(l, 6, 'sampling', [character(len=10) :: 'SAMPLES'], smp)
                 if (rd%failed()) then
                     stat = rd%stat; errmsg = rd%errmsg; return
                 end if
@@ -705,28 +714,43 @@ contains
                     return
                 end if
                 rf%column(m) = column; rf%col(m) = col; rf%channel(m) = chan; rf%scale(m) = sc
-                rf%minus(m) = minus; rf%from_start(m) = fs == 'START'
+                rf%minus(m) = minus; rf%from_start(m) = fs == 'START'; rf%as_samples(m) = smp == 'SAMPLES'
             end do
         end associate
     end subroutine rated_columns
 
     !> stat_bad_input with the DATA card's location when ISO 18571 cannot
-    !! rate against curve r (times spaced as t): too short, constant.
-    subroutine iso_check(st, r, t, what, line, stat, errmsg)
+    !! rate against curve r (samples dt apart): too short, constant.
+    subroutine iso_check(st, r, dt, what, line, stat, errmsg)
         type(calibration_deck_t), intent(in) :: st     !! the deck (the DATA card's location)
         real(wp), intent(in) :: r(:)                   !! the curve
-        real(wp), intent(in) :: t(:)                   !! its times, evenly spaced [ms]
+        real(wp), intent(in) :: dt                     !! its sampling interval as the rating takes it [s]
         character(len=*), intent(in) :: what           !! what the curve is, in the message
         integer, intent(in) :: line                    !! the DATA card's line
         integer, intent(out) :: stat                   !! stat_ok, or the rating's error
         character(len=msglen), intent(inout) :: errmsg !! on an error: the DATA card, the curve and why
         type(iso18571_rating_t) :: rt
         character(len=msglen) :: m
-        call iso18571_rating(r, r, (t(2) - t(1))*1.0e-3_wp, rt, stat, m)
+        call iso18571_rating(r, r, dt, rt, stat, m)
         if (stat /= stat_ok) errmsg = st%rd%where(line)//' (DATA card): '//what//': '//trim(m)// &
                                       ' (RATING F5 ISO18571 needs at least '// &
                                       trim(int_str(iso18571_min_samples))//' samples at 10 kHz)'
     end subroutine iso_check
+
+    !> The sampling interval ISO 18571 takes the rows of rated channel m
+    !! of a reference case at [s]: its CSV's time step, or with SAMPLES
+    !! (RATED F6) the rating's own 0.1 ms (each row one sample: a curve
+    !! whose abscissa is not time, as a moment-rotation curve read on a
+    !! moment ramp, is rated as the catalogue rates it, not resampled).
+    pure real(wp) function rated_interval(rf, m) result(dt)
+        type(reference_case_t), intent(in) :: rf   !! the case's reference, its RATED cards read
+        integer, intent(in) :: m                   !! the rated channel
+        if (rf%as_samples(m)) then
+            dt = iso18571_dt
+        else
+            dt = (rf%data%t(2) - rf%data%t(1))*1.0e-3_wp
+        end if
+    end function rated_interval
 
     !> A DATA name ending in .csv (any case): a reference CSV.
     pure logical function is_csv(name)
@@ -978,7 +1002,7 @@ contains
             associate (d => rf%data, k => rf%col(m))
                 associate (tr => d%t(d%first(k):d%last(k)), r => d%mean(d%first(k):d%last(k), k))
                     y = resample(tr, tm, f)
-                    call iso18571_rating(r, y, (tr(2) - tr(1))*1.0e-3_wp, sc%iso(m), stat, msg)
+                    call iso18571_rating(r, y, rated_interval(rf, m), sc%iso(m), stat, msg)
                     call cora_rating(tr, y, r, (d%upper(d%first(k):d%last(k), k) - d%lower(d%first(k):d%last(k), k))/2, &
                                      [tr(1), tr(size(tr))], sc%corridor(m), sc%xcorr(m), sc%rating(m), lag)
                     if (present(curves)) call write_curves(curves, c, rf%column(m), tr, r, y)
@@ -1227,7 +1251,7 @@ contains
         character(len=msglen) :: msg
         character(len=chname_len), allocatable :: rated(:)
         ok = .false.
-        call sweep_member_case(cal%sw(c), v, cs, stat, msg)
+        call sweep_member_case(cal%sw(c), v, cs, stat, msg, deck_sampling=cal%ref(c)%on)
         if (stat /= stat_ok) return
         ! the rated channels alone: the CHANNEL cards' or the RATED cards' (and what they subtract)
         if (cal%ref(c)%on) then

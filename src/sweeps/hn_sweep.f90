@@ -496,16 +496,19 @@ contains
     !> The case of one member: the base deck with the FIELD values written
     !! into their fields, read as any deck, then the FAMILY and BODY scale
     !! factors applied to the model. Sampling is made 0.1 ms or finer so
-    !! that the injury criteria are computed.
-    subroutine sweep_member_case(sw, v, cs, stat, errmsg)
+    !! that the injury criteria are computed, unless deck_sampling (a
+    !! calibration's reference case: its curves as its result file holds
+    !! them, a quasi-static segment test at the deck's 10 ms).
+    subroutine sweep_member_case(sw, v, cs, stat, errmsg, deck_sampling)
         type(sweep_t), intent(in) :: sw                !! the sweep (base deck, parameters)
         real(wp), intent(in) :: v(:)                   !! one value per parameter
         type(case_t), intent(out) :: cs                !! the member's case (no result file, sampling 0.1 ms or finer)
         integer, intent(out) :: stat                   !! stat_ok, or the failure of the member's deck or tree
         character(len=msglen), intent(out) :: errmsg   !! why the member's case is invalid ('' when stat_ok)
+        logical, intent(in), optional :: deck_sampling !! true: keep the deck's OUTPUT interval (its result file's)
         type(deck_line_t), allocatable :: lines(:)
         integer :: p, c1, c2
-        logical :: rebuild_tree
+        logical :: rebuild_tree, keep
         lines = sw%base_lines
         do p = 1, size(sw%params)
             if (sw%params(p)%kind /= par_field) cycle
@@ -535,7 +538,9 @@ contains
             if (stat /= 0) return
         end if
         call model_set_neutral(cs%model)     ! disc stiffness and damping matrices
-        if (cs%sample_dt > 1.0e-4_wp) cs%sample_dt = 1.0e-4_wp
+        keep = .false.
+        if (present(deck_sampling)) keep = deck_sampling
+        if (cs%sample_dt > 1.0e-4_wp .and. .not. keep) cs%sample_dt = 1.0e-4_wp
         cs%h5file = ''
     end subroutine sweep_member_case
 

@@ -74,6 +74,27 @@ def test_disc_alone_turns_by_moment_over_stiffness(tmp_path, exe, motion):
     assert hold_end == pytest.approx(expect[0], rel=3e-3 if motion == "axial_rotation" else 1e-4)
 
 
+def test_sweep_protocol_disc_alone_against_its_closed_form(tmp_path, exe):
+    # the calibration's protocol: 0 -> -M, held, -M -> +M at the rate M/RAMP;
+    # on the rising ramp the disc alone turns (m - tau r)/K at every moment m
+    # once the hold's state has relaxed (tau 0.1 s against the 5 s to m = -0.5)
+    table = segments.moment_table(1.0, "sweep")
+    assert table[0] == (0.0, 0.0) and table[-1] == (segments.T_END, 1.0)
+    assert table[2] == (segments.SWEEP_START, -1.0)
+    m = np.array([-0.5, 0.0, 0.5, 1.0])
+    assert np.allclose(np.interp(segments.sweep_time(m, 1.0), *zip(*table)), m)
+    t, rot = segments.run_case("C4_C5", "flexion_extension", 1.0, str(tmp_path), exe, disc_only=True,
+                               protocol="sweep")
+    deck = str(tmp_path / "C4_C5_flexion_extension_1Nm_disc_sweep.inp")
+    d1, h, g, ix, iy, j = _disc_card(deck, "C5C4")
+    k, tau = d1 * iy / h, _relaxation_time(deck, "C5C4")
+    expect = np.degrees((m - tau * 1.0 / segments.RAMP) / k)
+    got = np.interp(segments.sweep_time(m, 1.0), t, rot)
+    assert np.allclose(got, expect, rtol=2e-3, atol=1e-4), (got, expect)
+    with pytest.raises(ValueError):
+        segments.moment_table(1.0, "cyclic")
+
+
 def test_deck_takes_the_segment_cards_of_the_model_deck(tmp_path):
     deck = str(tmp_path / "c01.inp")
     channels = segments.write_deck(deck, "C0_C1", "lateral_bending", 1.0)
