@@ -43,6 +43,7 @@ Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--segments] [--evals N] [--
 import argparse
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -96,7 +97,7 @@ def _segment_key(case):
     return source, seg, rest[len(seg) + 1:]
 
 
-def write_segment_case(case, workdir, data_dir=segments.DATA_DIR):
+def write_segment_case(case, workdir, data_dir=segments.DATA_DIR, model=segments.MODEL_DECK):
     """The deck of segment case `case` (protocol "sweep" of hhneck.segments)
     and its reference CSV in workdir: (deck, reference, RATED card lines).
     The reference: the data's mean rotation [deg] on the catalogue's 0.01 N m
@@ -105,7 +106,8 @@ def write_segment_case(case, workdir, data_dir=segments.DATA_DIR):
     relative rotation of the top body to the fixed one (HT1_RX/RY/RZ: the
     HEADNECK card of the segment deck names them), in the data's sign, less
     its start value, its rows the rating's samples (SAMPLES: rotation as a
-    function of moment, as the catalogue rates it)."""
+    function of moment, as the catalogue rates it). model: the model deck
+    the segment's cards are taken from."""
     source, seg, motion = _segment_key(case)
     peak = SEGMENT_SOURCES[source]
     coord, sign, _ = segments.MOTIONS[motion]
@@ -120,7 +122,7 @@ def write_segment_case(case, workdir, data_dir=segments.DATA_DIR):
         cols += [("C01", np.interp(grid, *stats["mean"])), ("C01_LOW", np.minimum(lo, hi)),
                  ("C01_HIGH", np.maximum(lo, hi))]
     deck = os.path.join(workdir, case + ".inp")
-    segments.write_deck(deck, seg, motion, peak, protocol="sweep",
+    segments.write_deck(deck, seg, motion, peak, model=model, protocol="sweep",
                         title="CALIBRATION SEGMENT %s %s %s" % (source.upper(), seg, motion.upper()))
     ref = case + "_reference.csv"
     times = 1000.0 * segments.sweep_time(grid, peak)
@@ -172,12 +174,12 @@ def write_reference(case, path, data_dir=segments.DATA_DIR):
     return rated
 
 
-def write_case(case, workdir, data_dir=segments.DATA_DIR):
+def write_case(case, workdir, data_dir=segments.DATA_DIR, model=segments.MODEL_DECK):
     """The deck of `case` (a specimen case, or a segment case of
     segment_cases) and its reference CSV in workdir: (deck file name,
     reference file name, RATED card lines)."""
     if case.split("_", 1)[0] in SEGMENT_SOURCES:
-        return write_segment_case(case, workdir, data_dir)
+        return write_segment_case(case, workdir, data_dir, model)
     if case == "stemper":
         deck = specimens.stemper_deck(workdir, data_dir=data_dir)
     else:
@@ -188,15 +190,23 @@ def write_case(case, workdir, data_dir=segments.DATA_DIR):
 
 
 def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, values=None, seed=1,
-                     data_dir=segments.DATA_DIR, weights=None):
+                     data_dir=segments.DATA_DIR, weights=None, model=None):
     """A calibration deck fitting `params` to `cases` (ISO 18571 objective;
     weights: {case: weight}, default 1 each); with `values`, the deck scores that point only (FIT
     with 0 evaluations, VALUES cards) and writes its rated curves
-    (CURVES). Returns the deck's path."""
+    (CURVES). model: another model deck than the shipped one, copied to
+    workdir/input/ (where the specimen decks' INCLUDE finds it first) and
+    the segment decks' source. Returns the deck's path."""
     weights = weights or {}
+    if model is not None:
+        copy = os.path.join(workdir, "input", os.path.basename(segments.MODEL_DECK))
+        os.makedirs(os.path.dirname(copy), exist_ok=True)
+        if os.path.abspath(model) != os.path.abspath(copy):
+            shutil.copyfile(model, copy)
+        model = copy
     lines = [("TITLE     CATALOGUE CALIBRATION: %s" % " ".join(c.upper() for c in cases))[:80]]
     for case in cases:
-        deck, ref, rated = write_case(case, workdir, data_dir)
+        deck, ref, rated = write_case(case, workdir, data_dir, model or segments.MODEL_DECK)
         w = weights.get(case, 1.0)
         lines += [("CASE      %-60s%s" % (deck, number_field(w) if w != 1.0 else "")).rstrip(),
                   "DATA      %s" % ref] + rated
@@ -288,7 +298,7 @@ def model_deck_with(params, values, path, model=segments.MODEL_DECK):
     write_deck(path, lines)
 
 
-def volunteer_scores(params, values, workdir, exe=None, nbdl=NBDL_DECK):
+def volunteer_scores(params, values, workdir, exe=None, nbdl=NBDL_DECK, model=segments.MODEL_DECK):
     """The NBDL cases of the NBDL calibration deck (CORA-style, its own
     study cards) with the model deck's `params` at `values` and every other
     parameter as shipped: {case deck: mean rating}. The model deck with the
@@ -298,7 +308,7 @@ def volunteer_scores(params, values, workdir, exe=None, nbdl=NBDL_DECK):
     (cases, rest): no cases when the set does not stand at rest (rest, the
     largest real part at rest [1/s], above the calibration's -1 1/s)."""
     os.makedirs(os.path.join(workdir, "input"), exist_ok=True)
-    model_deck_with(params, values, os.path.join(workdir, "input", os.path.basename(segments.MODEL_DECK)))
+    model_deck_with(params, values, os.path.join(workdir, "input", os.path.basename(segments.MODEL_DECK)), model)
     lines = []
     for l in open(nbdl).read().splitlines():
         if is_card(l, "VALUES") or is_card(l, "CURVES"):
@@ -412,7 +422,8 @@ def muscle_fit_deck(path, evals, starts, nbdl12=NBDL12_DECK):
     return [params[k] for k in keep]
 
 
-def two_stage(workdir, evals=150, starts=16, nbdl_evals=1000, nbdl_starts=100, exe=None, groups=None):
+def two_stage(workdir, evals=150, starts=16, nbdl_evals=1000, nbdl_starts=100, exe=None, groups=None,
+              model=segments.MODEL_DECK):
     """The passive properties fitted to the whole catalogue (every segment
     source and specimen case, each group weighing 1), then the muscles
     (MUSCLE_PARAMS) fitted to the NBDL 12 g volunteers on that passive set
@@ -422,26 +433,29 @@ def two_stage(workdir, evals=150, starts=16, nbdl_evals=1000, nbdl_starts=100, e
     passive, muscles ({name: value}), catalogue ({group: mean} at the
     final set), stage1 ({group: mean} at the passive fit, shipped muscles),
     volunteers ({deck: mean}) and rest (1/s). groups: the catalogue's
-    groups fitted and scored (default case_groups(): all of them)."""
+    groups fitted and scored (default case_groups(): all of them); model:
+    the model deck (default the shipped one; e.g. a variant of the deck
+    generator's)."""
     groups = groups or case_groups()
     cases = [c for cs in groups.values() for c in cs]
     d1, d2, d3 = (os.path.join(workdir, d) for d in ("passive", "muscles", "scores"))
     for d in (d1, d2, d3):
         os.makedirs(os.path.join(d, "input"), exist_ok=True)
     fit = run_calibration(calibration_deck("passive_fit", cases, d1, PARAMS, evals, starts,
-                                           weights=group_weights(groups)), d1, exe)
+                                           weights=group_weights(groups), model=model), d1, exe)
     passive = [fit["values"][p[0]] for p in PARAMS]
     stage1 = by_case(fit, cases)
-    model = os.path.join("input", os.path.basename(segments.MODEL_DECK))
-    model_deck_with(PARAMS, passive, os.path.join(d2, model))
+    name = os.path.join("input", os.path.basename(segments.MODEL_DECK))
+    model_deck_with(PARAMS, passive, os.path.join(d2, name), model)
     deck = os.path.join(d2, "muscle_fit.inp")
     mparams = muscle_fit_deck(deck, nbdl_evals, nbdl_starts)
     mfit = run_calibration(deck, d2, exe)
     muscles = [mfit["values"][p[0]] for p in mparams]
     allp, allv = list(PARAMS) + mparams, passive + muscles
-    volunteers, rest = volunteer_scores(allp, allv, os.path.join(d3, "volunteers"), exe)
-    model_deck_with(allp, allv, os.path.join(d3, model))
-    final = by_case(run_calibration(calibration_deck("catalogue", cases, d3, PARAMS, values=passive), d3, exe),
+    volunteers, rest = volunteer_scores(allp, allv, os.path.join(d3, "volunteers"), exe, model=model)
+    model_deck_with(allp, allv, os.path.join(d3, name), model)
+    final = by_case(run_calibration(calibration_deck("catalogue", cases, d3, PARAMS, values=passive,
+                                                     model=os.path.join(d3, name)), d3, exe),
                     cases)
     mean = lambda sc, cs: float(np.mean([sc[c] for c in cs]))
     return dict(passive=dict(zip([p[0] for p in PARAMS], passive)),
@@ -488,9 +502,12 @@ def main(argv=None):
                          "then the muscles to the NBDL 12 g volunteers on them (two_stage)")
     ap.add_argument("--nbdl-evals", type=int, default=1000, help="evaluations of the muscles' fit (--two-stage)")
     ap.add_argument("--nbdl-starts", type=int, default=100, help="its LHS starting points (--two-stage)")
+    ap.add_argument("--model", default=segments.MODEL_DECK,
+                    help="the model deck of --two-stage (default the shipped input/head_neck_54dof.inp)")
     args = ap.parse_args(argv)
     if args.two_stage:
-        r = two_stage(os.path.abspath(args.workdir), args.evals, args.starts, args.nbdl_evals, args.nbdl_starts)
+        r = two_stage(os.path.abspath(args.workdir), args.evals, args.starts, args.nbdl_evals, args.nbdl_starts,
+                      model=os.path.abspath(args.model))
         text = two_stage_text(r)
         sys.stdout.write(text)
         if args.table:

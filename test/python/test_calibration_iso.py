@@ -206,6 +206,14 @@ def test_model_deck_with_sets_exactly_the_named_fields(tmp_path):
     assert [p[0] for p in got] == list(calibration.MUSCLE_PARAMS) and got == mp
     assert start == [v for p, v in zip(params, values) if p[0] in calibration.MUSCLE_PARAMS]
     assert "FIT       NELDER    7         3         13" in (tmp_path / "m.inp").read_text()
+    # a calibration on another model deck: copied where the specimen decks'
+    # INCLUDE finds it first, and the segment decks' cards taken from it
+    work = tmp_path / "variant"
+    calibration.calibration_deck("v", ["stemper", "panjabi_C4_C5_axial_rotation"], str(work),
+                                 calibration.QUICK_PARAMS, values=[], model=str(out))
+    assert (work / "input" / "head_neck_54dof.inp").read_text() == out.read_text()
+    assert "SCALE     LIGK      LIGAMENTS L1        1.5" in (work / "panjabi_C4_C5_axial_rotation.inp").read_text()
+    assert "INCLUDE   input/head_neck_54dof.inp" in (work / "stemper_hold_passive.inp").read_text()
 
 
 def test_two_stage_quick(tmp_path, monkeypatch):
