@@ -402,6 +402,21 @@ def deck_params(path):
     return params, values
 
 
+def values_listing(model=segments.MODEL_DECK, deck=NBDL12_DECK):
+    """The model deck's values of a calibration deck's parameters as a
+    calibration listing gives them ("PARAM NAME = value" lines, what the
+    deck generator's --fit reads): the shipped fit's values by default."""
+    from .deck_fields import field
+    lines = open(model).read().splitlines()
+    out = []
+    for p in deck_params(deck)[0]:
+        hits = [l for l in lines if is_card(l, p[2], p[3])]
+        if len(hits) != 1 or not p[1].startswith("FIELD"):
+            raise ValueError("%s: parameter %s is not one field of one card" % (model, p[0]))
+        out.append("PARAM %s = %s" % (p[0], field(hits[0], int(p[1][5:]))))
+    return "\n".join(out) + "\n"
+
+
 def muscle_fit_deck(path, evals, starts, nbdl12=NBDL12_DECK):
     """The NBDL 12 g calibration deck with the muscles' parameters alone
     (MUSCLE_PARAMS, the others as the model deck has them), from the same

@@ -98,3 +98,16 @@ def test_suboccipital_muscles_only_when_asked(tmp_path):
     assert [l for l in sub if not l.startswith(("HILL", " ", "*"))] == \
         [l for l in plain if not l.startswith(("HILL", " ", "*"))]
     _program_reads(tmp_path, sub)
+
+
+def test_values_listing_regenerates_the_shipped_deck(tmp_path):
+    # the shipped deck's values of the NBDL fit's parameters, as the
+    # generator's --fit reads them (dev/catalogue_two_stage.sh), give the
+    # shipped deck byte for byte: the variant of the two-stage fit differs
+    # from it by its option alone
+    from hhneck import calibration
+    listing = tmp_path / "values.txt"
+    listing.write_text(calibration.values_listing())
+    assert listing.read_text().count("PARAM ") == 15
+    got = _generate("--fit", str(listing), "--nz-springs", os.path.join(ROOT, "reference", "nz_springs.csv"))
+    assert got == open(segments.MODEL_DECK).read().splitlines()
