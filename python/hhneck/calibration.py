@@ -14,6 +14,9 @@ fitted values: a prediction, since it took no part in its fit.
     volunteer_scores(params, values, workdir) -> (NBDL case means, largest real part at rest)
     two_stage(workdir, evals, starts, nbdl_evals, nbdl_starts) -> dict (passive to the
         catalogue, then the muscles to NBDL 12 g on that passive set)
+    joint_fit(workdir, evals, starts, nbdl_weight) -> dict (every NBDL fit parameter and LIGK
+        fitted to NBDL 12 g and the specimen cases in one objective)
+    score_set(params, values, workdir) -> (catalogue group means, NBDL case means, rest)
 
 Segment cases (write_segment_case): the segment deck of hhneck.segments
 with protocol "sweep" (the whole moment-rotation curve on one rising
@@ -38,7 +41,7 @@ calibration deck uses; the ligaments' stiffness a factor 2 either way).
 The shipped model deck is not changed: the fitted values are reported.
 
 Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
-       [--table FILE]
+       [--two-stage [--model DECK] | --joint [--nbdl-weight W]] [--table FILE]
 """
 import argparse
 import os
@@ -467,16 +470,71 @@ def two_stage(workdir, evals=150, starts=16, nbdl_evals=1000, nbdl_starts=100, e
     mfit = run_calibration(deck, d2, exe)
     muscles = [mfit["values"][p[0]] for p in mparams]
     allp, allv = list(PARAMS) + mparams, passive + muscles
-    volunteers, rest = volunteer_scores(allp, allv, os.path.join(d3, "volunteers"), exe, model=model)
-    model_deck_with(allp, allv, os.path.join(d3, name), model)
-    final = by_case(run_calibration(calibration_deck("catalogue", cases, d3, PARAMS, values=passive,
-                                                     model=os.path.join(d3, name)), d3, exe),
-                    cases)
-    mean = lambda sc, cs: float(np.mean([sc[c] for c in cs]))
+    catalogue, volunteers, rest = score_set(allp, allv, d3, groups, exe, model)
     return dict(passive=dict(zip([p[0] for p in PARAMS], passive)),
                 muscles=dict(zip([p[0] for p in mparams], muscles)),
-                stage1={g: mean(stage1, cs) for g, cs in groups.items()},
-                catalogue={g: mean(final, cs) for g, cs in groups.items()}, volunteers=volunteers, rest=rest)
+                stage1={g: float(np.mean([stage1[c] for c in cs])) for g, cs in groups.items()},
+                catalogue=catalogue, volunteers=volunteers, rest=rest)
+
+
+def score_set(params, values, workdir, groups=None, exe=None, model=segments.MODEL_DECK):
+    """A parameter set scored everywhere: every catalogue group (ISO 18571,
+    the model deck with the values in workdir/input/, the passive PARAMS
+    among them also as the segment decks' VALUES) and the NBDL cases
+    (volunteer_scores). Returns (catalogue {group: mean}, NBDL {deck: mean}, rest [1/s])."""
+    groups = groups or case_groups()
+    cases = [c for cs in groups.values() for c in cs]
+    name = os.path.join(workdir, "input", os.path.basename(segments.MODEL_DECK))
+    os.makedirs(os.path.dirname(name), exist_ok=True)
+    volunteers, rest = volunteer_scores(params, values, os.path.join(workdir, "volunteers"), exe, model=model)
+    model_deck_with(params, values, name, model)
+    given = dict(zip([p[0] for p in params], values))
+    passive = [given[p[0]] for p in PARAMS]
+    final = by_case(run_calibration(calibration_deck("catalogue", cases, workdir, PARAMS, values=passive,
+                                                     model=name), workdir, exe), cases)
+    return {g: float(np.mean([final[c] for c in cs])) for g, cs in groups.items()}, volunteers, rest
+
+
+def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimens=tuple(CASES)):
+    """Every parameter of the shipped NBDL fit (input/calibrate_nbdl12g.inp:
+    its 15, its study, PASSIVE and RANGES cards) and the ligaments' LIGK
+    fitted in one objective to the NBDL 12 g volunteers (weight nbdl_weight)
+    and the specimen cases (weight 1 each), all rated by ISO 18571, from the
+    shipped values; then the set scored everywhere (score_set: NBDL 15 g and
+    the segment sources are prediction). The segment cases cannot take part:
+    a segment deck has no muscle cards for the muscles' parameters to bind.
+    Returns dict(values={name: value}, objective, fitted={deck: mean},
+    catalogue, volunteers, rest)."""
+    fitdir = os.path.join(workdir, "fit")
+    os.makedirs(fitdir, exist_ok=True)
+    params, _ = deck_params(NBDL12_DECK)
+    params = params + [PARAMS[-1]]
+    start = [float(l.split("=")[1]) for l in values_listing().splitlines()] + [1.0]
+    lines = ["TITLE     JOINT CALIBRATION: NBDL 12 G AND THE SPECIMEN CASES"]
+    for l in open(NBDL12_DECK).read().splitlines():
+        if l.startswith("*") or not l.strip() or is_card(l, "TITLE") or is_card(l, "VALUES") \
+                or is_card(l, "PARAM"):
+            continue
+        if is_card(l, "CASE"):
+            l = "%-70s%s" % (l.rstrip(), number_field(nbdl_weight))
+        elif is_card(l, "RATING"):
+            l = set_field(l, 5, "ISO18571")
+        elif is_card(l, "FIT"):
+            l = set_field(set_field(l, 2, str(evals)), 3, str(starts))
+        lines.append(l)
+    for case in specimens:
+        deck, ref, rated = write_case(case, fitdir)
+        lines += ["CASE      %s" % deck, "DATA      %s" % ref] + rated
+    lines += [("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], number_field(p[4]),
+                                                       number_field(p[5]), p[6])).rstrip() for p in params]
+    lines += ["VALUES    " + "".join(number_field(v) for v in start[k:k + 7]) for k in range(0, len(start), 7)]
+    deck = os.path.join(fitdir, "joint_fit.inp")
+    write_deck(deck, lines)
+    fit = run_calibration(deck, fitdir, exe)
+    values = [fit["values"][p[0]] for p in params] if evals > 0 else start   # evaluate-only: the start
+    catalogue, volunteers, rest = score_set(params, values, os.path.join(workdir, "scores"), exe=exe)
+    return dict(values=dict(zip([p[0] for p in params], values)), objective=fit["objective"],
+                fitted=fit["cases"], catalogue=catalogue, volunteers=volunteers, rest=rest)
 
 
 def two_stage_text(r):
@@ -486,6 +544,18 @@ def two_stage_text(r):
              "", "| group | passive fit, shipped muscles (calibration) | final set |", "|---|---|---|"]
     lines += ["| %s | %.3f | %.3f |" % (g, r["stage1"][g], r["catalogue"][g]) for g in r["catalogue"]]
     lines += ["", "NBDL 15 g / 12 g (CORA-style; 12 g calibration of the muscles, 15 g prediction): " +
+              volunteer_text(r["volunteers"], r["rest"])]
+    return "\n".join(lines) + "\n"
+
+
+def joint_text(r):
+    """The joint fit's values and scores as Markdown."""
+    lines = ["values: " + ", ".join("%s %.3g" % kv for kv in r["values"].items()), "",
+             "objective J %.4f; fitted cases (ISO 18571): " % r["objective"] +
+             ", ".join("%s %.3f" % kv for kv in r["fitted"].items()), "",
+             "| group | at the fitted values |", "|---|---|"]
+    lines += ["| %s | %.3f |" % kv for kv in r["catalogue"].items()]
+    lines += ["", "NBDL 15 g / 12 g (CORA-style; 12 g calibration, 15 g prediction): " +
               volunteer_text(r["volunteers"], r["rest"])]
     return "\n".join(lines) + "\n"
 
@@ -517,13 +587,20 @@ def main(argv=None):
                          "then the muscles to the NBDL 12 g volunteers on them (two_stage)")
     ap.add_argument("--nbdl-evals", type=int, default=1000, help="evaluations of the muscles' fit (--two-stage)")
     ap.add_argument("--nbdl-starts", type=int, default=100, help="its LHS starting points (--two-stage)")
+    ap.add_argument("--joint", action="store_true",
+                    help="instead of the leave-one-out: every NBDL fit parameter and LIGK fitted to NBDL 12 g "
+                         "and the specimen cases in one objective (joint_fit), --evals and --starts its own")
+    ap.add_argument("--nbdl-weight", type=float, default=3.0, help="the NBDL 12 g case's weight (--joint)")
     ap.add_argument("--model", default=segments.MODEL_DECK,
                     help="the model deck of --two-stage (default the shipped input/head_neck_54dof.inp)")
     args = ap.parse_args(argv)
-    if args.two_stage:
-        r = two_stage(os.path.abspath(args.workdir), args.evals, args.starts, args.nbdl_evals, args.nbdl_starts,
-                      model=os.path.abspath(args.model))
-        text = two_stage_text(r)
+    if args.joint or args.two_stage:
+        work = os.path.abspath(args.workdir)
+        if args.joint:
+            text = joint_text(joint_fit(work, args.evals, args.starts, args.nbdl_weight))
+        else:
+            text = two_stage_text(two_stage(work, args.evals, args.starts, args.nbdl_evals, args.nbdl_starts,
+                                            model=os.path.abspath(args.model)))
         sys.stdout.write(text)
         if args.table:
             with open(args.table, "w") as f:

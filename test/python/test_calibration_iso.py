@@ -12,7 +12,7 @@ catalogue. Then the leave-one-out command's quick form: the
 table it writes, the fitted value within its bounds, and the prediction
 equal to an evaluation of the left-out case at the fitted value; the model
 deck written with given values (exactly those fields), the muscles' fit
-deck, and the two-stage fit's quick form."""
+deck, and the quick forms of the two-stage and the joint fit."""
 import os
 import re
 import subprocess
@@ -233,3 +233,21 @@ def test_two_stage_quick(tmp_path, monkeypatch):
     text = calibration.two_stage_text(r)
     assert "| nightingale |" in text and "NBDL 15 g / 12 g" in text
 
+
+
+def test_joint_fit_quick(tmp_path, monkeypatch):
+    monkeypatch.setenv("HHNECK", hhneck_executable())
+    r = calibration.joint_fit(str(tmp_path), 2, 2, specimens=("stemper",))
+    params, _ = calibration.deck_params(calibration.NBDL12_DECK)
+    bounds = {p[0]: (p[4], p[5]) for p in params + [calibration.PARAMS[-1]]}
+    assert list(r["values"]) == list(bounds)
+    for k, v in r["values"].items():
+        assert bounds[k][0] <= v <= bounds[k][1], (k, v)
+    # one objective over the volunteers (weight 3) and the specimen case, rated by ISO 18571
+    deck = (tmp_path / "fit" / "joint_fit.inp").read_text()
+    assert "ISO18571" in deck and deck.count("\nCASE ") == 2 and "\nPASSIVE" in deck
+    assert len(r["fitted"]) == 2 and set(r["catalogue"]) == set(calibration.case_groups())
+    if r["volunteers"]:
+        assert all(0.0 < v < 1.0 for v in r["volunteers"].values())
+    text = calibration.joint_text(r)
+    assert "| panjabi |" in text and "NBDL 15 g / 12 g" in text
