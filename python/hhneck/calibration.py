@@ -53,7 +53,7 @@ import sys
 import numpy as np
 
 from . import segments, specimen_data, specimens
-from .deck_fields import is_card, number_field, set_field, write_deck
+from .deck_fields import field, is_card, number_field, set_field, write_deck
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
 
@@ -216,13 +216,9 @@ def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, va
     lines.append("*         window (ms; volunteer cases only) CFC tolerance metric")
     lines.append("RATING    0.0       200.0     60        10.0      ISO18571")
     lines.append("FIT       NELDER    %-10d%-10d%-10d" % (0 if values is not None else evals, starts, seed))
-    for p in params:
-        lines.append(("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], number_field(p[4]),
-                                                               number_field(p[5]), p[6])).rstrip())
+    lines += param_cards(params)
     if values is not None:
-        vals = list(values)
-        for k in range(0, len(vals), 7):
-            lines.append("VALUES    " + "".join(number_field(v) for v in vals[k:k + 7]))
+        lines += values_cards(values)
         lines.append("CURVES    %s_curves.csv" % name)
     path = os.path.join(workdir, name + ".inp")
     with open(path, "w") as f:
@@ -283,6 +279,27 @@ def group_weights(groups):
 NBDL_DECK = os.path.join(segments.ROOT, "input", "calibrate_nbdl.inp")
 
 
+def param_card(lines, p, model):
+    """The index in the model deck's `lines` of the one card a FIELDn
+    parameter `p` names (card p[2] with F1 p[3], as a sweep binds it)."""
+    hits = [k for k, l in enumerate(lines) if is_card(l, p[2], p[3])]
+    if len(hits) != 1:
+        raise ValueError("%s: %d %s cards of %s" % (model, len(hits), p[2], p[3]))
+    return hits[0]
+
+
+def param_cards(params):
+    """PARAM card images of PARAMS-style tuples."""
+    return [("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], number_field(p[4]),
+                                                   number_field(p[5]), p[6])).rstrip() for p in params]
+
+
+def values_cards(values):
+    """VALUES card images of a list of values, seven to a card."""
+    vals = list(values)
+    return ["VALUES    " + "".join(number_field(v) for v in vals[k:k + 7]) for k in range(0, len(vals), 7)]
+
+
 def model_deck_with(params, values, path, model=segments.MODEL_DECK):
     """Write the model deck with `params` at `values` to `path`: a FIELDn
     parameter (PARAM name, FIELDn, card, F1 item) sets field n of the one
@@ -292,10 +309,8 @@ def model_deck_with(params, values, path, model=segments.MODEL_DECK):
     lines = open(model).read().splitlines()
     for p, v in zip(params, values):
         if p[1].startswith("FIELD"):
-            hits = [k for k, l in enumerate(lines) if is_card(l, p[2], p[3])]
-            if len(hits) != 1:
-                raise ValueError("%s: %d %s cards of %s" % (model, len(hits), p[2], p[3]))
-            lines[hits[0]] = set_field(lines[hits[0]], int(p[1][5:]), number_field(v).strip())
+            k = param_card(lines, p, model)
+            lines[k] = set_field(lines[k], int(p[1][5:]), number_field(v).strip())
         else:
             lines.append(("SCALE     %-10s%-10s%-10s%s" % (p[0], p[2], p[3], number_field(v))).rstrip())
     write_deck(path, lines)
@@ -394,7 +409,6 @@ MUSCLE_PARAMS = ("SIGMA", "BRACEF", "REFLEXF", "DELAYF", "BRACEE", "REFLEXE", "D
 def deck_params(path):
     """The PARAM cards of a calibration deck as PARAMS-style tuples (name,
     kind, target, item, low, high, spacing) and its VALUES in their order."""
-    from .deck_fields import field
     params, values = [], []
     for l in open(path).read().splitlines():
         if is_card(l, "PARAM"):
@@ -409,14 +423,12 @@ def values_listing(model=segments.MODEL_DECK, deck=NBDL12_DECK):
     """The model deck's values of a calibration deck's parameters as a
     calibration listing gives them ("PARAM NAME = value" lines, what the
     deck generator's --fit reads): the shipped fit's values by default."""
-    from .deck_fields import field
     lines = open(model).read().splitlines()
     out = []
     for p in deck_params(deck)[0]:
-        hits = [l for l in lines if is_card(l, p[2], p[3])]
-        if len(hits) != 1 or not p[1].startswith("FIELD"):
-            raise ValueError("%s: parameter %s is not one field of one card" % (model, p[0]))
-        out.append("PARAM %s = %s" % (p[0], field(hits[0], int(p[1][5:]))))
+        if not p[1].startswith("FIELD"):
+            raise ValueError("%s: parameter %s is not a field of a card" % (deck, p[0]))
+        out.append("PARAM %s = %s" % (p[0], field(lines[param_card(lines, p, model)], int(p[1][5:]))))
     return "\n".join(out) + "\n"
 
 
@@ -435,7 +447,7 @@ def muscle_fit_deck(path, evals, starts, nbdl12=NBDL12_DECK):
             l = set_field(set_field(l, 2, str(evals)), 3, str(starts))
         lines.append(l)
     vals = [values[k] for k in keep]
-    lines += ["VALUES    " + "".join(number_field(v) for v in vals[k:k + 7]) for k in range(0, len(vals), 7)]
+    lines += values_cards(vals)
     write_deck(path, lines)
     return [params[k] for k in keep]
 
@@ -525,9 +537,7 @@ def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimen
     for case in specimens:
         deck, ref, rated = write_case(case, fitdir)
         lines += ["CASE      %s" % deck, "DATA      %s" % ref] + rated
-    lines += [("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], number_field(p[4]),
-                                                       number_field(p[5]), p[6])).rstrip() for p in params]
-    lines += ["VALUES    " + "".join(number_field(v) for v in start[k:k + 7]) for k in range(0, len(start), 7)]
+    lines += param_cards(params) + values_cards(start)
     deck = os.path.join(fitdir, "joint_fit.inp")
     write_deck(deck, lines)
     fit = run_calibration(deck, fitdir, exe)
