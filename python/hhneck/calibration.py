@@ -14,8 +14,9 @@ fitted values: a prediction, since it took no part in its fit.
     volunteer_scores(params, values, workdir) -> (NBDL case means, largest real part at rest)
     two_stage(workdir, evals, starts, nbdl_evals, nbdl_starts) -> dict (passive to the
         catalogue, then the muscles to NBDL 12 g on that passive set)
-    joint_fit(workdir, evals, starts, nbdl_weight) -> dict (every NBDL fit parameter and LIGK
-        fitted to NBDL 12 g and the specimen cases in one objective)
+    joint_fit(workdir, evals, starts, nbdl_weight, segment_sources=()) -> dict (every NBDL fit
+        parameter and LIGK fitted to NBDL 12 g, the specimen cases and, with --joint --segments,
+        the segment sources in one objective; the muscles' parameters OPTIONAL there)
     score_set(params, values, workdir) -> (catalogue group means, NBDL case means, rest)
 
 Segment cases (write_segment_case): the segment deck of hhneck.segments
@@ -192,6 +193,14 @@ def write_case(case, workdir, data_dir=segments.DATA_DIR, model=segments.MODEL_D
     return os.path.basename(deck), ref, rated
 
 
+def case_cards(case, workdir, weight=1.0, data_dir=segments.DATA_DIR, model=segments.MODEL_DECK):
+    """The CASE (with its weight unless 1), DATA and RATED card images of
+    `case`, its deck and reference written to workdir (write_case)."""
+    deck, ref, rated = write_case(case, workdir, data_dir, model)
+    return [("CASE      %-60s%s" % (deck, number_field(weight) if weight != 1.0 else "")).rstrip(),
+            "DATA      %s" % ref] + rated
+
+
 def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, values=None, seed=1,
                      data_dir=segments.DATA_DIR, weights=None, model=None):
     """A calibration deck fitting `params` to `cases` (ISO 18571 objective;
@@ -209,10 +218,7 @@ def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, va
         model = copy
     lines = [("TITLE     CATALOGUE CALIBRATION: %s" % " ".join(c.upper() for c in cases))[:80]]
     for case in cases:
-        deck, ref, rated = write_case(case, workdir, data_dir, model or segments.MODEL_DECK)
-        w = weights.get(case, 1.0)
-        lines += [("CASE      %-60s%s" % (deck, number_field(w) if w != 1.0 else "")).rstrip(),
-                  "DATA      %s" % ref] + rated
+        lines += case_cards(case, workdir, weights.get(case, 1.0), data_dir, model or segments.MODEL_DECK)
     lines.append("*         window (ms; volunteer cases only) CFC tolerance metric")
     lines.append("RATING    0.0       200.0     60        10.0      ISO18571")
     lines.append("FIT       NELDER    %-10d%-10d%-10d" % (0 if values is not None else evals, starts, seed))
@@ -507,14 +513,17 @@ def score_set(params, values, workdir, groups=None, exe=None, model=segments.MOD
     return {g: float(np.mean([final[c] for c in cs])) for g, cs in groups.items()}, volunteers, rest
 
 
-def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimens=tuple(CASES)):
+def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimens=tuple(CASES),
+              segment_sources=()):
     """Every parameter of the shipped NBDL fit (input/calibrate_nbdl12g.inp:
     its 15, its study, PASSIVE and RANGES cards) and the ligaments' LIGK
-    fitted in one objective to the NBDL 12 g volunteers (weight nbdl_weight)
-    and the specimen cases (weight 1 each), all rated by ISO 18571, from the
-    shipped values; then the set scored everywhere (score_set: NBDL 15 g and
-    the segment sources are prediction). The segment cases cannot take part:
-    a segment deck has no muscle cards for the muscles' parameters to bind.
+    fitted in one objective to the NBDL 12 g volunteers (weight nbdl_weight),
+    the specimen cases (weight 1 each) and the curves of each segment source
+    in segment_sources (e.g. ("panjabi", "nightingale"): weight 1 per source,
+    group_weights), all rated by ISO 18571, from the shipped values; then the
+    set scored everywhere (score_set: NBDL 15 g and the sources not fitted
+    are prediction). A segment deck has no muscles: the muscles' parameters
+    (MUSCLE_PARAMS) are OPTIONAL, bound in the cases that have them.
     Returns dict(values={name: value}, objective, fitted={deck: mean},
     catalogue, volunteers, rest)."""
     fitdir = os.path.join(workdir, "fit")
@@ -522,7 +531,8 @@ def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimen
     params, _ = deck_params(NBDL12_DECK)
     params = params + [PARAMS[-1]]
     start = [float(l.split("=")[1]) for l in values_listing().splitlines()] + [1.0]
-    lines = ["TITLE     JOINT CALIBRATION: NBDL 12 G AND THE SPECIMEN CASES"]
+    lines = ["TITLE     JOINT CALIBRATION: NBDL 12 G, THE SPECIMENS" +
+             (" AND THE SEGMENT SOURCES" if segment_sources else "")]
     for l in open(NBDL12_DECK).read().splitlines():
         if l.startswith("*") or not l.strip() or is_card(l, "TITLE") or is_card(l, "VALUES") \
                 or is_card(l, "PARAM"):
@@ -534,10 +544,14 @@ def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimen
         elif is_card(l, "FIT"):
             l = set_field(set_field(l, 2, str(evals)), 3, str(starts))
         lines.append(l)
-    for case in specimens:
-        deck, ref, rated = write_case(case, fitdir)
-        lines += ["CASE      %s" % deck, "DATA      %s" % ref] + rated
+    groups = {c: [c] for c in specimens}
+    groups.update({g: cs for g, cs in segment_cases().items() if g in segment_sources})
+    weights = group_weights(groups)
+    for case in [c for cs in groups.values() for c in cs]:
+        lines += case_cards(case, fitdir, weights[case])
     lines += param_cards(params) + values_cards(start)
+    if segment_sources:
+        lines.append("OPTIONAL  " + "".join("%-10s" % n for n in MUSCLE_PARAMS))
     deck = os.path.join(fitdir, "joint_fit.inp")
     write_deck(deck, lines)
     fit = run_calibration(deck, fitdir, exe)
@@ -590,7 +604,7 @@ def main(argv=None):
     ap.add_argument("--table", help="write the Markdown table to this file too")
     ap.add_argument("--segments", action="store_true",
                     help="the whole catalogue: the segment sources (Panjabi, Nightingale) as groups beside the "
-                         "specimen cases")
+                         "specimen cases (with --joint: in the joint objective too)")
     ap.add_argument("--jobs", type=int, default=1, help="folds run at a time (default 1)")
     ap.add_argument("--two-stage", action="store_true",
                     help="instead of the leave-one-out: the passive parameters fitted to the whole catalogue, "
@@ -607,7 +621,8 @@ def main(argv=None):
     if args.joint or args.two_stage:
         work = os.path.abspath(args.workdir)
         if args.joint:
-            text = joint_text(joint_fit(work, args.evals, args.starts, args.nbdl_weight))
+            text = joint_text(joint_fit(work, args.evals, args.starts, args.nbdl_weight,
+                                        segment_sources=tuple(SEGMENT_SOURCES) if args.segments else ()))
         else:
             text = two_stage_text(two_stage(work, args.evals, args.starts, args.nbdl_evals, args.nbdl_starts,
                                             model=os.path.abspath(args.model)))

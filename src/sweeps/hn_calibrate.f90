@@ -56,7 +56,7 @@ module hn_calibrate
     use hn_case, only: case_t, deck_line_t, path_len
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
     use hn_sweep, only: sweep_t, sweep_param_t, read_sweep_lines, sweep_member_case, sweep_design, spread_value, &
-                        field_text, par_field
+                        field_text, par_field, param_target_text
     use hn_run, only: run_state_t, run_result_t, exit_ok
     use hn_channels, only: channel_set_t, channels_define, chname_len
     use hn_filters, only: cfc_filter
@@ -112,6 +112,7 @@ module hn_calibrate
         character(len=path_len), allocatable :: decks(:), data(:)
         real(wp), allocatable :: weight(:)          !! (case) its weight in the objective (CASE F7)
         type(sweep_t), allocatable :: sw(:)
+        type(sweep_param_t), allocatable :: par(:)  !! the parameters, each as the first case binding it binds it
         type(corridor_t), allocatable :: vol(:)     !! the volunteers of each case (volunteer cases)
         type(reference_case_t), allocatable :: ref(:)   !! the reference of each case (reference cases: ref(c)%on)
         integer :: metric = metric_cora             !! RATING F5: the rating of the objective
@@ -138,6 +139,8 @@ module hn_calibrate
     type :: calibration_deck_t
         type(deck_reader_t) :: rd                        !! the deck: card images, located field access, the first error
         type(deck_line_t), allocatable :: params(:)      !! the PARAM cards, the sweep of every case
+        character(len=10), allocatable :: optional(:)    !! (OPTIONAL card fields) parameters bound only where present
+        integer, allocatable :: optional_line(:)         !! (the same) the line of its OPTIONAL card
         integer, allocatable :: data_line(:)             !! (case) the line of its DATA card
         logical, allocatable :: is_ref(:)                !! (DATA card) it names a reference CSV
         integer, allocatable :: rated_line(:)            !! (RATED card) its line
@@ -163,6 +166,8 @@ contains
     !! cards (channel, VALUE or RATE, [DEG-RAD], the file in columns
     !! 41-80); PEAK cards (channel, MIN or MAX, window start and end, the
     !! name in columns 51-80); PARAM cards as in a sweep deck; optional
+    !! OPTIONAL cards (up to 7 PARAM names each: bound in the cases whose
+    !! deck has their target, left out of the others); optional
     !! PASSIVE [limit] (a set whose neck stands without its muscles is not
     !! run); optional RANGES weight [margin] (the joints past their ranges in J);
     !! optional VALUES cards (up to 7 values each, in PARAM order), the
@@ -184,7 +189,8 @@ contains
         if (present(include_path)) st%rd%search = include_path
         call read_card_images(st%rd, path, source, 0)
         allocate (cal%decks(0), cal%data(0), cal%values(0), cal%channels(0), cal%peaks(0), cal%weight(0))
-        allocate (st%params(0), st%channel_line(0), st%peak_line(0), st%data_line(0), st%peak_channel(0), &
+        allocate (st%params(0), st%optional(0), st%optional_line(0), st%channel_line(0), st%peak_line(0), &
+                  st%data_line(0), st%peak_channel(0), &
                   st%rated_line(0), st%rated_case(0), st%is_ref(0))
         do i = 1, st%rd%nlines
             if (st%rd%failed()) exit
@@ -198,6 +204,7 @@ contains
             case ('CHANNEL'); call read_channel_card(st, cal, i)
             case ('PEAK'); call read_peak_card(st, cal, i)
             case ('PARAM'); call read_param_card(st, i)
+            case ('OPTIONAL'); call read_optional_card(st, i)
             case ('PASSIVE'); call read_passive_card(st, cal, i)
             case ('RANGES'); call read_ranges_card(st, cal, i)
             case ('VALUES'); call read_values_card(st, cal, i)
@@ -412,6 +419,32 @@ contains
         st%params = [st%params, st%rd%lines(i)]
     end subroutine read_param_card
 
+    !> OPTIONAL: up to 7 PARAM names (F1-F7), each bound in the cases whose
+    !! deck has its target (family, body or card) and left out of the
+    !! others, e.g. the muscles' parameters beside segment cases that have
+    !! no muscles; every one must be bound in some case (bind_cases).
+    subroutine read_optional_card(st, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        integer, intent(in) :: i                       !! the card's line
+        character(len=10) :: name
+        integer :: f
+        do f = 1, 7
+            if (st%rd%is_blank(i, f)) cycle
+            call st%rd%name(i, f, 'parameter name', name)
+            if (st%rd%failed()) return
+            if (any(st%optional == name)) then
+                call st%rd%fail(st%rd%context(i, f, 'parameter name')//': found "'//trim(name)// &
+                                '" a second time on the OPTIONAL cards; expected each parameter once')
+                return
+            end if
+            st%optional = [character(len=10) :: st%optional, name]
+            st%optional_line = [st%optional_line, i]
+        end do
+        if (.not. any(st%optional_line == i)) &
+            call st%rd%fail(st%rd%context(i, 1, 'parameter name')//': found no name; expected the PARAM '// &
+                            'names bound only in the cases that have their target')
+    end subroutine read_optional_card
+
     !> PASSIVE [limit]: a set whose neck stands without its muscles is not run.
     subroutine read_passive_card(st, cal, i)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
@@ -460,14 +493,15 @@ contains
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
         integer, intent(in) :: i                       !! the card's line
         call st%rd%fail(st%rd%where(i)//', columns 1-8: found "'//trim(st%rd%key(i))// &
-                        '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, PASSIVE, '// &
-                        'RANGES, VALUES, CURVES or END')
+                        '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, OPTIONAL, '// &
+                        'PASSIVE, RANGES, VALUES, CURVES or END')
     end subroutine unknown_card
 
     !> The checks across cards, after the last: each PEAK card's channel a
     !! CHANNEL card's (its curve), at least one CASE each with its DATA, one
     !! FIT and one RATING card, CHANNEL and PEAK cards when a case has
-    !! volunteers, one value per PARAM card on the VALUES cards.
+    !! volunteers, one value per PARAM card on the VALUES cards, each
+    !! OPTIONAL name a PARAM card's.
     subroutine check_calibration_cards(st, cal, source)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards
         type(calibration_t), intent(inout) :: cal      !! the calibration: its peaks' curves set
@@ -489,6 +523,12 @@ contains
                                                                   size(cal%peaks) == 0)) &
                 call rd%fail(source//': expected at least one CHANNEL and one PEAK card (the deck has a case of '// &
                              'volunteers, a DATA directory)')
+            do k = 1, size(st%optional)
+                if (rd%failed()) exit
+                if (.not. any(adjustl(st%params%text(11:20)) == st%optional(k))) &
+                    call rd%fail(rd%where(st%optional_line(k))//' (OPTIONAL card): found "'// &
+                                 trim(st%optional(k))//'"; expected the name of a PARAM card')
+            end do
             if (.not. rd%failed() .and. st%values_line > 0 .and. size(cal%values) /= size(st%params)) &
                 call rd%fail(rd%where(st%values_line)//' (VALUES card): found '//trim(int_str(size(cal%values)))// &
                              ' values on the VALUES cards; expected one per PARAM card, '// &
@@ -497,8 +537,10 @@ contains
     end subroutine check_calibration_cards
 
     !> Each case bound to its deck through a sweep of the PARAM cards (its
-    !! parameters' nominal values that deck's), then its data read: a
-    !! reference CSV (reference_case) or the volunteers (volunteer_case).
+    !! parameters' nominal values that deck's; an OPTIONAL one left unbound
+    !! where the deck lacks its target), then its data read: a reference CSV
+    !! (reference_case) or the volunteers (volunteer_case); the parameter
+    !! table cal%par, each parameter as the first case binding it binds it.
     subroutine bind_cases(st, cal, path, source, stat, errmsg, include_path)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
         type(calibration_t), intent(inout) :: cal      !! the calibration: its sweeps and cases' data
@@ -511,13 +553,13 @@ contains
         type(case_t) :: cs
         type(channel_set_t) :: chs
         real(wp), allocatable :: v0(:)
-        integer :: c
+        integer :: c, p, k
         stat = stat_ok; errmsg = ''
         allocate (cal%sw(size(cal%decks)), cal%vol(size(cal%decks)), cal%ref(size(cal%decks)))
         do c = 1, size(cal%decks)
             sl = [line_of('TITLE     '//cal%title, source), line_of('BASE      '//trim(cal%decks(c)), source), &
                   line_of('DESIGN    LHS       '//int_field(cal%nstart)//int_field(cal%seed), source), st%params]
-            call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, include_path, path)
+            call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, include_path, path, st%optional)
             if (stat /= stat_ok) return
             v0 = cal%sw(c)%params%nominal
             call sweep_member_case(cal%sw(c), v0, cs, stat, errmsg)
@@ -529,6 +571,19 @@ contains
                 call volunteer_case(st, cal, c, chs, stat, errmsg)
             end if
             if (stat /= stat_ok) return
+        end do
+        cal%par = cal%sw(1)%params
+        do p = 1, size(cal%par)
+            c = findloc([(cal%sw(k)%params(p)%bound, k=1, size(cal%sw))], .true., dim=1)
+            if (c == 0) then
+                k = findloc(st%optional, cal%par(p)%name, dim=1)
+                stat = stat_bad_input
+                errmsg = st%rd%where(st%optional_line(k))//' (OPTIONAL card): PARAM '//trim(cal%par(p)%name)// &
+                         ' is bound in no case: no case deck has its '//trim(param_target_text(cal%par(p)))// &
+                         '; expected at least one'
+                return
+            end if
+            cal%par(p) = cal%sw(c)%params(p)
         end do
     end subroutine bind_cases
 
@@ -1054,16 +1109,32 @@ contains
         real(wp), intent(out) :: jbest               !! objective there
         integer, intent(out) :: nevals               !! model evaluations (each runs every case)
         real(wp), allocatable :: design(:, :)
-        real(wp) :: u0(size(cal%sw(1)%params)), ubest(size(u0)), j, jstart, lmax, lp
+        real(wp) :: u0(size(cal%par)), ubest(size(u0)), j, jstart, lmax, lp
         type(score_t) :: sc(size(cal%sw))
         type(range_score_t) :: rg(size(cal%sw))
         logical :: ok
-        integer :: r, k, nnm, cu, ios
+        integer :: r, k, i, nnm, cu, ios
         logical :: curves_open
+        character(len=10), allocatable :: absent(:)
         curves_open = .false.
-        associate (par => cal%sw(1)%params)
+        associate (par => cal%par)
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
+            k = 1
+            do while (k <= size(cal%sw))     ! each run of cases without the same OPTIONAL parameters: one line
+                r = k
+                do while (r < size(cal%sw))
+                    if (any(cal%sw(r + 1)%params%bound .neqv. cal%sw(k)%params%bound)) exit
+                    r = r + 1
+                end do
+                if (.not. all(cal%sw(k)%params%bound)) then
+                    absent = pack(cal%sw(k)%params%name, .not. cal%sw(k)%params%bound)
+                    write (lu, '(a,a,a,*(1x,a))') 'cases ', trim(int_str(k))//trim(merge('-'//int_str(r), &
+                        repeat(' ', 1 + len(int_str(r))), r > k)), ' without (OPTIONAL, not in their decks):', &
+                        (trim(absent(i)), i=1, size(absent))
+                end if
+                k = r + 1
+            end do
             if (cal%range_weight > zero) then
                 write (lu, '(a,es10.3,a,es10.3,a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T '// &
                     '+ WR G; W ', cal%peak_weight, ', WT ', cal%time_weight, ', WR ', cal%range_weight, &
@@ -1142,9 +1213,9 @@ contains
             character(len=10) :: txt
             integer :: i
             do i = 1, size(u)
-                v(i) = spread_value(cal%sw(1)%params(i), u(i))
+                v(i) = spread_value(cal%par(i), u(i))
                 txt = field_text(v(i))
-                if (cal%sw(1)%params(i)%kind == par_field) read (txt, *) v(i)
+                if (cal%par(i)%kind == par_field) read (txt, *) v(i)
             end do
         end function values_of
 

@@ -24,7 +24,7 @@ module hn_sweep
 
     public :: sweep_t, sweep_param_t, member_record_t, read_sweep, read_sweep_lines, sweep_design, &
               sweep_member_case, spread_value, &
-              run_member, field_text
+              run_member, field_text, param_target_text
     public :: output_names, output_units, output_ref, output_group, nout, name_len, member_summary
 
     integer, parameter, public :: par_family = kind_family, par_body = kind_body, par_field = kind_field
@@ -71,6 +71,8 @@ module hn_sweep
         integer :: body = 0                !! body number (BODY kind)
         integer :: line = 0                !! base deck line holding the field (FIELD kind)
         integer :: card_line = 0           !! sweep deck line of the PARAM card
+        logical :: if_present = .false.    !! bound only where the base deck has the target (a calibration's OPTIONAL)
+        logical :: bound = .true.          !! bound in this base deck (false: if_present and the target absent)
     end type sweep_param_t
 
     !> A sweep: base deck, parameters, design.
@@ -121,7 +123,7 @@ contains
         call read_card_images(rd, path, source, 0)
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the sweep deck is empty; expected a TITLE card first')
-        call parse_sweep(rd, source, path, sw)
+        call parse_sweep(rd, source, path, sw, [character(len=10) ::])
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_sweep
@@ -129,7 +131,9 @@ contains
     !> A sweep deck already read into card images (INCLUDE expanded), e.g.
     !! one assembled in memory by the calibration for each of its cases.
     !! Its BASE deck is looked for as in read_sweep, next to `path` when given.
-    subroutine read_sweep_lines(lines, source, sw, stat, errmsg, include_path, path)
+    !! A parameter named in `optional_names` whose target the base deck lacks
+    !! is left unbound (the caller checks that some case binds it).
+    subroutine read_sweep_lines(lines, source, sw, stat, errmsg, include_path, path, optional_names)
         type(deck_line_t), intent(in) :: lines(:)      !! card images
         character(len=*), intent(in) :: source         !! name of the deck in messages
         type(sweep_t), intent(out) :: sw               !! the sweep (base deck lines, parameters, design)
@@ -137,16 +141,20 @@ contains
         character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE and BASE files
         character(len=*), intent(in), optional :: path !! the file the lines came from (absent: none, as stdin)
+        character(len=*), intent(in), optional :: optional_names(:)  !! parameters bound only where their target is
         type(deck_reader_t) :: rd
+        character(len=10), allocatable :: opt(:)
         rd%top = source
         rd%lines = lines
         rd%nlines = size(lines)
         allocate (rd%search(0))
         if (present(include_path)) rd%search = include_path
+        allocate (opt(0))
+        if (present(optional_names)) opt = optional_names
         if (present(path)) then
-            call parse_sweep(rd, source, path, sw)
+            call parse_sweep(rd, source, path, sw, opt)
         else
-            call parse_sweep(rd, source, stdin_path, sw)
+            call parse_sweep(rd, source, stdin_path, sw, opt)
         end if
         stat = rd%stat
         errmsg = rd%errmsg
@@ -154,11 +162,12 @@ contains
 
     !> The cards of a sweep deck, the base deck they name, and every
     !! parameter checked against the base deck.
-    subroutine parse_sweep(rd, source, path, sw)
+    subroutine parse_sweep(rd, source, path, sw, optional_names)
         type(deck_reader_t), intent(inout) :: rd
         character(len=*), intent(in) :: source
         character(len=*), intent(in) :: path       ! the sweep deck's file (stdin_path: none)
         type(sweep_t), intent(out) :: sw
+        character(len=*), intent(in) :: optional_names(:)  ! parameters left unbound where their target is absent
         type(deck_reader_t) :: bd
         type(case_t) :: base
         character(len=10) :: s
@@ -256,6 +265,7 @@ contains
         end if
         if (.not. rd%failed()) then
             do p = 1, size(sw%params)
+                sw%params(p)%if_present = any(optional_names == sw%params(p)%name)
                 call bind_param(rd, sw, base, sw%params(p))
                 if (rd%failed()) exit
             end do
@@ -339,11 +349,15 @@ contains
                              family_items_text(p%family)//' for '//trim(p%target))
                 return
             end if
-            if (family_count(base%model, p%family) == 0) &
-                call rd%fail(at//': the base deck has no '//trim(p%target)//'; nothing to vary')
+            if (family_count(base%model, p%family) == 0) then
+                p%bound = .not. p%if_present
+                if (p%bound) call rd%fail(at//': the base deck has no '//trim(p%target)//'; nothing to vary')
+            end if
         case (par_body)
             p%body = findloc(base%model%tree%name, p%target, dim=1)
-            if (p%body == 0) then
+            if (p%body == 0 .and. p%if_present) then
+                p%bound = .false.
+            else if (p%body == 0) then
                 call rd%fail(rd%context(p%card_line, 3, 'target')//': found "'//trim(p%target)// &
                              '"; expected a body of the base deck (after its MERGE cards)')
                 return
@@ -353,7 +367,10 @@ contains
                              '"; expected MASS or INERTIA')
         case (par_field)
             call locate_field(sw%base_lines, p%target, p%item, p%field, nfound, p%line, c1, c2)
-            if (nfound /= 1) then
+            if (nfound == 0 .and. p%if_present) then
+                p%bound = .false.
+                return
+            else if (nfound /= 1) then
                 call rd%fail(at//': found '//trim(int_str(nfound))//' '//trim(p%target)//' cards'// &
                              trim(merge(' named '//p%item, repeat(' ', 17), len_trim(p%item) > 0))// &
                              ' in the base deck; expected exactly one')
@@ -381,6 +398,21 @@ contains
         end if
     end subroutine bind_param
 
+    !> What a parameter's target is, in words: 'MUSCLES', 'body HEAD',
+    !! 'SCALE card named SIGMA'.
+    pure function param_target_text(p) result(t)
+        type(sweep_param_t), intent(in) :: p   !! the parameter
+        character(len=:), allocatable :: t
+        select case (p%kind)
+        case (par_family)
+            t = trim(p%target)
+        case (par_body)
+            t = 'body '//trim(p%target)
+        case default
+            t = trim(p%target)//' card'//trim(merge(' named '//p%item, repeat(' ', 17), len_trim(p%item) > 0))
+        end select
+    end function param_target_text
+
     !> Every parameter at its low and high value (OAT: its two steps), the
     !! others nominal: the base deck must accept them.
     subroutine check_extremes(rd, sw)
@@ -391,7 +423,7 @@ contains
         integer :: p, e, stat
         character(len=msglen) :: msg
         do p = 1, size(sw%params)
-            if (sw%params(p)%kind /= par_field) cycle
+            if (sw%params(p)%kind /= par_field .or. .not. sw%params(p)%bound) cycle
             ends = [sw%params(p)%low, sw%params(p)%high]
             if (sw%design == design_oat) ends = oat_values(sw, p)
             do e = 1, 2
@@ -511,7 +543,7 @@ contains
         logical :: rebuild_tree, keep
         lines = sw%base_lines
         do p = 1, size(sw%params)
-            if (sw%params(p)%kind /= par_field) cycle
+            if (sw%params(p)%kind /= par_field .or. .not. sw%params(p)%bound) cycle
             call field_columns(1 + mod(sw%params(p)%field - 1, nfields), c1, c2)
             lines(sw%params(p)%line)%text(c1:c2) = field_text(v(p))
         end do
@@ -519,6 +551,7 @@ contains
         if (stat /= 0) return
         rebuild_tree = .false.
         do p = 1, size(sw%params)
+            if (.not. sw%params(p)%bound) cycle
             associate (q => sw%params(p))
                 select case (q%kind)
                 case (par_family)

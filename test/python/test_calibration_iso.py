@@ -237,16 +237,24 @@ def test_two_stage_quick(tmp_path, monkeypatch):
 
 def test_joint_fit_quick(tmp_path, monkeypatch):
     monkeypatch.setenv("HHNECK", hhneck_executable())
-    r = calibration.joint_fit(str(tmp_path), 2, 2, specimens=("stemper",))
+    r = calibration.joint_fit(str(tmp_path), 2, 2, specimens=("stemper",), segment_sources=("nightingale",))
     params, _ = calibration.deck_params(calibration.NBDL12_DECK)
     bounds = {p[0]: (p[4], p[5]) for p in params + [calibration.PARAMS[-1]]}
     assert list(r["values"]) == list(bounds)
     for k, v in r["values"].items():
         assert bounds[k][0] <= v <= bounds[k][1], (k, v)
-    # one objective over the volunteers (weight 3) and the specimen case, rated by ISO 18571
+    # one objective over the volunteers (weight 3), the specimen case and Nightingale's three curves
+    # (weight 1/3 each), rated by ISO 18571; the muscles' parameters OPTIONAL: left out of the segment cases
     deck = (tmp_path / "fit" / "joint_fit.inp").read_text()
-    assert "ISO18571" in deck and deck.count("\nCASE ") == 2 and "\nPASSIVE" in deck
-    assert len(r["fitted"]) == 2 and set(r["catalogue"]) == set(calibration.case_groups())
+    assert "ISO18571" in deck and deck.count("\nCASE ") == 5 and "\nPASSIVE" in deck
+    assert "\nOPTIONAL  " + "".join("%-10s" % n for n in calibration.MUSCLE_PARAMS).rstrip() in deck
+    listing = (tmp_path / "fit" / "joint_fit.txt").read_text()
+    assert [l.split()[1] for l in listing.splitlines() if "without (OPTIONAL" in l] == ["3-5"]
+    assert len(r["fitted"]) == 5 and set(r["catalogue"]) == set(calibration.case_groups())
+    # a second deck scores the segment cases at the fitted values with the passive parameters alone
+    # (score_set): the same scores, since the muscles' values do not reach a segment deck
+    seg = [v for k, v in r["fitted"].items() if k.startswith("nightingale")]
+    assert len(seg) == 3 and np.mean(seg) == pytest.approx(r["catalogue"]["nightingale"], abs=2e-6)
     if r["volunteers"]:
         assert all(0.0 < v < 1.0 for v in r["volunteers"].values())
     text = calibration.joint_text(r)
