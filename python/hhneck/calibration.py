@@ -42,7 +42,7 @@ calibration deck uses; the ligaments' stiffness a factor 2 either way).
 The shipped model deck is not changed: the fitted values are reported.
 
 Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
-       [--two-stage [--model DECK] | --joint [--nbdl-weight W]] [--table FILE]
+       [--two-stage [--model DECK] | --joint [--nbdl-weight W] [--leave-out GROUP ...]] [--table FILE]
 """
 import argparse
 import os
@@ -561,6 +561,18 @@ def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimen
                 fitted=fit["cases"], catalogue=catalogue, volunteers=volunteers, rest=rest)
 
 
+def joint_groups(with_segments, leave_out=()):
+    """(specimen cases, segment sources) of a joint fit: every specimen case
+    and, with_segments, every segment source, less the groups in leave_out
+    (ValueError for a name that is neither)."""
+    unknown = set(leave_out) - set(SEGMENT_SOURCES) - set(CASES)
+    if unknown:
+        raise ValueError("--leave-out: %s; expected %s" % (", ".join(sorted(unknown)),
+                                                         ", ".join(list(SEGMENT_SOURCES) + list(CASES))))
+    return (tuple(c for c in CASES if c not in leave_out),
+            tuple(g for g in SEGMENT_SOURCES if with_segments and g not in leave_out))
+
+
 def two_stage_text(r):
     """The two-stage fit's values and scores as Markdown."""
     lines = ["passive set (fitted to the catalogue): " + ", ".join("%s %.3g" % kv for kv in r["passive"].items()),
@@ -615,14 +627,21 @@ def main(argv=None):
                     help="instead of the leave-one-out: every NBDL fit parameter and LIGK fitted to NBDL 12 g "
                          "and the specimen cases in one objective (joint_fit), --evals and --starts its own")
     ap.add_argument("--nbdl-weight", type=float, default=3.0, help="the NBDL 12 g case's weight (--joint)")
+    ap.add_argument("--leave-out", action="append", metavar="GROUP",
+                    help="(--joint, repeatable) a segment source or specimen case left out of the joint fit, "
+                         "so that its score at the fitted values is a prediction")
     ap.add_argument("--model", default=segments.MODEL_DECK,
                     help="the model deck of --two-stage (default the shipped input/head_neck_54dof.inp)")
     args = ap.parse_args(argv)
     if args.joint or args.two_stage:
         work = os.path.abspath(args.workdir)
         if args.joint:
+            try:
+                cases, sources = joint_groups(args.segments, args.leave_out or ())
+            except ValueError as e:
+                ap.error(str(e))
             text = joint_text(joint_fit(work, args.evals, args.starts, args.nbdl_weight,
-                                        segment_sources=tuple(SEGMENT_SOURCES) if args.segments else ()))
+                                        specimens=cases, segment_sources=sources))
         else:
             text = two_stage_text(two_stage(work, args.evals, args.starts, args.nbdl_evals, args.nbdl_starts,
                                             model=os.path.abspath(args.model)))

@@ -235,6 +235,17 @@ def test_two_stage_quick(tmp_path, monkeypatch):
 
 
 
+def test_joint_groups_leave_one_out():
+    """--joint --segments --leave-out: the groups of the joint fit less the one left out."""
+    assert calibration.joint_groups(False) == (tuple(calibration.CASES), ())
+    assert calibration.joint_groups(True, ["nightingale"]) == (tuple(calibration.CASES), ("panjabi",))
+    assert calibration.joint_groups(True, ["kang_side"]) == (("stemper", "kang_front"), ("panjabi", "nightingale"))
+    with pytest.raises(ValueError, match="nightingal;"):
+        calibration.joint_groups(True, ["nightingal"])
+    with pytest.raises(SystemExit):
+        calibration.main(["unused", "--joint", "--leave-out", "nightingal"])
+
+
 def test_joint_fit_quick(tmp_path, monkeypatch):
     monkeypatch.setenv("HHNECK", hhneck_executable())
     r = calibration.joint_fit(str(tmp_path), 2, 2, specimens=("stemper",), segment_sources=("nightingale",))
