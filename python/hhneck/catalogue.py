@@ -110,8 +110,10 @@ def figure(src, rows, figdir):
 
 SPECIMEN_NOTES = {
     "Stemper 2004 rear 1.8 m/s": "the source's T1 pulse, gravity down, muscles passive (activation zero), T1 tilted to the source's "
-    "25 deg slope, the start posture held by HOLD POSTURE through the test in place of the labs' positioning "
-    "cables (released at the pulse, the model's unstressed neutral starts in free fall: a variant below). "
+    "25 deg slope, the start posture held by HOLD POSTURE through the test: generalized forces on each joint's relative "
+    "coordinates, a pre-stress of the joints (a load pair between its two bodies, no external support), the preload "
+    "the specimens stood in when the labs cut their positioning cables (released at the pulse instead, the model's "
+    "unstressed neutral starts in free fall: a variant below). "
     "Reference: the corridor "
     "outline's midline; ISO/TS 18571 over the 0.3–126 ms the corridors cover.",
     "Kang 2018 front 14 km/h": "T1 potted and driven rearward by the source's pulse, muscles passive, posture "

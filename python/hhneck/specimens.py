@@ -19,8 +19,16 @@ Set-up (decisions of the README's "Ambiguities" named by number):
   neutral, so at the release no element carries the head's weight and the
   neck starts in free fall (the Kang cell reads 0 N at t = 0, not the
   specimen's weight): the specimens were in equilibrium, preloaded, when
-  their cables were cut, and a start settled under gravity with that
-  preload is not built. "NONE" writes no card (the same motion as RELEASE);
+  their cables were cut. HOLD's forces are that preload: they act on the
+  relative coordinates of each body to its parent, so each body's six are
+  one load pair between the two bodies of its joint (Kane's generalized
+  force of a pair acting on both vanishes for every other coordinate), an
+  internal pre-stress of the joints and not an external support; the
+  column carries the head's weight from the start (the Kang cell reads it
+  at t = 0) and nothing outside the specimen holds it up. A start with the
+  elements themselves pre-strained (neutrals shifted until the posture is
+  settled) would equal it at the start and differ as the joints turn; it is
+  not built. "NONE" writes no card (the same motion as RELEASE);
 * the T1 slope as the source potted it (25 deg: "anterior of the T1
   vertebra body oriented 25 degree with respect to the vertical"), a tilt
   of the potted body: T1's pitch held at (slope - the model deck's T1
