@@ -210,7 +210,7 @@ contains
             write (error_unit, '(a)') 'hhneck: calibration deck is valid: '//trim(cal%title)
             stop 0, quiet=.true.
         end if
-        allocate (v(size(cal%sw(1)%params)))
+        allocate (v(size(cal%par)))
         call calibrate(cal, output_unit, v, j, n)
         write (error_unit, '(a,i0,a,f8.5)') 'hhneck: calibration finished after ', n, ' evaluations; objective ', j
         stop 0, quiet=.true.

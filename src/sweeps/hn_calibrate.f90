@@ -1113,28 +1113,13 @@ contains
         type(score_t) :: sc(size(cal%sw))
         type(range_score_t) :: rg(size(cal%sw))
         logical :: ok
-        integer :: r, k, i, nnm, cu, ios
+        integer :: r, k, nnm, cu, ios
         logical :: curves_open
-        character(len=10), allocatable :: absent(:)
         curves_open = .false.
         associate (par => cal%par)
             write (lu, '(a)') 'CALIBRATION: '//trim(cal%title)
             write (lu, '(a,i0,a,i0,a,i0)') 'cases ', size(cal%sw), ', parameters ', size(par), ', seed ', cal%seed
-            k = 1
-            do while (k <= size(cal%sw))     ! each run of cases without the same OPTIONAL parameters: one line
-                r = k
-                do while (r < size(cal%sw))
-                    if (any(cal%sw(r + 1)%params%bound .neqv. cal%sw(k)%params%bound)) exit
-                    r = r + 1
-                end do
-                if (.not. all(cal%sw(k)%params%bound)) then
-                    absent = pack(cal%sw(k)%params%name, .not. cal%sw(k)%params%bound)
-                    write (lu, '(a,a,a,*(1x,a))') 'cases ', trim(int_str(k))//trim(merge('-'//int_str(r), &
-                        repeat(' ', 1 + len(int_str(r))), r > k)), ' without (OPTIONAL, not in their decks):', &
-                        (trim(absent(i)), i=1, size(absent))
-                end if
-                k = r + 1
-            end do
+            call optional_report(cal, lu)
             if (cal%range_weight > zero) then
                 write (lu, '(a,es10.3,a,es10.3,a,es10.3,a,es10.3,a,es10.3)') 'objective J = (1 - R) + W P + WT T '// &
                     '+ WR G; W ', cal%peak_weight, ', WT ', cal%time_weight, ', WR ', cal%range_weight, &
@@ -1235,6 +1220,32 @@ contains
             flush (lu)
         end subroutine report
     end subroutine calibrate
+
+    !> One listing line per run of consecutive cases that leave out the same
+    !! OPTIONAL parameters: 'cases 5-28 without (OPTIONAL, not in their decks): SIGMA ...'.
+    subroutine optional_report(cal, lu)
+        type(calibration_t), intent(in) :: cal   !! the calibration
+        integer, intent(in) :: lu                !! listing unit
+        character(len=:), allocatable :: label
+        character(len=10), allocatable :: absent(:)
+        integer :: k, r, i
+        k = 1
+        do while (k <= size(cal%sw))
+            r = k
+            do while (r < size(cal%sw))
+                if (any(cal%sw(r + 1)%params%bound .neqv. cal%sw(k)%params%bound)) exit
+                r = r + 1
+            end do
+            if (.not. all(cal%sw(k)%params%bound)) then
+                label = trim(int_str(k))
+                if (r > k) label = label//'-'//trim(int_str(r))
+                absent = pack(cal%sw(k)%params%name, .not. cal%sw(k)%params%bound)
+                write (lu, '(a,*(1x,a))') 'cases '//label//' without (OPTIONAL, not in their decks):', &
+                    (trim(absent(i)), i=1, size(absent))
+            end if
+            k = r + 1
+        end do
+    end subroutine optional_report
 
     !> The ratings and peaks of every case, three significant digits; each
     !! channel's ISO 18571 scores (overall, corridor, phase, magnitude,
