@@ -4,9 +4,10 @@ table and a figure per source.
 
 Cases in it now: the quasi-static segment tests of Panjabi et al. 2001 (21
 curves) and Nightingale et al. 2007 (3), set up by hhneck.segments; the
-specimen sled tests of Stemper 2004 (rear, 7 channels, with two variants of
-its set-up) and Kang 2018 (front and side, the head's 3 kinematic channels
-and the T1 load cell's 3 each), set up by hhneck.specimens. The NBDL volunteer sleds (15 g, 12 g) are run and rated
+specimen sled tests of Stemper 2004 (rear, 7 channels, with three variants
+of its set-up) and Kang 2018 (front and side, the head's 3 kinematic channels
+and the T1 load cell's 3 each, with the settled start as a variant), set up
+by hhneck.specimens. The NBDL volunteer sleds (15 g, 12 g) are run and rated
 as hhneck-compare-nbdl rates them (docs/validation.md has their tables).
 
 Command: hhneck-catalogue [--quick] [--exe HHNECK] [--jobs N] [--out DIR]
@@ -130,8 +131,8 @@ SAFER = {"Kang 2018 side 14 km/h": "0.684 (6 channels: kinematics 0.75, loads 0.
 
 def specimen_section(cases, variants, figdir, relto):
     """Markdown lines of the specimen cases: per case the ISO/TS 18571 scores
-    and peaks of every rated channel, the channels not rated, a figure; the
-    Stemper variants' means."""
+    and peaks of every rated channel, the channels not rated, a figure; its
+    set-up variants' means (variants: {title: {(support, muscles): rated}})."""
     lines = ["## Specimen sled tests", "",
              "**Prediction**: nothing of the model was fitted to these data; set-ups in "
              "`python/hhneck/specimens.py` (its docstring names each decision of the data's README).", ""]
@@ -155,10 +156,11 @@ def specimen_section(cases, variants, figdir, relto):
         fig = _case_figure(title, rated, figdir)
         if fig:
             lines += ["![%s: model (red) against the data](%s)" % (title, os.path.relpath(fig, relto)), ""]
-        if title.startswith("Stemper") and variants:
-            lines += ["Variants of the Stemper set-up (the same channels; experiments, not the shipped set-up):", "",
+        if variants.get(title):
+            lines += ["Variants of the set-up (the same channels; experiments, not the shipped set-up; "
+                      "specimens.py's SUPPORT):", "",
                       "| support | muscles | mean ISO 18571 | lowest channel |", "|---|---|---|---|"]
-            for (sup, mus), r in variants.items():
+            for (sup, mus), r in variants[title].items():
                 lowv = min(r, key=lambda c: r[c]["overall"])
                 lines.append("| %s | %s | %.3f | %s %.3f |" % (
                     sup, mus, np.mean([v["overall"] for v in r.values()]), lowv, r[lowv]["overall"]))
@@ -274,8 +276,12 @@ def main(argv=None):
                                             [])
     variants = {}
     if not a.quick:
-        for sup, mus in (("RELEASE", "PASSIVE"), ("HOLD", "REFLEX")):
-            variants[(sup, mus)] = specimens.rate_stemper(specimens.run_stemper(work, a.exe, sup, mus), a.data)
+        stemper = "Stemper 2004 rear 1.8 m/s"
+        variants[stemper] = {(sup, mus): specimens.rate_stemper(specimens.run_stemper(work, a.exe, sup, mus), a.data)
+                             for sup, mus in (("RELEASE", "PASSIVE"), ("HOLD", "REFLEX"), ("PRESTRAIN", "PASSIVE"))}
+        for d in ("front", "side"):
+            variants["Kang 2018 %s 14 km/h" % d] = {("PRESTRAIN", "PASSIVE"): specimens.rate_kang(
+                d, specimens.run_kang(d, work, a.exe, "PRESTRAIN"), a.data)}
     nbdl = nbdl_scores(a.exe, os.path.join(work, "nbdl") if work else None)
     wall = time.perf_counter() - t0
     write_report(results, a.report, wall, a.jobs, cases, variants, nbdl)

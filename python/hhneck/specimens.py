@@ -25,10 +25,14 @@ Set-up (decisions of the README's "Ambiguities" named by number):
   force of a pair acting on both vanishes for every other coordinate), an
   internal pre-stress of the joints and not an external support; the
   column carries the head's weight from the start (the Kang cell reads it
-  at t = 0) and nothing outside the specimen holds it up. A start with the
-  elements themselves pre-strained (neutrals shifted until the posture is
-  settled) would equal it at the start and differ as the joints turn; it is
-  not built. "NONE" writes no card (the same motion as RELEASE);
+  at t = 0) and nothing outside the specimen holds it up. SUPPORT =
+  "PRESTRAIN" (HOLD PRESTRAIN, a settled start) carries the same preload
+  in the elements instead: the discs' references and the neutral-zone
+  springs' neutrals are displaced until the start posture is in
+  equilibrium under gravity (Newton's method, hn_prestrain), so no
+  generalized force is added; it equals HOLD at t = 0 and differs as the
+  joints turn (a strained spring stiffens along its own law, HOLD's forces
+  stay constant). "NONE" writes no card (the same motion as RELEASE);
 * the T1 slope as the source potted it (25 deg: "anterior of the T1
   vertebra body oriented 25 degree with respect to the vertical"), a tilt
   of the potted body: T1's pitch held at (slope - the model deck's T1
@@ -155,18 +159,21 @@ def _support_cards(support):
     """The cards of the start posture's support: RELEASE, held at rest until
     the pulse (t = 0) and free from it, as the labs' positioning support
     was cut at the pulse (HOLD POSTURE released at 0 as a step); HOLD, held
-    through the test (HOLD POSTURE's constant forces); NONE, no support (free
-    from rest at t = 0: the same motion as RELEASE, without the statement)."""
-    cards = {"RELEASE": ["HOLD      POSTURE   0.0"], "HOLD": ["HOLD      POSTURE"], "NONE": []}
+    through the test (HOLD POSTURE's constant forces); PRESTRAIN, settled
+    (HOLD PRESTRAIN: the joints' discs and neutral-zone springs pre-strained
+    to carry the posture); NONE, no support (free from rest at t = 0: the
+    same motion as RELEASE, without the statement)."""
+    cards = {"RELEASE": ["HOLD      POSTURE   0.0"], "HOLD": ["HOLD      POSTURE"],
+             "PRESTRAIN": ["HOLD      PRESTRAIN"], "NONE": []}
     if support not in cards:
-        raise ValueError("support: RELEASE, HOLD or NONE, not %r" % support)
+        raise ValueError("support: RELEASE, HOLD, PRESTRAIN or NONE, not %r" % support)
     return cards[support]
 
 
 def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.DATA_DIR,
                  t1_slope=T1_SLOPE["stemper"]):
     """Write the Stemper 1.8 m/s deck and its two-column pulse table into
-    workdir; returns the deck's path. support: RELEASE, HOLD or NONE
+    workdir; returns the deck's path. support: RELEASE, HOLD, PRESTRAIN or NONE
     (_support_cards); muscles:
     PASSIVE (activation zero) or REFLEX (the model deck's volunteer
     activation histories); t1_slope: the potted T1's slope [deg]."""
@@ -176,7 +183,7 @@ def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.D
         f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % p for p in zip(t, a)))
     name = "stemper_%s_%s" % (support.lower(), muscles.lower())
     lines = [
-        "TITLE     STEMPER 2004 REAR IMPACT 1.8 M/S, T1 POTTED (%s, MUSCLES %s)" % (support, muscles),
+        "TITLE     STEMPER 2004 REAR 1.8 M/S, T1 POTTED (%s, MUSCLES %s)" % (support, muscles),
         "*         end (s)   step (s)  print (s) method    rtol      atol",
         "CONTROL   0.13      1.0E-4    0.005     ROS34PW2  1.0E-3    1.0E-5",
         "SOLVER    ABA       STRUCT",

@@ -43,6 +43,7 @@ module hn_disc_family
         procedure :: scale_items => disc_items
         procedure :: scale => disc_scale
         procedure :: stiffen => disc_stiffen
+        procedure :: prestrain => disc_prestrain
     end type disc_family_t
 
 contains
@@ -69,6 +70,16 @@ contains
             call disc_set_reference(this%items(e), kin)
         end do
     end subroutine disc_neutral
+
+    !> Pre-strain: every disc's references (plate frames, neutral offset)
+    !! measured in the displaced neutral configuration of kin, so that the
+    !! discs are unstrained there and strained in the true neutral.
+    pure subroutine disc_prestrain(this, kin, dx)
+        class(disc_family_t), intent(inout) :: this   !! the family; out: disc references at kin
+        type(kinematics_t), intent(in) :: kin         !! kinematics of the displaced neutral
+        real(wp), intent(in) :: dx(:)                 !! the displacement [m, rad] (kin holds it)
+        call this%set_neutral(kin)
+    end subroutine disc_prestrain
 
     !> Loads of every disc; outputs their resultants.
     pure subroutine disc_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)

@@ -98,6 +98,7 @@ module hn_element_family
         procedure :: read_card => no_card
         procedure :: end_cards => nothing_after_cards
         procedure :: deck_cards => registry_cards
+        procedure :: prestrain => no_prestrain
     end type element_family_t
 
     !> One slot of the model: a family of any kind.
@@ -233,6 +234,17 @@ contains
         type(deck_reader_t), intent(inout) :: rd         !! the deck: card images, located field access, the first error
         type(card_context_t), intent(inout) :: ctx       !! the deck's cards; out: the family's scene notes added
     end subroutine nothing_after_cards
+
+    !> Pre-strain the family's elastic neutral: its references measured in
+    !! the configuration of `kin`, the neutral one with the active
+    !! coordinates displaced by dx (HOLD PRESTRAIN, a settled start). The
+    !! default: none (the family keeps its references: line elements their
+    !! free lengths, range elements their ranges).
+    pure subroutine no_prestrain(this, kin, dx)
+        class(element_family_t), intent(inout) :: this   !! the family (unchanged)
+        type(kinematics_t), intent(in) :: kin            !! kinematics of the displaced neutral (unused)
+        real(wp), intent(in) :: dx(:)                    !! displacement of the active coordinates [m, rad] (unused)
+    end subroutine no_prestrain
 
     !> The cards of a family the registry (hn_families, family_cards) does
     !! not list, one added to a model in code (model_add_family); the

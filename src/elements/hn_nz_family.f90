@@ -65,6 +65,7 @@ module hn_nz_family
         procedure :: scale_items => nz_items
         procedure :: scale => nz_scale
         procedure :: stiffen => nz_stiffen
+        procedure :: prestrain => nz_prestrain
     end type nz_family_t
 
 contains
@@ -154,6 +155,19 @@ contains
         class(nz_family_t), intent(inout) :: this   !! the family (unchanged)
         type(kinematics_t), intent(in) :: kin       !! kinematics of the neutral configuration (unused)
     end subroutine nz_neutral
+
+    !> Pre-strain: every spring's neutral value x_n moved by its
+    !! coordinate's displacement dx (the springs act on coordinates, so
+    !! kin is not needed).
+    pure subroutine nz_prestrain(this, kin, dx)
+        class(nz_family_t), intent(inout) :: this   !! the family; out: x_n + dx
+        type(kinematics_t), intent(in) :: kin       !! kinematics of the displaced neutral (unused)
+        real(wp), intent(in) :: dx(:)               !! displacement of the active coordinates [m, rad]
+        integer :: e
+        do e = 1, size(this%items)
+            this%items(e)%xn = this%items(e)%xn + dx(this%items(e)%dof)
+        end do
+    end subroutine nz_prestrain
 
     !> The springs' generalized forces on their coordinates; their stored energy.
     pure subroutine nz_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)

@@ -26,6 +26,9 @@ module hn_case
         real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-8_wp
         real(wp), allocatable :: x0(:), xd0(:)      !! initial active coordinates and rates
         logical :: hold_posture = .false.           !! generalized forces hold the start posture (released: model%hold_release)
+        logical :: hold_prestrain = .false.         !! HOLD PRESTRAIN: the joints' elements pre-strained to settle it (hn_prestrain)
+        character(len=120) :: hold_where = ''       !! the HOLD card's deck line (messages of a run's start)
+        character(len=200) :: hold_note = ''        !! the pre-strain found at the run's start (listing)
         character(len=8) :: events = 'TIME'         !! NONE, TIME (table breakpoints) or STATE (also one-way switches)
         integer :: head = 0                         !! body reported as the head
         integer :: t1 = 0                           !! body reported as T1 (NIC, relative motion)

@@ -198,18 +198,32 @@ contains
 
     !> HOLD POSTURE t_r t_d: the start posture held by constant generalized
     !! forces, released at t_r [s] (blank: never) as a step (t_d blank or 0)
-    !! or smoothly over t_d [s]. F2 and F3 belong to F1 POSTURE, the only
-    !! option; a duration without a release time is refused.
+    !! or smoothly over t_d [s]; a duration without a release time is
+    !! refused. HOLD PRESTRAIN: the start posture settled by pre-straining
+    !! the joints' discs and neutral-zone springs (hn_prestrain), nothing
+    !! held or released (F2 and F3 blank).
     subroutine hold_card(rd, i, cs)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
         integer, intent(in) :: i  !! the HOLD card's image
-        type(case_t), intent(inout) :: cs  !! the run case (its times read); out: hold_posture and the model's release
+        type(case_t), intent(inout) :: cs  !! the run case (its times read); out: hold_posture or hold_prestrain, the release
         character(len=10) :: s
+        integer :: f
         call rd%name(i, 1, 'option', s)
-        if (s /= 'POSTURE' .and. .not. rd%failed()) &
-            call rd%fail(rd%context(i, 1, 'option')//': found "'//trim(s)//'"; expected POSTURE')
-        cs%hold_posture = .true.
+        if (s /= 'POSTURE' .and. s /= 'PRESTRAIN' .and. .not. rd%failed()) &
+            call rd%fail(rd%context(i, 1, 'option')//': found "'//trim(s)//'"; expected POSTURE or PRESTRAIN')
         if (rd%failed()) return
+        cs%hold_where = rd%where(i)
+        if (s == 'PRESTRAIN') then
+            cs%hold_prestrain = .true.
+            do f = 2, 3
+                if (rd%is_blank(i, f)) cycle
+                call rd%fail(rd%context(i, f, 'release')//': found "'//trim(rd%raw(i, f))// &
+                             '"; expected blank: a pre-strain stays through the run (HOLD POSTURE is the one released)')
+                return
+            end do
+            return
+        end if
+        cs%hold_posture = .true.
         if (.not. rd%is_blank(i, 2)) then
             call rd%real(i, 2, 'release time', 's', cs%model%hold_release, cs%t_start, cs%t_end)
             call rd%real(i, 3, 'release duration', 's', cs%model%hold_duration, zero, 1.0e4_wp, default=zero)

@@ -223,6 +223,10 @@ contains
                     end do
                 end if
             end if
+            if (cs%hold_prestrain) then
+                call me%put('   POSTURE SETTLED AT THE START: DISCS AND NEUTRAL-ZONE SPRINGS PRE-STRAINED (HOLD PRESTRAIN)')
+                call me%put('     '//trim(cs%hold_note))
+            end if
             if (cs%hold_posture .and. md%hold_release >= huge(md%hold_release)) then
                 call me%put('   POSTURE HELD AT THE START BY CONSTANT GENERALIZED FORCES (HOLD POSTURE)')
             else if (cs%hold_posture) then

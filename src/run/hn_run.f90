@@ -8,7 +8,7 @@
 !! `execute` runs all of it. The main program, the sweeps and the
 !! benchmarks use this one object.
 module hn_run
-    use hn_kinds, only: wp, zero, one, msglen, i8
+    use hn_kinds, only: wp, zero, one, msglen, i8, deg
     use hn_status, only: stat_ok, stat_not_finite, stat_energy_lost
     use hn_case, only: case_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
@@ -22,15 +22,17 @@ module hn_run
     use hn_listing, only: listing_t
     use hn_dump, only: dump_record
     use hn_breakpoints, only: case_breakpoints
-    use hn_model, only: hold_breakpoints, hold_pass
+    use hn_model, only: hold_breakpoints, hold_pass, neutral_coordinates
     use hn_tree, only: dof_label
+    use hn_prestrain, only: prestrain_t, settle_prestrain
+    use hn_deck_reader, only: upper
     use hn_assessment, only: assessment_t, assess, criteria_input_t, criteria_input_from, criteria_channels, &
                              ncriteria_columns
     use hn_signals, only: signal_received
     use hn_progress, only: progress_t, limit_diagnosis
     use hn_history, only: history_t
     use hn_version, only: code_version
-    use hn_joint_limits, only: range_track, range_warnings, range_margin
+    use hn_joint_limits, only: joint_range_t, range_track, range_warnings, range_margin
     implicit none
     private
 
@@ -131,7 +133,7 @@ module hn_run
         procedure :: finish => run_finish
         procedure :: next_output_time => run_next_output_time
         procedure :: is_running => run_is_running
-        procedure, private :: hold_posture, init_outputs, check_state, diagnosis, fail, track_peaks
+        procedure, private :: hold_posture, settle, init_outputs, check_state, diagnosis, fail, track_peaks
         procedure, private :: record_sample
     end type run_state_t
 
@@ -184,14 +186,22 @@ contains
         nf = me%sys%ws%nfree
         allocate (y(state_size(me%sys)))
         call coordinates_to_state(me%sys%ws, me%cs%x0, me%cs%xd0, y)
+        me%res%warning = ''
         if (me%cs%hold_posture) then
             call me%hold_posture(y, stat, msg)
             if (stat /= stat_ok) then
                 call me%fail(exit_diverged, 'posture holding: '//trim(msg))
                 return
             end if
+        else if (me%cs%hold_prestrain) then
+            call me%settle(stat, msg)
+            if (stat /= stat_ok) then
+                call me%fail(exit_deck, trim(me%cs%hold_where)//' (HOLD PRESTRAIN): '//trim(msg))
+                return
+            end if
         end if
         call me%lst%model_summary(me%cs)
+        if (len_trim(me%res%warning) > 0) call me%lst%message(me%res%warning)
         call new_integrator(me%cs%integrator, me%integ, stat)
         if (stat /= stat_ok) then
             call me%fail(exit_deck, 'unknown integrator "'//trim(me%cs%integrator)//'"')
@@ -239,6 +249,45 @@ contains
         end associate
         me%cs%model%q_hold = me%sys%model%q_hold
     end subroutine hold_posture
+
+    !> HOLD PRESTRAIN: the model pre-strained so that it stands in its
+    !! start posture (hn_prestrain), the system rebuilt on it, a note for
+    !! the listing.
+    subroutine settle(me, stat, msg)
+        class(run_state_t), intent(inout) :: me
+        integer, intent(out) :: stat
+        character(len=msglen), intent(out) :: msg
+        type(prestrain_t) :: ps
+        type(joint_range_t), allocatable :: rom(:)
+        real(wp), allocatable :: xr(:)
+        real(wp) :: e, excess
+        integer :: k, nout, worst
+        call settle_prestrain(me%cs%model, me%cs%t_start, me%cs%x0, me%cs%xd0, ps, stat, msg)
+        if (stat /= stat_ok) return
+        call model_ode_init(me%sys, me%cs%model)
+        write (me%cs%hold_note, '(a,es10.3,a,i0,a)') 'LARGEST LOAD ', ps%load, ' N OR N M, SETTLED IN ', ps%iterations, &
+            ' NEWTON ITERATIONS'
+        if (ps%largest > 0) write (me%cs%hold_note, '(a,f8.3,3a)') trim(me%cs%hold_note)//'; LARGEST ROTATION SHIFT ', &
+            ps%dx(ps%largest)/deg, ' DEG AT ', trim(upper(dof_label(me%cs%model%tree, ps%largest)))
+        ! a neutral moved out of its joint's range: the start's load is not a joint preload
+        rom = ranges_of(me%cs%model%family(fam_limits)%f)
+        xr = neutral_coordinates(me%cs%model)
+        nout = 0
+        worst = 0
+        excess = zero
+        do k = 1, size(rom)
+            e = max(xr(rom(k)%dof) + ps%dx(rom(k)%dof) - rom(k)%xmax, rom(k)%xmin - xr(rom(k)%dof) - ps%dx(rom(k)%dof))
+            if (e <= zero) cycle
+            nout = nout + 1
+            if (e > excess) then
+                excess = e
+                worst = k
+            end if
+        end do
+        if (nout > 0) write (me%res%warning, '(a,i0,3a,f8.2,a)') 'WARNING: HOLD PRESTRAIN moves ', nout, &
+            ' joint neutral(s) out of their range of motion; largest: ', trim(rom(worst)%label), ' by ', excess/deg, &
+            ' deg (the start load is not a preload of the joints: held by the muscles, it is HOLD POSTURE''s)'
+    end subroutine settle
 
     !> Output schedule, listing rows, sample store, peaks, breakpoints and
     !! switching functions.

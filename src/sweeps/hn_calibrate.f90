@@ -65,8 +65,9 @@ module hn_calibrate
     use hn_rating, only: peak_t, corridor_t, score_t, score_curves, window_samples, max_lag, cora_rating
     use hn_volunteer_data, only: data_channel_t, read_volunteers, reference_data_t, read_reference_csv
     use hn_iso18571, only: iso18571_rating_t, iso18571_rating, iso18571_min_samples, iso18571_dt
+    use hn_prestrain, only: prestrain_t, settle_prestrain
     use hn_rest_modes, only: rest_mode_t, rest_modes
-    use hn_model, only: fam_muscles
+    use hn_model, only: model_t, fam_muscles
     use hn_joint_limits, only: range_margin
     implicit none
     private
@@ -882,14 +883,14 @@ contains
         do c = 1, size(cal%sw)
             if (cal%ref(c)%on) cycle            ! a reference case is held as its deck holds it
             call sweep_member_case(cal%sw(c), v, cs, stat, msg)
-            if (stat == stat_ok) call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
+            if (stat == stat_ok) call case_rest_modes(cs, modes, stat, msg)
             if (stat /= stat_ok) then
                 lmax = huge(one); return
             end if
             if (size(modes) > 0) lmax = max(lmax, modes(1)%re)
             if (.not. cal%passive) cycle
             cs%model%family_on(fam_muscles) = .false.
-            call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
+            call case_rest_modes(cs, modes, stat, msg)
             if (stat /= stat_ok) then
                 lp = huge(one)
             else if (size(modes) > 0 .and. lp < huge(one)) then
@@ -897,6 +898,25 @@ contains
             end if
         end do
     end subroutine rest_growth
+
+    !> The rest modes of a case at its start, held or settled as its run
+    !! starts (HOLD POSTURE's forces, or HOLD PRESTRAIN's pre-strain of a
+    !! copy of its model).
+    subroutine case_rest_modes(cs, modes, stat, msg)
+        type(case_t), intent(in) :: cs                          !! the case
+        type(rest_mode_t), allocatable, intent(out) :: modes(:) !! its rest modes (rest_modes)
+        integer, intent(out) :: stat                            !! stat_ok, or what failed
+        character(len=msglen), intent(out) :: msg               !! what failed
+        type(model_t) :: settled
+        type(prestrain_t) :: ps
+        if (.not. cs%hold_prestrain) then
+            call rest_modes(cs%model, cs%t_start, cs%x0, cs%xd0, cs%hold_posture, modes, stat, msg)
+            return
+        end if
+        settled = cs%model
+        call settle_prestrain(settled, cs%t_start, cs%x0, cs%xd0, ps, stat, msg)
+        if (stat == stat_ok) call rest_modes(settled, cs%t_start, cs%x0, cs%xd0, .false., modes, stat, msg)
+    end subroutine case_rest_modes
 
     !> Objective J and the scores of every case for parameter values v. A
     !! parameter set whose model is not stable at rest with the margin

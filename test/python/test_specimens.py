@@ -149,3 +149,26 @@ def test_kang_drive_and_signs(tmp_path, direction):
     # rated from the start value: the data are tared
     tm, fz = model["loadcell_force_z"]
     assert fz[0] == 0.0 and np.allclose(fz, ch["T1CELL_JFZ"] - ch["T1CELL_JFZ"][0])
+
+
+def test_settled_start_carries_the_weight(tmp_path):
+    """The PRESTRAIN support (HOLD PRESTRAIN): the deck has the card and no
+    holding forces; at rest at the start the Kang cell reads the weight of
+    C7 ... head as the held start does (the pre-strain equals HOLD at t = 0),
+    no E_HOLD energy is stored, and the listing states the settled start."""
+    deck = specimens.kang_deck(str(tmp_path), "front", support="PRESTRAIN")
+    lines = open(deck).read().splitlines()
+    assert "HOLD      PRESTRAIN" in lines and "HOLD      POSTURE" not in lines
+    specimens.run_kang("front", str(tmp_path), hhneck_executable(), support="PRESTRAIN")
+    with h5py.File(tmp_path / "kang_front_prestrain.h5", "r") as f:
+        names = [str(n) for n in f["model"].attrs["bodies"]]
+        mass = f["model/mass"][:]
+        st1 = f["bodies/rotation"][0, names.index("T1")].T
+        fz = f["channels"]["T1CELL_JFZ"][:]
+        ehold = f["channels"]["E_HOLD"][:]
+    tilt = np.arccos(st1[0, 0])
+    w = 9.80665 * mass[names.index("C7"):].sum()
+    assert fz[0] == pytest.approx(-w * np.cos(tilt), rel=1e-6)
+    assert np.all(ehold == 0.0)
+    listing = open(tmp_path / "kang_front_prestrain.txt").read()
+    assert "PRE-STRAINED (HOLD PRESTRAIN)" in listing and "NEWTON ITERATIONS" in listing
