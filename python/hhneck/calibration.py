@@ -514,7 +514,7 @@ def score_set(params, values, workdir, groups=None, exe=None, model=segments.MOD
 
 
 def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimens=tuple(CASES),
-              segment_sources=()):
+              segment_sources=(), model=segments.MODEL_DECK):
     """Every parameter of the shipped NBDL fit (input/calibrate_nbdl12g.inp:
     its 15, its study, PASSIVE and RANGES cards) and the ligaments' LIGK
     fitted in one objective to the NBDL 12 g volunteers (weight nbdl_weight),
@@ -524,13 +524,21 @@ def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimen
     set scored everywhere (score_set: NBDL 15 g and the sources not fitted
     are prediction). A segment deck has no muscles: the muscles' parameters
     (MUSCLE_PARAMS) are OPTIONAL, bound in the cases that have them.
+    model: the model deck (default the shipped one; another, e.g. a variant
+    of the deck generator's, goes to the fit's input/ folder, where every
+    case's INCLUDE finds it first), its values the starting point.
     Returns dict(values={name: value}, objective, fitted={deck: mean},
     catalogue, volunteers, rest)."""
     fitdir = os.path.join(workdir, "fit")
-    os.makedirs(fitdir, exist_ok=True)
+    os.makedirs(os.path.join(fitdir, "input"), exist_ok=True)
+    copy = os.path.join(fitdir, "input", os.path.basename(segments.MODEL_DECK))
+    if os.path.abspath(model) != os.path.abspath(segments.MODEL_DECK):
+        shutil.copyfile(model, copy)
+    else:
+        copy = model
     params, _ = deck_params(NBDL12_DECK)
     params = params + [PARAMS[-1]]
-    start = [float(l.split("=")[1]) for l in values_listing().splitlines()] + [1.0]
+    start = [float(l.split("=")[1]) for l in values_listing(model).splitlines()] + [1.0]
     lines = ["TITLE     JOINT CALIBRATION: NBDL 12 G, THE SPECIMENS" +
              (" AND THE SEGMENT SOURCES" if segment_sources else "")]
     for l in open(NBDL12_DECK).read().splitlines():
@@ -548,7 +556,7 @@ def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimen
     groups.update({g: cs for g, cs in segment_cases().items() if g in segment_sources})
     weights = group_weights(groups)
     for case in [c for cs in groups.values() for c in cs]:
-        lines += case_cards(case, fitdir, weights[case])
+        lines += case_cards(case, fitdir, weights[case], model=copy)
     lines += param_cards(params) + values_cards(start)
     if segment_sources:
         lines.append("OPTIONAL  " + "".join("%-10s" % n for n in MUSCLE_PARAMS))
@@ -556,7 +564,8 @@ def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimen
     write_deck(deck, lines)
     fit = run_calibration(deck, fitdir, exe)
     values = [fit["values"][p[0]] for p in params] if evals > 0 else start   # evaluate-only: the start
-    catalogue, volunteers, rest = score_set(params, values, os.path.join(workdir, "scores"), exe=exe)
+    catalogue, volunteers, rest = score_set(params, values, os.path.join(workdir, "scores"), exe=exe,
+                                            model=model)
     return dict(values=dict(zip([p[0] for p in params], values)), objective=fit["objective"],
                 fitted=fit["cases"], catalogue=catalogue, volunteers=volunteers, rest=rest)
 
@@ -631,7 +640,8 @@ def main(argv=None):
                     help="(--joint, repeatable) a segment source or specimen case left out of the joint fit, "
                          "so that its score at the fitted values is a prediction")
     ap.add_argument("--model", default=segments.MODEL_DECK,
-                    help="the model deck of --two-stage (default the shipped input/head_neck_54dof.inp)")
+                    help="the model deck of --two-stage and --joint, its values --joint's starting point "
+                         "(default the shipped input/head_neck_54dof.inp)")
     args = ap.parse_args(argv)
     if args.joint or args.two_stage:
         work = os.path.abspath(args.workdir)
@@ -641,7 +651,8 @@ def main(argv=None):
             except ValueError as e:
                 ap.error(str(e))
             text = joint_text(joint_fit(work, args.evals, args.starts, args.nbdl_weight,
-                                        specimens=cases, segment_sources=sources))
+                                        specimens=cases, segment_sources=sources,
+                                        model=os.path.abspath(args.model)))
         else:
             text = two_stage_text(two_stage(work, args.evals, args.starts, args.nbdl_evals, args.nbdl_starts,
                                             model=os.path.abspath(args.model)))
