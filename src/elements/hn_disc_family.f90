@@ -244,11 +244,13 @@ contains
         end do
     end subroutine disc_plausibility
 
-    !> E, VISCOUS, G, VAXIAL, VBEND, ETENSION, BEND (the second moments Ix, Iy), TORSION (J).
+    !> E, VISCOUS, G, VAXIAL, VBEND, ETENSION, BEND (the second moments Ix, Iy), BENDX (Ix: lateral
+    !! bending about the plate's x axis), BENDY (Iy: flexion-extension), TORSION (J).
     pure subroutine disc_items(this, items)
         class(disc_family_t), intent(in) :: this      !! the family
         character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
-        items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION', 'BEND', 'TORSION']
+        items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION', 'BEND', 'BENDX', 'BENDY', &
+                                             'TORSION']
     end subroutine disc_items
 
     !> Scale one property of every disc (d2b not given becomes d2 from here on).
@@ -269,6 +271,8 @@ contains
         case ('BEND')        ! bending stiffness (and its damping) in both planes
             this%items%ix = factor*this%items%ix
             this%items%iy = factor*this%items%iy
+        case ('BENDX'); this%items%ix = factor*this%items%ix      ! lateral bending (about plate x) alone
+        case ('BENDY'); this%items%iy = factor*this%items%iy      ! flexion-extension (about plate y) alone
         case ('TORSION'); this%items%j = factor*this%items%j       ! torsion stiffness (and its damping)
         end select
     end subroutine disc_scale
