@@ -9,6 +9,7 @@ module hn_model
     use hn_applied, only: applied_load_t
     use hn_kinematics, only: kinematics_t, kinematics_allocate, partial_velocities
     use hn_linsolve, only: solver_gauss
+    use hn_sorting, only: merge_times
     use hn_element_family, only: element_family_t, family_slot_t, max_family_items, item_len
     use hn_families, only: nfamilies, family_name, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs, &
                            new_family
@@ -17,7 +18,7 @@ module hn_model
 
     public :: model_t, model_init, model_set_neutral, neutral_coordinates, family_count, family_items, family_items_text
     public :: scale_family, model_set_family, model_add_family
-    public :: hold_factor, hold_pass, hold_unreleased, hold_breakpoints
+    public :: hold_factor, hold_pass, hold_unreleased, hold_breakpoints, control_times, control_pass
     ! the registry's names, for the modules that know the model only
     public :: max_family_items, nfamilies, family_name, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
 
@@ -159,6 +160,35 @@ contains
         real(wp), intent(in) :: tol              !! time tolerance of a breakpoint [s]
         if (model%hold_duration == zero .and. abs(t - model%hold_release) <= tol) model%hold_stepped = .true.
     end subroutine hold_pass
+
+    !> The times in [t0, t1] at which the controllers of any family sample
+    !! the state (FEEDBACK cards), ascending; the run ends a step at each
+    !! one, without a restart (the inputs stay continuous there).
+    pure function control_times(model, t0, t1, tol) result(tk)
+        type(model_t), intent(in) :: model       !! the model
+        real(wp), intent(in) :: t0               !! start of the run [s]
+        real(wp), intent(in) :: t1               !! its end [s]
+        real(wp), intent(in) :: tol              !! times closer than this are one [s]
+        real(wp), allocatable :: tk(:)
+        integer :: f
+        allocate (tk(0))
+        do f = 1, size(model%family)
+            if (model%family_on(f)) tk = merge_times(tk, model%family(f)%f%control_times(t0, t1, tol), tol)
+        end do
+    end function control_times
+
+    !> The run has reached time t, the kinematics of its state kin: the
+    !! controllers of every family whose sample is due take it.
+    pure subroutine control_pass(model, t, kin, tol)
+        type(model_t), intent(inout) :: model    !! the model; out: the controllers' samples and holds
+        real(wp), intent(in) :: t                !! time reached [s]
+        type(kinematics_t), intent(in) :: kin    !! kinematics of the state at t
+        real(wp), intent(in) :: tol              !! time tolerance of a sample time [s]
+        integer :: f
+        do f = 1, size(model%family)
+            if (model%family_on(f)) call model%family(f)%f%control_update(t, kin, tol)
+        end do
+    end subroutine control_pass
 
     !> Hold the posture for good: no release (an analysis of the held state).
     pure subroutine hold_unreleased(model)

@@ -6,7 +6,7 @@ module hn_sorting
     implicit none
     private
 
-    public :: sort_index, sort_index_text
+    public :: sort_index, sort_index_text, merge_times
 
 contains
 
@@ -60,5 +60,31 @@ contains
             width = 2*width
         end do
     end function sort_index_text
+
+    !> The ascending times a and b merged, a time within tol of one kept listed once.
+    pure function merge_times(a, b, tol) result(c)
+        real(wp), intent(in) :: a(:)     !! ascending times [s]
+        real(wp), intent(in) :: b(:)     !! ascending times [s]
+        real(wp), intent(in) :: tol      !! times closer than this are one [s]
+        real(wp), allocatable :: c(:)
+        integer :: i, j, n
+        allocate (c(size(a) + size(b)))
+        i = 1; j = 1; n = 0
+        do while (i <= size(a) .or. j <= size(b))
+            n = n + 1
+            if (j > size(b)) then
+                c(n) = a(i); i = i + 1
+            else if (i > size(a)) then
+                c(n) = b(j); j = j + 1
+            else if (abs(a(i) - b(j)) <= tol) then
+                c(n) = a(i); i = i + 1; j = j + 1
+            else if (a(i) < b(j)) then
+                c(n) = a(i); i = i + 1
+            else
+                c(n) = b(j); j = j + 1
+            end if
+        end do
+        c = c(1:n)
+    end function merge_times
 
 end module hn_sorting

@@ -99,6 +99,8 @@ module hn_element_family
         procedure :: end_cards => nothing_after_cards
         procedure :: deck_cards => registry_cards
         procedure :: prestrain => no_prestrain
+        procedure :: control_times => no_control_times
+        procedure :: control_update => no_control_update
     end type element_family_t
 
     !> One slot of the model: a family of any kind.
@@ -245,6 +247,26 @@ contains
         type(kinematics_t), intent(in) :: kin            !! kinematics of the displaced neutral (unused)
         real(wp), intent(in) :: dx(:)                    !! displacement of the active coordinates [m, rad] (unused)
     end subroutine no_prestrain
+
+    !> The times in [t0, t1] at which the family's controllers sample the
+    !! state (the run lands its steps there); the default: none.
+    pure function no_control_times(this, t0, t1, tol) result(tk)
+        class(element_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t0                    !! start of the run [s]
+        real(wp), intent(in) :: t1                    !! its end [s]
+        real(wp), intent(in) :: tol                   !! time tolerance [s]
+        real(wp), allocatable :: tk(:)
+        allocate (tk(0))
+    end function no_control_times
+
+    !> The run has reached time t with kinematics kin (a control time, or
+    !! its start): the family's controllers sample; the default: none.
+    pure subroutine no_control_update(this, t, kin, tol)
+        class(element_family_t), intent(inout) :: this   !! the family (unchanged)
+        real(wp), intent(in) :: t                        !! time reached [s]
+        type(kinematics_t), intent(in) :: kin            !! kinematics there (unused)
+        real(wp), intent(in) :: tol                      !! time tolerance [s] (unused)
+    end subroutine no_control_update
 
     !> The cards of a family the registry (hn_families, family_cards) does
     !! not list, one added to a model in code (model_add_family); the

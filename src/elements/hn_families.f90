@@ -17,6 +17,7 @@ module hn_families
     use hn_joint_limits, only: joint_limit_t, joint_range_t
     use hn_tables, only: table_t
     use hn_muscle, only: activation_t
+    use hn_feedback, only: feedback_t
     use hn_element_family, only: element_family_t, family_slot_t
     use hn_element_cards, only: family_card_t, card_first, card_last
     use hn_disc_family, only: disc_family_t
@@ -42,7 +43,7 @@ module hn_families
     !> Every card of every family (VIA and ACTIVATE complete the muscles):
     !! key, family, continuation cards, and when it is read (the default
     !! card_in_order: in deck order; ACTIVATE first, the histories HILL cards
-    !! name; VIA last, on the muscles read before).
+    !! name; VIA and FEEDBACK last, on the muscles and histories read before).
     type(family_card_t), parameter :: family_cards(*) = [ &
         family_card_t('DISC', fam_discs, 2), &
         family_card_t('LIGAMENT', fam_ligaments, 1), &
@@ -50,6 +51,7 @@ module hn_families
         family_card_t('HILL', fam_muscles, 1), &
         family_card_t('VIA', fam_muscles, 0, card_last), &
         family_card_t('ACTIVATE', fam_muscles, 1, card_first), &
+        family_card_t('FEEDBACK', fam_muscles, 0, card_last), &
         family_card_t('LIMIT', fam_limits, 0), &
         family_card_t('ROM', fam_limits, 0), &
         family_card_t('SPRING', fam_springs, 1), &
@@ -69,6 +71,7 @@ contains
         type(muscle_t), allocatable :: m(:)
         type(table_t), allocatable :: tb(:)
         type(activation_t), allocatable :: a(:)
+        type(feedback_t), allocatable :: fb(:)
         type(joint_limit_t), allocatable :: jl(:)
         type(joint_range_t), allocatable :: jr(:)
         type(spring_t), allocatable :: sp(:)
@@ -79,7 +82,8 @@ contains
         case (fam_ligaments)
             allocate (l(0)); allocate (slot%f, source=ligament_family_t(items=l))
         case (fam_muscles)
-            allocate (m(0), tb(0), a(0)); allocate (slot%f, source=muscle_family_t(items=m, tables=tb, activations=a))
+            allocate (m(0), tb(0), a(0), fb(0))
+            allocate (slot%f, source=muscle_family_t(items=m, tables=tb, activations=a, feedbacks=fb))
         case (fam_limits)
             allocate (jl(0), jr(0)); allocate (slot%f, source=limit_family_t(items=jl, ranges=jr))
         case (fam_springs)

@@ -3,7 +3,9 @@
 !! (hn_line_elements), behind the element-family interface. The family
 !! holds the activation tables (eq 11) and the activation histories (ACTIVATE
 !! cards) its muscles refer to. Output per muscle: tension [N], length [m]
-!! and activation. The family reads its MUSCLE, HILL, ACTIVATE and VIA cards.
+!! and activation. The family reads its MUSCLE, HILL, ACTIVATE, VIA and
+!! FEEDBACK cards; a FEEDBACK card adds postural feedback (hn_feedback) to an
+!! activation history, sampled by the run (control_times, control_update).
 module hn_muscle_family
     use hn_kinds, only: wp, zero, one
     use hn_deck_reader, only: deck_reader_t, int_str
@@ -14,6 +16,8 @@ module hn_muscle_family
     use hn_tree, only: body_tree_t
     use hn_tables, only: table_t, table_value
     use hn_muscle, only: activation_t, activation_value
+    use hn_feedback, only: feedback_t, feedback_activation, feedback_due, feedback_sample, feedback_times
+    use hn_sorting, only: merge_times
     use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
                                 apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
@@ -32,6 +36,7 @@ module hn_muscle_family
         type(muscle_t), allocatable :: items(:)
         type(table_t), allocatable :: tables(:)              !! activation tables (eq 11) referenced by muscles
         type(activation_t), allocatable :: activations(:)    !! activation histories of Hill-type muscles
+        type(feedback_t), allocatable :: feedbacks(:)        !! postural feedback loops on those histories
         integer :: nread = 0   !! muscles read from the deck so far (items holds room for every card until end_cards)
     contains
         procedure :: read_card => muscle_read_card
@@ -50,6 +55,8 @@ module hn_muscle_family
         procedure :: scale => muscle_scale
         procedure :: stiffen => muscle_stiffen
         procedure :: activation => muscle_activation
+        procedure :: control_times => muscle_control_times
+        procedure :: control_update => muscle_control_update
     end type muscle_family_t
 
 contains
@@ -67,16 +74,24 @@ contains
         n = 3
     end function muscle_ncomp
 
-    !> Activation a(t) of muscle e: its activation history (Hill-type law)
-    !! or table (eq 11); zero without either.
+    !> Activation a(t) of muscle e: its activation history (Hill-type law),
+    !! plus the feedback activation of the loops on that history, at most 1;
+    !! or its table (eq 11); zero without either.
     pure real(wp) function muscle_activation(this, e, t) result(act)
         class(muscle_family_t), intent(in) :: this   !! the family
         integer, intent(in) :: e                     !! muscle number
         real(wp), intent(in) :: t                    !! time [s]
+        integer :: k
         act = zero
         associate (m => this%items(e))
             if (m%law == muscle_hill) then
-                if (m%history > 0) act = activation_value(this%activations(m%history), t)
+                if (m%history > 0) then
+                    act = activation_value(this%activations(m%history), t)
+                    do k = 1, size(this%feedbacks)
+                        if (this%feedbacks(k)%history == m%history) &
+                            act = min(one, act + feedback_activation(this%feedbacks(k), t))
+                    end do
+                end if
             else if (m%activation > 0) then
                 act = table_value(this%tables(m%activation), t)
             end if
@@ -307,9 +322,39 @@ contains
         end select
     end function activation_histories
 
-    !> An ACTIVATE, MUSCLE, HILL or VIA card (the registry reads ACTIVATE
-    !! cards before, VIA cards after the others). A muscle is kept unless
-    !! both ends are on one merged body.
+    !> The sample times in [t0, t1] of every feedback loop, ascending (a
+    !! time shared by two loops listed once).
+    pure function muscle_control_times(this, t0, t1, tol) result(tk)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t0                   !! start of the run [s]
+        real(wp), intent(in) :: t1                   !! its end [s]
+        real(wp), intent(in) :: tol                  !! times closer than this are one [s]
+        real(wp), allocatable :: tk(:)
+        integer :: k
+        allocate (tk(0))
+        do k = 1, size(this%feedbacks)
+            tk = merge_times(tk, feedback_times(this%feedbacks(k), t0, t1, tol), tol)
+        end do
+    end function muscle_control_times
+
+    !> The run has reached time t (kinematics kin): every loop whose sample
+    !! is due takes it (the first call of a run starts every loop).
+    pure subroutine muscle_control_update(this, t, kin, tol)
+        class(muscle_family_t), intent(inout) :: this   !! the family; out: the due loops' samples and holds
+        real(wp), intent(in) :: t                       !! time reached [s]
+        type(kinematics_t), intent(in) :: kin           !! kinematics of the state there
+        real(wp), intent(in) :: tol                     !! time tolerance of a sample time [s]
+        integer :: k
+        do k = 1, size(this%feedbacks)
+            associate (fb => this%feedbacks(k))
+                if (feedback_due(fb, t, tol)) call feedback_sample(fb, t, kin%s(:, :, fb%body), kin%omega(:, fb%body))
+            end associate
+        end do
+    end subroutine muscle_control_update
+
+    !> An ACTIVATE, MUSCLE, HILL, VIA or FEEDBACK card (the registry reads
+    !! ACTIVATE cards before, VIA and FEEDBACK cards after the others). A
+    !! muscle is kept unless both ends are on one merged body.
     subroutine muscle_read_card(this, rd, ctx, i, key)
         class(muscle_family_t), intent(inout) :: this   !! the family; out: the card's muscle, history or via point added
         type(deck_reader_t), intent(inout) :: rd        !! the deck: card images, located field access, the first error
@@ -325,6 +370,9 @@ contains
             return
         case ('VIA')
             call via_card(rd, ctx%cards, i, this%items(1:this%nread), ctx%bnames, ctx%bmap)
+            return
+        case ('FEEDBACK')
+            call feedback_card(rd, ctx, i, this%activations, this%feedbacks)
             return
         end select
         ! room for every MUSCLE and HILL card, trimmed by end_cards (appending one by one is quadratic)
@@ -402,6 +450,49 @@ contains
         if (rd%failed()) return
         activations = [activations, ah]
     end subroutine activation_card
+
+    !> A FEEDBACK card: history body axis kp kd delay interval, a
+    !! postural feedback loop adding to the activation history's muscles
+    !! (hn_feedback); one per history and axis. The loop takes the
+    !! history's time constants; its sensor is the body as the scene keeps
+    !! it (a merged body senses the body that absorbed it).
+    subroutine feedback_card(rd, ctx, i, activations, feedbacks)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_context_t), intent(in) :: ctx  !! the deck's bodies and where the scene put them
+        integer, intent(in) :: i  !! the card's deck line
+        type(activation_t), intent(in) :: activations(:)  !! the histories read
+        type(feedback_t), allocatable, intent(inout) :: feedbacks(:)  !! the loops read; out: this card's added
+        type(feedback_t) :: fb
+        character(len=10) :: ax
+        integer :: kb, k
+        fb = feedback_t()
+        fb%history = history_ref(rd, i, 1, activations)
+        kb = body_ref(rd, i, 2, 'sensor body', ctx%bnames, .false.)
+        call rd%choice(i, 3, 'sensor axis (lab)', ['X', 'Y', 'Z'], ax)
+        call rd%real(i, 4, 'rotation gain kp', '1/rad', fb%kp, -1.0e3_wp, 1.0e3_wp)
+        call rd%real(i, 5, 'angular velocity gain kd', 's/rad', fb%kd, -1.0e2_wp, 1.0e2_wp, default=zero)
+        call rd%real(i, 6, 'delay', 's', fb%delay, zero, 1.0_wp, default=zero)
+        call rd%real(i, 7, 'sample interval', 's', fb%dt, 1.0e-5_wp, 0.1_wp, default=1.0e-3_wp)
+        if (rd%failed()) return
+        fb%axis = findloc(['X', 'Y', 'Z'], ax(1:1), dim=1)
+        fb%body = ctx%bmap%new(kb)
+        if (fb%body == 0) then
+            call rd%fail(rd%context(i, 2, 'sensor body')//': the scene merged it into the inertial frame R; '// &
+                         'expected a body that moves')
+            return
+        end if
+        fb%tau_act = activations(fb%history)%tau_act
+        fb%tau_deact = activations(fb%history)%tau_deact
+        do k = 1, size(feedbacks)
+            if (feedbacks(k)%history == fb%history .and. feedbacks(k)%axis == fb%axis) then
+                call rd%fail(rd%context(i, 3, 'sensor axis (lab)')//': history "'// &
+                             trim(activations(fb%history)%name)//'" has a FEEDBACK card on axis '//trim(ax)// &
+                             ' already; expected one per history and axis')
+                return
+            end if
+        end do
+        feedbacks = [feedbacks, fb]
+    end subroutine feedback_card
 
     !> Activation history named in field f (an ACTIVATE card).
     integer function history_ref(rd, i, f, hist) result(ih)

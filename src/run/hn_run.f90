@@ -12,7 +12,7 @@ module hn_run
     use hn_status, only: stat_ok, stat_not_finite, stat_energy_lost
     use hn_case, only: case_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
-                           energy_t, dynamics_outputs, inertia_forces_free
+                           energy_t, dynamics_outputs, inertia_forces_free, state_to_coordinates
     use hn_forces, only: switch_count, switching_functions
     use hn_families, only: fam_limits
     use hn_limit_family, only: ranges_of
@@ -22,7 +22,8 @@ module hn_run
     use hn_listing, only: listing_t
     use hn_dump, only: dump_record
     use hn_breakpoints, only: case_breakpoints
-    use hn_model, only: hold_breakpoints, hold_pass, neutral_coordinates
+    use hn_model, only: hold_breakpoints, hold_pass, neutral_coordinates, control_times, control_pass
+    use hn_kinematics, only: body_kinematics
     use hn_tree, only: dof_label
     use hn_prestrain, only: prestrain_t, settle_prestrain
     use hn_deck_reader, only: upper
@@ -109,16 +110,19 @@ module hn_run
         type(history_t) :: crit                     !! assessment inputs at every sample, memory bounded
         type(progress_t) :: prog                    !! progress display and run limits
         real(wp), allocatable :: tb(:)              !! breakpoints of the input tables
+        real(wp), allocatable :: tc(:)              !! sample times of the model's controllers (FEEDBACK cards)
         real(wp), allocatable :: sw_old(:)          !! switching functions after the last accepted step
         real(wp), allocatable :: ygood(:)           !! last accepted state ...
         real(wp) :: tgood = zero                    !! ... and its time
         real(wp) :: tol = zero                      !! time_match times the sampling interval [s]
         real(wp) :: tout = zero                     !! the output time being approached [s]
         integer :: ib = 1                           !! next breakpoint
+        integer :: ic = 1                           !! next controller sample time
         integer :: nsw = 0                          !! number of switching functions
         integer :: ks = 0, kp = 0, kd = 1           !! samples and listing rows written, next dump
         integer :: nev_out = 0                      !! evaluations made for outputs
         logical :: pending_restart = .false.        !! restart the integrator before its next step
+        logical :: pending_control = .false.        !! the controllers sample before the next step
         logical :: keep = .false.                   !! keep every sample in the result (benchmarks, sweeps)
         logical :: rated = .false.                  !! only the named channels (a calibration member): no
                                                     !! listing rows, histories, peaks or injury criteria
@@ -134,7 +138,7 @@ module hn_run
         procedure :: next_output_time => run_next_output_time
         procedure :: is_running => run_is_running
         procedure, private :: hold_posture, settle, init_outputs, check_state, diagnosis, fail, track_peaks
-        procedure, private :: record_sample
+        procedure, private :: record_sample, control_sample
     end type run_state_t
 
 contains
@@ -316,12 +320,32 @@ contains
             ! the release of the holding forces (a step, or a ramp's ends), whatever EVENTS says
             me%tb = hold_breakpoints(cs%model, me%tb, cs%t_start, cs%t_end, me%tol)
             me%ks = 0; me%kp = 0; me%kd = 1
+            ! the controllers' sample times, the first (the start) taken now
+            me%tc = control_times(me%sys%model, cs%t_start, cs%t_end, me%tol)
+            me%ic = 1
+            me%pending_control = .false.
+            if (size(me%tc) > 0) call me%control_sample(cs%t_start, me%integ%current_state())
         end associate
         associate (nrom => size(ranges_of(me%cs%model%family(fam_limits)%f)))
             allocate (me%rom_peak(nrom), me%rom_time(nrom))
         end associate
         me%rom_peak = zero; me%rom_time = me%cs%t_start
     end subroutine init_outputs
+
+    !> The model's controllers sample the state y at time t (its kinematics
+    !! formed in the workspace): those whose sample is due take it.
+    subroutine control_sample(me, t, y)
+        class(run_state_t), intent(inout) :: me
+        real(wp), intent(in) :: t                     !! time reached [s]
+        real(wp), intent(in) :: y(:)                  !! the state there
+        integer :: nf
+        nf = me%sys%ws%nfree
+        associate (model => me%sys%model, ws => me%sys%ws)
+            call state_to_coordinates(model, ws, t, y(1:nf), y(nf + 1:2*nf))
+            call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
+            call control_pass(model, t, ws%kin, me%tol)
+        end associate
+    end subroutine control_sample
 
     !> The next output time: the earliest of the next sample, listing row,
     !! dump time and the end time.
@@ -355,8 +379,19 @@ contains
                 if (me%tb(me%ib) > me%integ%current_time() + me%tol) exit
                 me%ib = me%ib + 1
             end do
+            ! the controllers sample where the last step landed, before the
+            ! next step, for the same reason as a restart (below)
+            if (me%pending_control) then
+                call me%control_sample(me%integ%current_time(), me%integ%current_state())
+                me%pending_control = .false.
+            end if
+            do while (me%ic <= size(me%tc))
+                if (me%tc(me%ic) > me%integ%current_time() + me%tol) exit
+                me%ic = me%ic + 1
+            end do
             tstop = me%cs%t_end
             if (me%ib <= size(me%tb)) tstop = min(tstop, me%tb(me%ib))
+            if (me%ic <= size(me%tc)) tstop = min(tstop, me%tc(me%ic))
             ! a restart at a breakpoint or event waits until the next step, so
             ! that outputs inside the step that reached it can still be
             ! interpolated from that step
@@ -393,6 +428,13 @@ contains
                     ! a kink or jump of an input: start the formulas afresh
                     me%pending_restart = .true.
                     me%ib = me%ib + 1
+                end if
+            end if
+            if (me%ic <= size(me%tc)) then
+                if (abs(me%integ%current_time() - me%tc(me%ic)) <= me%tol) then
+                    ! a controller's sample time: the activations stay continuous, no restart
+                    me%pending_control = .true.
+                    me%ic = me%ic + 1
                 end if
             end if
             me%tgood = me%integ%current_time()

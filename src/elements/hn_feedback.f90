@@ -1,0 +1,155 @@
+!> Postural feedback of muscle activation (beyond the 1978 paper): a
+!! sampled-data controller that adds to an activation history (ACTIVATE
+!! card) the activation its sensor asks for, the way the closed-loop neck
+!! muscles of active human body models act on the head's rotation relative
+!! to the lab (vestibular feedback; Östh et al. 2012, Putra et al. 2021:
+!! PID control of the head's angle; docs/deck-format.md, FEEDBACK).
+!!
+!! Sensor: the rotation of a body relative to its orientation at the start
+!! of the run, as the component along a lab axis e of the rotation vector
+!! of S(t) S(t0)^T (S the body-to-lab matrix), theta, and the component of
+!! the body's angular velocity along e, omega (rad, rad/s).
+!!
+!! Controller: sampled every dt from the start t0 (t_k = t0 + k dt); at
+!! t_k the excitation is set from the sensor a delay tau earlier,
+!!   u_k = min(1, max(0, kp theta(t_k - tau) + kd omega(t_k - tau))),
+!! theta and omega between samples linear in time, before t0 their start
+!! values (a delay that is not a multiple of dt interpolates the samples);
+!! u_k is held until t_{k+1}. The feedback activation follows
+!!   da/dt = (u_k - a)/T,  T = T_act when u_k >= a(t_k), else T_deact,
+!! solved in closed form over the hold:
+!!   a(t) = u_k + (a(t_k) - u_k) exp(-(t - t_k)/T),  a(t0) = 0,
+!! so the feedback adds no state to the mechanical ODE: within a hold the
+!! activation is a function of time alone, continuous at the samples (its
+!! slope jumps there). The muscles of the history have the activation
+!! min(1, a_history(t) + a(t)).
+module hn_feedback
+    use hn_kinds, only: wp, zero, one
+    use hn_rotation, only: rotation_vector
+    implicit none
+    private
+
+    public :: feedback_t, feedback_activation, feedback_excitation, feedback_sample, feedback_due, &
+              feedback_times, sensor_angle
+
+    !> One feedback loop: sensor, gains, delay, sampling, and its held state.
+    type :: feedback_t
+        integer :: history = 0           !! the activation history it adds to (ACTIVATE card number)
+        integer :: body = 0              !! the sensor body (tree number)
+        integer :: axis = 2              !! the lab axis of the sensor (1 x, 2 y, 3 z)
+        real(wp) :: kp = zero            !! gain on the rotation [1/rad]
+        real(wp) :: kd = zero            !! gain on the angular velocity [s/rad]
+        real(wp) :: delay = zero         !! sensing and neural delay tau [s]
+        real(wp) :: dt = 1.0e-3_wp       !! sample interval [s]
+        real(wp) :: tau_act = 0.015_wp   !! activation time constant [s] (its history's)
+        real(wp) :: tau_deact = 0.05_wp  !! deactivation time constant [s] (its history's)
+        ! the state of a run: samples and the hold
+        integer :: n = 0                          !! samples so far (0: the run has not started it)
+        real(wp) :: t0 = zero                     !! time of the first sample [s]
+        real(wp) :: s0(3, 3) = zero               !! the sensor body's orientation then
+        real(wp), allocatable :: theta(:)         !! (n) sampled rotation [rad]
+        real(wp), allocatable :: omega(:)         !! (n) sampled angular velocity [rad/s]
+        real(wp) :: tk = zero                     !! the last sample time [s]
+        real(wp) :: ak = zero                     !! the feedback activation then
+        real(wp) :: uk = zero                     !! the excitation held since
+    end type feedback_t
+
+contains
+
+    !> The feedback activation a(t) over the hold that began at the last
+    !! sample (zero before the first).
+    elemental real(wp) function feedback_activation(fb, t) result(a)
+        type(feedback_t), intent(in) :: fb   !! the loop
+        real(wp), intent(in) :: t            !! time [s], not before the last sample
+        real(wp) :: tau
+        a = zero
+        if (fb%n == 0) return
+        tau = merge(fb%tau_act, fb%tau_deact, fb%uk >= fb%ak)
+        a = fb%uk + (fb%ak - fb%uk)*exp(-(t - fb%tk)/tau)
+    end function feedback_activation
+
+    !> The excitation kp theta + kd omega at t - tau, clipped to [0, 1], from the samples so far.
+    pure real(wp) function feedback_excitation(fb, t) result(u)
+        type(feedback_t), intent(in) :: fb   !! the loop, at least one sample taken
+        real(wp), intent(in) :: t            !! the sample time [s]
+        real(wp) :: p, w
+        integer :: i
+        p = (t - fb%delay - fb%t0)/fb%dt
+        if (p <= zero) then
+            i = 1; w = zero
+        else
+            i = min(int(p) + 1, fb%n)
+            w = merge(p - (i - 1), zero, i < fb%n)
+        end if
+        if (i < fb%n) then
+            u = fb%kp*((one - w)*fb%theta(i) + w*fb%theta(i + 1)) + fb%kd*((one - w)*fb%omega(i) + w*fb%omega(i + 1))
+        else
+            u = fb%kp*fb%theta(fb%n) + fb%kd*fb%omega(fb%n)
+        end if
+        u = min(one, max(zero, u))
+    end function feedback_excitation
+
+    !> The sensor's rotation about lab axis `axis` from orientation s0 to s:
+    !! that component of the rotation vector of s s0^T [rad].
+    pure real(wp) function sensor_angle(s, s0, axis) result(theta)
+        real(wp), intent(in) :: s(3, 3)    !! body-to-lab matrix now
+        real(wp), intent(in) :: s0(3, 3)   !! the same at the start
+        integer, intent(in) :: axis        !! 1, 2 or 3
+        real(wp) :: v(3)
+        v = rotation_vector(matmul(s, transpose(s0)))
+        theta = v(axis)
+    end function sensor_angle
+
+    !> True when t is the loop's next sample time (within tol), or it has none yet.
+    elemental logical function feedback_due(fb, t, tol) result(due)
+        type(feedback_t), intent(in) :: fb   !! the loop
+        real(wp), intent(in) :: t            !! time reached [s]
+        real(wp), intent(in) :: tol          !! time tolerance [s]
+        due = fb%n == 0
+        if (.not. due) due = abs(t - (fb%t0 + fb%n*fb%dt)) <= tol
+    end function feedback_due
+
+    !> Take a sample at t: the sensor body's orientation s and angular
+    !! velocity w (lab frame); the activation reached is the start of a new
+    !! hold with the excitation of feedback_excitation. The first sample
+    !! starts the run's state (the start orientation, a = 0).
+    pure subroutine feedback_sample(fb, t, s, w)
+        type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
+        real(wp), intent(in) :: t               !! the sample time [s]
+        real(wp), intent(in) :: s(3, 3)         !! the sensor body's body-to-lab matrix
+        real(wp), intent(in) :: w(3)            !! its angular velocity in the lab [rad/s]
+        real(wp), allocatable :: grown(:)
+        if (fb%n == 0) then
+            fb%t0 = t
+            fb%s0 = s
+            fb%ak = zero
+            if (allocated(fb%theta)) deallocate (fb%theta)
+            if (allocated(fb%omega)) deallocate (fb%omega)
+            allocate (fb%theta(64), fb%omega(64))
+        else
+            fb%ak = feedback_activation(fb, t)
+        end if
+        if (fb%n == size(fb%theta)) then      ! room doubled: appending one by one is quadratic
+            allocate (grown(2*fb%n)); grown(1:fb%n) = fb%theta; call move_alloc(grown, fb%theta)
+            allocate (grown(2*fb%n)); grown(1:fb%n) = fb%omega; call move_alloc(grown, fb%omega)
+        end if
+        fb%n = fb%n + 1
+        fb%theta(fb%n) = sensor_angle(s, fb%s0, fb%axis)
+        fb%omega(fb%n) = w(fb%axis)
+        fb%tk = t
+        fb%uk = feedback_excitation(fb, t)
+    end subroutine feedback_sample
+
+    !> The loop's sample times t0 + k dt in [t0, t1] (t1 included within tol).
+    pure function feedback_times(fb, t0, t1, tol) result(tk)
+        type(feedback_t), intent(in) :: fb   !! the loop
+        real(wp), intent(in) :: t0           !! start of the run [s]
+        real(wp), intent(in) :: t1           !! its end [s]
+        real(wp), intent(in) :: tol          !! time tolerance [s]
+        real(wp), allocatable :: tk(:)
+        integer :: k, n
+        n = max(0, floor((t1 - t0 + tol)/fb%dt))
+        tk = [(t0 + k*fb%dt, k=0, n)]
+    end function feedback_times
+
+end module hn_feedback
