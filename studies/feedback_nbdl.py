@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""What does postural feedback of the neck muscles (FEEDBACK cards) bring to
+the NBDL volunteers: fitted to 12 g with the other parameters, does it
+predict 15 g and the 8 g peaks better, and does the head brake over the
+volunteers' arc?
+
+    python3 studies/feedback_nbdl.py [--fit LABEL=LISTING ...]
+
+Without --fit it runs the calibrations itself (release build, about 10
+minutes each, two at a time): input/calibrate_nbdl12g_feedback.inp (the
+shipped calibration's fifteen parameters and the two loops' gains and
+delays, on input/nbdl12g_feedback.inp) and the same with the disc and stop
+factors held at their shipped values (seven muscle parameters and the
+loops'). Each fit's values are set by CHANGE cards on the 8 g, 12 g and
+15 g decks, each with the two FEEDBACK cards of input/nbdl12g_feedback.inp
+added, and scored as the shipped set is: the CORA-style rating and ISO/TS
+18571 of hhneck-compare-nbdl at 12 g (calibration) and 15 g (prediction),
+the 8 g head peaks against reference/reference-data.md section 3
+(prediction), the braking arc at each severity (studies/braking_nbdl.py),
+and the largest joint excess beyond its range (the runs' warnings). The
+shipped set is the first row.
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"),
+                os.path.dirname(os.path.abspath(__file__))]
+from hhneck import run  # noqa: E402
+from hhneck.compare_nbdl import compare, s3  # noqa: E402
+from hhneck.deck_fields import field  # noqa: E402
+from braking_nbdl import model_arc  # noqa: E402
+from predict_nbdl8g import ROWS, SEVERITIES, bindings, fitted_values, model_peaks, volunteer_peaks  # noqa: E402
+
+CALIBRATION = "input/calibrate_nbdl12g_feedback.inp"
+CASE = "input/nbdl12g_feedback.inp"
+PASSIVE = ("VBEND", "VAXIAL", "ETENSION", "SHEAR", "AXIAL", "ROMK", "ROMT0", "LIMC1")
+
+
+def feedback_cards(path=CASE):
+    """The FEEDBACK cards of the 12 g feedback deck."""
+    return [line.rstrip("\n") for line in open(path) if line.startswith("FEEDBACK")]
+
+
+def muscles_only_deck(path=CALIBRATION):
+    """The calibration deck text with the disc and stop factors' PARAM
+    cards and their VALUES left out (held at the model deck's values)."""
+    lines = open(path).read().splitlines()
+    names = [field(ln, 1) for ln in lines if ln.startswith("PARAM")]
+    values = [v for ln in lines if ln.startswith("VALUES") for v in ln[10:].split()]
+    keep = [(n, v) for n, v in zip(names, values) if n not in PASSIVE]
+    out = []
+    for ln in lines:
+        if ln.startswith("PARAM") and field(ln, 1) in PASSIVE or ln.startswith("VALUES"):
+            continue
+        if ln.startswith("TITLE"):
+            ln = "TITLE     NBDL CALIBRATION: 12 G, THE MUSCLES AND THE FEEDBACK LOOPS ONLY"
+        out.append(ln)
+        if ln.startswith("PARAM") and field(ln, 1) == keep[-1][0]:
+            for k in range(0, len(keep), 7):
+                out.append("VALUES    " + "".join("%-10s" % v for _, v in keep[k:k + 7]))
+    return "\n".join(out) + "\n"
+
+
+def variant(sev, cards):
+    """The deck text of severity sev with the FEEDBACK cards added."""
+    return "TITLE     NBDL %s WITH POSTURAL FEEDBACK\nINCLUDE   input/nbdl%s.inp\n%s\n" % (
+        sev.upper(), sev, "\n".join(cards))
+
+
+def score(label, values, cards, bind, vol, tmp):
+    """One table row: the set's values by CHANGE cards on the three decks."""
+    changes = [run.change_card("P%d" % k, "FIELD%d" % bind[n][0], bind[n][1], bind[n][2], "SET", "%.6g" % v)
+               for k, (n, v) in enumerate(values)]
+    h5, warn = {}, []
+    for sev in SEVERITIES:
+        r = run.run_deck(variant(sev, cards) if cards else "input/nbdl%s.inp" % sev, changes=changes,
+                         h5=os.path.join(tmp, "%s_%s.h5" % (re.sub(r"\W", "_", label), sev)))
+        h5[sev] = r.h5
+        warn += [ln for ln in (r.listing + r.stderr).splitlines() if "past its physiological range" in ln]
+    cells = [label]
+    for sev in ("12g", "15g"):
+        chans, peaks, overall = compare(sev, h5[sev])[:3]
+        iso = sum(c["iso"] for c in chans if c["rated"]) / sum(c["rated"] for c in chans)
+        inside = sum(p["ok_peak"] for p in peaks)
+        cells.append("%s (ISO %s; %d of %d peaks in 1 SD)" % (s3(overall), s3(iso), inside, len(peaks)))
+    pk = model_peaks(h5["8g"])
+    zs = [(pk[r[0]][0] - vol[r[0]]["8g"][0]) / vol[r[0]]["8g"][1] for r in ROWS[1:]]
+    cells.append(" ".join("%+.2f" % z for z in zs) + " (%d in 1 SD)" % sum(abs(z) <= 1 for z in zs))
+    cells.append(" / ".join(s3(model_arc(h5[s])[4]) for s in SEVERITIES))
+    cells.append(str(len(warn)))
+    return "| " + " | ".join(cells) + " |"
+
+
+def main():
+    fits = []
+    args = sys.argv[1:]
+    while args:
+        a = args.pop(0)
+        if a == "--fit":
+            fits.append(tuple(args.pop(0).split("=", 1)))
+        else:
+            sys.exit("usage: feedback_nbdl.py [--fit LABEL=LISTING ...]")
+    tmp = tempfile.mkdtemp(prefix="feedback-")
+    if not fits:
+        exe = run.find_executable()
+        decks = [("jointly (19 parameters)", open(CALIBRATION).read()),
+                 ("muscles and loops (11 parameters)", muscles_only_deck())]
+        procs = []
+        for k, (label, text) in enumerate(decks):
+            out = os.path.join(tmp, "fit%d.txt" % k)
+            procs.append((label, out, subprocess.Popen([exe, "--calibrate"], stdin=subprocess.PIPE,
+                                                       stdout=open(out, "w"), stderr=subprocess.DEVNULL,
+                                                       text=True)))
+            procs[-1][2].stdin.write(text)
+            procs[-1][2].stdin.close()
+        for label, out, p in procs:
+            if p.wait() != 0:
+                sys.exit("the calibration %s failed: %s" % (label, out))
+            fits.append((label, out))
+    vol = volunteer_peaks()
+    bind = bindings(CALIBRATION)
+    print("| set | 12 g CORA-style (calibration) | 15 g (prediction) | 8 g head peaks, (model - mean)/SD: "
+          + ", ".join(r[0].replace("peak ", "") for r in ROWS[1:]) + " | braking arc 8 / 12 / 15 g (deg) |"
+          " range warnings |")
+    print("|---|---|---|---|---|---|")
+    print(score("shipped (no feedback)", [], [], bind, vol, tmp))
+    for label, listing in fits:
+        values = fitted_values(listing)
+        named = dict(values)
+        loops = ", ".join("%s %s" % (n, s3(named[n])) for n in ("KPE", "KPF", "TAUE", "TAUF") if n in named)
+        print(score("%s: %s" % (label, loops), values, feedback_cards(), bind, vol, tmp))
+    print("\nThe fits' values (PARAM lines of each listing):")
+    for label, listing in fits:
+        print("%s: %s" % (label, ", ".join("%s %s" % (n, s3(v)) for n, v in fitted_values(listing))))
+
+
+if __name__ == "__main__":
+    main()
