@@ -20,6 +20,7 @@ module hn_volunteer_data
     private
 
     public :: data_channel_t, read_runs_csv, read_volunteers, reference_data_t, read_reference_csv
+    public :: peak_table_t, is_peak_table, read_peak_table
 
     !> One channel of the volunteers: the file of its runs and what is
     !! done to each run after the CFC filter.
@@ -41,6 +42,16 @@ module hn_volunteer_data
         logical, allocatable :: bounded(:)               !! (channel) the file gives its bounds
         integer, allocatable :: first(:), last(:)        !! (channel) its first and last row
     end type reference_data_t
+
+    !> Published peaks of a case (a CSV whose first header column is
+    !! `peak`): per PEAK card of the calibration its mean and SD, and its
+    !! time's where given; `has` marks the peaks the table gives.
+    type :: peak_table_t
+        logical :: on = .false.                        !! the case's DATA is such a table
+        real(wp), allocatable :: mean(:), sd(:)        !! (peak) [the peak's units]
+        real(wp), allocatable :: time_mean(:), time_sd(:)   !! (peak) [ms]
+        logical, allocatable :: has(:), has_time(:)    !! (peak) given by the table, its time too
+    end type peak_table_t
 
     integer, parameter :: ref_name_len = 10                 !! longest channel name of a reference CSV
 
@@ -479,5 +490,92 @@ contains
             if (s(len(s):len(s)) == achar(13)) s = s(1:len(s) - 1)
         end if
     end function strip_cr
+
+    !> True when the file's first line that is not blank starts with the
+    !! header column `peak` (a table of published peaks, read_peak_table).
+    function is_peak_table(file) result(yes)
+        character(len=*), intent(in) :: file   !! the file
+        logical :: yes
+        character(len=:), allocatable :: text, line
+        integer :: p, lineno, ncol, nrow, stat
+        character(len=msglen) :: msg
+        yes = .false.
+        call csv_head(file, 'peak data ', text, line, p, lineno, ncol, nrow, stat, msg)
+        if (stat /= stat_ok .or. ncol == 0) return
+        yes = adjustl(line(1:index(line//',', ',') - 1)) == 'peak'
+    end function is_peak_table
+
+    !> A table of published peaks: the header `peak,mean,sd` or
+    !! `peak,mean,sd,time_mean,time_sd`, then one row per peak, its name one
+    !! of `names` (the PEAK cards' names) at most once, the SDs positive.
+    subroutine read_peak_table(file, names, table, stat, errmsg)
+        character(len=*), intent(in) :: file            !! the file
+        character(len=*), intent(in) :: names(:)        !! the names of the calibration's peaks
+        type(peak_table_t), intent(out) :: table        !! the peaks it gives
+        integer, intent(out) :: stat                    !! stat_ok or stat_bad_input
+        character(len=msglen), intent(out) :: errmsg    !! the file, line and column at fault and why
+        character(len=:), allocatable :: text, line
+        character(len=*), parameter :: what = 'peak data '
+        real(wp) :: row(5)
+        integer :: p, lineno, ncol, nrow, c, k, nv, nitems
+        call csv_head(file, what, text, line, p, lineno, ncol, nrow, stat, errmsg)
+        if (stat /= stat_ok) return
+        stat = stat_bad_input
+        if (trim(line) /= 'peak,mean,sd' .and. trim(line) /= 'peak,mean,sd,time_mean,time_sd') then
+            errmsg = what//file//' line '//trim(int_str(lineno))//': found the header "'//trim(line(1:min(len(line), &
+                     60)))//'"; expected peak,mean,sd or peak,mean,sd,time_mean,time_sd'
+            return
+        end if
+        nv = ncol - 1
+        table%on = .true.
+        allocate (table%mean(size(names)), table%sd(size(names)), table%time_mean(size(names)), &
+                  table%time_sd(size(names)), table%has(size(names)), table%has_time(size(names)))
+        table%mean = zero; table%sd = one; table%time_mean = zero; table%time_sd = one
+        table%has = .false.; table%has_time = .false.
+        do while (p <= len(text))
+            call next_line(text, p, line)
+            lineno = lineno + 1
+            line = strip_cr(line)
+            if (len_trim(line) == 0) cycle
+            c = index(line//',', ',')
+            k = findloc([(adjustl(line(1:c - 1)) == names(k), k=1, size(names))], .true., dim=1)
+            if (k == 0) then
+                errmsg = what//file//' line '//trim(int_str(lineno))//', column 1: found the peak "'// &
+                         trim(adjustl(line(1:min(c - 1, 40))))//'"; expected the name of a PEAK card'
+                return
+            end if
+            if (table%has(k)) then
+                errmsg = what//file//' line '//trim(int_str(lineno))//', column 1: found the peak "'// &
+                         trim(names(k))//'" again; expected each peak once'
+                return
+            end if
+            nitems = 1 + count([(line(k:k) == ',', k=1, len_trim(line))])
+            errmsg = ''
+            if (nitems /= ncol) then
+                errmsg = ': found '//trim(int_str(nitems))//' items; expected '//trim(int_str(ncol))// &
+                         ' (the peak''s name and a value per column of the header)'
+            else        ! the name's cell as a number, so that the columns are the file's
+                call parse_row('0'//line(c:), row(1:ncol), errmsg)
+                row(1:nv) = row(2:ncol)
+            end if
+            if (len_trim(errmsg) == 0 .and. (row(2) <= zero .or. (nv == 4 .and. row(min(4, nv)) <= zero))) &
+                errmsg = ': found an SD of zero or less; expected a positive SD'
+            if (len_trim(errmsg) > 0) then
+                errmsg = what//file//' line '//trim(int_str(lineno))//trim(errmsg)
+                return
+            end if
+            table%has(k) = .true.
+            table%mean(k) = row(1); table%sd(k) = row(2)
+            if (nv == 4) then
+                table%has_time(k) = .true.
+                table%time_mean(k) = row(3); table%time_sd(k) = row(4)
+            end if
+        end do
+        if (.not. any(table%has)) then
+            errmsg = what//file//': no rows; expected one row per peak it gives'
+            return
+        end if
+        stat = stat_ok; errmsg = ''
+    end subroutine read_peak_table
 
 end module hn_volunteer_data

@@ -1,8 +1,10 @@
 !> Calibration as code: fit named deck parameters (the PARAM cards of the
 !! sweep deck: FAMILY scale factors, BODY scales, FIELDn values), within
 !! their bounds, to cases of any kind -- volunteers (DATA a directory of
-!! their runs) or a reference (DATA a reference CSV: a specimen corridor's
-!! midline, a segment test's mean) -- by minimising the weighted mean over
+!! their runs), a reference (DATA a reference CSV: a specimen corridor's
+!! midline, a segment test's mean) or published peaks (DATA a CSV whose
+!! header is peak,mean,sd[,time_mean,time_sd]: a severity whose paper gives
+!! the volunteers' peaks alone) -- by minimising the weighted mean over
 !! the cases (CASE F7, default 1) of
 !!
 !!   J_c = (1 - R_c) + w P_c + wt T_c,
@@ -21,7 +23,9 @@
 !! over the same peaks of max(0, |dt|/tol - (1 - m)), dt the peak time's
 !! distance from the volunteers' mean time and tol the peak-time tolerance
 !! of the RATING card (the same margin keeps the times off its edge;
-!! a reference case has no peaks: P_c = T_c = 0); w
+!! a reference case has no peaks: P_c = T_c = 0; a case of published
+!! peaks has no rated curve, R_c = 1, and its P_c and T_c are over the
+!! peaks its table gives, against the table's means and SDs); w
 !! (default 0.02), wt (default 0) and m (default 0) are fields 5, 6 and 7
 !! of the FIT card; subject to the model standing at rest: a parameter set
 !! whose start state (posture held, the bracing activation) has an
@@ -62,8 +66,9 @@ module hn_calibrate
     use hn_filters, only: cfc_filter
     use hn_tables, only: resample
     use hn_optimize, only: restarted_nelder_mead
-    use hn_rating, only: peak_t, corridor_t, score_t, score_curves, window_samples, max_lag, cora_rating
-    use hn_volunteer_data, only: data_channel_t, read_volunteers, reference_data_t, read_reference_csv
+    use hn_rating, only: peak_t, corridor_t, score_t, score_curves, window_samples, max_lag, cora_rating, curve_peak
+    use hn_volunteer_data, only: data_channel_t, read_volunteers, reference_data_t, read_reference_csv, &
+                                 peak_table_t, is_peak_table, read_peak_table
     use hn_iso18571, only: iso18571_rating_t, iso18571_rating, iso18571_min_samples, iso18571_dt
     use hn_prestrain, only: prestrain_t, settle_prestrain
     use hn_rest_modes, only: rest_mode_t, rest_modes
@@ -116,6 +121,7 @@ module hn_calibrate
         type(sweep_param_t), allocatable :: par(:)  !! the parameters, each as the first case binding it binds it
         type(corridor_t), allocatable :: vol(:)     !! the volunteers of each case (volunteer cases)
         type(reference_case_t), allocatable :: ref(:)   !! the reference of each case (reference cases: ref(c)%on)
+        type(peak_table_t), allocatable :: pub(:)   !! the published peaks of each case (peak-table cases: pub(c)%on)
         integer :: metric = metric_cora             !! RATING F5: the rating of the objective
         character(len=path_len) :: curves = ''      !! CURVES card: the rated curves' CSV of an evaluation alone
         type(data_channel_t), allocatable :: channels(:)   !! CHANNEL cards: the rated channels
@@ -144,6 +150,7 @@ module hn_calibrate
         integer, allocatable :: optional_line(:)         !! (the same) the line of its OPTIONAL card
         integer, allocatable :: data_line(:)             !! (case) the line of its DATA card
         logical, allocatable :: is_ref(:)                !! (DATA card) it names a reference CSV
+        logical, allocatable :: is_pub(:)                !! (DATA card) it names a table of published peaks
         integer, allocatable :: rated_line(:)            !! (RATED card) its line
         integer, allocatable :: rated_case(:)            !! (RATED card) the case it rates
         integer, allocatable :: channel_line(:)          !! (CHANNEL card) its line
@@ -158,7 +165,8 @@ contains
 
     !> Read a calibration deck: TITLE; CASE path (columns 11-70) [weight
     !! (F7, default 1)] followed by DATA, the directory of that case's
-    !! volunteers or a reference CSV (a name ending in .csv), then for a
+    !! volunteers, a reference CSV (a name ending in .csv) or a CSV of
+    !! published peaks (its header peak,mean,sd[,time_mean,time_sd]), then for a
     !! reference case optional RATED cards (CSV column, model channel,
     !! [scale], [subtracted channel], [START], [SAMPLES]); FIT NELDER max-evaluations
     !! starting-points seed [peak-weight [peak-time-weight [peak-margin]]];
@@ -192,7 +200,7 @@ contains
         allocate (cal%decks(0), cal%data(0), cal%values(0), cal%channels(0), cal%peaks(0), cal%weight(0))
         allocate (st%params(0), st%optional(0), st%optional_line(0), st%channel_line(0), st%peak_line(0), &
                   st%data_line(0), st%peak_channel(0), &
-                  st%rated_line(0), st%rated_case(0), st%is_ref(0))
+                  st%rated_line(0), st%rated_case(0), st%is_ref(0), st%is_pub(0))
         do i = 1, st%rd%nlines
             if (st%rd%failed()) exit
             select case (st%rd%key(i))
@@ -262,6 +270,9 @@ contains
         end if
         cal%data = [character(len=path_len) :: cal%data, found]
         st%data_line = [st%data_line, i]
+        ! a CSV whose header starts with `peak`: published peaks, not curves
+        st%is_pub = [st%is_pub, st%is_ref(size(st%is_ref)) .and. is_peak_table(found)]
+        if (st%is_pub(size(st%is_pub))) st%is_ref(size(st%is_ref)) = .false.
     end subroutine read_data_card
 
     !> RATED: a card of the last case, whose DATA card names a reference
@@ -556,7 +567,7 @@ contains
         real(wp), allocatable :: v0(:)
         integer :: c, p, k
         stat = stat_ok; errmsg = ''
-        allocate (cal%sw(size(cal%decks)), cal%vol(size(cal%decks)), cal%ref(size(cal%decks)))
+        allocate (cal%sw(size(cal%decks)), cal%vol(size(cal%decks)), cal%ref(size(cal%decks)), cal%pub(size(cal%decks)))
         do c = 1, size(cal%decks)
             sl = [line_of('TITLE     '//cal%title, source), line_of('BASE      '//trim(cal%decks(c)), source), &
                   line_of('DESIGN    LHS       '//int_field(cal%nstart)//int_field(cal%seed), source), st%params]
@@ -568,6 +579,8 @@ contains
             call channels_define(cs, chs)
             if (st%is_ref(c)) then
                 call reference_case(st, cal, c, chs, stat, errmsg)
+            else if (st%is_pub(c)) then
+                call published_case(st, cal, c, chs, stat, errmsg)
             else
                 call volunteer_case(st, cal, c, chs, stat, errmsg)
             end if
@@ -600,17 +613,8 @@ contains
         character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
         integer :: k, bad_channel, bad_peak, nwin, nmin, i1, i2
         associate (rd => st%rd)
-            stat = stat_ok
-            ! every rated channel is one of the case's channels
-            do k = 1, size(cal%channels)
-                if (findloc(chs%name, cal%channels(k)%name, dim=1) == 0) then
-                    stat = stat_bad_input
-                    errmsg = rd%context(st%channel_line(k), 1, 'channel')//': found "'// &
-                             trim(cal%channels(k)%name)//'"; expected a channel of the case deck '// &
-                             trim(cal%decks(c))//' (docs/output-format.md)'
-                    return
-                end if
-            end do
+            call rated_channels_check(st, cal, c, chs, stat, errmsg)
+            if (stat /= stat_ok) return
             call read_volunteers(trim(cal%data(c)), cal%channels, cal%cfc, cal%peaks, cal%vol(c), stat, errmsg, &
                                  bad_channel, bad_peak)
             if (stat /= stat_ok) then
@@ -643,6 +647,43 @@ contains
             end if
         end associate
     end subroutine volunteer_case
+
+    !> Every CHANNEL card's channel is one of case c's channels.
+    subroutine rated_channels_check(st, cal, c, chs, stat, errmsg)
+        type(calibration_deck_t), intent(in) :: st     !! the deck and its cards, all valid
+        type(calibration_t), intent(in) :: cal         !! the calibration
+        integer, intent(in) :: c                       !! the case
+        type(channel_set_t), intent(in) :: chs         !! the channels of its deck
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
+        character(len=msglen), intent(inout) :: errmsg !! the CHANNEL card's line and columns, and what was expected
+        integer :: k
+        stat = stat_ok
+        do k = 1, size(cal%channels)
+            if (findloc(chs%name, cal%channels(k)%name, dim=1) == 0) then
+                stat = stat_bad_input
+                errmsg = st%rd%context(st%channel_line(k), 1, 'channel')//': found "'// &
+                         trim(cal%channels(k)%name)//'"; expected a channel of the case deck '// &
+                         trim(cal%decks(c))//' (docs/output-format.md)'
+                return
+            end if
+        end do
+    end subroutine rated_channels_check
+
+    !> The published peaks of case c (its DATA a CSV of peaks: peak, mean,
+    !! sd[, time_mean, time_sd], each row a PEAK card's name): every
+    !! CHANNEL a channel of its deck, the table read.
+    subroutine published_case(st, cal, c, chs, stat, errmsg)
+        type(calibration_deck_t), intent(in) :: st     !! the deck and its cards, all valid
+        type(calibration_t), intent(inout) :: cal      !! the calibration: cal%pub(c) read
+        integer, intent(in) :: c                       !! the case
+        type(channel_set_t), intent(in) :: chs         !! the channels of its deck
+        integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
+        character(len=msglen), intent(inout) :: errmsg !! the deck line, the file's line and what was expected
+        call rated_channels_check(st, cal, c, chs, stat, errmsg)
+        if (stat /= stat_ok) return
+        call read_peak_table(trim(cal%data(c)), cal%peaks%name, cal%pub(c), stat, errmsg)
+        if (stat /= stat_ok) errmsg = st%rd%where(st%data_line(c))//' (DATA card): '//errmsg
+    end subroutine published_case
 
     !> The rated channels of reference case c: its CSV read, its RATED
     !! cards (or every column under its own name) checked against the
@@ -975,6 +1016,14 @@ contains
             gsum = gsum + cal%weight(c)*rg%term
             if (cal%ref(c)%on) then
                 call score_reference(cal%ref(c), ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c), c, curves)
+            else if (cal%pub(c)%on) then
+                call score_published(cal, c, ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c))
+                associate (pb => cal%pub(c))
+                    psum = psum + cal%weight(c)*sum(max(zero, abs(sc(c)%z) - (one - cal%peak_margin)), mask=pb%has)/ &
+                           count(pb%has)
+                    tsum = tsum + cal%weight(c)*sum(max(zero, abs(sc(c)%time - pb%time_mean)/cal%time_tolerance - &
+                                                        (one - cal%peak_margin)), mask=pb%has_time)/count(pb%has)
+                end associate
             else
                 allocate (y(size(cal%vol(c)%t), size(cal%channels)))
                 y = rated_histories(cal, cal%vol(c)%t, ch%name, cs%t_start, cs%sample_dt, res%samples)
@@ -1008,7 +1057,9 @@ contains
     pure real(wp) function case_rating(cal, sc) result(r)
         type(calibration_t), intent(in) :: cal   !! the calibration (its metric)
         type(score_t), intent(in) :: sc          !! the case's scores
-        if (cal%metric == metric_iso18571) then
+        if (size(sc%rating) == 0) then          ! published peaks: no curve to rate, J_c = w P_c + wt T_c
+            r = one
+        else if (cal%metric == metric_iso18571) then
             r = sum(sc%iso%overall)/size(sc%iso)
         else
             r = sum(sc%rating)/size(sc%rating)
@@ -1085,6 +1136,35 @@ contains
             end associate
         end do
     end subroutine score_reference
+
+    !> Score the peaks of a case of published peaks: each PEAK card's peak
+    !! of the rated channels (filtered as the volunteers' are) on the run's
+    !! own samples, z against the table's mean and SD where it gives the
+    !! peak (0 elsewhere); no curve is rated.
+    subroutine score_published(cal, c, names, t0, dt, samples, sc)
+        type(calibration_t), intent(in) :: cal   !! the calibration
+        integer, intent(in) :: c                 !! the case
+        character(len=*), intent(in) :: names(:) !! channel names of the rows of samples
+        real(wp), intent(in) :: t0               !! first sample time [s]
+        real(wp), intent(in) :: dt               !! sample interval [s]
+        real(wp), intent(in) :: samples(:, :)    !! (nchannel, nsample)
+        type(score_t), intent(out) :: sc         !! the peaks, their times and z
+        real(wp) :: tm(size(samples, 2)), y(size(samples, 2), size(cal%channels)), pk(2)
+        integer :: i, p
+        do i = 1, size(tm)
+            tm(i) = 1000*(t0 + (i - 1)*dt)
+        end do
+        y = rated_histories(cal, tm, names, t0, dt, samples)
+        allocate (sc%rating(0), sc%corridor(0), sc%xcorr(0), sc%iso(0), sc%peak(size(cal%peaks)), &
+                  sc%time(size(cal%peaks)), sc%z(size(cal%peaks)))
+        associate (pb => cal%pub(c))
+            do p = 1, size(cal%peaks)
+                pk = curve_peak(tm, y(:, cal%peaks(p)%curve), cal%peaks(p)%sign, cal%peaks(p)%window)
+                sc%peak(p) = pk(1); sc%time(p) = pk(2)
+                sc%z(p) = merge((pk(1) - pb%mean(p))/pb%sd(p), zero, pb%has(p))
+            end do
+        end associate
+    end subroutine score_published
 
     !> Rows case,channel,time_ms,reference,model of one rated pair of curves.
     subroutine write_curves(u, c, name, t, r, y)
@@ -1285,6 +1365,14 @@ contains
                     'NOT PASS THE CHECKS AT REST)'
                 cycle
             end if
+            if (cal%pub(c)%on) then
+                write (lu, '(a,a,a,f7.4,a)') 'CASE ', trim(cal%decks(c)), ' (WEIGHT', cal%weight(c), &
+                    '): PUBLISHED PEAKS OF '//trim(cal%data(c))//' (NO CURVE RATED)'
+                write (lu, '(2x,a,i0,a,f5.1,a,f5.1,a,f8.4)') 'RANGES: ', rg(c)%past, ' JOINT(S) PAST THEIR RANGE BY '// &
+                    'MORE THAN ', range_margin/deg, ' DEG; LARGEST EXCESS ', rg(c)%largest/deg, ' DEG; G ', rg(c)%term
+                call published_report(cal%pub(c), cal%peaks, sc(c), lu)
+                cycle
+            end if
             if (any(cal%weight /= one)) then
                 write (lu, '(a,a,a,f7.4,a,f7.4)') 'CASE ', trim(cal%decks(c)), ' (WEIGHT', cal%weight(c), &
                     '): MEAN RATING ', case_rating(cal, sc(c))
@@ -1315,6 +1403,27 @@ contains
         end do
     end subroutine score_report
 
+    !> The peaks of a case of published peaks that its table gives: the
+    !! model's, the published mean and SD (and time), z.
+    subroutine published_report(pb, peaks, sc, lu)
+        type(peak_table_t), intent(in) :: pb     !! the table
+        type(peak_t), intent(in) :: peaks(:)     !! the PEAK cards
+        type(score_t), intent(in) :: sc          !! the case's scores
+        integer, intent(in) :: lu                !! listing unit
+        integer :: k
+        do k = 1, size(peaks)
+            if (.not. pb%has(k)) cycle
+            if (pb%has_time(k)) then
+                write (lu, '(2x,a16,a,es10.3,a,f6.1,a,es10.3,a,es9.2,a,f6.1,a,f5.1,a,f6.2)') peaks(k)%name, &
+                    ' MODEL ', sc%peak(k), ' AT ', sc%time(k), ' MS; PUBLISHED ', pb%mean(k), ' +- ', pb%sd(k), &
+                    ' AT ', pb%time_mean(k), ' +- ', pb%time_sd(k), '; Z ', sc%z(k)
+            else
+                write (lu, '(2x,a16,a,es10.3,a,f6.1,a,es10.3,a,es9.2,a,f6.2)') peaks(k)%name, ' MODEL ', &
+                    sc%peak(k), ' AT ', sc%time(k), ' MS; PUBLISHED ', pb%mean(k), ' +- ', pb%sd(k), '; Z ', sc%z(k)
+            end if
+        end do
+    end subroutine published_report
+
     !> Run every volunteer case of the calibration at parameter values v:
     !! the rated channels at the volunteers' times, y(:, :, case) (zero for
     !! a reference case); ok false when a run fails.
@@ -1330,7 +1439,7 @@ contains
         ok = .true.
         y = zero
         do c = 1, size(cal%sw)
-            if (cal%ref(c)%on) cycle
+            if (cal%ref(c)%on .or. cal%pub(c)%on) cycle
             call run_member(cal, c, v, cs, ch, res, ok)
             if (.not. ok) return
             y(1:size(cal%vol(c)%t), :, c) = rated_histories(cal, cal%vol(c)%t, ch%name, cs%t_start, cs%sample_dt, &
