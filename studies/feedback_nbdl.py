@@ -1,23 +1,26 @@
 #!/usr/bin/env python3
 """What does postural feedback of the neck muscles (FEEDBACK cards) bring to
-the NBDL volunteers: fitted to 12 g with the other parameters, does it
-predict 15 g and the 8 g peaks better, and does the head brake over the
-volunteers' arc?
+the NBDL volunteers: fitted with the other parameters, does it predict 15 g
+and the 8 g peaks better, and does the head brake over the volunteers' arc?
 
     python3 studies/feedback_nbdl.py [--fit LABEL=LISTING ...]
 
-Without --fit it runs the calibrations itself (release build, about 10
-minutes each, two at a time): input/calibrate_nbdl12g_feedback.inp (the
-shipped calibration's fifteen parameters and the two loops' gains and
-delays, on input/nbdl12g_feedback.inp) and the same with the disc and stop
-factors held at their shipped values (seven muscle parameters and the
-loops'). Each fit's values are set by CHANGE cards on the 8 g, 12 g and
-15 g decks, each with the two FEEDBACK cards of input/nbdl12g_feedback.inp
-added, and scored as the shipped set is: the CORA-style rating and ISO/TS
-18571 of hhneck-compare-nbdl at 12 g (calibration) and 15 g (prediction),
-the 8 g head peaks against reference/reference-data.md section 3
-(prediction), the braking arc at each severity (studies/braking_nbdl.py),
-and the largest joint excess beyond its range (the runs' warnings). The
+Without --fit it runs four calibrations itself (release build, two at a
+time): input/calibrate_nbdl12g_feedback.inp (the shipped calibration's
+fifteen parameters and the two loops' gains and delays, on
+input/nbdl12g_feedback.inp); the same with the disc and stop factors held
+at their shipped values (the seven muscle parameters and the loops');
+input/calibrate_nbdl_feedback.inp (the muscles and the loops fitted to the
+12 g runs and to the 8 g volunteers' published peaks,
+reference/nbdl_8g_peaks.csv); and that one without the loops (the muscles
+alone, the control). Each fit's values are set by CHANGE cards on the
+8 g, 12 g and 15 g decks (with the two FEEDBACK cards of
+input/nbdl12g_feedback.inp added when the fit has loops) and scored as the
+shipped set is: the CORA-style rating and ISO/TS 18571 of
+hhneck-compare-nbdl at 12 g (calibration) and 15 g (prediction), the 8 g
+head peaks against reference/reference-data.md section 3 (prediction, or
+calibration for the fits to them), the braking arc at each severity
+(studies/braking_nbdl.py), and the runs' range-of-motion warnings. The
 shipped set is the first row.
 """
 import os
@@ -30,12 +33,14 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__f
                 os.path.dirname(os.path.abspath(__file__))]
 from hhneck import run  # noqa: E402
 from hhneck.compare_nbdl import compare, s3  # noqa: E402
-from hhneck.deck_fields import field  # noqa: E402
+from hhneck.deck_fields import field, number_field  # noqa: E402
 from braking_nbdl import model_arc  # noqa: E402
 from predict_nbdl8g import ROWS, SEVERITIES, bindings, fitted_values, model_peaks, volunteer_peaks  # noqa: E402
 
 CALIBRATION = "input/calibrate_nbdl12g_feedback.inp"
+TWO_SEVERITIES = "input/calibrate_nbdl_feedback.inp"
 CASE = "input/nbdl12g_feedback.inp"
+LOOPS = ("KPE", "KPF", "TAUE", "TAUF")
 PASSIVE = ("VBEND", "VAXIAL", "ETENSION", "SHEAR", "AXIAL", "ROMK", "ROMT0", "LIMC1")
 
 
@@ -64,6 +69,29 @@ def muscles_only_deck(path=CALIBRATION):
     return "\n".join(out) + "\n"
 
 
+def without_loops(path=TWO_SEVERITIES):
+    """The two-severity calibration deck text with the loops left out: the
+    case decks without FEEDBACK cards, no loop parameters (the control:
+    the muscles alone fitted to the same two severities)."""
+    lines = open(path).read().splitlines()
+    names = [field(ln, 1) for ln in lines if ln.startswith("PARAM")]
+    values = [v for ln in lines if ln.startswith("VALUES") for v in ln[10:].split()]
+    keep = [(n, v) for n, v in zip(names, values) if n not in LOOPS]
+    out = []
+    for ln in lines:
+        if ln.startswith("PARAM") and field(ln, 1) in LOOPS or ln.startswith("VALUES"):
+            continue
+        if ln.startswith("TITLE"):
+            ln = "TITLE     NBDL CALIBRATION: 12 G AND THE 8 G PEAKS, THE MUSCLES ALONE"
+        if ln.startswith("CASE"):
+            ln = ln.replace("_feedback.inp", ".inp")
+        out.append(ln)
+        if ln.startswith("PARAM") and field(ln, 1) == keep[-1][0]:
+            for k in range(0, len(keep), 7):
+                out.append("VALUES    " + "".join("%-10s" % v for _, v in keep[k:k + 7]))
+    return "\n".join(out) + "\n"
+
+
 def variant(sev, cards):
     """The deck text of severity sev with the FEEDBACK cards added."""
     return "TITLE     NBDL %s WITH POSTURAL FEEDBACK\nINCLUDE   input/nbdl%s.inp\n%s\n" % (
@@ -72,7 +100,7 @@ def variant(sev, cards):
 
 def score(label, values, cards, bind, vol, tmp):
     """One table row: the set's values by CHANGE cards on the three decks."""
-    changes = [run.change_card("P%d" % k, "FIELD%d" % bind[n][0], bind[n][1], bind[n][2], "SET", "%.6g" % v)
+    changes = [run.change_card("P%d" % k, "FIELD%d" % bind[n][0], bind[n][1], bind[n][2], "SET", number_field(v))
                for k, (n, v) in enumerate(values)]
     h5, warn = {}, []
     for sev in SEVERITIES:
@@ -94,6 +122,34 @@ def score(label, values, cards, bind, vol, tmp):
     return "| " + " | ".join(cells) + " |"
 
 
+def calibrations():
+    """(label, calibration deck text) of the four fits, in table order."""
+    return [("the fifteen and the loops (19 parameters), 12 g", open(CALIBRATION).read()),
+            ("the muscles and the loops (11), 12 g", muscles_only_deck()),
+            ("the muscles and the loops (11), 12 g and the 8 g peaks", open(TWO_SEVERITIES).read()),
+            ("the muscles alone (7), 12 g and the 8 g peaks", without_loops())]
+
+
+def run_calibrations(decks, tmp, jobs=2):
+    """[(label, listing)] of the calibration decks run, `jobs` at a time."""
+    exe = run.find_executable()
+    out = []
+    for k in range(0, len(decks), jobs):
+        procs = []
+        for n, (label, text) in enumerate(decks[k:k + jobs]):
+            listing = os.path.join(tmp, "fit%d.txt" % (k + n))
+            p = subprocess.Popen([exe, "--calibrate"], stdin=subprocess.PIPE, stdout=open(listing, "w"),
+                                 stderr=subprocess.DEVNULL, text=True)
+            p.stdin.write(text)
+            p.stdin.close()
+            procs.append((label, listing, p))
+        for label, listing, p in procs:
+            if p.wait() != 0:
+                sys.exit("the calibration %s failed: %s" % (label, listing))
+            out.append((label, listing))
+    return out
+
+
 def main():
     fits = []
     args = sys.argv[1:]
@@ -105,21 +161,7 @@ def main():
             sys.exit("usage: feedback_nbdl.py [--fit LABEL=LISTING ...]")
     tmp = tempfile.mkdtemp(prefix="feedback-")
     if not fits:
-        exe = run.find_executable()
-        decks = [("jointly (19 parameters)", open(CALIBRATION).read()),
-                 ("muscles and loops (11 parameters)", muscles_only_deck())]
-        procs = []
-        for k, (label, text) in enumerate(decks):
-            out = os.path.join(tmp, "fit%d.txt" % k)
-            procs.append((label, out, subprocess.Popen([exe, "--calibrate"], stdin=subprocess.PIPE,
-                                                       stdout=open(out, "w"), stderr=subprocess.DEVNULL,
-                                                       text=True)))
-            procs[-1][2].stdin.write(text)
-            procs[-1][2].stdin.close()
-        for label, out, p in procs:
-            if p.wait() != 0:
-                sys.exit("the calibration %s failed: %s" % (label, out))
-            fits.append((label, out))
+        fits = run_calibrations(calibrations(), tmp)
     vol = volunteer_peaks()
     bind = bindings(CALIBRATION)
     print("| set | 12 g CORA-style (calibration) | 15 g (prediction) | 8 g head peaks, (model - mean)/SD: "
@@ -130,11 +172,14 @@ def main():
     for label, listing in fits:
         values = fitted_values(listing)
         named = dict(values)
-        loops = ", ".join("%s %s" % (n, s3(named[n])) for n in ("KPE", "KPF", "TAUE", "TAUF") if n in named)
-        print(score("%s: %s" % (label, loops), values, feedback_cards(), bind, vol, tmp))
-    print("\nThe fits' values (PARAM lines of each listing):")
+        loops = ", ".join("%s %s" % (n, s3(named[n])) for n in LOOPS if n in named)
+        cards = feedback_cards() if loops else []
+        print(score("%s: %s" % (label, loops or "no loops"), values, cards, bind, vol, tmp))
+    print("\nThe fits' values (PARAM lines of each listing) and objectives:")
     for label, listing in fits:
-        print("%s: %s" % (label, ", ".join("%s %s" % (n, s3(v)) for n, v in fitted_values(listing))))
+        best = [ln.strip() for ln in open(listing) if ln.startswith("BEST OBJECTIVE")]
+        print("%s: %s (%s)" % (label, ", ".join("%s %s" % (n, s3(v)) for n, v in fitted_values(listing)),
+                               best[0] if best else "no objective"))
 
 
 if __name__ == "__main__":

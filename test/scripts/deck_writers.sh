@@ -268,7 +268,7 @@ except CardError:
     pass
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
-check "feedback_nbdl.py: the decks with the feedback cards and the muscles-only calibration deck within 80 columns, hhneck --check and --calibrate --check pass" \
+check "feedback_nbdl.py: the decks with the feedback cards, the muscles-only and the loop-free calibration decks within 80 columns, hhneck --check and --calibrate --check pass" \
     python3 - "$HHNECK" <<'PY'
 import subprocess, sys
 sys.path[:0] = ["python", "studies"]
@@ -277,15 +277,20 @@ hhneck = sys.argv[1]
 bad = []
 decks = [(["--check"], f.variant(sev, f.feedback_cards())) for sev in ("8g", "12g", "15g")]
 decks.append((["--calibrate", "--check"], f.muscles_only_deck()))
+decks.append((["--calibrate", "--check"], f.without_loops()))
 for opts, text in decks:
     if any(len(l) > 80 for l in text.splitlines()):
         bad.append("a card beyond column 80 in: %s" % text.splitlines()[0])
     r = subprocess.run([hhneck] + opts, input=text, capture_output=True, text=True, timeout=120)
     if r.returncode:
         bad.append("%s: %s" % (text.splitlines()[0], r.stderr.strip()))
-names = [l[10:20].strip() for l in decks[-1][1].splitlines() if l.startswith("PARAM")]
+names = [l[10:20].strip() for l in decks[-2][1].splitlines() if l.startswith("PARAM")]
 if any(n in names for n in f.PASSIVE) or "KPE" not in names:
     bad.append("the muscles-only deck's parameters: %s" % names)
+control = decks[-1][1].splitlines()
+if any(l[10:20].strip() in f.LOOPS for l in control if l.startswith("PARAM")) or \
+        any("_feedback" in l for l in control if l.startswith("CASE")):
+    bad.append("the control deck keeps a loop: %s" % [l for l in control if l[:5] in ("PARAM", "CASE ")])
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 finish
