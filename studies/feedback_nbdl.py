@@ -49,47 +49,41 @@ def feedback_cards(path=CASE):
     return [line.rstrip("\n") for line in open(path) if line.startswith("FEEDBACK")]
 
 
-def muscles_only_deck(path=CALIBRATION):
-    """The calibration deck text with the disc and stop factors' PARAM
-    cards and their VALUES left out (held at the model deck's values)."""
+def reduced_deck(path, drop, title, plain_cases=False):
+    """The calibration deck text of `path` with the PARAM cards named in
+    `drop` and their VALUES left out (held at the decks' values), the TITLE
+    card's text `title`, and with `plain_cases` the CASE decks without
+    their FEEDBACK cards (input/nbdlSEV.inp for input/nbdlSEV_feedback.inp)."""
     lines = open(path).read().splitlines()
     names = [field(ln, 1) for ln in lines if ln.startswith("PARAM")]
     values = [v for ln in lines if ln.startswith("VALUES") for v in ln[10:].split()]
-    keep = [(n, v) for n, v in zip(names, values) if n not in PASSIVE]
+    keep = [(n, v) for n, v in zip(names, values) if n not in drop]
     out = []
     for ln in lines:
-        if ln.startswith("PARAM") and field(ln, 1) in PASSIVE or ln.startswith("VALUES"):
+        if ln.startswith("PARAM") and field(ln, 1) in drop or ln.startswith("VALUES"):
             continue
         if ln.startswith("TITLE"):
-            ln = "TITLE     NBDL CALIBRATION: 12 G, THE MUSCLES AND THE FEEDBACK LOOPS ONLY"
-        out.append(ln)
-        if ln.startswith("PARAM") and field(ln, 1) == keep[-1][0]:
-            for k in range(0, len(keep), 7):
-                out.append("VALUES    " + "".join("%-10s" % v for _, v in keep[k:k + 7]))
-    return "\n".join(out) + "\n"
-
-
-def without_loops(path=TWO_SEVERITIES):
-    """The two-severity calibration deck text with the loops left out: the
-    case decks without FEEDBACK cards, no loop parameters (the control:
-    the muscles alone fitted to the same two severities)."""
-    lines = open(path).read().splitlines()
-    names = [field(ln, 1) for ln in lines if ln.startswith("PARAM")]
-    values = [v for ln in lines if ln.startswith("VALUES") for v in ln[10:].split()]
-    keep = [(n, v) for n, v in zip(names, values) if n not in LOOPS]
-    out = []
-    for ln in lines:
-        if ln.startswith("PARAM") and field(ln, 1) in LOOPS or ln.startswith("VALUES"):
-            continue
-        if ln.startswith("TITLE"):
-            ln = "TITLE     NBDL CALIBRATION: 12 G AND THE 8 G PEAKS, THE MUSCLES ALONE"
-        if ln.startswith("CASE"):
+            ln = "TITLE     " + title
+        if plain_cases and ln.startswith("CASE"):
             ln = ln.replace("_feedback.inp", ".inp")
         out.append(ln)
         if ln.startswith("PARAM") and field(ln, 1) == keep[-1][0]:
             for k in range(0, len(keep), 7):
                 out.append("VALUES    " + "".join("%-10s" % v for _, v in keep[k:k + 7]))
     return "\n".join(out) + "\n"
+
+
+def muscles_only_deck():
+    """The 12 g feedback calibration with the disc and stop factors held at the shipped values."""
+    return reduced_deck(CALIBRATION, PASSIVE, "NBDL CALIBRATION: 12 G, THE MUSCLES AND THE FEEDBACK LOOPS ONLY")
+
+
+def without_loops():
+    """The two-severity calibration without the loops (the control: the
+    muscles alone fitted to the same two severities, on the case decks
+    without FEEDBACK cards)."""
+    return reduced_deck(TWO_SEVERITIES, LOOPS, "NBDL CALIBRATION: 12 G AND THE 8 G PEAKS, THE MUSCLES ALONE",
+                        plain_cases=True)
 
 
 def variant(sev, cards):
