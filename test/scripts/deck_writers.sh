@@ -293,4 +293,23 @@ if any(l[10:20].strip() in f.LOOPS for l in control if l.startswith("PARAM")) or
     bad.append("the control deck keeps a loop: %s" % [l for l in control if l[:5] in ("PARAM", "CASE ")])
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
+check "rest_motion.py: the model copy and the rest decks (with and without the loops) within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$tmp" <<'PY'
+import os, subprocess, sys
+sys.path[:0] = ["python", "studies"]
+import rest_motion as r
+hhneck, short = sys.argv[1:3]
+model = os.path.join(short, "model_rest.inp")
+r.model_copy(0.35, model)
+bad = []
+if not any(l.startswith("SCALE     NZBEND") and "0.35" in l for l in open(model).read().splitlines()):
+    bad.append("the model copy does not set NZBEND to 0.35")
+for text in (r.REST.format(model=model), r.REST.format(model=model) + r.LOOPS):
+    if any(len(l) > 80 for l in text.splitlines()):
+        bad.append("a card beyond column 80: %s" % text.splitlines()[0])
+    p = subprocess.run([hhneck, "--check"], input=text, capture_output=True, text=True, timeout=120)
+    if p.returncode:
+        bad.append(p.stderr.strip())
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
 finish
