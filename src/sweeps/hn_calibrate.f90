@@ -986,7 +986,7 @@ contains
         real(wp), allocatable :: y(:, :)
         real(wp) :: rsum, psum, tsum, gsum, wsum, lmax, lp
         type(range_score_t) :: rg
-        integer :: c
+        integer :: c, k
         type(case_t) :: cs
         type(run_result_t) :: res
         type(channel_set_t) :: ch
@@ -1018,27 +1018,39 @@ contains
                 call score_reference(cal%ref(c), ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c), c, curves)
             else if (cal%pub(c)%on) then
                 call score_published(cal, c, ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c))
-                associate (pb => cal%pub(c))
-                    psum = psum + cal%weight(c)*sum(max(zero, abs(sc(c)%z) - (one - cal%peak_margin)), mask=pb%has)/ &
-                           count(pb%has)
-                    tsum = tsum + cal%weight(c)*sum(max(zero, abs(sc(c)%time - pb%time_mean)/cal%time_tolerance - &
-                                                        (one - cal%peak_margin)), mask=pb%has_time)/count(pb%has)
-                end associate
+                call add_peak_terms(cal, c, sc(c), cal%pub(c)%time_mean, cal%pub(c)%has, cal%pub(c)%has_time, &
+                                    psum, tsum)
             else
                 allocate (y(size(cal%vol(c)%t), size(cal%channels)))
                 y = rated_histories(cal, cal%vol(c)%t, ch%name, cs%t_start, cs%sample_dt, res%samples)
                 call score_curves(cal%vol(c), y, cal%window, cal%peaks, sc(c))
                 call score_iso_volunteers(cal, c, y, sc(c), curves)
                 deallocate (y)
-                psum = psum + cal%weight(c)*sum(max(zero, abs(sc(c)%z) - (one - cal%peak_margin)))/size(cal%peaks)
-                tsum = tsum + cal%weight(c)*sum(max(zero, abs(sc(c)%time - cal%vol(c)%time_mean)/ &
-                                                    cal%time_tolerance - (one - cal%peak_margin)))/size(cal%peaks)
+                call add_peak_terms(cal, c, sc(c), cal%vol(c)%time_mean, [(.true., k=1, size(cal%peaks))], &
+                                    [(.true., k=1, size(cal%peaks))], psum, tsum)
             end if
             rsum = rsum + cal%weight(c)*case_rating(cal, sc(c))
             wsum = wsum + cal%weight(c)
         end do
         j = (one - rsum/wsum) + (cal%peak_weight*psum + cal%time_weight*tsum + cal%range_weight*gsum)/wsum
     end subroutine evaluate
+
+    !> Add case c's peak terms, weighted, to the sums of P and T: the mean
+    !! over the peaks it has of max(0, |z| - (1 - m)), and of max(0, |t -
+    !! t_mean|/tol - (1 - m)) over those of them with a time.
+    pure subroutine add_peak_terms(cal, c, sc, time_mean, has, has_time, psum, tsum)
+        type(calibration_t), intent(in) :: cal   !! the calibration (weights, margin, tolerance)
+        integer, intent(in) :: c                 !! the case
+        type(score_t), intent(in) :: sc          !! its scores (z and times of every peak)
+        real(wp), intent(in) :: time_mean(:)     !! (peak) the volunteers' mean time [ms]
+        logical, intent(in) :: has(:)            !! (peak) the case has the peak
+        logical, intent(in) :: has_time(:)       !! (peak) and its time
+        real(wp), intent(inout) :: psum          !! sum of the weighted P_c
+        real(wp), intent(inout) :: tsum          !! sum of the weighted T_c
+        psum = psum + cal%weight(c)*sum(max(zero, abs(sc%z) - (one - cal%peak_margin)), mask=has)/count(has)
+        tsum = tsum + cal%weight(c)*sum(max(zero, abs(sc%time - time_mean)/cal%time_tolerance - &
+                                            (one - cal%peak_margin)), mask=has_time)/count(has)
+    end subroutine add_peak_terms
 
     !> The joints of a run past their physiological ranges: G, the sum over
     !! the ranges of max(0, e_k/e_m - (1 - m)) (e_k the largest excess of
