@@ -43,7 +43,7 @@ module hn_families
     !> Every card of every family (VIA and ACTIVATE complete the muscles):
     !! key, family, continuation cards, and when it is read (the default
     !! card_in_order: in deck order; ACTIVATE first, the histories HILL cards
-    !! name; VIA and FEEDBACK last, on the muscles and histories read before).
+    !! name; VIA, FEEDBACK and SPINDLE last, on the muscles and histories read before).
     type(family_card_t), parameter :: family_cards(*) = [ &
         family_card_t('DISC', fam_discs, 2), &
         family_card_t('LIGAMENT', fam_ligaments, 1), &
@@ -52,6 +52,7 @@ module hn_families
         family_card_t('VIA', fam_muscles, 0, card_last), &
         family_card_t('ACTIVATE', fam_muscles, 1, card_first), &
         family_card_t('FEEDBACK', fam_muscles, 0, card_last), &
+        family_card_t('SPINDLE', fam_muscles, 0, card_last), &
         family_card_t('LIMIT', fam_limits, 0), &
         family_card_t('ROM', fam_limits, 0), &
         family_card_t('SPRING', fam_springs, 1), &

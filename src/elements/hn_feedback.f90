@@ -23,13 +23,21 @@
 !! activation is a function of time alone, continuous at the samples (its
 !! slope jumps there). The muscles of the history have the activation
 !! min(1, a_history(t) + a(t)).
+!!
+!! A stretch loop (SPINDLE card) is the same controller on one muscle, its
+!! sensor the muscle's own stretch (the muscle-spindle feedback of
+!! multisegment neuromuscular neck models, Happee et al. 2017, S18 of
+!! reference/parameters.md):
+!! theta = (L(t) - L(t0))/lopt and omega = dL/dt / lopt, L the muscle's
+!! path length, lopt its optimal fibre length; its activation is that
+!! muscle's alone.
 module hn_feedback
     use hn_kinds, only: wp, zero, one
     use hn_rotation, only: rotation_vector
     implicit none
     private
 
-    public :: feedback_t, feedback_activation, feedback_excitation, feedback_sample, feedback_due, &
+    public :: feedback_t, feedback_activation, feedback_excitation, feedback_sample, stretch_sample, feedback_due, &
               feedback_times, sensor_angle
 
     !> One feedback loop: sensor, gains, delay, sampling, and its held state.
@@ -37,6 +45,8 @@ module hn_feedback
         integer :: history = 0           !! the activation history it adds to (ACTIVATE card number)
         integer :: body = 0              !! the sensor body (tree number)
         integer :: axis = 2              !! the lab axis of the sensor (1 x, 2 y, 3 z)
+        integer :: muscle = 0            !! a stretch loop's muscle (0: a rotation loop, on every muscle of the history)
+        real(wp) :: lopt = one           !! a stretch loop's optimal fibre length, the stretch's unit [m]
         real(wp) :: kp = zero            !! gain on the rotation [1/rad]
         real(wp) :: kd = zero            !! gain on the angular velocity [s/rad]
         real(wp) :: delay = zero         !! sensing and neural delay tau [s]
@@ -47,6 +57,7 @@ module hn_feedback
         integer :: n = 0                          !! samples so far (0: the run has not started it)
         real(wp) :: t0 = zero                     !! time of the first sample [s]
         real(wp) :: s0(3, 3) = zero               !! the sensor body's orientation then
+        real(wp) :: l0 = zero                     !! a stretch loop's muscle length then [m]
         real(wp), allocatable :: theta(:)         !! (n) sampled rotation [rad]
         real(wp), allocatable :: omega(:)         !! (n) sampled angular velocity [rad/s]
         real(wp) :: tk = zero                     !! the last sample time [s]
@@ -109,19 +120,41 @@ contains
         if (.not. due) due = abs(t - (fb%t0 + fb%n*fb%dt)) <= tol
     end function feedback_due
 
-    !> Take a sample at t: the sensor body's orientation s and angular
-    !! velocity w (lab frame); the activation reached is the start of a new
-    !! hold with the excitation of feedback_excitation. The first sample
-    !! starts the run's state (the start orientation, a = 0).
+    !> Take a sample at t of a rotation loop: the sensor body's orientation
+    !! s and angular velocity w (lab frame); the activation reached is the
+    !! start of a new hold with the excitation of feedback_excitation. The
+    !! first sample starts the run's state (the start orientation, a = 0).
     pure subroutine feedback_sample(fb, t, s, w)
         type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
         real(wp), intent(in) :: t               !! the sample time [s]
         real(wp), intent(in) :: s(3, 3)         !! the sensor body's body-to-lab matrix
         real(wp), intent(in) :: w(3)            !! its angular velocity in the lab [rad/s]
+        if (fb%n == 0) fb%s0 = s
+        call record_sample(fb, t, sensor_angle(s, fb%s0, fb%axis), w(fb%axis))
+    end subroutine feedback_sample
+
+    !> Take a sample at t of a stretch loop: its muscle's path length and
+    !! lengthening rate; the stretch from the first sample's length and the
+    !! rate, both over lopt, start a new hold as in feedback_sample.
+    pure subroutine stretch_sample(fb, t, length, rate)
+        type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
+        real(wp), intent(in) :: t               !! the sample time [s]
+        real(wp), intent(in) :: length          !! the muscle's path length [m]
+        real(wp), intent(in) :: rate            !! its rate of lengthening [m/s]
+        if (fb%n == 0) fb%l0 = length
+        call record_sample(fb, t, (length - fb%l0)/fb%lopt, rate/fb%lopt)
+    end subroutine stretch_sample
+
+    !> Append the sensor's value theta and rate omega at t and start the
+    !! hold there (the first sample starts the run's state, a = 0).
+    pure subroutine record_sample(fb, t, theta, omega)
+        type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
+        real(wp), intent(in) :: t               !! the sample time [s]
+        real(wp), intent(in) :: theta           !! the sensor's value
+        real(wp), intent(in) :: omega           !! its rate
         real(wp), allocatable :: grown(:)
         if (fb%n == 0) then
             fb%t0 = t
-            fb%s0 = s
             fb%ak = zero
             if (allocated(fb%theta)) deallocate (fb%theta)
             if (allocated(fb%omega)) deallocate (fb%omega)
@@ -134,11 +167,11 @@ contains
             allocate (grown(2*fb%n)); grown(1:fb%n) = fb%omega; call move_alloc(grown, fb%omega)
         end if
         fb%n = fb%n + 1
-        fb%theta(fb%n) = sensor_angle(s, fb%s0, fb%axis)
-        fb%omega(fb%n) = w(fb%axis)
+        fb%theta(fb%n) = theta
+        fb%omega(fb%n) = omega
         fb%tk = t
         fb%uk = feedback_excitation(fb, t)
-    end subroutine feedback_sample
+    end subroutine record_sample
 
     !> The loop's sample times t0 + k dt in [t0, t1] (t1 included within tol).
     pure function feedback_times(fb, t0, t1, tol) result(tk)

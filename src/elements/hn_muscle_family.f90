@@ -3,9 +3,10 @@
 !! (hn_line_elements), behind the element-family interface. The family
 !! holds the activation tables (eq 11) and the activation histories (ACTIVATE
 !! cards) its muscles refer to. Output per muscle: tension [N], length [m]
-!! and activation. The family reads its MUSCLE, HILL, ACTIVATE, VIA and
-!! FEEDBACK cards; a FEEDBACK card adds postural feedback (hn_feedback) to an
-!! activation history, sampled by the run (control_times, control_update).
+!! and activation. The family reads its MUSCLE, HILL, ACTIVATE, VIA,
+!! FEEDBACK and SPINDLE cards; a FEEDBACK card adds postural feedback
+!! (hn_feedback) to an activation history, a SPINDLE card a stretch loop to
+!! each of its muscles, sampled by the run (control_times, control_update).
 module hn_muscle_family
     use hn_kinds, only: wp, zero, one
     use hn_deck_reader, only: deck_reader_t, int_str
@@ -16,7 +17,7 @@ module hn_muscle_family
     use hn_tree, only: body_tree_t
     use hn_tables, only: table_t, table_value
     use hn_muscle, only: activation_t, activation_value
-    use hn_feedback, only: feedback_t, feedback_activation, feedback_due, feedback_sample, feedback_times
+    use hn_feedback, only: feedback_t, feedback_activation, feedback_due, feedback_sample, stretch_sample, feedback_times
     use hn_sorting, only: merge_times
     use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
                                 apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
@@ -75,8 +76,9 @@ contains
     end function muscle_ncomp
 
     !> Activation a(t) of muscle e: its activation history (Hill-type law),
-    !! plus the feedback activation of the loops on that history, at most 1;
-    !! or its table (eq 11); zero without either.
+    !! plus the feedback activation of the rotation loops on that history
+    !! and of its own stretch loop, at most 1; or its table (eq 11); zero
+    !! without either.
     pure real(wp) function muscle_activation(this, e, t) result(act)
         class(muscle_family_t), intent(in) :: this   !! the family
         integer, intent(in) :: e                     !! muscle number
@@ -88,7 +90,8 @@ contains
                 if (m%history > 0) then
                     act = activation_value(this%activations(m%history), t)
                     do k = 1, size(this%feedbacks)
-                        if (this%feedbacks(k)%history == m%history) &
+                        if (this%feedbacks(k)%history == m%history .and. &
+                            (this%feedbacks(k)%muscle == 0 .or. this%feedbacks(k)%muscle == e)) &
                             act = min(one, act + feedback_activation(this%feedbacks(k), t))
                     end do
                 end if
@@ -338,22 +341,34 @@ contains
     end function muscle_control_times
 
     !> The run has reached time t (kinematics kin): every loop whose sample
-    !! is due takes it (the first call of a run starts every loop).
+    !! is due takes it (the first call of a run starts every loop); the
+    !! stretch loops sense their muscles' path lengths and rates there.
     pure subroutine muscle_control_update(this, t, kin, tol)
         class(muscle_family_t), intent(inout) :: this   !! the family; out: the due loops' samples and holds
         real(wp), intent(in) :: t                       !! time reached [s]
         type(kinematics_t), intent(in) :: kin           !! kinematics of the state there
         real(wp), intent(in) :: tol                     !! time tolerance of a sample time [s]
+        type(line_geometry_t), allocatable :: gm(:), seg(:, :)
         integer :: k
+        if (any(this%feedbacks%muscle > 0 .and. feedback_due(this%feedbacks, t, tol))) then
+            allocate (gm(size(this%items)), seg(max_via + 1, size(this%items)))
+            call muscle_geometries(kin, this%items, gm, seg)
+        end if
         do k = 1, size(this%feedbacks)
             associate (fb => this%feedbacks(k))
-                if (feedback_due(fb, t, tol)) call feedback_sample(fb, t, kin%s(:, :, fb%body), kin%omega(:, fb%body))
+                if (.not. feedback_due(fb, t, tol)) cycle
+                if (fb%muscle > 0) then
+                    call stretch_sample(fb, t, gm(fb%muscle)%length, gm(fb%muscle)%rate)
+                else
+                    call feedback_sample(fb, t, kin%s(:, :, fb%body), kin%omega(:, fb%body))
+                end if
             end associate
         end do
     end subroutine muscle_control_update
 
-    !> An ACTIVATE, MUSCLE, HILL, VIA or FEEDBACK card (the registry reads
-    !! ACTIVATE cards before, VIA and FEEDBACK cards after the others). A
+    !> An ACTIVATE, MUSCLE, HILL, VIA, FEEDBACK or SPINDLE card (the
+    !! registry reads ACTIVATE cards before, VIA, FEEDBACK and SPINDLE cards
+    !! after the others). A
     !! muscle is kept unless both ends are on one merged body.
     subroutine muscle_read_card(this, rd, ctx, i, key)
         class(muscle_family_t), intent(inout) :: this   !! the family; out: the card's muscle, history or via point added
@@ -373,6 +388,9 @@ contains
             return
         case ('FEEDBACK')
             call feedback_card(rd, ctx, i, this%activations, this%feedbacks)
+            return
+        case ('SPINDLE')
+            call spindle_card(rd, i, this%activations, this%items(1:this%nread), this%feedbacks)
             return
         end select
         ! room for every MUSCLE and HILL card, trimmed by end_cards (appending one by one is quadratic)
@@ -493,6 +511,45 @@ contains
         end do
         feedbacks = [feedbacks, fb]
     end subroutine feedback_card
+
+    !> A SPINDLE card: history kp kd delay interval, a stretch loop
+    !! (hn_feedback) on every Hill-type muscle of the activation history,
+    !! each sensing its own stretch; one card per history. The loops take
+    !! the history's time constants.
+    subroutine spindle_card(rd, i, activations, muscles, feedbacks)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's deck line
+        type(activation_t), intent(in) :: activations(:)  !! the histories read
+        type(muscle_t), intent(in) :: muscles(:)  !! the muscles read
+        type(feedback_t), allocatable, intent(inout) :: feedbacks(:)  !! the loops read; out: one per muscle of the history added
+        type(feedback_t) :: fb
+        integer :: e
+        fb = feedback_t()
+        fb%history = history_ref(rd, i, 1, activations)
+        call rd%real(i, 2, 'stretch gain kp', 'per lopt', fb%kp, zero, 1.0e3_wp)
+        call rd%real(i, 3, 'stretch-rate gain kd', 's per lopt', fb%kd, zero, 1.0e2_wp, default=zero)
+        call rd%real(i, 4, 'delay', 's', fb%delay, zero, 1.0_wp, default=zero)
+        call rd%real(i, 5, 'sample interval', 's', fb%dt, 1.0e-5_wp, 0.1_wp, default=1.0e-3_wp)
+        if (rd%failed()) return
+        if (any(feedbacks%muscle > 0 .and. feedbacks%history == fb%history)) then
+            call rd%fail(rd%context(i, 1, 'activation history')//': history "'// &
+                         trim(activations(fb%history)%name)//'" has a SPINDLE card already; expected one per history')
+            return
+        end if
+        if (.not. any(muscles%history == fb%history .and. muscles%law == muscle_hill)) then
+            call rd%fail(rd%context(i, 1, 'activation history')//': no HILL card before it names history "'// &
+                         trim(activations(fb%history)%name)//'"; expected the history of Hill-type muscles')
+            return
+        end if
+        fb%tau_act = activations(fb%history)%tau_act
+        fb%tau_deact = activations(fb%history)%tau_deact
+        do e = 1, size(muscles)
+            if (muscles(e)%history /= fb%history .or. muscles(e)%law /= muscle_hill) cycle
+            fb%muscle = e
+            fb%lopt = muscles(e)%hill%lopt
+            feedbacks = [feedbacks, fb]
+        end do
+    end subroutine spindle_card
 
     !> Activation history named in field f (an ACTIVATE card).
     integer function history_ref(rd, i, f, hist) result(ih)
