@@ -31,7 +31,10 @@
 !! whose start state (posture held, the bracing activation) has an
 !! eigenvalue with real part above -1 1/s in any case (hn_rest_modes) is
 !! not run and gets J = 2 + 0.1 s (lmax + 1) (volunteer cases only: a
-!! reference case is held as its deck holds it); with a PASSIVE card, nor is a
+!! reference case is held as its deck holds it; with STANDING cards, a set
+!! that moves a joint of a standing deck's run at rest more than its bound
+!! instead, J = 2 + 0.1 (r - 1), r the largest ratio of excursion to
+!! bound); with a PASSIVE card, nor is a
 !! set whose neck stands without its muscles (largest real part at rest,
 !! muscles off, below the card's limit, default 0: the osteoligamentous
 !! column buckles under far less than the head's weight), which gets
@@ -102,6 +105,15 @@ module hn_calibrate
         logical, allocatable :: as_samples(:)           !! (rated) its rows the rating's 10 kHz samples (F6 SAMPLES)
     end type reference_case_t
 
+    !> A standing case (STANDING card): a deck of the model at rest, its
+    !! parameters bound as a case's; the model stands when no joint rotation
+    !! of its run moves more than the bound from its start.
+    type :: standing_case_t
+        character(len=path_len) :: deck = ''   !! the deck (STANDING columns 11-70)
+        real(wp) :: bound = zero               !! the largest excursion allowed (STANDING F7) [deg]
+        type(sweep_t) :: sw                    !! the PARAM cards bound to its deck
+    end type standing_case_t
+
     !> The joints of one run past their physiological ranges (ROM cards).
     type, public :: range_score_t
         real(wp) :: term = zero      !! G_c: sum of max(0, e_k/e_m - (1 - mr)) [-]
@@ -138,6 +150,7 @@ module hn_calibrate
         logical :: passive = .false.                !! PASSIVE card: the neck without its muscles must not stand
         real(wp) :: passive_limit = zero            !! its largest real part at rest must be above this (PASSIVE F1) [1/s]
         real(wp), allocatable :: values(:)          !! VALUES cards: the point scored when max_evals = 0
+        type(standing_case_t), allocatable :: stand(:)   !! STANDING cards: the motion at rest in place of the margin
     end type calibration_t
 
     !> What the reading of a calibration deck keeps from card to card: the
@@ -179,6 +192,7 @@ contains
     !! deck has their target, left out of the others); optional
     !! PASSIVE [limit] (a set whose neck stands without its muscles is not
     !! run); optional RANGES weight [margin] (the joints past their ranges in J);
+    !! optional STANDING deck bound (a run at rest judging standing);
     !! optional VALUES cards (up to 7 values each, in PARAM order), the
     !! point scored when max-evaluations is 0 (default: the decks' own
     !! values), else a starting point tried before the LHS points; optional CURVES file (columns 11-80: the rated curves of
@@ -197,7 +211,7 @@ contains
         st%rd%top = source
         if (present(include_path)) st%rd%search = include_path
         call read_card_images(st%rd, path, source, 0)
-        allocate (cal%decks(0), cal%data(0), cal%values(0), cal%channels(0), cal%peaks(0), cal%weight(0))
+        allocate (cal%decks(0), cal%data(0), cal%values(0), cal%channels(0), cal%peaks(0), cal%weight(0), cal%stand(0))
         allocate (st%params(0), st%optional(0), st%optional_line(0), st%channel_line(0), st%peak_line(0), &
                   st%data_line(0), st%peak_channel(0), &
                   st%rated_line(0), st%rated_case(0), st%is_ref(0), st%is_pub(0))
@@ -215,6 +229,7 @@ contains
             case ('PARAM'); call read_param_card(st, i)
             case ('OPTIONAL'); call read_optional_card(st, i)
             case ('PASSIVE'); call read_passive_card(st, cal, i)
+            case ('STANDING'); call read_standing_card(st, cal, i)
             case ('RANGES'); call read_ranges_card(st, cal, i)
             case ('VALUES'); call read_values_card(st, cal, i)
             case ('CURVES'); call read_curves_card(st, cal, i)
@@ -467,6 +482,26 @@ contains
                         -100.0_wp, 100.0_wp, default=zero)
     end subroutine read_passive_card
 
+    !> STANDING deck (columns 11-70) bound (F7, deg): a run of the deck, the
+    !! model at rest, must keep every joint rotation within the bound of its
+    !! start; with STANDING cards they judge standing in place of the
+    !! volunteer cases' linear margin at rest.
+    subroutine read_standing_card(st, cal, i)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+        integer, intent(in) :: i                       !! the card's line
+        type(standing_case_t) :: sc
+        sc%deck = adjustl(st%rd%lines(i)%text(11:70))
+        if (len_trim(sc%deck) == 0) then
+            call st%rd%fail(st%rd%where(i)//', columns 11-70 (STANDING card): found no deck; expected the '// &
+                            'deck of the model at rest')
+            return
+        end if
+        call st%rd%real(i, 7, 'largest excursion at rest', 'deg', sc%bound, 1.0e-3_wp, 90.0_wp)
+        if (st%rd%failed()) return
+        cal%stand = [cal%stand, sc]
+    end subroutine read_standing_card
+
     !> RANGES weight [margin]: the joints past their ranges in J.
     subroutine read_ranges_card(st, cal, i)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
@@ -551,8 +586,9 @@ contains
     !> Each case bound to its deck through a sweep of the PARAM cards (its
     !! parameters' nominal values that deck's; an OPTIONAL one left unbound
     !! where the deck lacks its target), then its data read: a reference CSV
-    !! (reference_case) or the volunteers (volunteer_case); the parameter
-    !! table cal%par, each parameter as the first case binding it binds it.
+    !! (reference_case) or the volunteers (volunteer_case); the STANDING
+    !! decks bound the same way; the parameter table cal%par, each
+    !! parameter as the first case binding it binds it.
     subroutine bind_cases(st, cal, path, source, stat, errmsg, include_path)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
         type(calibration_t), intent(inout) :: cal      !! the calibration: its sweeps and cases' data
@@ -584,6 +620,14 @@ contains
             else
                 call volunteer_case(st, cal, c, chs, stat, errmsg)
             end if
+            if (stat /= stat_ok) return
+        end do
+        do k = 1, size(cal%stand)
+            sl = [line_of('TITLE     '//cal%title, source), line_of('BASE      '//trim(cal%stand(k)%deck), source), &
+                  line_of('DESIGN    LHS       '//int_field(cal%nstart)//int_field(cal%seed), source), st%params]
+            call read_sweep_lines(sl, source, cal%stand(k)%sw, stat, errmsg, include_path, path, st%optional)
+            if (stat /= stat_ok) return
+            call sweep_member_case(cal%stand(k)%sw, cal%stand(k)%sw%params%nominal, cs, stat, errmsg)
             if (stat /= stat_ok) return
         end do
         cal%par = cal%sw(1)%params
@@ -940,6 +984,39 @@ contains
         end do
     end subroutine rest_growth
 
+    !> The largest excursion of any joint rotation from its start [deg] in
+    !! the run of each STANDING deck at parameter values v (its joint
+    !! rotation channels alone, at the deck's OUTPUT interval); a run that
+    !! cannot be built or does not complete counts as fallen (huge).
+    function standing_excursions(cal, v) result(exc)
+        type(calibration_t), intent(in) :: cal       !! the calibration
+        real(wp), intent(in) :: v(:)                 !! one value per parameter
+        real(wp) :: exc(size(cal%stand))
+        type(case_t) :: cs
+        type(channel_set_t) :: chs
+        type(run_result_t) :: res
+        character(len=chname_len), allocatable :: joints(:)
+        character(len=msglen) :: msg
+        integer :: k, stat, lu, n
+        exc = huge(one)
+        do k = 1, size(cal%stand)
+            call sweep_member_case(cal%stand(k)%sw, v, cs, stat, msg, deck_sampling=.true.)
+            if (stat /= stat_ok) cycle
+            call channels_define(cs, chs)
+            joints = pack(chs%name, chs%group(:)(1:6) == 'JOINTS')
+            if (size(joints) == 0) cycle
+            open (newunit=lu, file='/dev/null', action='write')
+            block
+                type(run_state_t) :: run
+                call run%execute(cs, lu, '', res, keep_samples=.true., only=joints)
+            end block
+            close (lu)
+            if (res%exit_code /= exit_ok) cycle
+            n = size(res%samples, 2)
+            exc(k) = maxval(abs(res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n)))
+        end do
+    end function standing_excursions
+
     !> The rest modes of a case at its start, held or settled as its run
     !! starts (HOLD POSTURE's forces, or HOLD PRESTRAIN's pre-strain of a
     !! copy of its model).
@@ -964,7 +1041,10 @@ contains
     !! (largest real part above rest_margin in any case: a braced neck
     !! stands) is not run: J = 2 + 0.1 s (lmax - rest_margin), worse than
     !! any stable set whose w P + wt T stays below 1, and decreasing
-    !! towards stability. With a PASSIVE card, nor is a set whose neck
+    !! towards stability. With STANDING cards their runs judge standing
+    !! instead: a set that moves a joint of a standing case more than its
+    !! bound (the largest ratio r of excursion to bound above 1) is not
+    !! run, J = 2 + 0.1 (r - 1). With a PASSIVE card, nor is a set whose neck
     !! stands without its muscles (largest real part at rest below the
     !! card's limit): J = 2 + 0.1 s (limit - lp). Otherwise J is the
     !! weighted mean of the cases' J_c (the module's description); every
@@ -973,7 +1053,7 @@ contains
     !! metric enters J. With `curves`, the rated curves (the samples each
     !! rating is given: reference and model) are written to that unit as
     !! CSV rows case,channel,time_ms,reference,model.
-    subroutine evaluate(cal, v, j, sc, ok, growth, passive_growth, curves, ranges)
+    subroutine evaluate(cal, v, j, sc, ok, growth, passive_growth, curves, ranges, standing)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
         real(wp), intent(out) :: j                   !! the objective
@@ -983,8 +1063,9 @@ contains
         real(wp), intent(out), optional :: passive_growth !! the same without the muscles (PASSIVE card) [1/s]
         integer, intent(in), optional :: curves      !! unit of the rated curves' CSV (written when present)
         type(range_score_t), intent(out), optional :: ranges(:) !! (ncase) the joints past their ranges in each run
+        real(wp), intent(out), optional :: standing(:)   !! (STANDING cards) each case's largest excursion at rest [deg]
         real(wp), allocatable :: y(:, :)
-        real(wp) :: rsum, psum, tsum, gsum, wsum, lmax, lp
+        real(wp) :: rsum, psum, tsum, gsum, wsum, lmax, lp, r, exc(size(cal%stand))
         type(range_score_t) :: rg
         integer :: c, k
         type(case_t) :: cs
@@ -993,7 +1074,16 @@ contains
         call rest_growth(cal, v, lmax, lp)
         if (present(growth)) growth = lmax
         if (present(passive_growth)) passive_growth = huge(one)
-        if (lmax > rest_margin) then
+        if (size(cal%stand) > 0) then
+            exc = standing_excursions(cal, v)
+            if (present(standing)) standing = exc
+            r = maxval(exc/cal%stand%bound)
+            if (r > one) then
+                ok = .false.
+                j = rest_penalty(r - one)
+                return
+            end if
+        else if (lmax > rest_margin) then
             ok = .false.
             j = rest_penalty(lmax - rest_margin)
             return
@@ -1221,7 +1311,7 @@ contains
         real(wp), intent(out) :: jbest               !! objective there
         integer, intent(out) :: nevals               !! model evaluations (each runs every case)
         real(wp), allocatable :: design(:, :)
-        real(wp) :: u0(size(cal%par)), ubest(size(u0)), j, jstart, lmax, lp
+        real(wp) :: u0(size(cal%par)), ubest(size(u0)), j, jstart, lmax, lp, stx(size(cal%stand))
         type(score_t) :: sc(size(cal%sw))
         type(range_score_t) :: rg(size(cal%sw))
         logical :: ok
@@ -1255,14 +1345,14 @@ contains
                     end if
                 end if
                 if (curves_open) then
-                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, curves=cu, ranges=rg)
+                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, curves=cu, ranges=rg, standing=stx)
                     close (cu)
                 else
-                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, ranges=rg)
+                    call evaluate(cal, vbest, jbest, sc, ok, lmax, lp, ranges=rg, standing=stx)
                 end if
                 nevals = 1
                 call score_report(cal, sc, rg, jbest, lu)
-                call rest_report(lmax, lp)
+                call rest_report(lmax, lp, stx)
                 return
             end if
             design = sweep_design(cal%sw(1))
@@ -1283,9 +1373,9 @@ contains
                                        ubest, jbest, nnm)
             vbest = values_of(ubest)
             write (lu, '(a,f9.5,a,i0,a)') 'BEST OBJECTIVE ', jbest, ' AFTER ', nevals, ' EVALUATIONS'
-            call evaluate(cal, vbest, j, sc, ok, lmax, lp, ranges=rg)
+            call evaluate(cal, vbest, j, sc, ok, lmax, lp, ranges=rg, standing=stx)
             call score_report(cal, sc, rg, j, lu)
-            call rest_report(lmax, lp)
+            call rest_report(lmax, lp, stx)
             do k = 1, size(par)
                 write (lu, '(a,a10,a,a10,a,es12.5,a,es12.5,a)') 'PARAM ', par(k)%name, ' = ', field_text(vbest(k)), &
                     '   (bounds ', par(k)%low, ' to ', par(k)%high, ')'
@@ -1316,9 +1406,21 @@ contains
             end do
         end function values_of
 
-        subroutine rest_report(lmax, lp)
-            real(wp), intent(in) :: lmax, lp
-            if (lmax > -huge(one)) write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'
+        subroutine rest_report(lmax, lp, stx)
+            real(wp), intent(in) :: lmax, lp, stx(:)
+            integer :: k
+            if (lmax > -huge(one)) write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST ', lmax, ' 1/S'// &
+                trim(merge(' (NOT JUDGED: THE STANDING CASES ARE)', '                                     ', &
+                           size(cal%stand) > 0))
+            do k = 1, size(stx)
+                if (stx(k) < huge(one)) then
+                    write (lu, '(a,i0,a,es10.3,a,es10.3,a)') 'STANDING CASE ', k, ': LARGEST EXCURSION AT REST ', &
+                        stx(k), ' DEG (BOUND ', cal%stand(k)%bound, ' DEG) '//trim(cal%stand(k)%deck)
+                else
+                    write (lu, '(a,i0,a)') 'STANDING CASE ', k, ': THE RUN AT REST DID NOT COMPLETE '// &
+                        trim(cal%stand(k)%deck)
+                end if
+            end do
             if (cal%passive .and. lp < huge(one) .and. lp > -huge(one)) &
                 write (lu, '(a,es10.3,a)') 'LARGEST REAL PART AT REST WITHOUT MUSCLES ', lp, ' 1/S'
         end subroutine rest_report
