@@ -541,7 +541,7 @@ contains
         integer, intent(in) :: i                       !! the card's line
         call st%rd%fail(st%rd%where(i)//', columns 1-8: found "'//trim(st%rd%key(i))// &
                         '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, OPTIONAL, '// &
-                        'PASSIVE, RANGES, VALUES, CURVES or END')
+                        'PASSIVE, STANDING, RANGES, VALUES, CURVES or END')
     end subroutine unknown_card
 
     !> The checks across cards, after the last: each PEAK card's channel a

@@ -312,4 +312,34 @@ for text in (r.REST.format(model=model), r.REST.format(model=model) + r.LOOPS):
         bad.append(p.stderr.strip())
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
+check "spindle_segmental.py: the muscles-and-loops calibration deck and the rest deck with the loops within 80 columns, hhneck --check and --calibrate --check pass; a partial fit keeps the starting point's other values" \
+    python3 - "$HHNECK" "$tmp" <<'PY'
+import os, subprocess, sys
+sys.path[:0] = ["python", "studies"]
+import spindle_segmental as s
+import rest_motion as r
+from feedback_nbdl import reduced_deck
+hhneck, short = sys.argv[1:3]
+bad = []
+muscles = reduced_deck(s.CALIBRATION, s.PASSIVE, "NBDL CALIBRATION: 12 G, THE MUSCLES AND THEIR STRETCH LOOPS ONLY")
+rest = r.REST.format(model="input/head_neck_54dof.inp") + "\n".join(s.spindle_cards()) + "\n"
+for opts, text in ((["--calibrate", "--check"], muscles), (["--check"], rest)):
+    if any(len(l) > 80 for l in text.splitlines()):
+        bad.append("a card beyond column 80 in: %s" % text.splitlines()[0])
+    p = subprocess.run([hhneck] + opts, input=text, capture_output=True, text=True, timeout=120)
+    if p.returncode:
+        bad.append("%s: %s" % (text.splitlines()[0], p.stderr.strip()))
+names = [l[10:20].strip() for l in muscles.splitlines() if l.startswith("PARAM")]
+if any(n in names for n in s.PASSIVE) or not all(n in names for n in s.LOOPS):
+    bad.append("the muscles-and-loops deck's parameters: %s" % names)
+if len(s.spindle_cards()) != 2:
+    bad.append("expected the two SPINDLE cards of %s" % s.CASE)
+start, fit = os.path.join(short, "start.txt"), os.path.join(short, "fit.txt")
+open(start, "w").write("PARAM SIGMA = 1.0\nPARAM AXIAL = 1.4\n")
+open(fit, "w").write("PARAM SIGMA = 0.5\n")
+point = dict(s.fitted_values(s.merged(start, fit, short)))
+if point != {"SIGMA": 0.5, "AXIAL": 1.4}:
+    bad.append("merged: %s" % point)
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
 finish
