@@ -15,7 +15,9 @@ shipped springs, muscles and factors otherwise):
   excursion of any joint coordinate from its start and where, and the head's
   rotation about the lab's y axis; the same with two FEEDBACK loops on the
   head's rotation (extensors kp 3 per rad, kd 0.1 s per rad; flexors -3,
-  -0.1; 25 ms, sampled every 1 ms).
+  -0.1; 25 ms, sampled every 1 ms); and the same with the stretch loops of
+  input/nbdl12g_spindle.inp instead (SPINDLE cards: every flexor and
+  extensor fed back from its own stretch, kp 5 per lopt, 60 ms).
 """
 import os
 import re
@@ -48,6 +50,8 @@ INITIAL   C4        RY        -3.24     5.0
 LOOPS = """FEEDBACK  EXT       HEAD      Y         3.0       0.1       0.025     0.001
 FEEDBACK  FLEX      HEAD      Y         -3.0      -0.1      0.025     0.001
 """
+with open("input/nbdl12g_spindle.inp") as deck:   # the stretch loops of the 12 g experiment deck
+    SPINDLES = "".join(line for line in deck if line.startswith("SPINDLE"))
 COORDS = ("TX", "TY", "TZ", "RX", "RY", "RZ")
 BODIES = ("T1", "C7", "C6", "C5", "C4", "C3", "C2", "C1", "HEAD")   # the model deck's order
 
@@ -104,15 +108,16 @@ def excursion(h5):
 def main():
     tmp = tempfile.mkdtemp(prefix="rest-")
     print("| discs' bending | largest real part at rest (1/s) | 6 s at rest: largest excursion (rad, deg, where,"
-          " 95 % reached by) | head rotation (deg) | with the loops: largest excursion | head rotation (deg) |")
-    print("|---|---|---|---|---|---|")
+          " 95 % reached by) | head rotation (deg) | with the loops: largest excursion | head rotation (deg) |"
+          " with the stretch loops: largest excursion | head rotation (deg) |")
+    print("|---|---|---|---|---|---|---|---|")
     for fr in FRACTIONS:
         model = os.path.join(tmp, "model_%g.inp" % fr)
         model_copy(fr, model)
         cells = ["%g %%" % (100 * fr), "%+.3g" % rest_margin(model, tmp)]
-        for loops in ("", LOOPS):
+        for k, loops in enumerate(("", LOOPS, SPINDLES)):
             deck = REST.format(model=model) + loops
-            h5 = os.path.join(tmp, "rest_%g_%d.h5" % (fr, bool(loops)))
+            h5 = os.path.join(tmp, "rest_%g_%d.h5" % (fr, k))
             run.run_deck(deck, h5=h5)
             peak, where, settle, head = excursion(h5)
             cells += ["%.3g (%.3g deg, %s, %.2g s)" % (peak, np.degrees(peak), where, settle), "%.3g" % head]

@@ -293,7 +293,7 @@ if any(l[10:20].strip() in f.LOOPS for l in control if l.startswith("PARAM")) or
     bad.append("the control deck keeps a loop: %s" % [l for l in control if l[:5] in ("PARAM", "CASE ")])
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
-check "rest_motion.py: the model copy and the rest decks (with and without the loops) within 80 columns, hhneck --check passes" \
+check "rest_motion.py: the model copy and the rest decks (no loops, the head loops, the stretch loops) within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp" <<'PY'
 import os, subprocess, sys
 sys.path[:0] = ["python", "studies"]
@@ -304,7 +304,10 @@ r.model_copy(0.35, model)
 bad = []
 if not any(l.startswith("SCALE     NZBEND") and "0.35" in l for l in open(model).read().splitlines()):
     bad.append("the model copy does not set NZBEND to 0.35")
-for text in (r.REST.format(model=model), r.REST.format(model=model) + r.LOOPS):
+if r.SPINDLES.count("SPINDLE") != 2:
+    bad.append("expected the two SPINDLE cards of input/nbdl12g_spindle.inp: %r" % r.SPINDLES)
+for text in (r.REST.format(model=model), r.REST.format(model=model) + r.LOOPS,
+             r.REST.format(model=model) + r.SPINDLES):
     if any(len(l) > 80 for l in text.splitlines()):
         bad.append("a card beyond column 80: %s" % text.splitlines()[0])
     p = subprocess.run([hhneck, "--check"], input=text, capture_output=True, text=True, timeout=120)
