@@ -144,15 +144,21 @@ def run_calibrations(decks, tmp, jobs=2):
     return out
 
 
-def main():
+def fit_arguments(args, study):
+    """[(label, listing)] of the --fit LABEL=LISTING options of a study's command line."""
     fits = []
-    args = sys.argv[1:]
+    args = list(args)
     while args:
         a = args.pop(0)
-        if a == "--fit":
+        if a == "--fit" and args and "=" in args[0]:
             fits.append(tuple(args.pop(0).split("=", 1)))
         else:
-            sys.exit("usage: feedback_nbdl.py [--fit LABEL=LISTING ...]")
+            sys.exit("usage: %s [--fit LABEL=LISTING ...]" % study)
+    return fits
+
+
+def main():
+    fits = fit_arguments(sys.argv[1:], "feedback_nbdl.py")
     tmp = tempfile.mkdtemp(prefix="feedback-")
     if not fits:
         fits = run_calibrations(calibrations(), tmp)

@@ -43,7 +43,7 @@ ROOT = os.path.dirname(HERE)
 sys.path[:0] = [os.path.join(ROOT, "python"), HERE]
 from hhneck import run  # noqa: E402
 from hhneck.compare_nbdl import s3  # noqa: E402
-from feedback_nbdl import reduced_deck, run_calibrations, score  # noqa: E402
+from feedback_nbdl import fit_arguments, reduced_deck, run_calibrations, score  # noqa: E402
 from predict_nbdl8g import ROWS, bindings, fitted_values, volunteer_peaks  # noqa: E402
 import rest_motion  # noqa: E402
 
@@ -133,14 +133,7 @@ def catalogue_row(copy, env, listing, tmp, label):
 
 
 def main():
-    fits = []
-    args = sys.argv[1:]
-    while args:
-        a = args.pop(0)
-        if a == "--fit":
-            fits.append(tuple(args.pop(0).split("=", 1)))
-        else:
-            sys.exit("usage: spindle_segmental.py [--fit LABEL=LISTING ...]")
+    fits = fit_arguments(sys.argv[1:], "spindle_segmental.py")
     tmp = tempfile.mkdtemp(prefix="spindle-")
     copy = scratch_copy(tmp)
     env = dict(os.environ, PYTHONPATH=os.path.join(copy, "python"), HHNECK=run.find_executable())
