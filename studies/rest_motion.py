@@ -50,7 +50,8 @@ INITIAL   C4        RY        -3.24     5.0
 LOOPS = """FEEDBACK  EXT       HEAD      Y         3.0       0.1       0.025     0.001
 FEEDBACK  FLEX      HEAD      Y         -3.0      -0.1      0.025     0.001
 """
-with open("input/nbdl12g_spindle.inp") as deck:   # the stretch loops of the 12 g experiment deck
+with open(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "input/nbdl12g_spindle.inp")) \
+        as deck:   # the stretch loops of the 12 g experiment deck
     SPINDLES = "".join(line for line in deck if line.startswith("SPINDLE"))
 COORDS = ("TX", "TY", "TZ", "RX", "RY", "RZ")
 BODIES = ("T1", "C7", "C6", "C5", "C4", "C3", "C2", "C1", "HEAD")   # the model deck's order

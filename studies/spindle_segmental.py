@@ -54,9 +54,9 @@ LOOPS = ("KPSE", "KPSF", "TAUSE", "TAUSF")
 SEGMENTAL = ["--upper-cervical", "none", "--suboccipital", "no", "--segmental", "yes", "--sub-bend", "0.2"]
 
 
-def spindle_cards(path=CASE):
-    """The SPINDLE cards of the 12 g stretch-loop deck."""
-    return [line.rstrip("\n") for line in open(path) if line.startswith("SPINDLE")]
+def spindle_cards():
+    """The SPINDLE cards of the 12 g stretch-loop deck (as rest_motion reads them)."""
+    return rest_motion.SPINDLES.splitlines()
 
 
 def scratch_copy(tmp):
