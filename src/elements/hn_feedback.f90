@@ -30,7 +30,12 @@
 !! reference/parameters.md):
 !! theta = (L(t) - L(t0))/lopt and omega = dL/dt / lopt, L the muscle's
 !! path length, lopt its optimal fibre length; its activation is that
-!! muscle's alone.
+!! muscle's alone. Its gains may rise with the muscle's activation
+!! (alpha-gamma co-activation, the automatic gain compensation of the
+!! stretch reflex): at t_k both are multiplied by 1 + g a_b(t_k), a_b the
+!! muscle's activation then without the loop's own (its history's and the
+!! history's rotation loops'), g >= 0 (g = 0: fixed gains),
+!!   u_k = min(1, max(0, (1 + g a_b(t_k)) (kp theta(t_k - tau) + kd omega(t_k - tau)))).
 module hn_feedback
     use hn_kinds, only: wp, zero, one
     use hn_rotation, only: rotation_vector
@@ -49,6 +54,7 @@ module hn_feedback
         real(wp) :: lopt = one           !! a stretch loop's optimal fibre length, the stretch's unit [m]
         real(wp) :: kp = zero            !! gain on the rotation [1/rad]
         real(wp) :: kd = zero            !! gain on the angular velocity [s/rad]
+        real(wp) :: gain_act = zero      !! a stretch loop's gain rise per unit of its muscle's activation g [-]
         real(wp) :: delay = zero         !! sensing and neural delay tau [s]
         real(wp) :: dt = 1.0e-3_wp       !! sample interval [s]
         real(wp) :: tau_act = 0.015_wp   !! activation time constant [s] (its history's)
@@ -79,10 +85,12 @@ contains
         a = fb%uk + (fb%ak - fb%uk)*exp(-(t - fb%tk)/tau)
     end function feedback_activation
 
-    !> The excitation kp theta + kd omega at t - tau, clipped to [0, 1], from the samples so far.
-    pure real(wp) function feedback_excitation(fb, t) result(u)
-        type(feedback_t), intent(in) :: fb   !! the loop, at least one sample taken
-        real(wp), intent(in) :: t            !! the sample time [s]
+    !> The excitation kp theta + kd omega at t - tau, times the gains'
+    !! scale (default 1), clipped to [0, 1], from the samples so far.
+    pure real(wp) function feedback_excitation(fb, t, scale) result(u)
+        type(feedback_t), intent(in) :: fb         !! the loop, at least one sample taken
+        real(wp), intent(in) :: t                  !! the sample time [s]
+        real(wp), intent(in), optional :: scale    !! the gains' factor, 1 + g a_b (default 1)
         real(wp) :: p, w
         integer :: i
         p = (t - fb%delay - fb%t0)/fb%dt
@@ -97,6 +105,7 @@ contains
         else
             u = fb%kp*fb%theta(fb%n) + fb%kd*fb%omega(fb%n)
         end if
+        if (present(scale)) u = scale*u
         u = min(one, max(zero, u))
     end function feedback_excitation
 
@@ -130,28 +139,32 @@ contains
         real(wp), intent(in) :: s(3, 3)         !! the sensor body's body-to-lab matrix
         real(wp), intent(in) :: w(3)            !! its angular velocity in the lab [rad/s]
         if (fb%n == 0) fb%s0 = s
-        call record_sample(fb, t, sensor_angle(s, fb%s0, fb%axis), w(fb%axis))
+        call record_sample(fb, t, sensor_angle(s, fb%s0, fb%axis), w(fb%axis), one)
     end subroutine feedback_sample
 
     !> Take a sample at t of a stretch loop: its muscle's path length and
     !! lengthening rate; the stretch from the first sample's length and the
-    !! rate, both over lopt, start a new hold as in feedback_sample.
-    pure subroutine stretch_sample(fb, t, length, rate)
+    !! rate, both over lopt, start a new hold as in feedback_sample, the
+    !! gains times 1 + g a_b (a_b the muscle's activation without the loop's).
+    pure subroutine stretch_sample(fb, t, length, rate, a_b)
         type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
         real(wp), intent(in) :: t               !! the sample time [s]
         real(wp), intent(in) :: length          !! the muscle's path length [m]
         real(wp), intent(in) :: rate            !! its rate of lengthening [m/s]
+        real(wp), intent(in) :: a_b             !! the muscle's activation at t without the loop's own
         if (fb%n == 0) fb%l0 = length
-        call record_sample(fb, t, (length - fb%l0)/fb%lopt, rate/fb%lopt)
+        call record_sample(fb, t, (length - fb%l0)/fb%lopt, rate/fb%lopt, one + fb%gain_act*a_b)
     end subroutine stretch_sample
 
     !> Append the sensor's value theta and rate omega at t and start the
-    !! hold there (the first sample starts the run's state, a = 0).
-    pure subroutine record_sample(fb, t, theta, omega)
+    !! hold there, the gains times scale (the first sample starts the
+    !! run's state, a = 0).
+    pure subroutine record_sample(fb, t, theta, omega, scale)
         type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
         real(wp), intent(in) :: t               !! the sample time [s]
         real(wp), intent(in) :: theta           !! the sensor's value
         real(wp), intent(in) :: omega           !! its rate
+        real(wp), intent(in) :: scale           !! the gains' factor
         real(wp), allocatable :: grown(:)
         if (fb%n == 0) then
             fb%t0 = t
@@ -170,7 +183,7 @@ contains
         fb%theta(fb%n) = theta
         fb%omega(fb%n) = omega
         fb%tk = t
-        fb%uk = feedback_excitation(fb, t)
+        fb%uk = feedback_excitation(fb, t, scale)
     end subroutine record_sample
 
     !> The loop's sample times t0 + k dt in [t0, t1] (t1 included within tol).

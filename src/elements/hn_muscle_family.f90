@@ -78,19 +78,22 @@ contains
     !> Activation a(t) of muscle e: its activation history (Hill-type law),
     !! plus the feedback activation of the rotation loops on that history
     !! and of its own stretch loop, at most 1; or its table (eq 11); zero
-    !! without either.
-    pure real(wp) function muscle_activation(this, e, t) result(act)
+    !! without either. Without loop `skip`, when given.
+    pure real(wp) function muscle_activation(this, e, t, skip) result(act)
         class(muscle_family_t), intent(in) :: this   !! the family
         integer, intent(in) :: e                     !! muscle number
         real(wp), intent(in) :: t                    !! time [s]
-        integer :: k
+        integer, intent(in), optional :: skip        !! a feedback loop left out (its number)
+        integer :: k, k_skip
         act = zero
+        k_skip = 0
+        if (present(skip)) k_skip = skip
         associate (m => this%items(e))
             if (m%law == muscle_hill) then
                 if (m%history > 0) then
                     act = activation_value(this%activations(m%history), t)
                     do k = 1, size(this%feedbacks)
-                        if (this%feedbacks(k)%history == m%history .and. &
+                        if (k /= k_skip .and. this%feedbacks(k)%history == m%history .and. &
                             (this%feedbacks(k)%muscle == 0 .or. this%feedbacks(k)%muscle == e)) &
                             act = min(one, act + feedback_activation(this%feedbacks(k), t))
                     end do
@@ -350,15 +353,18 @@ contains
         real(wp), intent(in) :: tol                     !! time tolerance of a sample time [s]
         type(line_geometry_t), allocatable :: gm(:), seg(:, :)
         integer :: k
+        real(wp) :: a_b
         if (any(this%feedbacks%muscle > 0 .and. feedback_due(this%feedbacks, t, tol))) then
             allocate (gm(size(this%items)), seg(max_via + 1, size(this%items)))
             call muscle_geometries(kin, this%items, gm, seg)
         end if
         do k = 1, size(this%feedbacks)
+            a_b = zero
+            if (this%feedbacks(k)%muscle > 0) a_b = muscle_activation(this, this%feedbacks(k)%muscle, t, skip=k)
             associate (fb => this%feedbacks(k))
                 if (.not. feedback_due(fb, t, tol)) cycle
                 if (fb%muscle > 0) then
-                    call stretch_sample(fb, t, gm(fb%muscle)%length, gm(fb%muscle)%rate)
+                    call stretch_sample(fb, t, gm(fb%muscle)%length, gm(fb%muscle)%rate, a_b)
                 else
                     call feedback_sample(fb, t, kin%s(:, :, fb%body), kin%omega(:, fb%body))
                 end if
@@ -512,7 +518,7 @@ contains
         feedbacks = [feedbacks, fb]
     end subroutine feedback_card
 
-    !> A SPINDLE card: history kp kd delay interval, a stretch loop
+    !> A SPINDLE card: history kp kd delay interval g, a stretch loop
     !! (hn_feedback) on every Hill-type muscle of the activation history,
     !! each sensing its own stretch; one card per history. The loops take
     !! the history's time constants.
@@ -530,6 +536,7 @@ contains
         call rd%real(i, 3, 'stretch-rate gain kd', 's per lopt', fb%kd, zero, 1.0e2_wp, default=zero)
         call rd%real(i, 4, 'delay', 's', fb%delay, zero, 1.0_wp, default=zero)
         call rd%real(i, 5, 'sample interval', 's', fb%dt, 1.0e-5_wp, 0.1_wp, default=1.0e-3_wp)
+        call rd%real(i, 6, 'gain rise per unit activation g', '-', fb%gain_act, zero, 1.0e2_wp, default=zero)
         if (rd%failed()) return
         if (any(feedbacks%muscle > 0 .and. feedbacks%history == fb%history)) then
             call rd%fail(rd%context(i, 1, 'activation history')//': history "'// &
