@@ -345,4 +345,29 @@ if point != {"SIGMA": 0.5, "AXIAL": 1.4}:
     bad.append("merged: %s" % point)
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
+check "spindle_gain.py: its calibration deck, whole and with the muscles alone, within 80 columns and hhneck --calibrate --check passes; the one-point deck scores the VALUES point only (F2 0, the rest of the FIT card kept); the VALUES point is fit B's with g = 0" \
+    python3 - "$HHNECK" <<'PY'
+import subprocess, sys
+sys.path[:0] = ["python", "studies"]
+import spindle_gain as g
+import spindle_segmental as s
+from feedback_nbdl import reduced_deck
+hhneck = sys.argv[1]
+bad = []
+whole = open(g.CALIBRATION).read()
+muscles = reduced_deck(g.CALIBRATION, s.PASSIVE, "THE MUSCLES, THEIR STRETCH LOOPS AND GAIN RISES ONLY")
+for text in (whole, muscles, g.one_point(whole)):
+    if any(len(l) > 80 for l in text.splitlines()):
+        bad.append("a card beyond column 80 in: %s" % text.splitlines()[0])
+    p = subprocess.run([hhneck, "--calibrate", "--check"], input=text, capture_output=True, text=True, timeout=120)
+    if p.returncode:
+        bad.append("%s: %s" % (text.splitlines()[0], p.stderr.strip()))
+fit = [l for l in g.one_point(whole).splitlines() if l.startswith("FIT")]
+if fit != ["FIT       NELDER    0         300       13        5.0       1.0       0.05"]:
+    bad.append("one_point's FIT card: %s" % fit)
+values = dict(g.deck_values(g.CALIBRATION))
+if len(values) != 21 or values["GAINE"] != 0.0 or values["GAINF"] != 0.0 or values["KPSE"] != 5.92:
+    bad.append("the VALUES point: %s" % values)
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
 finish

@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""Do stretch-loop gains that rise with the muscle's activation (SPINDLE
+F6: kp and kd times 1 + g a_b, the stretch reflex's automatic gain
+compensation) carry the NBDL volunteers on the segmental column, where
+fixed gains (fit B of studies/spindle_segmental.py) rate 12 g 0.799?
+
+    python3 studies/spindle_gain.py [--fit LABEL=LISTING ...]
+
+In spindle_segmental.py's scratch copy (the segmental column, its
+neutral-zone springs refitted at the calibration's starting point), without
+--fit, two calibrations run side by side (release build):
+input/calibrate_nbdl12g_spindle_gain.inp (fit B's nineteen and the gain
+rises GAINE, GAINF, from fit B's point with g = 0) and the same with the
+disc and stop factors held at the column's (the muscles, the loops and
+their gain rises, 13 parameters). Fit B's point is scored first (its J by
+the same calibration deck with no evaluations beyond it). Each set is then
+scored as spindle_segmental.py does: NBDL 12 g (calibration), 15 g and the
+8 g peaks (prediction), the braking arcs, 6 s at rest and the catalogue
+(ISO/TS 18571, prediction).
+"""
+import os
+import re
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path[:0] = [os.path.join(ROOT, "python"), HERE]
+from hhneck import run  # noqa: E402
+from hhneck.compare_nbdl import s3  # noqa: E402
+from feedback_nbdl import fit_arguments, reduced_deck, run_calibrations, score  # noqa: E402
+from predict_nbdl8g import ROWS, bindings, fitted_values, volunteer_peaks  # noqa: E402
+from spindle_segmental import PASSIVE, catalogue_row, generate, merged, rest_row, scratch_copy, segmental_column, \
+    spindle_cards  # noqa: E402
+
+CALIBRATION = "input/calibrate_nbdl12g_spindle_gain.inp"
+
+
+def deck_values(path):
+    """[(name, value)] of a calibration deck's PARAM cards at its VALUES point."""
+    lines = open(path).read().splitlines()
+    names = [ln[10:20].strip() for ln in lines if ln.startswith("PARAM")]
+    values = [float(v) for ln in lines if ln.startswith("VALUES") for v in ln[10:].split()]
+    return list(zip(names, values))
+
+
+def one_point(text):
+    """The calibration deck text scoring its VALUES point only (the FIT card's F2 = 0)."""
+    return re.sub(r"^(FIT       NELDER    )\S+ *", lambda m: m.group(1) + "%-10s" % "0", text, flags=re.M)
+
+
+def main():
+    fits = fit_arguments(sys.argv[1:], "spindle_gain.py")
+    tmp = tempfile.mkdtemp(prefix="spindle-gain-")
+    copy = scratch_copy(tmp)
+    env = dict(os.environ, PYTHONPATH=os.path.join(copy, "python"), HHNECK=run.find_executable())
+    start = segmental_column(copy, env, tmp)
+    os.chdir(copy)
+    text = open(CALIBRATION).read()
+    point_b = run_calibrations([("fit B's point, g = 0", one_point(text))], tmp)[0][1]
+    os.rename(point_b, os.path.join(tmp, "point_b.txt"))
+    point_b = os.path.join(tmp, "point_b.txt")
+    if not fits:
+        muscles = reduced_deck(CALIBRATION, PASSIVE,
+                               "NBDL CALIBRATION: 12 G, THE MUSCLES, THEIR STRETCH LOOPS AND GAIN RISES ONLY")
+        fits = run_calibrations([("fit B's nineteen and the gain rises (21 parameters)", text),
+                                 ("the muscles, the loops and the gain rises (13)", muscles)], tmp)
+    vol = volunteer_peaks()
+    bind = bindings(CALIBRATION)
+    cards = spindle_cards()
+    rows = [("fit B's point, g = 0", deck_values(CALIBRATION), point_b)]
+    rows += [(label, fitted_values(listing), listing) for label, listing in fits]
+    print("| set | 12 g CORA-style (calibration) | 15 g (prediction) | 8 g head peaks, (model - mean)/SD: "
+          + ", ".join(r[0].replace("peak ", "") for r in ROWS[1:]) + " | braking arc 8 / 12 / 15 g (deg) |"
+          " range warnings |")
+    print("|---|---|---|---|---|---|")
+    for label, values, _ in rows:
+        print(score(label, values, cards, bind, vol, tmp))
+    print("\n| set | 6 s at rest with the loops: largest excursion; head rotation | catalogue (ISO/TS 18571) |")
+    print("|---|---|---|")
+    done = {}
+    for label, values, listing in rows:
+        point = merged(start, listing, tmp)
+        passive = tuple((n, v) for n, v in fitted_values(point) if n in PASSIVE)
+        generate(copy, env, point, springs=False)
+        rest = rest_row(values, cards, bind, tmp)
+        if passive not in done:
+            done[passive] = catalogue_row(copy, env, point, tmp, label)
+        print("| %s | %s | %s |" % (label, rest, done[passive]))
+    print("\nThe fits' values (PARAM lines of each listing) and objectives:")
+    for label, _, listing in rows:
+        best = [ln.strip() for ln in open(listing) if ln.startswith("BEST OBJECTIVE")]
+        stand = [ln.strip() for ln in open(listing) if ln.startswith("STANDING CASE")]
+        print("%s: %s (%s; %s)" % (label, ", ".join("%s %s" % (n, s3(v)) for n, v in fitted_values(listing)),
+                                   best[0] if best else "no objective", "; ".join(stand)))
+
+
+if __name__ == "__main__":
+    main()
