@@ -34,6 +34,7 @@ from spindle_segmental import PASSIVE, catalogue_row, generate, merged, rest_row
     spindle_cards  # noqa: E402
 
 CALIBRATION = "input/calibrate_nbdl12g_spindle_gain.inp"
+MUSCLES_TITLE = "NBDL 12 G: THE MUSCLES, STRETCH LOOPS AND GAIN RISES ONLY"
 
 
 def deck_values(path):
@@ -61,8 +62,7 @@ def main():
     os.rename(point_b, os.path.join(tmp, "point_b.txt"))
     point_b = os.path.join(tmp, "point_b.txt")
     if not fits:
-        muscles = reduced_deck(CALIBRATION, PASSIVE,
-                               "NBDL CALIBRATION: 12 G, THE MUSCLES, THEIR STRETCH LOOPS AND GAIN RISES ONLY")
+        muscles = reduced_deck(CALIBRATION, PASSIVE, MUSCLES_TITLE)
         fits = run_calibrations([("fit B's nineteen and the gain rises (21 parameters)", text),
                                  ("the muscles, the loops and the gain rises (13)", muscles)], tmp)
     vol = volunteer_peaks()

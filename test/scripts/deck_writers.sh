@@ -355,7 +355,7 @@ from feedback_nbdl import reduced_deck
 hhneck = sys.argv[1]
 bad = []
 whole = open(g.CALIBRATION).read()
-muscles = reduced_deck(g.CALIBRATION, s.PASSIVE, "THE MUSCLES, THEIR STRETCH LOOPS AND GAIN RISES ONLY")
+muscles = reduced_deck(g.CALIBRATION, s.PASSIVE, g.MUSCLES_TITLE)
 for text in (whole, muscles, g.one_point(whole)):
     if any(len(l) > 80 for l in text.splitlines()):
         bad.append("a card beyond column 80 in: %s" % text.splitlines()[0])
