@@ -359,10 +359,10 @@ contains
             call muscle_geometries(kin, this%items, gm, seg)
         end if
         do k = 1, size(this%feedbacks)
+            if (.not. feedback_due(this%feedbacks(k), t, tol)) cycle
             a_b = zero
             if (this%feedbacks(k)%muscle > 0) a_b = muscle_activation(this, this%feedbacks(k)%muscle, t, skip=k)
             associate (fb => this%feedbacks(k))
-                if (.not. feedback_due(fb, t, tol)) cycle
                 if (fb%muscle > 0) then
                     call stretch_sample(fb, t, gm(fb%muscle)%length, gm(fb%muscle)%rate, a_b)
                 else
