@@ -27,22 +27,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path[:0] = [os.path.join(ROOT, "python"), HERE]
 from hhneck import run  # noqa: E402
-from hhneck.compare_nbdl import s3  # noqa: E402
-from feedback_nbdl import fit_arguments, reduced_deck, run_calibrations, score  # noqa: E402
-from predict_nbdl8g import ROWS, bindings, fitted_values, volunteer_peaks  # noqa: E402
-from spindle_segmental import PASSIVE, catalogue_row, generate, merged, rest_row, scratch_copy, segmental_column, \
-    spindle_cards  # noqa: E402
+from feedback_nbdl import fit_arguments, reduced_deck, run_calibrations  # noqa: E402
+from predict_nbdl8g import fitted_values  # noqa: E402
+from spindle_segmental import PASSIVE, deck_values, report, scratch_copy, segmental_column  # noqa: E402
 
 CALIBRATION = "input/calibrate_nbdl12g_spindle_gain.inp"
 MUSCLES_TITLE = "NBDL 12 G: THE MUSCLES, STRETCH LOOPS AND GAIN RISES ONLY"
-
-
-def deck_values(path):
-    """[(name, value)] of a calibration deck's PARAM cards at its VALUES point."""
-    lines = open(path).read().splitlines()
-    names = [ln[10:20].strip() for ln in lines if ln.startswith("PARAM")]
-    values = [float(v) for ln in lines if ln.startswith("VALUES") for v in ln[10:].split()]
-    return list(zip(names, values))
 
 
 def one_point(text):
@@ -65,34 +55,9 @@ def main():
         muscles = reduced_deck(CALIBRATION, PASSIVE, MUSCLES_TITLE)
         fits = run_calibrations([("fit B's nineteen and the gain rises (21 parameters)", text),
                                  ("the muscles, the loops and the gain rises (13)", muscles)], tmp)
-    vol = volunteer_peaks()
-    bind = bindings(CALIBRATION)
-    cards = spindle_cards()
     rows = [("fit B's point, g = 0", deck_values(CALIBRATION), point_b)]
     rows += [(label, fitted_values(listing), listing) for label, listing in fits]
-    print("| set | 12 g CORA-style (calibration) | 15 g (prediction) | 8 g head peaks, (model - mean)/SD: "
-          + ", ".join(r[0].replace("peak ", "") for r in ROWS[1:]) + " | braking arc 8 / 12 / 15 g (deg) |"
-          " range warnings |")
-    print("|---|---|---|---|---|---|")
-    for label, values, _ in rows:
-        print(score(label, values, cards, bind, vol, tmp))
-    print("\n| set | 6 s at rest with the loops: largest excursion; head rotation | catalogue (ISO/TS 18571) |")
-    print("|---|---|---|")
-    done = {}
-    for label, values, listing in rows:
-        point = merged(start, listing, tmp)
-        passive = tuple((n, v) for n, v in fitted_values(point) if n in PASSIVE)
-        generate(copy, env, point, springs=False)
-        rest = rest_row(values, cards, bind, tmp)
-        if passive not in done:
-            done[passive] = catalogue_row(copy, env, point, tmp, label)
-        print("| %s | %s | %s |" % (label, rest, done[passive]))
-    print("\nThe fits' values (PARAM lines of each listing) and objectives:")
-    for label, _, listing in rows:
-        best = [ln.strip() for ln in open(listing) if ln.startswith("BEST OBJECTIVE")]
-        stand = [ln.strip() for ln in open(listing) if ln.startswith("STANDING CASE")]
-        print("%s: %s (%s; %s)" % (label, ", ".join("%s %s" % (n, s3(v)) for n, v in fitted_values(listing)),
-                                   best[0] if best else "no objective", "; ".join(stand)))
+    report(rows, [(label, listing) for label, _, listing in rows], CALIBRATION, start, copy, env, tmp)
 
 
 if __name__ == "__main__":

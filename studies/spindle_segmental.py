@@ -59,6 +59,14 @@ def spindle_cards():
     return rest_motion.SPINDLES.splitlines()
 
 
+def deck_values(path):
+    """[(name, value)] of a calibration deck's PARAM cards at its VALUES point."""
+    lines = open(path).read().splitlines()
+    names = [ln[10:20].strip() for ln in lines if ln.startswith("PARAM")]
+    values = [float(v) for ln in lines if ln.startswith("VALUES") for v in ln[10:].split()]
+    return list(zip(names, values))
+
+
 def scratch_copy(tmp):
     """A copy of the repository's tracked files in tmp/p, shared/ linked beside it."""
     copy = os.path.join(tmp, "p")
@@ -83,11 +91,8 @@ def segmental_column(copy, env, tmp):
     """Steps 1-2 of SEGMENTAL=1 dev/fit_model.sh in the copy: the springs fitted on the column at the
     calibration's starting point; returns that point as a listing of PARAM lines."""
     start = os.path.join(tmp, "start.txt")
-    names = [ln[10:20].strip() for ln in open(os.path.join(copy, "input/calibrate_nbdl12g.inp"))
-             if ln.startswith("PARAM")]
-    values = [v for ln in open(os.path.join(copy, "input/calibrate_nbdl12g.inp")) if ln.startswith("VALUES")
-              for v in ln[10:].split()]
-    open(start, "w").write("".join("PARAM %s = %s\n" % nv for nv in zip(names, values)))
+    values = deck_values(os.path.join(copy, "input/calibrate_nbdl12g.inp"))
+    open(start, "w").write("".join("PARAM %s = %.9g\n" % nv for nv in values))
     generate(copy, env, start)
     subprocess.run([sys.executable, "-c", "from hhneck.fit_joints import main; main([])"], cwd=copy, env=env,
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -144,16 +149,21 @@ def main():
                                "NBDL CALIBRATION: 12 G, THE MUSCLES AND THEIR STRETCH LOOPS ONLY")
         fits = run_calibrations([("the fifteen and the loops (19 parameters)", open(CALIBRATION).read()),
                                  ("the muscles and the loops (11)", muscles)], tmp)
-    vol = volunteer_peaks()
-    bind = bindings(CALIBRATION)
-    cards = spindle_cards()
-    start_values = [(n, float(v)) for n, v in
-                    zip([ln[10:20].strip() for ln in open(CALIBRATION) if ln.startswith("PARAM")],
-                        [v for ln in open(CALIBRATION) if ln.startswith("VALUES") for v in ln[10:].split()])]
+    start_values = deck_values(CALIBRATION)
     no_loops = [(n, 0.0 if n in ("KPSE", "KPSF") else v) for n, v in start_values]
     rows = [("the column's starting point, loops off", no_loops, start),
             ("the column's starting point, the VALUES loops", start_values, start)]
     rows += [(label, fitted_values(listing), listing) for label, listing in fits]
+    report(rows, fits, CALIBRATION, start, copy, env, tmp)
+
+
+def report(rows, fits, calibration, start, copy, env, tmp):
+    """Print the tables of the sets `rows` ((label, values, listing) on the copy's column, `start`
+    its starting point; the PARAM cards of `calibration` bind the values): the NBDL scores, then
+    6 s at rest and the catalogue, then the values and objectives of the listings `fits`."""
+    vol = volunteer_peaks()
+    bind = bindings(calibration)
+    cards = spindle_cards()
     print("| set | 12 g CORA-style (calibration) | 15 g (prediction) | 8 g head peaks, (model - mean)/SD: "
           + ", ".join(r[0].replace("peak ", "") for r in ROWS[1:]) + " | braking arc 8 / 12 / 15 g (deg) |"
           " range warnings |")
@@ -177,7 +187,6 @@ def main():
         stand = [ln.strip() for ln in open(listing) if ln.startswith("STANDING CASE")]
         print("%s: %s (%s; %s)" % (label, ", ".join("%s %s" % (n, s3(v)) for n, v in fitted_values(listing)),
                                    best[0] if best else "no objective", "; ".join(stand)))
-
 
 if __name__ == "__main__":
     main()
