@@ -21,15 +21,13 @@ scored as spindle_segmental.py does: NBDL 12 g (calibration), 15 g and the
 import os
 import re
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path[:0] = [os.path.join(ROOT, "python"), HERE]
-from hhneck import run  # noqa: E402
 from feedback_nbdl import fit_arguments, reduced_deck, run_calibrations  # noqa: E402
 from predict_nbdl8g import fitted_values  # noqa: E402
-from spindle_segmental import PASSIVE, deck_values, report, scratch_copy, segmental_column  # noqa: E402
+from spindle_segmental import PASSIVE, column_copy, deck_values, report  # noqa: E402
 
 CALIBRATION = "input/calibrate_nbdl12g_spindle_gain.inp"
 MUSCLES_TITLE = "NBDL 12 G: THE MUSCLES, STRETCH LOOPS AND GAIN RISES ONLY"
@@ -42,11 +40,7 @@ def one_point(text):
 
 def main():
     fits = fit_arguments(sys.argv[1:], "spindle_gain.py")
-    tmp = tempfile.mkdtemp(prefix="spindle-gain-")
-    copy = scratch_copy(tmp)
-    env = dict(os.environ, PYTHONPATH=os.path.join(copy, "python"), HHNECK=run.find_executable())
-    start = segmental_column(copy, env, tmp)
-    os.chdir(copy)
+    tmp, copy, env, start = column_copy("spindle-gain-")
     text = open(CALIBRATION).read()
     point_b = run_calibrations([("fit B's point, g = 0", one_point(text))], tmp)[0][1]
     os.rename(point_b, os.path.join(tmp, "point_b.txt"))

@@ -100,6 +100,18 @@ def segmental_column(copy, env, tmp):
     return start
 
 
+def column_copy(prefix):
+    """(tmp, copy, env, start): a scratch folder, the repository's copy in it with the segmental
+    column at the calibration's starting point (that point's listing `start`), the environment
+    that runs the copy's tools; the working directory the copy's."""
+    tmp = tempfile.mkdtemp(prefix=prefix)
+    copy = scratch_copy(tmp)
+    env = dict(os.environ, PYTHONPATH=os.path.join(copy, "python"), HHNECK=run.find_executable())
+    start = segmental_column(copy, env, tmp)
+    os.chdir(copy)
+    return tmp, copy, env, start
+
+
 def merged(start, listing, tmp):
     """A listing of the starting point's PARAM lines with those of `listing` in their place (a fit of
     some of the parameters keeps the others at the column's)."""
@@ -139,11 +151,7 @@ def catalogue_row(copy, env, listing, tmp, label):
 
 def main():
     fits = fit_arguments(sys.argv[1:], "spindle_segmental.py")
-    tmp = tempfile.mkdtemp(prefix="spindle-")
-    copy = scratch_copy(tmp)
-    env = dict(os.environ, PYTHONPATH=os.path.join(copy, "python"), HHNECK=run.find_executable())
-    start = segmental_column(copy, env, tmp)
-    os.chdir(copy)
+    tmp, copy, env, start = column_copy("spindle-")
     if not fits:
         muscles = reduced_deck(CALIBRATION, PASSIVE,
                                "NBDL CALIBRATION: 12 G, THE MUSCLES AND THEIR STRETCH LOOPS ONLY")
