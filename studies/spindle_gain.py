@@ -38,6 +38,15 @@ def one_point(text):
     return re.sub(r"^(FIT       NELDER    )\S+ *", lambda m: m.group(1) + "%-10s" % "0", text, flags=re.M)
 
 
+def restarted(text, listing):
+    """The calibration deck text with its VALUES point the best point of `listing` (a Nelder-Mead
+    run again from where the last one stopped)."""
+    values = [v for _, v in fitted_values(listing)]
+    lines = [ln for ln in text.splitlines() if not ln.startswith("VALUES")]
+    lines += ["VALUES    " + "".join("%-10.6g" % v for v in values[k:k + 7]).rstrip() for k in range(0, len(values), 7)]
+    return "\n".join(lines) + "\n"
+
+
 def main():
     fits = fit_arguments(sys.argv[1:], "spindle_gain.py")
     tmp, copy, env, start = column_copy("spindle-gain-")
@@ -49,6 +58,10 @@ def main():
         muscles = reduced_deck(CALIBRATION, PASSIVE, MUSCLES_TITLE)
         fits = run_calibrations([("fit B's nineteen and the gain rises (21 parameters)", text),
                                  ("the muscles, the loops and the gain rises (13)", muscles)], tmp)
+        os.rename(fits[0][1], os.path.join(tmp, "fit21.txt"))
+        fits[0] = (fits[0][0], os.path.join(tmp, "fit21.txt"))
+        fits.insert(1, run_calibrations([("the 21 again from there (a second 2500 evaluations)",
+                                          restarted(text, fits[0][1]))], tmp)[0])
     rows = [("fit B's point, g = 0", deck_values(CALIBRATION), point_b)]
     rows += [(label, fitted_values(listing), listing) for label, listing in fits]
     report(rows, [(label, listing) for label, _, listing in rows], CALIBRATION, start, copy, env, tmp)
