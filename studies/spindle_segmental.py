@@ -112,11 +112,11 @@ def column_copy(prefix):
     return tmp, copy, env, start
 
 
-def merged(start, listing, tmp):
-    """A listing of the starting point's PARAM lines with those of `listing` in their place (a fit of
-    some of the parameters keeps the others at the column's)."""
+def merged(start, point, tmp):
+    """A listing of the starting point's PARAM lines with the (name, value) pairs `point` in their
+    place (a fit of some of the parameters keeps the others at the column's)."""
     values = dict(fitted_values(start))
-    values.update(fitted_values(listing))
+    values.update(point)
     path = os.path.join(tmp, "merged.txt")
     open(path, "w").write("".join("PARAM %s = %.9g\n" % nv for nv in values.items()))
     return path
@@ -181,8 +181,8 @@ def report(rows, fits, calibration, start, copy, env, tmp):
     print("\n| set | 6 s at rest with the loops: largest excursion; head rotation | catalogue (ISO/TS 18571) |")
     print("|---|---|---|")
     done = {}
-    for label, values, listing in rows:
-        point = merged(start, listing, tmp)
+    for label, values, _ in rows:
+        point = merged(start, values, tmp)
         passive = tuple((n, v) for n, v in fitted_values(point) if n in PASSIVE)
         generate(copy, env, point, springs=False)
         rest = rest_row(values, cards, bind, tmp)
