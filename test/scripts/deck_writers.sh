@@ -337,10 +337,9 @@ if any(n in names for n in s.PASSIVE) or not all(n in names for n in s.LOOPS):
     bad.append("the muscles-and-loops deck's parameters: %s" % names)
 if len(s.spindle_cards()) != 2:
     bad.append("expected the two SPINDLE cards of %s" % s.CASE)
-start, fit = os.path.join(short, "start.txt"), os.path.join(short, "fit.txt")
+start = os.path.join(short, "start.txt")
 open(start, "w").write("PARAM SIGMA = 1.0\nPARAM AXIAL = 1.4\n")
-open(fit, "w").write("PARAM SIGMA = 0.5\n")
-point = dict(s.fitted_values(s.merged(start, fit, short)))
+point = dict(s.fitted_values(s.merged(start, [("SIGMA", 0.5)], short)))
 if point != {"SIGMA": 0.5, "AXIAL": 1.4}:
     bad.append("merged: %s" % point)
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
@@ -368,6 +367,30 @@ if fit != ["FIT       NELDER    0         300       13        5.0       1.0     
 values = dict(g.deck_values(g.CALIBRATION))
 if len(values) != 21 or values["GAINE"] != 0.0 or values["GAINF"] != 0.0 or values["KPSE"] != 5.92:
     bad.append("the VALUES point: %s" % values)
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+check "neck_inertia.py: the Kang and Stemper decks with its CHANGE cards (the neck's masses and inertias, each coupling) within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$tmp" <<'PY'
+import os, subprocess, sys
+sys.path[:0] = ["python", "studies"]
+import neck_inertia as n
+from hhneck import segments, specimens
+hhneck, short = sys.argv[1:3]
+work = os.path.join(short, "neck_inertia")
+os.makedirs(work, exist_ok=True)
+bad = []
+cards = n.mass_changes(0.5) + [c for _, c in n.COUPLINGS]
+if len(n.mass_changes(0.5)) != 14:
+    bad.append("expected a MASS and an INERTIA card for each of C7 ... C1: %s" % n.mass_changes(0.5))
+for deck in (specimens.kang_deck(work, "side"), specimens.kang_deck(work, "front"), specimens.stemper_deck(work)):
+    n.with_changes(deck, cards)
+    text = open(deck).read()
+    if any(len(l) > 80 for l in text.splitlines()):
+        bad.append("a card beyond column 80 in %s" % deck)
+    p = subprocess.run([hhneck, "-I", segments.ROOT, "--check"], input=text, capture_output=True, text=True,
+                       timeout=120, cwd=work)
+    if p.returncode:
+        bad.append("%s: %s" % (deck, p.stderr.strip()))
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 finish
