@@ -18,6 +18,10 @@
 !! flexion (My) positive. A LOADCELL card's channels are the section load of
 !! its body, in its frame body's axes and in SAE J211 axes.
 !!
+!! The head accelerometer channels (HEAD_AXS ...) are what an accelerometer
+!! at the head's mass centre reads: the specific force a - g in head axes
+!! (at rest upright, +1 g along the head's z).
+!!
 !! The three-dimensional kinematics relative to T1 (head relative to T1 and
 !! to R as Bryant angles and rotation vectors, the head's translation in
 !! T1's axes, T1's lateral motion, each joint's planar angles) are written to
@@ -61,6 +65,7 @@ module hn_channels
     integer, parameter :: q_t1_planar = 23    !! T1's planar angle about global axis `comp` [deg]
     integer, parameter :: q_seg_planar = 24   !! planar angle about axis `comp` of body `item` relative to its parent [deg]
     integer, parameter :: q_cell = 25         !! load-cell `item`, component `comp` (1-6 body axes F, M; 7-12 J211) [N, N m]
+    integer, parameter :: q_head_acc_sf = 26  !! head accelerometer: specific force a - g in head axis `comp` [g]
 
     integer, parameter :: r_head_t1 = 1, r_head_lab = 2   !! the two rotations of q_rel_*: head in T1's axes, head in R
 
@@ -113,6 +118,9 @@ module hn_channels
         channel_t('HEAD_AXL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 1), &
         channel_t('HEAD_AYL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 2), &
         channel_t('HEAD_AZL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 3), &
+        channel_t('HEAD_AXS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 1, 0, .false.), &
+        channel_t('HEAD_AYS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 2, 0, .false.), &
+        channel_t('HEAD_AZS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 3, 0, .false.), &
         channel_t('HEAD_ALPHX', 'rad/s^2', 'HEAD 3D', q_head_alpha, 0, 1), &
         channel_t('HEAD_ALPHZ', 'rad/s^2', 'HEAD 3D', q_head_alpha, 0, 3), &
         channel_t('HEAD_OMEGX', 'rad/s', 'HEAD 3D', q_head_omega, 0, 1), &
@@ -321,6 +329,9 @@ contains
             case (q_head_acc_res); v = norm2(hs%acc)/g_std
             case (q_head_acc_loc)
                 sl = matmul(transpose(hs%s), hs%acc)/g_std
+                v = sl(c%comp)
+            case (q_head_acc_sf)
+                sl = matmul(transpose(hs%s), hs%acc - model%gravity)/g_std
                 v = sl(c%comp)
             case (q_head_alpha); v = hs%alpha(c%comp)
             case (q_head_omega); v = ws%kin%omega(c%comp, h)
