@@ -118,7 +118,9 @@ SPECIMEN_NOTES = {
     "Reference: the corridor "
     "outline's midline; ISO/TS 18571 over the 0.3–126 ms the corridors cover.",
     "Kang 2018 front 14 km/h": "T1 potted and driven rearward by the source's pulse, muscles passive, posture "
-    "held as for Stemper, T1 tilted to 24 deg, SAE J211 axes; the load cell a LOADCELL card cutting the potted T1 from C7 (the load on "
+    "held as for Stemper, T1 tilted to 24 deg, SAE J211 axes; the head's accelerations as its accelerometer reads them "
+    "(the specific force a - g in the head's axes, from its value at t = 0: HEAD_AXS ...; in the lab's axes they score "
+    "lower, studies/kang_head_frame.py); the load cell a LOADCELL card cutting the potted T1 from C7 (the load on "
     "the neck and head, in T1's axes) about the potting centre as the set-up placed it (81 mm behind, 229 mm below "
     "the head's mass centre), from its value at t = 0 (the data are tared). Reference: the corridor's midline; window 0 to 1.2 × the time of its "
     "largest magnitude (the source notebook's).",

@@ -76,7 +76,15 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   y; side: y- and z-acceleration, rotation about x) and the load cell
   (front: Fx, Fz, My; side: Mx, Fy, Fz), all in SAE J211 axes (x forward,
   y right, z down: the model's y and z change sign; the head's rotations
-  are HEADL_RX and -HEADL_RY, its Bryant angles in R, from the start).
+  are HEADL_RX and -HEADL_RY, its Bryant angles in R, from the start);
+* the head's accelerations as the specimens' head-mounted accelerometers
+  give them: in the head's own axes (SAE J211 records a head's
+  acceleration in its anatomical, moving frame; the source's notebook
+  compares the SAFER model's head accelerometer), as specific force a - g
+  (what an accelerometer senses), from its value at t = 0 (the data start
+  at zero: tared upright): HEAD_AXS, HEAD_AYS, HEAD_AZS. The lab-frame
+  acceleration HEAD_AX ... peaks 24 ms early in the side case, where the
+  head turns 54 deg (studies/kang_head_frame.py rates the three readings).
   Reference: the corridor's midline (front) or the mean of PMHS1 and PMHS2
   (side); window 0 to 1.2 x the time of the reference's largest magnitude,
   as the source's notebook rates.
@@ -101,10 +109,10 @@ from . import iso18571, segments, specimen_data
 CHANNELS = {
     "stemper": [("seg_angle_C%d_C%d" % (k, k + 1), "C%d_PY" % k, -1.0, True) for k in range(2, 7)]
     + [("head_T1_angle", "HT1_RY", -1.0, True), ("head_T1_retraction", "HT1_DX", 1.0, False)],
-    "kang_front": [("head_acc_x", "HEAD_AX", 1.0, False), ("head_acc_z", "HEAD_AZ", -1.0, False),
+    "kang_front": [("head_acc_x", "HEAD_AXS", 1.0, True), ("head_acc_z", "HEAD_AZS", -1.0, True),
                    ("head_rot_y", "HEADL_RY", -1.0, True), ("loadcell_force_x", "T1CELL_JFX", 1.0, True),
                    ("loadcell_force_z", "T1CELL_JFZ", 1.0, True), ("loadcell_moment_y", "T1CELL_JMY", 1.0, True)],
-    "kang_side": [("head_acc_y", "HEAD_AY", -1.0, False), ("head_acc_z", "HEAD_AZ", -1.0, False),
+    "kang_side": [("head_acc_y", "HEAD_AYS", -1.0, True), ("head_acc_z", "HEAD_AZS", -1.0, True),
                   ("head_rot_x", "HEADL_RX", 1.0, True), ("loadcell_moment_x", "T1CELL_JMX", 1.0, True),
                   ("loadcell_force_y", "T1CELL_JFY", 1.0, True), ("loadcell_force_z", "T1CELL_JFZ", 1.0, True)],
 }

@@ -98,7 +98,7 @@ def test_kang_drive_and_signs(tmp_path, direction):
     with h5py.File(tmp_path / ("kang_%s_hold.h5" % direction), "r") as f:
         t = f["time"][:]
         p = f["bodies/position"][:, 0, :]
-        ay = f["channels"]["HEAD_AY"][:]
+        ays = f["channels"]["HEAD_AYS"][:]
     k = 0 if direction == "front" else 1
     v = np.gradient(p[:, k], t)
     tp, a = specimen_data.read_pulse(os.path.join(segments.DATA_DIR, "kang2018_sled_pulse.csv"))
@@ -115,7 +115,7 @@ def test_kang_drive_and_signs(tmp_path, direction):
         assert fx[np.argmax(np.abs(fx))] < 0 and my[np.argmax(np.abs(my))] > 0
     else:
         tm, aj = model["head_acc_y"]
-        assert np.allclose(aj, -ay) and aj[np.argmax(np.abs(aj))] > 0
+        assert np.allclose(aj, -(ays - ays[0])) and aj[0] == 0.0 and aj[np.argmax(np.abs(aj))] > 0
         tm, rx = model["head_rot_x"]
         assert rx.min() < -30.0 and rx[0] == 0.0
     rated = specimens.rate_kang(direction, model)
@@ -129,11 +129,22 @@ def test_kang_drive_and_signs(tmp_path, direction):
         st1 = f["bodies/rotation"][0, names.index("T1")].T       # T1's S_ij at the start
         pos = f["bodies/position"][0]
         mass = f["model/mass"][:]
-        ch = {n: f["channels"][n][:] for n in ("HEADL_RX", "HEADL_RY", "T1CELL_JFZ", "T1CELL_JFX", "T1CELL_JMY")}
+        ch = {n: f["channels"][n][:] for n in ("HEADL_RX", "HEADL_RY", "T1CELL_JFZ", "T1CELL_JFX", "T1CELL_JMY",
+                                               "HEAD_AX", "HEAD_AY", "HEAD_AZ", "HEAD_AXS", "HEAD_AYS", "HEAD_AZS")}
     # the head's Bryant angles in R against its stored matrices: x = atan2(-S23, S33), y = asin(S13)
     s = np.transpose(rot, (0, 2, 1))
     assert np.allclose(ch["HEADL_RX"], np.degrees(np.arctan2(-s[:, 1, 2], s[:, 2, 2])), atol=1e-9)
     assert np.allclose(ch["HEADL_RY"], np.degrees(np.arcsin(s[:, 0, 2])), atol=1e-9)
+    # the head's accelerometer: the lab-frame acceleration less gravity (-1 g along z), turned
+    # into head axes by the stored matrices; upright at rest it reads +1 g along the head's z
+    lab = np.stack([ch["HEAD_AX"], ch["HEAD_AY"], ch["HEAD_AZ"] + 1.0], axis=1)
+    own = np.einsum("tji,tj->ti", s, lab)
+    assert np.allclose(np.stack([ch["HEAD_AXS"], ch["HEAD_AYS"], ch["HEAD_AZS"]], axis=1), own, atol=1e-9)
+    assert ch["HEAD_AZS"][0] == pytest.approx(1.0, abs=0.01)
+    # the rated readings: tared, in J211 signs (front: x as is, z down)
+    if direction == "front":
+        assert np.allclose(model["head_acc_x"][1], ch["HEAD_AXS"] - ch["HEAD_AXS"][0])
+    assert np.allclose(model["head_acc_z"][1], -(ch["HEAD_AZS"] - ch["HEAD_AZS"][0]))
     # the cell 81 mm behind and 229 mm below the head's mass centre at the start, in T1's axes
     # (T1 tilted by the potting's slope less the model's: 0.2 deg about y)
     tilt = np.radians(specimens.T1_SLOPE["kang"] - specimens.model_t1_slope())
