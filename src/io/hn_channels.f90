@@ -118,9 +118,6 @@ module hn_channels
         channel_t('HEAD_AXL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 1), &
         channel_t('HEAD_AYL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 2), &
         channel_t('HEAD_AZL', 'g', 'HEAD 3D', q_head_acc_loc, 0, 3), &
-        channel_t('HEAD_AXS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 1, 0, .false.), &
-        channel_t('HEAD_AYS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 2, 0, .false.), &
-        channel_t('HEAD_AZS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 3, 0, .false.), &
         channel_t('HEAD_ALPHX', 'rad/s^2', 'HEAD 3D', q_head_alpha, 0, 1), &
         channel_t('HEAD_ALPHZ', 'rad/s^2', 'HEAD 3D', q_head_alpha, 0, 3), &
         channel_t('HEAD_OMEGX', 'rad/s', 'HEAD 3D', q_head_omega, 0, 1), &
@@ -135,7 +132,10 @@ module hn_channels
         channel_t('OC_FZ', 'N', 'OC LOADS', q_oc_force, 0, 3), &
         channel_t('OC_MX', 'N m', 'OC LOADS', q_oc_moment, 0, 1), &
         channel_t('OC_MY', 'N m', 'OC LOADS', q_oc_moment, 0, 2), &
-        channel_t('OC_MZ', 'N m', 'OC LOADS', q_oc_moment, 0, 3)]
+        channel_t('OC_MZ', 'N m', 'OC LOADS', q_oc_moment, 0, 3), &
+        channel_t('HEAD_AXS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 1, 0, .false.), &
+        channel_t('HEAD_AYS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 2, 0, .false.), &
+        channel_t('HEAD_AZS', 'g', 'HEAD 3D', q_head_acc_sf, 0, 3, 0, .false.)]
 
     !> Three-dimensional kinematics relative to T1 and T1's lateral motion
     !! (result file only).
