@@ -49,6 +49,7 @@ TIMES_MS = (20, 30, 36, 40, 50, 64)
 
 #: part 2: (label, CHANGE card) of each coupling softened
 COUPLINGS = [("discs' G x0.3", "CHANGE    CG        FAMILY    DISCS     G         SCALE     0.3"),
+             ("discs' G x0.05", "CHANGE    CG5       FAMILY    DISCS     G         SCALE     0.05"),
              ("discs' BENDX x0.3", "CHANGE    CBX       FAMILY    DISCS     BENDX     SCALE     0.3"),
              ("discs' E x0.3", "CHANGE    CE        FAMILY    DISCS     E         SCALE     0.3"),
              ("discs' VBEND x0.2", "CHANGE    CVB       FAMILY    DISCS     VBEND     SCALE     0.2"),
