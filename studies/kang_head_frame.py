@@ -26,7 +26,7 @@ import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 import h5py  # noqa: E402
-from hhneck import iso18571, segments, specimen_data, specimens  # noqa: E402
+from hhneck import specimens  # noqa: E402
 from hhneck.compare_nbdl import s3  # noqa: E402
 
 #: per direction: the data's head-acceleration channels and their axis (0 x, 1 y, 2 z)
@@ -36,7 +36,8 @@ READINGS = (("lab", "HEAD_A%s", False), ("head axes", "HEAD_A%sL", False), ("acc
 
 
 def readings(h5, axis):
-    """{reading: (t [ms], value in J211 signs [g])} of one axis of a run."""
+    """({reading: (t [ms], value in J211 signs [g])} of one axis of a run, the head's largest rotation
+    about x or y in R [deg])."""
     out = {}
     with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
@@ -54,22 +55,18 @@ def main():
     print("|---|---|---|" + "---|" * len(READINGS) + "---|")
     for direction, chans in CHANNELS.items():
         h5 = specimens._run(specimens.kang_deck(work, direction), work, None)
-        path = os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction)
+        reads = {axis: readings(h5, axis) for _, axis in chans}
+        rated = {}
+        for label, _, _ in READINGS:          # the catalogue's rating, the head's channels read each way
+            model = specimens.model_channels("kang_" + direction, h5)
+            model.update((name, reads[axis][0][label]) for name, axis in chans)
+            rated[label] = specimens.rate_kang(direction, model)
         for name, axis in chans:
-            g, ref, lo, hi = specimen_data.reference(path, name)
-            keep = g >= 0.0
-            g, ref = g[keep], ref[keep]
-            keep = g <= 1.2 * g[np.argmax(np.abs(ref))]               # the catalogue's window
-            g, ref = g[keep], ref[keep]
-            kr = int(np.argmax(np.abs(ref)))
-            reads, rot = readings(h5, axis)
-            cells = []
-            for label, _, _ in READINGS:
-                m = np.interp(g, *reads[label])
-                km = int(np.argmax(np.abs(m)))
-                cells.append("%s, %s (%.0f)" % (s3(iso18571.rate(g * 1e-3, ref, m)["overall"]), s3(m[km]), g[km]))
-            print("| Kang %s | %s | %s (%.0f) | %s | %s deg |" % (direction, name, s3(ref[kr]), g[kr], " | ".join(cells),
-                                                               s3(rot)))
+            ref = rated[READINGS[0][0]][name]["peak_ref"]
+            cells = ["%s, %s (%.0f)" % (s3(rated[label][name]["overall"]), s3(rated[label][name]["peak_model"][0]),
+                                        rated[label][name]["peak_model"][1]) for label, _, _ in READINGS]
+            print("| Kang %s | %s | %s (%.0f) | %s | %s deg |" % (direction, name, s3(ref[0]), ref[1], " | ".join(cells),
+                                                               s3(reads[axis][1])))
 
 
 if __name__ == "__main__":

@@ -84,7 +84,7 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   (what an accelerometer senses), from its value at t = 0 (the data start
   at zero: tared upright): HEAD_AXS, HEAD_AYS, HEAD_AZS. The lab-frame
   acceleration HEAD_AX ... peaks 24 ms early in the side case, where the
-  head turns 54 deg (studies/kang_head_frame.py rates the three readings).
+  head turns 64 deg (studies/kang_head_frame.py rates the three readings).
   Reference: the corridor's midline (front) or the mean of PMHS1 and PMHS2
   (side); window 0 to 1.2 x the time of the reference's largest magnitude,
   as the source's notebook rates.
