@@ -13,8 +13,10 @@ what would lighter cervical segments change in every case?
    load pairs between joined bodies, gravity is tared with T1 held), which
    the script checks. For the specimens the same split is estimated: the
    head's part as the model's head mass times the specimens' head
-   acceleration (an assumption: the sources give no head masses), the rest
-   of their cell force the neck's and the potting's.
+   acceleration (an assumption: the sources give no head masses; their
+   accelerometer's axes taken as the cell's, which holds while their head
+   has turned less than 5 deg, to 40 ms; later rows mix the axes), the
+   rest of their cell force the neck's and the potting's.
 2. The passive couplings between T1 and the neck one at a time (CHANGE
    cards on the shipped set: the discs' shear and torsion modulus G, their
    lateral bending BENDX, axial stiffness E and bending damping VBEND, the
@@ -108,7 +110,6 @@ def split_table(work):
         path = os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction)
         gf, force = specimen_data.reference(path, data_force)[:2]
         ga, acc = specimen_data.reference(path, data_acc)[:2]
-        sign = np.sign(force[np.argmax(np.abs(force))])                 # the pulse's side of the cell
         print("\n### Kang %s: the cell's %s [N] and its parts (model: the sum of the parts is the channel "
               "within %.2g N)\n" % (direction, data_force.split("_")[-1].upper(), worst))
         print("| t [ms] | model cell | model head (m a) | model neck (C7-C1) | specimens' cell | "
@@ -117,10 +118,9 @@ def split_table(work):
         for ms in TIMES_MS:
             k = int(np.argmin(np.abs(t - ms)))
             fs = float(np.interp(ms, gf, force))
-            hs = sign * head_mass * 9.80665 * abs(float(np.interp(ms, ga, acc)))
+            hs = head_mass * 9.80665 * float(np.interp(ms, ga, acc))  # both in J211 signs
             print("| %d | %s | %s | %s | %s | %s | %s |" % (ms, s3(cell[k]), s3(head[k]), s3(neck[k]), s3(fs),
                                                        s3(hs), s3(fs - hs)))
-    return head_mass
 
 
 def specimen_scores(work, scale):
