@@ -27,11 +27,11 @@ import numpy as np
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 import h5py  # noqa: E402
 from hhneck import specimens  # noqa: E402
+from hhneck.export import kinematic_to_j211  # noqa: E402
 from hhneck.compare_nbdl import s3  # noqa: E402
 
 #: per direction: the data's head-acceleration channels and their axis (0 x, 1 y, 2 z)
 CHANNELS = {"front": (("head_acc_x", 0), ("head_acc_z", 2)), "side": (("head_acc_y", 1), ("head_acc_z", 2))}
-J211 = np.array([1.0, -1.0, -1.0])
 READINGS = (("lab", "HEAD_A%s", False), ("head axes", "HEAD_A%sL", False), ("accelerometer", "HEAD_A%sS", True))
 
 
@@ -42,7 +42,7 @@ def readings(h5, axis):
     with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
         for label, pattern, tared in READINGS:
-            v = J211[axis] * f["channels"][pattern % "XYZ"[axis]][:]
+            v = kinematic_to_j211([f["channels"][pattern % c][:] for c in "XYZ"])[axis]
             out[label] = (t, v - v[0] if tared else v)
         rot = float(np.max(np.abs(np.stack([f["channels"]["HEADL_R" + c][:] for c in "XY"]))))
     return out, rot

@@ -39,6 +39,7 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__f
 import h5py  # noqa: E402
 from hhneck import run, segments, specimen_data, specimens  # noqa: E402
 from hhneck.compare_nbdl import compare, s3  # noqa: E402
+from hhneck.export import kinematic_to_j211  # noqa: E402
 
 NECK = ("C7", "C6", "C5", "C4", "C3", "C2", "C1")
 SCALES = (1.0, 0.72, 0.5)
@@ -50,19 +51,15 @@ TIMES_MS = (20, 30, 36, 40, 50, 64)
 
 
 #: part 2: (label, CHANGE card) of each coupling softened
-COUPLINGS = [("discs' G x0.3", "CHANGE    CG        FAMILY    DISCS     G         SCALE     0.3"),
-             ("discs' G x0.05", "CHANGE    CG5       FAMILY    DISCS     G         SCALE     0.05"),
-             ("discs' BENDX x0.3", "CHANGE    CBX       FAMILY    DISCS     BENDX     SCALE     0.3"),
-             ("discs' E x0.3", "CHANGE    CE        FAMILY    DISCS     E         SCALE     0.3"),
-             ("discs' VBEND x0.2", "CHANGE    CVB       FAMILY    DISCS     VBEND     SCALE     0.2"),
-             ("ROMK x0.3", "CHANGE    CRK       FAMILY    LIMITS    ROMK      SCALE     0.3"),
-             ("dampers' C0 x0.1", "CHANGE    CC0       FAMILY    LIMITS    C0        SCALE     0.1")]
+COUPLINGS = [("discs' %s x%g" % (item, f), run.change_card("C%s%g" % (item, f), "FAMILY", "DISCS", item, "SCALE", f))
+             for item, f in (("G", 0.3), ("G", 0.05), ("BENDX", 0.3), ("E", 0.3), ("VBEND", 0.2))]
+COUPLINGS += [("ROMK x0.3", run.change_card("CROMK", "FAMILY", "LIMITS", "ROMK", "SCALE", 0.3)),
+              ("dampers' C0 x0.1", run.change_card("CC0", "FAMILY", "LIMITS", "C0", "SCALE", 0.1))]
 
 
 def mass_changes(scale):
     """CHANGE cards scaling every cervical segment's mass and inertia."""
-    return ["CHANGE    %-10sBODY      %-10s%-10sSCALE     %g" % (item[0] + b, b, item, scale)
-            for b in NECK for item in ("MASS", "INERTIA")]
+    return [run.change_card(item[0] + b, "BODY", b, item, "SCALE", scale) for b in NECK for item in ("MASS", "INERTIA")]
 
 
 def with_changes(deck, cards):
@@ -74,7 +71,7 @@ def with_changes(deck, cards):
 
 def inertia_parts(h5, axis, channel):
     """(t [ms], cell force tared [N], head's part, neck's part, worst |cell + sum m a| [N] from
-    10 ms on) of a Kang run: each part m a along `axis` of T1's axes in SAE J211 (the cell's axes: the cell's force on
+    10 ms on, the head's mass [kg]) of a Kang run: each part m a along `axis` of T1's axes in SAE J211 (the cell's axes: the cell's force on
     what is above it equals their momentum's rate, gravity tared)."""
     with h5py.File(h5, "r") as f:
         t = f["time"][:]
@@ -84,27 +81,22 @@ def inertia_parts(h5, axis, channel):
         st1 = f["bodies/rotation"][0, names.index("T1")].T          # T1 held: its axes at the start
         cell = f["channels"][channel][:]
     acc = np.gradient(np.gradient(pos, t, axis=0), t, axis=0) @ st1  # in T1's axes
-    acc = acc * np.array([1.0, -1.0, -1.0])                            # SAE J211's: y right, z down
-    part = mass[None, :] * acc[:, :, axis]
+    acc = kinematic_to_j211(np.moveaxis(acc, -1, 0))[axis]             # SAE J211's: y right, z down
+    part = mass[None, :] * acc
     head = part[:, names.index("HEAD")]
     neck = part[:, [names.index(b) for b in NECK]].sum(axis=1)
     cell = cell - cell[0]
     # away from the digitised pulse's first corners (0-10 ms) and the run's ends, where the
     # differences of the positions smear the jumps of the prescribed acceleration
     inner = (t >= 0.010) & (t <= t[-1] - 0.010)
-    return t * 1e3, cell, head, neck, float(np.max(np.abs(cell - head - neck)[inner]))
+    return t * 1e3, cell, head, neck, float(np.max(np.abs(cell - head - neck)[inner])), float(mass[names.index("HEAD")])
 
 
 def split_table(work):
     """Part 1: the cell's force split into the head's and the neck's inertia, model and specimens."""
-    head_mass = None
     for direction, (axis, channel, data_force, data_acc) in KANG.items():
         h5 = specimens._run(specimens.kang_deck(work, direction), work, None)
-        t, cell, head, neck, worst = inertia_parts(h5, axis, channel)
-        if head_mass is None:
-            with h5py.File(h5, "r") as f:
-                names = [str(n) for n in f["model"].attrs["bodies"]]
-                head_mass = float(f["model/mass"][names.index("HEAD")])
+        t, cell, head, neck, worst, head_mass = inertia_parts(h5, axis, channel)
         if worst > 0.05 * np.max(np.abs(cell)):
             sys.exit("%s: the parts do not add up to the cell (%.3g N off)" % (direction, worst))
         path = os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction)

@@ -327,11 +327,9 @@ contains
             select case (c%quantity)
             case (q_head_acc); v = hs%acc(c%comp)/g_std
             case (q_head_acc_res); v = norm2(hs%acc)/g_std
-            case (q_head_acc_loc)
-                sl = matmul(transpose(hs%s), hs%acc)/g_std
-                v = sl(c%comp)
-            case (q_head_acc_sf)
-                sl = matmul(transpose(hs%s), hs%acc - model%gravity)/g_std
+            case (q_head_acc_loc, q_head_acc_sf)   ! in head axes: a, or an accelerometer's a - g
+                sl = matmul(transpose(hs%s), hs%acc - merge(model%gravity, [zero, zero, zero], &
+                                                            c%quantity == q_head_acc_sf))/g_std
                 v = sl(c%comp)
             case (q_head_alpha); v = hs%alpha(c%comp)
             case (q_head_omega); v = ws%kin%omega(c%comp, h)
