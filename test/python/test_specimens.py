@@ -183,3 +183,22 @@ def test_settled_start_carries_the_weight(tmp_path):
     assert np.all(ehold == 0.0)
     listing = open(tmp_path / "kang_front_prestrain.txt").read()
     assert "PRE-STRAINED (HOLD PRESTRAIN)" in listing and "NEWTON ITERATIONS" in listing
+
+
+def test_kang_shifted_reference_rates_its_own_shifted_curve():
+    """rate_kang's shifts move a reference's times: the front z-acceleration
+    corridor's midline, moved 25 ms earlier as the model curve, rates 1 against
+    the reference moved the same, and far lower against the one as given."""
+    path = os.path.join(segments.DATA_DIR, "kang2018_front_experiment.csv")
+    model = {}
+    for ch in specimens.KANG_CHANNELS["front"]:
+        g, ref, _, _ = specimen_data.reference(path, ch)
+        model[ch] = (g - 25.0 if ch == "head_acc_z" else g, ref)
+    moved = specimens.rate_kang("front", model, shifts={"head_acc_z": -25.0})
+    given = specimens.rate_kang("front", model)
+    assert moved["head_acc_z"]["overall"] > 0.999
+    assert moved["head_acc_z"]["peak_ref"][1] == pytest.approx(given["head_acc_z"]["peak_ref"][1] - 25.0, abs=1e-9)
+    assert given["head_acc_z"]["overall"] < 0.6
+    for ch in specimens.KANG_CHANNELS["front"]:             # the others are their own references
+        if ch != "head_acc_z":
+            assert moved[ch]["overall"] > 0.999 and given[ch]["overall"] > 0.999
