@@ -393,4 +393,37 @@ for deck in (specimens.kang_deck(work, "side"), specimens.kang_deck(work, "front
         bad.append("%s: %s" % (deck, p.stderr.strip()))
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
+check "kang_t3_potting.py: the T3-potted Kang decks (T3, T2 below T1; T3 driven and held where T1 was; the cell below T2) within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$tmp" <<'PY'
+import os, subprocess, sys
+sys.path[:0] = ["python", "studies"]
+import kang_t3_potting as k
+from hhneck import segments
+hhneck, short = sys.argv[1:3]
+bad = []
+for direction, driven in (("side", "TY"), ("front", "TX")):
+    work = os.path.join(short, "t3_" + direction)
+    deck = k.t3_deck(work, direction)
+    model = open(os.path.join(work, "t3_model.inp")).read()
+    text = open(deck).read()
+    bodies = [(l[10:20].strip(), l[20:30].strip()) for l in model.splitlines() if l.startswith("BODY")]
+    if bodies[:4] != [("T3", "R"), ("T2", "T3"), ("T1", "T2"), ("C7", "T1")] or len(bodies) != 11:
+        bad.append("%s: bodies %s" % (direction, bodies))
+    if model.count("\nNZSPRING  T2") != 3 or model.count("\nNZSPRING  T1") != 3:
+        bad.append("%s: three thoracic springs on each of T2 and T1 expected" % direction)
+    pres = [l.split()[1:4] for l in text.splitlines() if l.startswith("PRESCRIB")]
+    if sorted(p[0] for p in pres) != ["T3"] * 6 or [p[1] for p in pres if p[2] == "ACCEL"] != [driven]:
+        bad.append("%s: PRESCRIB cards %s" % (direction, pres))
+    if "LOADCELL  T1CELL    T2" not in text or "INCLUDE   t3_model.inp" not in text:
+        bad.append("%s: the cell below T2 and the T3 model deck expected" % direction)
+    for f, t in (("t3_model.inp", model), (deck, text)):
+        if any(len(l) > 80 for l in t.splitlines()):
+            bad.append("a card beyond column 80 in %s" % f)
+    p = subprocess.run([hhneck, "-I", segments.ROOT, "--check"], input=text, capture_output=True, text=True,
+                       timeout=120, cwd=work)
+    if p.returncode:
+        bad.append("%s: %s" % (deck, p.stderr.strip()))
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+
 finish
