@@ -15,8 +15,10 @@ against three readings of the same run:
 - accelerometer: the specific force a - g in the head's axes (HEAD_AXS ...)
   from its value at t = 0, what a head-mounted accelerometer tared upright
   senses (the catalogue's choice).
-For each: the score, the model's peak and its time against the reference's,
-and the largest head rotation of the run (what separates the frames).
+Each reading filtered by the channel's CFC class, as the catalogue filters
+it (hhneck.specimens.CHANNELS). For each: the score, the model's peak and
+its time against the reference's, and the largest head rotation of the run
+(what separates the frames).
 """
 import os
 import sys
@@ -28,7 +30,7 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__f
 import h5py  # noqa: E402
 from hhneck import specimens  # noqa: E402
 from hhneck.export import kinematic_to_j211  # noqa: E402
-from hhneck.compare_nbdl import s3  # noqa: E402
+from hhneck.compare_nbdl import cfc, s3  # noqa: E402
 
 #: per direction: the data's head-acceleration channels and their axis (0 x, 1 y, 2 z)
 CHANNELS = {"front": (("head_acc_x", 0), ("head_acc_z", 2)), "side": (("head_acc_y", 1), ("head_acc_z", 2))}
@@ -57,9 +59,12 @@ def main():
         h5 = specimens._run(specimens.kang_deck(work, direction), work, None)
         reads = {axis: readings(h5, axis) for _, axis in chans}
         rated = {}
+        cls = {c[0]: c[4] for c in specimens.CHANNELS["kang_" + direction]}
         for label, _, _ in READINGS:          # the catalogue's rating, the head's channels read each way
             model = specimens.model_channels("kang_" + direction, h5)
-            model.update((name, reads[axis][0][label]) for name, axis in chans)
+            for name, axis in chans:          # filtered by the channel's class, as the catalogue's
+                t, v = reads[axis][0][label]
+                model[name] = (t, cfc(v, cls[name], (t[1] - t[0]) * 1e-3))
             rated[label] = specimens.rate_kang(direction, model)
         for name, axis in chans:
             ref = rated[READINGS[0][0]][name]["peak_ref"]

@@ -31,7 +31,8 @@ bounds, on the common grid k 0.1 ms (each channel linearly interpolated
 from its own 0.1 ms grid onto the grid points its curve covers; Kang: 0 to
 1.2 x the time of the reference's largest magnitude, as hhneck.specimens
 rates), empty cells elsewhere. The model channel of each column is a
-RATED card: the sign changes and "from the start" of hhneck.specimens.
+RATED card: the sign changes, "from the start" and the CFC class of
+hhneck.specimens.
 The rated channels and their model channels are those of the catalogue
 (hhneck.specimens.CHANNELS), load cells included.
 
@@ -139,9 +140,9 @@ def write_segment_case(case, workdir, data_dir=segments.DATA_DIR, model=segments
 
 
 def case_channels(case):
-    """[(column, data channel, model channel, scale, subtracted, from the start)] of `case`."""
-    return [("C%02d" % (k + 1), name, run, scale, "", start)
-            for k, (name, run, scale, start) in enumerate(specimens.CHANNELS[case])]
+    """[(column, data channel, model channel, scale, subtracted, from the start, CFC class)] of `case`."""
+    return [("C%02d" % (k + 1), name, run, scale, "", start, cls)
+            for k, (name, run, scale, start, cls) in enumerate(specimens.CHANNELS[case])]
 
 
 def write_reference(case, path, data_dir=segments.DATA_DIR):
@@ -172,9 +173,10 @@ def write_reference(case, path, data_dir=segments.DATA_DIR):
         for i, t in enumerate(grid):
             f.write(",".join(["%.4f" % t] + ["%.9g" % c[1][i] if c[2][i] else "" for c in cols]) + "\n")
     rated = []
-    for col, _, model, scale, minus, start in chans:
-        rated.append(("RATED     %-10s%-10s%s%-10s%s" % (col, model, number_field(scale), minus,
-                                                         "START" if start else "")).rstrip())
+    for col, _, model, scale, minus, start, cls in chans:
+        rated.append(("RATED     %-10s%-10s%s%-10s%-10s%-10s%s" % (col, model, number_field(scale), minus,
+                                                                   "START" if start else "", "",
+                                                                   cls or "")).rstrip())
     return rated
 
 

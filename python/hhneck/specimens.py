@@ -87,7 +87,13 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   head turns 64 deg (studies/kang_head_frame.py rates the three readings).
   Reference: the corridor's midline (front) or the mean of PMHS1 and PMHS2
   (side); window 0 to 1.2 x the time of the reference's largest magnitude,
-  as the source's notebook rates.
+  as the source's notebook rates;
+* each model channel filtered (after its tare) by the SAE J211 class the
+  source's notebook gives the SAFER HBM's channels whose ratings the
+  catalogue prints beside ours (README "What the notebook computes"): the
+  head's x-acceleration and the cell's forces CFC 60, the head's y- and
+  z-accelerations, its rotations and the cell's moments CFC 180. The
+  Stemper channels are unfiltered, as its notebook plots them.
 
 API: CHANNELS (the rated channels: the data's and the run's); model_channels;
 stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
@@ -100,35 +106,41 @@ import tempfile
 import numpy as np
 
 from . import iso18571, segments, specimen_data
+from .compare_nbdl import cfc
 
 #: every rated channel of each case: (the data's channel, the run's
 #: channel, the scale to the data's sign, whether taken from its value at
-#: the start); the module docstring says why each is what it is. The
-#: catalogue's runs and the calibration's RATED cards (hhneck.calibration)
-#: both read this table.
+#: the start, the CFC class [Hz] the model curve is filtered by, 0 none);
+#: the module docstring says why each is what it is. The catalogue's runs
+#: and the calibration's RATED cards (hhneck.calibration) both read this
+#: table.
 CHANNELS = {
-    "stemper": [("seg_angle_C%d_C%d" % (k, k + 1), "C%d_PY" % k, -1.0, True) for k in range(2, 7)]
-    + [("head_T1_angle", "HT1_RY", -1.0, True), ("head_T1_retraction", "HT1_DX", 1.0, False)],
-    "kang_front": [("head_acc_x", "HEAD_AXS", 1.0, True), ("head_acc_z", "HEAD_AZS", -1.0, True),
-                   ("head_rot_y", "HEADL_RY", -1.0, True), ("loadcell_force_x", "T1CELL_JFX", 1.0, True),
-                   ("loadcell_force_z", "T1CELL_JFZ", 1.0, True), ("loadcell_moment_y", "T1CELL_JMY", 1.0, True)],
-    "kang_side": [("head_acc_y", "HEAD_AYS", -1.0, True), ("head_acc_z", "HEAD_AZS", -1.0, True),
-                  ("head_rot_x", "HEADL_RX", 1.0, True), ("loadcell_moment_x", "T1CELL_JMX", 1.0, True),
-                  ("loadcell_force_y", "T1CELL_JFY", 1.0, True), ("loadcell_force_z", "T1CELL_JFZ", 1.0, True)],
+    "stemper": [("seg_angle_C%d_C%d" % (k, k + 1), "C%d_PY" % k, -1.0, True, 0) for k in range(2, 7)]
+    + [("head_T1_angle", "HT1_RY", -1.0, True, 0), ("head_T1_retraction", "HT1_DX", 1.0, False, 0)],
+    "kang_front": [("head_acc_x", "HEAD_AXS", 1.0, True, 60), ("head_acc_z", "HEAD_AZS", -1.0, True, 180),
+                   ("head_rot_y", "HEADL_RY", -1.0, True, 180), ("loadcell_force_x", "T1CELL_JFX", 1.0, True, 60),
+                   ("loadcell_force_z", "T1CELL_JFZ", 1.0, True, 60),
+                   ("loadcell_moment_y", "T1CELL_JMY", 1.0, True, 180)],
+    "kang_side": [("head_acc_y", "HEAD_AYS", -1.0, True, 180), ("head_acc_z", "HEAD_AZS", -1.0, True, 180),
+                  ("head_rot_x", "HEADL_RX", 1.0, True, 180), ("loadcell_moment_x", "T1CELL_JMX", 1.0, True, 180),
+                  ("loadcell_force_y", "T1CELL_JFY", 1.0, True, 60), ("loadcell_force_z", "T1CELL_JFZ", 1.0, True, 60)],
 }
 STEMPER_CHANNELS = [c[0] for c in CHANNELS["stemper"]]
 
 
 def model_channels(case, h5):
     """The rated channels of `case` from its result file:
-    {data channel: (t [ms], model value in the data's signs)} (CHANNELS)."""
+    {data channel: (t [ms], model value in the data's signs)} (CHANNELS):
+    scaled, less its start value where the table says so, then filtered
+    by its CFC class (the order of the calibration's RATED cards)."""
     import h5py
     with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
         out = {}
-        for name, run, scale, start in CHANNELS[case]:
+        for name, run, scale, start, cls in CHANNELS[case]:
             v = np.asarray(f["channels"][run][:], dtype=float)
-            out[name] = (t, scale * (v - v[0] if start else v))
+            v = scale * (v - v[0] if start else v)
+            out[name] = (t, cfc(v, cls, (t[1] - t[0]) * 1e-3) if cls else v)
     return out
 
 

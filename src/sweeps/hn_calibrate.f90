@@ -92,7 +92,8 @@ module hn_calibrate
     !> The rated channels of a reference case (DATA a reference CSV): its
     !! curves and, per rated channel (RATED card, or each column of the
     !! CSV under its own name), the model curve compared with it:
-    !! scale (channel - minus), less its value at the start with START.
+    !! scale (channel - minus), less its value at the start with START,
+    !! filtered by its CFC class when one is given.
     type :: reference_case_t
         logical :: on = .false.                         !! the case's DATA is a reference CSV
         type(reference_data_t) :: data                  !! its curves
@@ -103,6 +104,7 @@ module hn_calibrate
         character(len=10), allocatable :: minus(:)      !! (rated) a channel subtracted (F4, '' none)
         logical, allocatable :: from_start(:)           !! (rated) less its value at the start (F5 START)
         logical, allocatable :: as_samples(:)           !! (rated) its rows the rating's 10 kHz samples (F6 SAMPLES)
+        real(wp), allocatable :: cfc(:)                 !! (rated) the model curve's CFC class [Hz] (F7; 0: unfiltered)
     end type reference_case_t
 
     !> A standing case (STANDING card): a deck of the model at rest, its
@@ -311,6 +313,23 @@ contains
         st%rated_case = [st%rated_case, size(cal%decks)]
     end subroutine read_rated_card
 
+    !> A channel frequency class of SAE J211/1 (60, 180, 600 or 1000 Hz)
+    !! in field f of card i, as a real [Hz]; anything else fails the
+    !! reader with the card's line and columns.
+    subroutine read_cfc_class(rd, i, f, cfc)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck's reader
+        integer, intent(in) :: i                  !! the card's line
+        integer, intent(in) :: f                  !! the field
+        real(wp), intent(out) :: cfc              !! the class [Hz]
+        integer :: k
+        k = 0
+        call rd%int(i, f, 'CFC class', k, 1, 100000)
+        if (.not. rd%failed() .and. all(k /= [60, 180, 600, 1000])) &
+            call rd%fail(rd%context(i, f, 'CFC class')//': found '//trim(rd%raw(i, f))// &
+                         '; expected 60, 180, 600 or 1000 (SAE J211/1)')
+        cfc = real(k, wp)
+    end subroutine read_cfc_class
+
     !> FIT NELDER max-evaluations starting-points seed [peak-weight
     !! [peak-time-weight [peak-margin]]] (one card: check_calibration_cards).
     subroutine read_fit_card(st, cal, i)
@@ -339,7 +358,6 @@ contains
         type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
         integer, intent(in) :: i                       !! the card's line
         character(len=10) :: opt
-        integer :: cfc
         associate (rd => st%rd)
             if (st%rating_line > 0) then
                 call rd%fail(rd%where(i)//', columns 1-8 (RATING card): found a second RATING card; '// &
@@ -352,11 +370,7 @@ contains
             if (.not. rd%failed() .and. .not. cal%window(2) > cal%window(1)) &
                 call rd%fail(rd%context(i, 2, 'window end')//': found '//trim(rd%raw(i, 2))// &
                              ' ms; expected a time after the window start '//trim(rd%raw(i, 1))//' ms')
-            call rd%int(i, 3, 'CFC class', cfc, 1, 100000)
-            if (.not. rd%failed() .and. all(cfc /= [60, 180, 600, 1000])) &
-                call rd%fail(rd%context(i, 3, 'CFC class')//': found '//trim(rd%raw(i, 3))// &
-                             '; expected 60, 180, 600 or 1000 (SAE J211/1)')
-            cal%cfc = real(cfc, wp)
+            call read_cfc_class(rd, i, 3, cal%cfc)
             call rd%real(i, 4, 'peak-time tolerance', 'ms', cal%time_tolerance, 1.0e-3_wp, 1.0e6_wp)
             if (.not. rd%failed() .and. .not. rd%is_blank(i, 5)) then
                 call rd%choice(i, 5, 'metric', [character(len=10) :: 'CORA', 'ISO18571'], opt)
@@ -750,8 +764,8 @@ contains
             n = count(st%rated_case == c)
             if (n == 0) n = size(rf%data%name)
             allocate (rf%column(n), rf%col(n), rf%channel(n), rf%scale(n), rf%minus(n), rf%from_start(n), &
-                      rf%as_samples(n))
-            rf%scale = one; rf%minus = ''; rf%from_start = .false.; rf%as_samples = .false.
+                      rf%as_samples(n), rf%cfc(n))
+            rf%scale = one; rf%minus = ''; rf%from_start = .false.; rf%as_samples = .false.; rf%cfc = zero
             if (count(st%rated_case == c) == 0) then
                 rf%column = rf%data%name
                 rf%channel = rf%data%name
@@ -794,7 +808,7 @@ contains
     end subroutine reference_case
 
     !> The RATED cards of reference case c, in their order: CSV column,
-    !! model channel, [scale], [subtracted channel], [START], [SAMPLES], each column
+    !! model channel, [scale], [subtracted channel], [START], [SAMPLES], [CFC class], each column
     !! one of the CSV's and rated once, each channel one of the case deck's.
     subroutine rated_columns(st, c, data, deck, chs, rf, stat, errmsg)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
@@ -807,7 +821,7 @@ contains
         character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
         integer :: m, r, l, col
         character(len=10) :: column, chan, minus, fs, smp
-        real(wp) :: sc
+        real(wp) :: sc, cfc
         stat = stat_ok
         associate (rd => st%rd)
             m = 0
@@ -826,6 +840,8 @@ contains
                 smp = ''
                 if (.not. rd%failed() .and. .not. rd%is_blank(l, 6)) &
                     call rd%choice(l, 6, 'sampling', [character(len=10) :: 'SAMPLES'], smp)
+                cfc = zero
+                if (.not. rd%failed() .and. .not. rd%is_blank(l, 7)) call read_cfc_class(rd, l, 7, cfc)
                 if (rd%failed()) then
                     stat = rd%stat; errmsg = rd%errmsg; return
                 end if
@@ -856,6 +872,7 @@ contains
                 end if
                 rf%column(m) = column; rf%col(m) = col; rf%channel(m) = chan; rf%scale(m) = sc
                 rf%minus(m) = minus; rf%from_start(m) = fs == 'START'; rf%as_samples(m) = smp == 'SAMPLES'
+                rf%cfc(m) = cfc
             end do
         end associate
     end subroutine rated_columns
@@ -1201,7 +1218,8 @@ contains
     end subroutine score_iso_volunteers
 
     !> Score the rated channels of a reference case: each model curve
-    !! (scale (channel - minus), less its start value with START) at the
+    !! (scale (channel - minus), less its start value with START, then
+    !! filtered by its CFC class when it has one) at the
     !! reference's times on the rows it is given, by ISO 18571 and the
     !! CORA-style rating (inner corridor half the bounds' width; none
     !! without bounds: the rating's floor); no peaks.
@@ -1214,7 +1232,7 @@ contains
         type(score_t), intent(out) :: sc         !! the scores
         integer, intent(in) :: c                 !! the case's number (the curves' CSV)
         integer, intent(in), optional :: curves  !! unit of the curves' CSV
-        real(wp) :: tm(size(samples, 2)), f(size(samples, 2)), lag
+        real(wp) :: tm(size(samples, 2)), f(size(samples, 2)), g(size(samples, 2)), lag
         real(wp), allocatable :: y(:)
         integer :: m, i, stat
         character(len=msglen) :: msg
@@ -1227,6 +1245,10 @@ contains
             f = rf%scale(m)*samples(findloc(names, rf%channel(m), dim=1), :)
             if (len_trim(rf%minus(m)) > 0) f = f - rf%scale(m)*samples(findloc(names, rf%minus(m), dim=1), :)
             if (rf%from_start(m)) f = f - f(1)
+            if (rf%cfc(m) > zero) then
+                g = f
+                call cfc_filter(g, dt, rf%cfc(m), f)
+            end if
             associate (d => rf%data, k => rf%col(m))
                 associate (tr => d%t(d%first(k):d%last(k)), r => d%mean(d%first(k):d%last(k), k))
                     y = resample(tr, tm, f)

@@ -118,6 +118,29 @@ def test_reference_case_agrees_with_the_package(tmp_path):
     assert abs(list(mean.values())[0] - np.mean([c["overall"] for c in catalogue.values()])) < 0.005
 
 
+def test_filtered_reference_case_agrees_with_the_catalogue(tmp_path):
+    # Kang side: every model curve filtered by its CFC class (RATED F7, from
+    # hhneck.specimens.CHANNELS) in Fortran as the catalogue filters it in
+    # Python: each channel's score agrees to the reference's resampling
+    # (0.005), where the curves unfiltered move the load cell's Fy by 0.036
+    # and the head's y-acceleration by 0.014, and the classes 60 and 180
+    # swapped move Fy by 0.029 and the cell's Mx by 0.020
+    deck = calibration.calibration_deck("kang", ["kang_side"], str(tmp_path), calibration.QUICK_PARAMS,
+                                        values=[])
+    text = open(deck).read()
+    assert [line[70:80].strip() for line in text.splitlines() if line.startswith("RATED")] == \
+        [str(c[4]) for c in specimens.CHANNELS["kang_side"]]
+    listing = _calibrate(os.path.basename(deck), str(tmp_path))
+    worst, n = _agreement(listing, tmp_path / "kang_curves.csv")
+    assert n == 6
+    assert worst <= TOL, worst
+    fortran = _fortran_scores(listing)
+    catalogue = specimens.rate_kang("side", specimens.run_kang("side", str(tmp_path / "run"), hhneck_executable()))
+    names = [c[0] for c in specimens.CHANNELS["kang_side"]]
+    for k, name in enumerate(names):
+        assert abs(fortran[(1, "C%02d" % (k + 1))]["overall"] - catalogue[name]["overall"]) < 0.005, name
+
+
 SEGMENT_CASES = ["panjabi_C4_C5_axial_rotation", "panjabi_C4_C5_flexion_extension",
                  "panjabi_C4_C5_lateral_bending", "nightingale_C4_C5_flexion_extension"]
 
