@@ -122,7 +122,9 @@ SPECIMEN_NOTES = {
     "(the specific force a - g in the head's axes, from its value at t = 0: HEAD_AXS ...; in the lab's axes they score "
     "lower, studies/kang_head_frame.py); the load cell a LOADCELL card cutting the potted T1 from C7 (the load on "
     "the neck and head, in T1's axes) about the potting centre as the set-up placed it (81 mm behind, 229 mm below "
-    "the head's mass centre), from its value at t = 0 (the data are tared). Reference: the corridor's midline; window 0 to 1.2 × the time of its "
+    "the head's mass centre), from its value at t = 0 (the data are tared); every model channel then filtered by the "
+    "class the source's notebook gives the SAFER HBM's (head x-acceleration and cell forces CFC 60, the rest CFC 180), "
+    "as its rating beside ours was made. Reference: the corridor's midline; window 0 to 1.2 × the time of its "
     "largest magnitude (the source notebook's).",
     "Kang 2018 side 14 km/h": "T1 driven toward the specimen's right (the direction the data's signs fit), "
     "otherwise (load cell included) as the front case. Reference: the mean of PMHS1 and PMHS2; window as the front case.",
