@@ -426,4 +426,35 @@ for direction, driven in (("side", "TY"), ("front", "TX")):
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 
+check "kang_early_coupling.py: its Kang front decks (CHANGE cards; the upper two discs' Ix, Iy and J, and nothing else, scaled in its model copy) within 80 columns, hhneck --check passes" \
+    python3 - "$HHNECK" "$tmp" <<'PY'
+import os, subprocess, sys
+sys.path[:0] = ["python", "studies"]
+import kang_early_coupling as k
+from hhneck import segments
+hhneck, short = sys.argv[1:3]
+bad = []
+shipped = open(os.path.join(segments.ROOT, "input", "head_neck_54dof.inp")).read().splitlines()
+for n, (label, cards, upper) in enumerate(k.VARIANTS):
+    work = os.path.join(short, "early_%d" % n)
+    os.makedirs(work, exist_ok=True)
+    text = open(k.front_deck(work, cards, upper)).read()
+    if upper != 1.0:
+        changed = [(a, b) for a, b in zip(shipped, open(os.path.join(work, "upper_model.inp")).read().splitlines())
+                   if a != b]
+        if len(changed) != 2:
+            bad.append("%s: %d model lines changed, expected the 2 discs' second continuation cards" % (label, len(changed)))
+        for a, b in changed:
+            fa, fb = [float(a[i:i + 10]) for i in (20, 30, 40)], [float(b[i:i + 10]) for i in (20, 30, 40)]
+            if any(abs(y - upper * x) > 1e-3 * abs(upper * x) for x, y in zip(fa, fb)) or a[:20] != b[:20] or a[50:] != b[50:]:
+                bad.append("%s: %r -> %r" % (label, a, b))
+    if any(len(l) > 80 for l in text.splitlines()):
+        bad.append("a card beyond column 80 in %s" % label)
+    p = subprocess.run([hhneck, "-I", segments.ROOT, "--check"], input=text, capture_output=True, text=True,
+                       timeout=120, cwd=work)
+    if p.returncode:
+        bad.append("%s: %s" % (label, p.stderr.strip()))
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+
 finish
