@@ -371,10 +371,11 @@ sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 check "neck_inertia.py: the Kang and Stemper decks with its CHANGE cards (the neck's masses and inertias, each coupling) within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp" <<'PY'
-import os, subprocess, sys
-sys.path[:0] = ["python", "studies"]
+import os, sys
+sys.path[:0] = ["python", "studies", "test/scripts/lib"]
 import neck_inertia as n
-from hhneck import segments, specimens
+from hhneck import specimens
+from study_decks import deck_problems
 hhneck, short = sys.argv[1:3]
 work = os.path.join(short, "neck_inertia")
 os.makedirs(work, exist_ok=True)
@@ -384,21 +385,15 @@ if len(n.mass_changes(0.5)) != 14:
     bad.append("expected a MASS and an INERTIA card for each of C7 ... C1: %s" % n.mass_changes(0.5))
 for deck in (specimens.kang_deck(work, "side"), specimens.kang_deck(work, "front"), specimens.stemper_deck(work)):
     n.with_changes(deck, cards)
-    text = open(deck).read()
-    if any(len(l) > 80 for l in text.splitlines()):
-        bad.append("a card beyond column 80 in %s" % deck)
-    p = subprocess.run([hhneck, "-I", segments.ROOT, "--check"], input=text, capture_output=True, text=True,
-                       timeout=120, cwd=work)
-    if p.returncode:
-        bad.append("%s: %s" % (deck, p.stderr.strip()))
+    bad += deck_problems(hhneck, open(deck).read(), work, deck)
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 check "kang_t3_potting.py: the T3-potted Kang decks (T3, T2 below T1; T3 driven and held where T1 was; the cell below T2) within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp" <<'PY'
-import os, subprocess, sys
-sys.path[:0] = ["python", "studies"]
+import os, sys
+sys.path[:0] = ["python", "studies", "test/scripts/lib"]
 import kang_t3_potting as k
-from hhneck import segments
+from study_decks import deck_problems
 hhneck, short = sys.argv[1:3]
 bad = []
 for direction, driven in (("side", "TY"), ("front", "TX")):
@@ -416,22 +411,18 @@ for direction, driven in (("side", "TY"), ("front", "TX")):
         bad.append("%s: PRESCRIB cards %s" % (direction, pres))
     if "LOADCELL  T1CELL    T2" not in text or "INCLUDE   t3_model.inp" not in text:
         bad.append("%s: the cell below T2 and the T3 model deck expected" % direction)
-    for f, t in (("t3_model.inp", model), (deck, text)):
-        if any(len(l) > 80 for l in t.splitlines()):
-            bad.append("a card beyond column 80 in %s" % f)
-    p = subprocess.run([hhneck, "-I", segments.ROOT, "--check"], input=text, capture_output=True, text=True,
-                       timeout=120, cwd=work)
-    if p.returncode:
-        bad.append("%s: %s" % (deck, p.stderr.strip()))
+    bad += ["t3_model.inp: a card beyond column 80: %r" % l for l in model.splitlines() if len(l) > 80]
+    bad += deck_problems(hhneck, text, work, deck)
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 
 check "kang_early_coupling.py: its Kang front decks (CHANGE cards; the upper two discs' Ix, Iy and J, and nothing else, scaled in its model copy) within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp" <<'PY'
-import os, subprocess, sys
-sys.path[:0] = ["python", "studies"]
+import os, sys
+sys.path[:0] = ["python", "studies", "test/scripts/lib"]
 import kang_early_coupling as k
 from hhneck import segments
+from study_decks import deck_problems
 hhneck, short = sys.argv[1:3]
 bad = []
 shipped = open(os.path.join(segments.ROOT, "input", "head_neck_54dof.inp")).read().splitlines()
@@ -448,12 +439,7 @@ for n, (label, cards, upper) in enumerate(k.VARIANTS):
             fa, fb = [float(a[i:i + 10]) for i in (20, 30, 40)], [float(b[i:i + 10]) for i in (20, 30, 40)]
             if any(abs(y - upper * x) > 1e-3 * abs(upper * x) for x, y in zip(fa, fb)) or a[:20] != b[:20] or a[50:] != b[50:]:
                 bad.append("%s: %r -> %r" % (label, a, b))
-    if any(len(l) > 80 for l in text.splitlines()):
-        bad.append("a card beyond column 80 in %s" % label)
-    p = subprocess.run([hhneck, "-I", segments.ROOT, "--check"], input=text, capture_output=True, text=True,
-                       timeout=120, cwd=work)
-    if p.returncode:
-        bad.append("%s: %s" % (label, p.stderr.strip()))
+    bad += deck_problems(hhneck, text, work, label)
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 
