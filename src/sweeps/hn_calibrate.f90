@@ -61,6 +61,7 @@ module hn_calibrate
     use hn_kinds, only: wp, zero, one, msglen, deg
     use hn_status, only: stat_ok, stat_bad_input
     use hn_case, only: case_t, deck_line_t, path_len
+    use hn_deck_state, only: real_str
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
     use hn_sweep, only: sweep_t, sweep_param_t, read_sweep_lines, sweep_member_case, sweep_design, spread_value, &
                         field_text, par_field, param_target_text
@@ -624,11 +625,11 @@ contains
             call read_sweep_lines(sl, source, cal%sw(c), stat, errmsg, include_path, path, st%optional)
             if (stat /= stat_ok) return
             v0 = cal%sw(c)%params%nominal
-            call sweep_member_case(cal%sw(c), v0, cs, stat, errmsg)
+            call sweep_member_case(cal%sw(c), v0, cs, stat, errmsg, deck_sampling=st%is_ref(c))
             if (stat /= stat_ok) return
             call channels_define(cs, chs)
             if (st%is_ref(c)) then
-                call reference_case(st, cal, c, chs, stat, errmsg)
+                call reference_case(st, cal, c, chs, cs%sample_dt, stat, errmsg)
             else if (st%is_pub(c)) then
                 call published_case(st, cal, c, chs, stat, errmsg)
             else
@@ -745,12 +746,14 @@ contains
 
     !> The rated channels of reference case c: its CSV read, its RATED
     !! cards (or every column under its own name) checked against the
-    !! CSV and the case deck's channels, each curve one the metric can rate.
-    subroutine reference_case(st, cal, c, chs, stat, errmsg)
+    !! CSV and the case deck's channels (a CFC class on samples at least
+    !! ten to its period: rated_columns), each curve one the metric can rate.
+    subroutine reference_case(st, cal, c, chs, sample_dt, stat, errmsg)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
         type(calibration_t), intent(inout) :: cal      !! the calibration: cal%ref(c) read
         integer, intent(in) :: c                       !! the case
         type(channel_set_t), intent(in) :: chs         !! the channels of its deck
+        real(wp), intent(in) :: sample_dt              !! its runs' sampling interval (the deck's OUTPUT) [s]
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
         character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
         integer :: m, n, nwin, nmin
@@ -781,7 +784,7 @@ contains
                     end if
                 end do
             else
-                call rated_columns(st, c, cal%data(c), cal%decks(c), chs, rf, stat, errmsg)
+                call rated_columns(st, c, cal%data(c), cal%decks(c), chs, sample_dt, rf, stat, errmsg)
                 if (stat /= stat_ok) return
             end if
             do m = 1, n
@@ -809,13 +812,15 @@ contains
 
     !> The RATED cards of reference case c, in their order: CSV column,
     !! model channel, [scale], [subtracted channel], [START], [SAMPLES], [CFC class], each column
-    !! one of the CSV's and rated once, each channel one of the case deck's.
-    subroutine rated_columns(st, c, data, deck, chs, rf, stat, errmsg)
+    !! one of the CSV's and rated once, each channel one of the case deck's,
+    !! a CFC class on runs sampled at 10 times the class or more.
+    subroutine rated_columns(st, c, data, deck, chs, sample_dt, rf, stat, errmsg)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards, all valid
         integer, intent(in) :: c                       !! the case
         character(len=*), intent(in) :: data           !! its reference CSV
         character(len=*), intent(in) :: deck           !! its case deck
         type(channel_set_t), intent(in) :: chs         !! the channels of its deck
+        real(wp), intent(in) :: sample_dt              !! its runs' sampling interval [s]
         type(reference_case_t), intent(inout) :: rf    !! its reference, the CSV read: the rated channels set
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input
         character(len=msglen), intent(inout) :: errmsg !! the deck line, columns and what was expected
@@ -842,6 +847,11 @@ contains
                     call rd%choice(l, 6, 'sampling', [character(len=10) :: 'SAMPLES'], smp)
                 cfc = zero
                 if (.not. rd%failed() .and. .not. rd%is_blank(l, 7)) call read_cfc_class(rd, l, 7, cfc)
+                if (.not. rd%failed() .and. cfc*sample_dt > 0.1_wp*(one + 1.0e-9_wp)) &
+                    call rd%fail(rd%context(l, 7, 'CFC class')//': found '//trim(rd%raw(l, 7))//' on runs of '// &
+                                 trim(deck)//' sampled every '//trim(real_str(1.0e3_wp*sample_dt))//' ms (its OUTPUT '// &
+                                 'card); expected samples at least ten times the class, every '// &
+                                 trim(real_str(1.0e2_wp/cfc))//' ms or less')
                 if (rd%failed()) then
                     stat = rd%stat; errmsg = rd%errmsg; return
                 end if
