@@ -72,10 +72,15 @@ step() {
     echo "   ($(($(date +%s) - t0)) s)"
 }
 
-# run_tests FLAGS: build every test program with FLAGS, run them
+# run_tests FLAGS [NEXT]: build every test program with FLAGS, run them
 # TEST_JOBS at a time, then show each one's output. A program that stops
-# without its closing line is reported as one failed check.
+# without its closing line is reported as one failed check. With NEXT,
+# the test programs of the build with flags NEXT are compiled in the
+# background while these run (the cores the compiler's dependency chain
+# leaves idle); the next run_tests waits for it and builds what is left,
+# showing any compiler error itself.
 run_tests() {
+    wait_next_build
     fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner true || return 1
     # the slowest first (their times from the last run, else these), so
     # that no long program starts last
@@ -90,6 +95,13 @@ run_tests() {
     out=$work/out
     rm -rf "$out"
     mkdir -p "$out"
+    if [ -n "${2:-}" ]; then
+        # (step runs this function in a pipeline's subshell: the next one
+        # learns that the build ended from a file, not from wait)
+        : > "$work/next_build.started"
+        { fpm test --flag "$2 $PF_INC" --link-flag "$PF_LINK" --runner true > "$work/next_build.log" 2>&1
+          : > "$work/next_build.done"; } &
+    fi
     # shellcheck disable=SC2016
     xargs -P "$TEST_JOBS" -n 1 sh -c \
         'n=$(basename "$1"); t=$(date +%s); "$1" >> "$0/$n.out" 2>&1; echo $? > "$0/$n.rc";
@@ -112,7 +124,18 @@ run_tests() {
     return $status
 }
 
-step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS"
+# wait_next_build: wait for the background build of run_tests NEXT, if one runs
+wait_next_build() {
+    [ -f "$work/next_build.started" ] || return 0
+    while [ ! -f "$work/next_build.done" ]; do sleep 1; done
+    rm -f "$work/next_build.started" "$work/next_build.done"
+}
+
+if [ "$checking" = yes ]; then
+    step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS" "$CHECK_FLAGS"
+else
+    step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS"
+fi
 if [ "$checking" = yes ]; then
     step "test programs, checking build ($CHECK_FLAGS)" run_tests "$CHECK_FLAGS"
 fi
