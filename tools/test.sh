@@ -99,8 +99,8 @@ run_tests() {
         # (step runs this function in a pipeline's subshell: the next one
         # learns that the build ended from a file, not from wait)
         : > "$work/next_build.started"
-        { fpm test --flag "$2 $PF_INC" --link-flag "$PF_LINK" --runner true > "$work/next_build.log" 2>&1
-          : > "$work/next_build.done"; } &
+        { fpm test --flag "$2 $PF_INC" --link-flag "$PF_LINK" --runner true
+          : > "$work/next_build.done"; } > "$work/next_build.log" 2>&1 &
     fi
     # shellcheck disable=SC2016
     xargs -P "$TEST_JOBS" -n 1 sh -c \
