@@ -64,13 +64,13 @@ def upper_discs_model(path, factor):
 def front_deck(work, cards, upper):
     """The shipped Kang front deck with CHANGE cards (and the scratch model
     deck when the upper discs change) in work; its path."""
-    deck = specimens.kang_deck(work, "front")
-    text = open(deck).read()
     if upper != 1.0:
         upper_discs_model(os.path.join(work, "upper_model.inp"), upper)
-        text = text.replace("INCLUDE   input/head_neck_54dof.inp", "INCLUDE   upper_model.inp")
-    with open(deck, "w") as f:
-        f.write(text + "".join(c + "\n" for c in cards))
+        deck = specimens.kang_deck(work, "front", model="upper_model.inp")
+    else:
+        deck = specimens.kang_deck(work, "front")
+    with open(deck, "a") as f:
+        f.write("".join(c + "\n" for c in cards))
     return deck
 
 

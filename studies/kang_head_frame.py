@@ -30,7 +30,7 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__f
 import h5py  # noqa: E402
 from hhneck import specimens  # noqa: E402
 from hhneck.export import kinematic_to_j211  # noqa: E402
-from hhneck.compare_nbdl import cfc, s3  # noqa: E402
+from hhneck.compare_nbdl import s3  # noqa: E402
 
 #: per direction: the data's head-acceleration channels and their axis (0 x, 1 y, 2 z)
 CHANNELS = {"front": (("head_acc_x", 0), ("head_acc_z", 2)), "side": (("head_acc_y", 1), ("head_acc_z", 2))}
@@ -64,7 +64,7 @@ def main():
             model = specimens.model_channels("kang_" + direction, h5)
             for name, axis in chans:          # filtered by the channel's class, as the catalogue's
                 t, v = reads[axis][0][label]
-                model[name] = (t, cfc(v, cls[name], (t[1] - t[0]) * 1e-3))
+                model[name] = (t, specimens.filtered(t, v, cls[name]))
             rated[label] = specimens.rate_kang(direction, model)
         for name, axis in chans:
             ref = rated[READINGS[0][0]][name]["peak_ref"]

@@ -102,14 +102,12 @@ def t3_deck(work, direction, cell="T3", stiffness=1.0, mass=1.0):
     below T2 (cell "T3") or between T1 and C7 (cell "T1")."""
     os.makedirs(work, exist_ok=True)
     t3_model(os.path.join(work, "t3_model.inp"), stiffness, mass)
-    shipped = specimens.kang_deck(work, direction)
+    shipped = specimens.kang_deck(work, direction, model="t3_model.inp")
     lift = 2 * (VERTEBRA_H + JOINT_H)       # T3's mass centre below T1's at the start
     px, py, pz = specimens.KANG_CELL_POINT
     lines = []
     for line in open(shipped):
-        if line.startswith("INCLUDE"):
-            line = "INCLUDE   t3_model.inp\n"
-        elif line.startswith("PRESCRIB") and line[10:20].strip() == "T1":
+        if line.startswith("PRESCRIB") and line[10:20].strip() == "T1":
             line = line[:10] + "T3        " + line[20:]
         elif line.startswith("LOADCELL") and cell == "T3":
             line = "LOADCELL  T1CELL    T2        %-10.4f%-10.4f%-10.4fT3\n" % (px, py, pz + lift)

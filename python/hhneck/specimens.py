@@ -95,7 +95,7 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   z-accelerations, its rotations and the cell's moments CFC 180. The
   Stemper channels are unfiltered, as its notebook plots them.
 
-API: CHANNELS (the rated channels: the data's and the run's); model_channels;
+API: CHANNELS (the rated channels: the data's and the run's); model_channels, filtered;
 stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
 kang_deck, run_kang, rate_kang; rate_channel.
 """
@@ -139,9 +139,14 @@ def model_channels(case, h5):
         out = {}
         for name, run, scale, start, cls in CHANNELS[case]:
             v = np.asarray(f["channels"][run][:], dtype=float)
-            v = scale * (v - v[0] if start else v)
-            out[name] = (t, cfc(v, cls, (t[1] - t[0]) * 1e-3) if cls else v)
+            out[name] = (t, filtered(t, scale * (v - v[0] if start else v), cls))
     return out
+
+
+def filtered(t, v, cls):
+    """The curve v at the even times t [ms] filtered by SAE J211 class cls
+    [Hz] (CHANNELS' fifth field); v itself for class 0."""
+    return cfc(v, cls, (t[1] - t[0]) * 1e-3) if cls else v
 
 
 def _run(deck, workdir, exe):
@@ -268,10 +273,12 @@ KANG_CELL_POINT = (0.054 - 0.081, 0.0, 0.1753 - 0.229)
 
 
 
-def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1_slope=T1_SLOPE["kang"]):
+def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1_slope=T1_SLOPE["kang"],
+              model="input/head_neck_54dof.inp"):
     """Write the Kang 2018 deck of `direction` (front or side) and its pulse
     table into workdir; returns the deck's path. t1_slope: the potted T1's
-    slope [deg]."""
+    slope [deg]; model: the model deck it includes (a study's variant in
+    workdir; the shipped one by default)."""
     t, a = specimen_data.read_pulse(os.path.join(data_dir, "kang2018_sled_pulse.csv"))
     # a TABLE's times increase strictly: the digitised pulse repeats 2.752 ms
     # (30.65 and 35.27 m/s^2), merged into their mean
@@ -288,7 +295,7 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1
              "OUTPUT    1.0E-4",
              "H5FILE    %s.h5" % name]
     lines += _support_cards(support)
-    lines += ["INCLUDE   input/head_neck_54dof.inp",
+    lines += ["INCLUDE   %s" % model,
               "TABLE     KANG      %-10d1.0       1.0       CSV" % len(t),
               "          kang_pulse.csv",
               "PRESCRIB  T1        %s        ACCEL     KANG      0.0       0.0" % driven,
