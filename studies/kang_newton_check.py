@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""Do the Kang specimens' head accelerations and their load cell obey
+Newton's second law together, in time?
+
+    python3 studies/kang_newton_check.py
+
+The load cell carries everything above it: its force (the load on the part
+above, SAE J211 axes, tared) is the sum of m (a - g) over the head and the
+neck, less its value at rest. Two terms hold nearly all of it: the head's
+lab-frame acceleration times an effective mass Mh (the head and the upper
+neck moving with it) and T1's acceleration (the source's pulse) times Mn
+(the lower neck riding with the potted T1):
+
+    F(t) = Mh a_head(t + s) + Mn a_T1(t)
+
+For each pair (the cell's force along an axis, the head's acceleration
+along it) the lag s and the two masses are fitted by least squares, s on
+a 0.5 ms grid from -40 to +40 ms; a pair whose channels share a time base
+fits at s near 0 with Mh near a head's mass (about 4 kg). The head's
+acceleration in the lab comes from the accelerometer's reading (specific
+force in the head's axes, tared) and the head's rotation: untared, turned
+by the rotation into the lab's axes, gravity added back. The model obeys
+Newton's law by construction, so its own channels (the catalogue's curves
+of the shipped decks, every one as the catalogue filters it) check the
+method: they must fit at s near 0. The data: the corridors' midlines
+(front) and the mean of the two specimens (side), as the catalogue rates
+them; the window 0 to 1.2 x the later of the two references' peak times.
+
+Second, the front head z-acceleration the specimens' own load cell implies:
+the head's lab acceleration from the cell's forces (a = (F - Mn a_T1) / Mh,
+the model's fitted masses), read as the accelerometer reads it (with the
+specimens' head rotation), rated by ISO/TS 18571 against the corridor as
+the catalogue rates the model's: what a model whose load cell matched the
+specimens' could score on that channel.
+"""
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
+from hhneck import segments, specimen_data, specimens  # noqa: E402
+from hhneck.compare_nbdl import s3  # noqa: E402
+
+G = 9.81
+LAGS = np.arange(-40.0, 40.25, 0.5)
+#: per case: the head's in-plane acceleration channel, its rotation channel
+#: and, per axis compared, (axis, the cell's force channel, the T1 pulse's
+#: sign on that axis: 0 where T1 is not driven)
+PLANE = {"front": ("head_acc_x", "head_rot_y", 1.0), "side": ("head_acc_y", "head_rot_x", -1.0)}
+PAIRS = {"front": [("x", "loadcell_force_x", -1.0), ("z", "loadcell_force_z", 0.0)],
+         "side": [("y", "loadcell_force_y", 1.0), ("z", "loadcell_force_z", 0.0)]}
+
+
+def lab_acceleration(a_in, a_z, rot_deg, sense):
+    """The head's lab acceleration [m/s^2] (J211 axes, in the plane of the
+    rotation) from the accelerometer's tared readings [g] along the head's
+    in-plane axis (x front, y side) and z, and the head's rotation [deg]
+    as the catalogue's channels give it; sense: +1 for rotation about y
+    in the (x, z) plane, -1 about x in the (y, z) plane (the planes' axes
+    turn the other way round their normals; both checked on the model's
+    own bodies)."""
+    f1, f3 = a_in * G, a_z * G - G          # untared: upright, the z axis reads -g
+    c, s = np.cos(np.radians(rot_deg)), sense * np.sin(np.radians(rot_deg))
+    return c * f1 + s * f3, -s * f1 + c * f3 + G
+
+
+def fit_lag(cell, head, pulse, window, lags=LAGS):
+    """Least squares F(t) = Mh a(t + s) + Mn a_T1(t) over the window [ms]
+    for every lag s: the best (R^2, s [ms], Mh, Mn). cell, head, pulse:
+    (t [ms], value) curves; a pulse of None fits the head's term alone."""
+    g = np.arange(window[0], window[1], 0.1)
+    f = np.interp(g, *cell)
+    best = None
+    for s in lags:
+        cols = [np.interp(g + s, *head)] + ([np.interp(g, *pulse)] if pulse is not None else [])
+        x = np.column_stack(cols)
+        coef = np.linalg.lstsq(x, f, rcond=None)[0]
+        r = f - x @ coef
+        r2 = 1.0 - r @ r / ((f - f.mean()) @ (f - f.mean()))
+        cand = (r2, s, coef[0], coef[1] if pulse is not None else 0.0)
+        if best is None or cand[0] > best[0]:
+            best = cand
+    return best
+
+
+def curves(direction, model):
+    """{channel: (t [ms], value)} of the data's references and, for the
+    model, of its catalogue curves."""
+    path = os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction)
+    names = set(PLANE[direction][:2]) | {"head_acc_z"} | {p[1] for p in PAIRS[direction]}
+    data = {c: specimen_data.reference(path, c)[:2] for c in names}
+    return data, {c: model[c] for c in names}
+
+
+def peak_time(curve):
+    t, v = curve
+    keep = t >= 0.0
+    return t[keep][int(np.argmax(np.abs(v[keep])))]
+
+
+def main():
+    tp, ap = specimen_data.read_pulse(os.path.join(segments.DATA_DIR, "kang2018_sled_pulse.csv"))
+    tp = tp * 1e3
+    print("| case | axis | curves | window (ms) | lag s (ms) | Mh (kg) | Mn (kg) | R^2 | R^2 at s = 0 (Mh, Mn) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    fitted = {}
+    for direction, pairs in PAIRS.items():
+        model = specimens.run_kang(direction, tempfile.mkdtemp(prefix="kang-newton-"))
+        data, mod = curves(direction, model)
+        acc, rot, sense = PLANE[direction]
+        for axis, force, psign in pairs:
+            head_ch = acc if axis != "z" else "head_acc_z"
+            t1 = 1.2 * max(peak_time(data[head_ch]), peak_time(data[force]))
+            pulse = (tp, psign * ap) if psign else None
+            for label, c in (("model", mod), ("specimens", data)):
+                grid = np.arange(0.0, 200.0, 0.1)
+                lab_in, lab_z = lab_acceleration(*(np.interp(grid, *c[k]) for k in (acc, "head_acc_z", rot)), sense)
+                head = (grid, lab_z if axis == "z" else lab_in)
+                best = fit_lag(c[force], head, pulse, (0.0, t1))
+                at0 = fit_lag(c[force], head, pulse, (0.0, t1), lags=[0.0])
+                fitted[(direction, axis, label)] = best
+                print("| %s | %s | %s | 0-%.0f | %+.1f | %s | %s | %s | %s (%s, %s) |" % (
+                    direction, axis, label, t1, best[1], s3(best[2]), s3(best[3]), s3(best[0]),
+                    s3(at0[0]), s3(at0[2]), s3(at0[3])))
+    # the front head z-acceleration the specimens' own load cell implies
+    path = os.path.join(segments.DATA_DIR, "kang2018_front_experiment.csv")
+    ref = {c: specimen_data.reference(path, c)[:2] for c in
+           ("head_rot_y", "loadcell_force_x", "loadcell_force_z")}
+    grid = np.arange(0.0, 190.0, 0.1)
+    _, _, mhx, mnx = fitted[("front", "x", "model")]
+    _, _, mhz, _ = fitted[("front", "z", "model")]
+    ax_lab = (np.interp(grid, *ref["loadcell_force_x"]) - mnx * np.interp(grid, tp, -ap)) / mhx
+    az_lab = np.interp(grid, *ref["loadcell_force_z"]) / mhz
+    th = np.radians(np.interp(grid, *ref["head_rot_y"]))
+    # the accelerometer's reading: the lab's specific force turned into the head's axes, tared
+    fx, fz = ax_lab, az_lab - G
+    reading_z = (np.sin(th) * fx + np.cos(th) * fz + G) / G
+    sc = rate_as_catalogue(path, "head_acc_z", grid, reading_z)
+    print()
+    print("front head z-acceleration implied by the specimens' load cell (Mh %s / %s kg, Mn %s kg): "
+          "ISO/TS 18571 %s against the corridor, peak %s g at %.0f ms (corridor %s g at %.0f ms)" % (
+              s3(mhx), s3(mhz), s3(mnx), s3(sc["overall"]), s3(sc["peak_model"][0]), sc["peak_model"][1],
+              s3(sc["peak_ref"][0]), sc["peak_ref"][1]))
+    # the side load cell's lateral force the specimens' own head implies
+    path = os.path.join(segments.DATA_DIR, "kang2018_side_experiment.csv")
+    ref = {c: specimen_data.reference(path, c)[:2] for c in ("head_acc_y", "head_acc_z", "head_rot_x")}
+    _, _, mhy, mny = fitted[("side", "y", "model")]
+    lab_y, _ = lab_acceleration(*(np.interp(grid, *ref[c]) for c in ("head_acc_y", "head_acc_z", "head_rot_x")),
+                                PLANE["side"][2])
+    fy = mhy * lab_y + mny * np.interp(grid, tp, ap)
+    sc = rate_as_catalogue(path, "loadcell_force_y", grid, fy)
+    print("side load cell Fy implied by the specimens' head (Mh %s kg, Mn %s kg): ISO/TS 18571 %s against "
+          "the specimens' mean, peak %s N at %.0f ms (specimens %s N at %.0f ms)" % (
+              s3(mhy), s3(mny), s3(sc["overall"]), s3(sc["peak_model"][0]), sc["peak_model"][1],
+              s3(sc["peak_ref"][0]), sc["peak_ref"][1]))
+
+
+def rate_as_catalogue(path, channel, t, v):
+    """ISO/TS 18571 of the curve (t [ms], v) against the channel's
+    reference, on the catalogue's window (specimens.rate_kang's)."""
+    g, r, lo, hi = specimen_data.reference(path, channel)
+    keep = g >= 0.0
+    g, r, lo, hi = g[keep], r[keep], lo[keep], hi[keep]
+    keep = g <= 1.2 * g[int(np.argmax(np.abs(r)))]
+    return specimens.rate_channel(g[keep], r[keep], lo[keep], hi[keep], t, v)
+
+
+if __name__ == "__main__":
+    main()
