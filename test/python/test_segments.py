@@ -5,6 +5,8 @@ torsional G J/h) as the deck's DISC card and SCALE factors give it; with
 every element, the deck takes exactly the cards of the model deck joining
 the segment's bodies; the data are split into their loading branches as the
 README of the data describes."""
+import os
+
 import numpy as np
 import pytest
 
@@ -162,6 +164,27 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     at_peak = np.interp(segments.RAMP, t, c4) - c4[0]
     assert model[0] == pytest.approx(at_peak, abs=0.006)     # 3 significant digits in the table
     assert "catalogue_panjabi.png" in text and (tmp_path / "catalogue_panjabi.png").exists()
+    # under each specimen case: every channel of its table below 0.50, and
+    # only those, named on its "What stops it" line, with a link to the
+    # section of docs/validation.md that exists as a heading
+    import re
+    headings = {catalogue.anchor(l.lstrip("#").strip()) for l in
+                open(os.path.join(segments.ROOT, "docs", "validation.md")).read().splitlines() if l.startswith("#")}
+    cases = re.split(r"^### ", text, flags=re.M)
+    for title in ("Stemper 2004 rear 1.8 m/s", "Kang 2018 front 14 km/h", "Kang 2018 side 14 km/h"):
+        body = next(c for c in cases if c.startswith(title)).split("Variants of the set-up")[0]
+        scores = {l.split("|")[1].strip(): float(l.split("|")[6].strip(" *")) for l in body.splitlines()
+                  if re.match(r"\| (seg_|head_|loadcell_)", l)}
+        stops = [l for l in body.splitlines() if l.startswith("**What stops it**")]
+        mean = np.mean(list(scores.values()))
+        if mean >= 0.75 and min(scores.values()) >= 0.5:
+            assert not stops, title
+            continue
+        assert len(stops) == 1, title
+        named = set(re.findall(r"(\w+) \d\.\d{3} \(the model's peak", stops[0]))
+        assert named == {c for c, v in scores.items() if v < 0.5}, title
+        assert ("the mean %.3f" % mean in stops[0]) == (mean < 0.75), title
+        assert re.search(r"\(validation\.md(#[^)]+)\)", stops[0]).group(1) in headings, title
     # the NBDL row: the decks run here, rated as hhneck-compare-nbdl rates them
     from hhneck import compare_nbdl
     nbdl = next(l for l in text.splitlines() if l.startswith("| NBDL 15 g (prediction), 12 g (calibration) |"))
