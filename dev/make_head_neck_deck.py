@@ -31,6 +31,8 @@ whole flow, from the segment data to the muscles' fit, is dev/fit_model.sh.
 --segmental yes two segmental muscles per subaxial level and side (segmental_muscles),
 --sub-bend F scales the subaxial discs' own bending Ix, Iy (SUB_BEND): experiments, not
 the shipped model (docs/validation.md "Segmental muscles").
+--sub-flexion F scales the flexion-extension bending Iy of the discs C3-C4 ... C7-T1
+alone (SUB_FLEXION; docs/validation.md "The subaxial discs' flexion-extension").
 
 Upper-cervical factors (an experiment, not the shipped model: docs/validation.md
 "The upper cervical joints"): with --upper-cervical CSV (the file
@@ -346,10 +348,15 @@ UPPER_CERVICAL = "none"
 # the subaxial discs' (T1-C7 ... C3-C2) own bending Ix, Iy as a fraction of DISC_ROT_FRACTION's
 # (--sub-bend F; 1 = as the other discs)
 SUB_BEND = 1.0
+# the flexion-extension bending Iy of the discs C3-C4 ... C7-T1 (C2-C3 excepted: Panjabi's
+# C2-C3 flexion-extension is met at DISC_ROT_FRACTION) as a fraction of DISC_ROT_FRACTION's
+# (--sub-flexion F)
+SUB_FLEXION = 1.0
+FLEXION_LEVELS = SEGMENTAL_LEVELS[:5]
 USAGE = ("usage: make_head_neck_deck.py [--fit CALIBRATION_LISTING] [--posture straight|seated|seated-held]\n"
          "                              [--t1-slope DEG] [--lordosis DEG] [--nz-springs CSV|none]\n"
          "                              [--upper-cervical CSV|none] [--suboccipital yes|no]\n"
-         "                              [--segmental yes|no] [--sub-bend F]")
+         "                              [--segmental yes|no] [--sub-bend F] [--sub-flexion F]")
 args = sys.argv[1:]
 while args:
     a = args.pop(0)
@@ -377,6 +384,8 @@ while args:
             MUSCLES = MUSCLES + segmental_muscles()
     elif a == "--sub-bend":
         SUB_BEND = float(args.pop(0))
+    elif a == "--sub-flexion":
+        SUB_FLEXION = float(args.pop(0))
     elif a == "--suboccipital" and args[0] in ("yes", "no"):
         if args.pop(0) == "yes":
             MUSCLES = MUSCLES + SUBOCCIPITAL_MUSCLES
@@ -602,6 +611,11 @@ if SUB_BEND != 1.0:
     for i, line in enumerate(lines):
         if line.startswith("DISC ") and line[10:20].strip() in subaxial:
             lines[i + 2] = scale_fields(lines[i + 2], (2, 3), SUB_BEND)
+if SUB_FLEXION != 1.0:
+    levels = [lo + up for lo, up in FLEXION_LEVELS]
+    for i, line in enumerate(lines):
+        if line.startswith("DISC ") and line[10:20].strip() in levels:
+            lines[i + 2] = scale_fields(lines[i + 2], (3,), SUB_FLEXION)
 try:
     lines = check_cards(lines, "the model deck")
 except CardError as e:
