@@ -4,8 +4,9 @@ experiments of docs/validation.md "The upper cervical joints" and
 adds exactly the four suboccipital muscles per side with F0 = sectional
 area x sigma_max; --segmental yes exactly two muscles per subaxial level
 and side, each joining adjacent vertebrae; --sub-bend F scales exactly the
-subaxial discs' Ix and Iy; every variant is read by the program; off, each
-gives the shipped deck."""
+subaxial discs' Ix and Iy, --sub-flexion F exactly the Iy of the discs
+C3-C4 ... C7-T1; every variant is read by the program; off, each gives
+the shipped deck."""
 import os
 import subprocess
 
@@ -45,7 +46,7 @@ def _data_cards(lines, without=("HILL",)):
 
 def test_every_variant_off_is_the_shipped_deck():
     shipped = open(segments.MODEL_DECK).read().splitlines()
-    assert _generate("--suboccipital", "no", "--segmental", "no", "--sub-bend", "1") == shipped
+    assert _generate("--suboccipital", "no", "--segmental", "no", "--sub-bend", "1", "--sub-flexion", "1") == shipped
 
 
 def test_segmental_muscles_join_adjacent_subaxial_vertebrae(tmp_path):
@@ -78,6 +79,28 @@ def test_sub_bend_scales_only_the_subaxial_discs_bending(tmp_path):
         assert float(g1[2]) == pytest.approx(0.2 * float(g0[2]), rel=1e-5)  # Ix
         assert float(g1[3]) == pytest.approx(0.2 * float(g0[3]), rel=1e-5)  # Iy
     assert n == 6
+    _program_reads(tmp_path, soft)
+
+
+def test_sub_flexion_scales_only_the_lower_discs_flexion_extension(tmp_path):
+    """--sub-flexion F: Iy (flexion-extension bending) of the discs C3-C4
+    ... C7-T1 times F, and nothing else of any card; C2-C3 and the upper
+    joints kept; the program reads the deck."""
+    plain, soft = _generate(), _generate("--sub-flexion", "0.25")
+    a, b = _cards(plain), _cards(soft)
+    levels = {"T1C7", "C7C6", "C6C5", "C5C4", "C4C3"}
+    n = 0
+    for key, lines in a.items():
+        if key[0] != "DISC" or key[1] not in levels:
+            assert b[key] == lines, key
+            continue
+        n += 1
+        assert b[key][:2] == lines[:2]
+        g0, g1 = segments._fields(lines[2]), segments._fields(b[key][2])
+        assert [g1[k] for k in (1, 2, 4, 5)] == [g0[k] for k in (1, 2, 4, 5)]   # G, Ix, J, k kept
+        assert float(g1[3]) == pytest.approx(0.25 * float(g0[3]), rel=1e-5)    # Iy
+    assert n == 5
+    assert [l for l in soft if not l.startswith(" ")] == [l for l in plain if not l.startswith(" ")]
     _program_reads(tmp_path, soft)
 
 
