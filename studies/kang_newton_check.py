@@ -31,7 +31,9 @@ the head's lab acceleration from the cell's forces (a = (F - Mn a_T1) / Mh,
 the model's fitted masses), read as the accelerometer reads it (with the
 specimens' head rotation), rated by ISO/TS 18571 against the corridor as
 the catalogue rates the model's: what a model whose load cell matched the
-specimens' could score on that channel.
+specimens' could score on that channel. Likewise the side cell's lateral
+force the specimens' own head implies (F = Mh a_head + Mn a_T1, the
+model's fitted masses) against the specimens' mean.
 """
 import os
 import sys
@@ -46,7 +48,7 @@ from hhneck.compare_nbdl import s3  # noqa: E402
 G = 9.81
 LAGS = np.arange(-40.0, 40.25, 0.5)
 #: per case: the head's in-plane acceleration channel, its rotation channel
-#: and, per axis compared, (axis, the cell's force channel, the T1 pulse's
+#: and the rotation's sense (lab_acceleration); per axis compared, (axis, the cell's force channel, the T1 pulse's
 #: sign on that axis: 0 where T1 is not driven)
 PLANE = {"front": ("head_acc_x", "head_rot_y", 1.0), "side": ("head_acc_y", "head_rot_x", -1.0)}
 PAIRS = {"front": [("x", "loadcell_force_x", -1.0), ("z", "loadcell_force_z", 0.0)],
