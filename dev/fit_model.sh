@@ -13,8 +13,9 @@
 #      upper cervical joints"; the shipped model is fitted without; SUBOCCIPITAL=1
 #      adds the suboccipital muscles, --suboccipital yes, in every step, the
 #      same section's other experiment; SEGMENTAL=1 the segmental muscles with
-#      the subaxial discs' bending at 0.2, --segmental yes --sub-bend 0.2,
-#      docs/validation.md "Segmental muscles"; SUB_FLEXION=F the flexion-
+#      the subaxial discs' bending at 0.2 (SUB_BEND=F another fraction),
+#      --segmental yes --sub-bend 0.2, docs/validation.md "Segmental
+#      muscles"; SUB_FLEXION=F the flexion-
 #      extension bending of the discs C3-C4 ... C7-T1 at F, --sub-flexion F,
 #      docs/validation.md "The subaxial discs' flexion-extension");
 #   3. hhneck --calibrate < input/calibrate_nbdl12g.inp on the model deck with
@@ -41,7 +42,7 @@ awk '/^PARAM /{name[++n] = substr($0, 11, 10); gsub(/ /, "", name[n])}
 if [ "${UPPER_CERVICAL:-0}" = 1 ]; then upper=reference/upper_cervical.csv; flag=--upper-cervical
 else upper=none; flag=; fi
 if [ "${SUBOCCIPITAL:-0}" = 1 ]; then sub=yes; else sub=no; fi
-if [ "${SEGMENTAL:-0}" = 1 ]; then seg="--segmental yes --sub-bend 0.2"; else seg=; fi
+if [ "${SEGMENTAL:-0}" = 1 ]; then seg="--segmental yes --sub-bend ${SUB_BEND:-0.2}"; else seg=; fi
 if [ -n "${SUB_FLEXION:-}" ]; then seg="$seg --sub-flexion $SUB_FLEXION"; fi
 python3 dev/make_head_neck_deck.py --fit "$start" --nz-springs reference/nz_springs.csv --upper-cervical none \
     --suboccipital $sub $seg > input/head_neck_54dof.inp.new
