@@ -24,7 +24,7 @@ Newton's law by construction, so its own channels (the catalogue's curves
 of the shipped decks, every one as the catalogue filters it) check the
 method: they must fit at s near 0. The data: the corridors' midlines
 (front) and the mean of the two specimens (side), as the catalogue rates
-them; the window 0 to 1.2 x the later of the two references' peak times.
+them, and (side) each specimen alone; the window 0 to 1.2 x the later of the two references' peak times.
 
 Second, the front head z-acceleration the specimens' own load cell implies:
 the head's lab acceleration from the cell's forces (a = (F - Mn a_T1) / Mh,
@@ -88,12 +88,17 @@ def fit_lag(cell, head, pulse, window, lags=LAGS):
 
 
 def curves(direction, model):
-    """{channel: (t [ms], value)} of the data's references and, for the
-    model, of its catalogue curves."""
+    """[(label, {channel: (t [ms], value)})]: the model's catalogue curves,
+    the data's references and, where the data give individual specimens
+    (side), each specimen's own curves."""
     path = os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction)
     names = set(PLANE[direction][:2]) | {"head_acc_z"} | {p[1] for p in PAIRS[direction]}
-    data = {c: specimen_data.reference(path, c)[:2] for c in names}
-    return data, {c: model[c] for c in names}
+    out = [("model", {c: model[c] for c in names}),
+           ("specimens", {c: specimen_data.reference(path, c)[:2] for c in names})]
+    raw = specimen_data.read_curves(path)
+    for who in sorted(set.intersection(*(set(raw[c]) for c in names)) - {"corridor_outline"}):
+        out.append((who.upper(), {c: specimen_data._as_function(*raw[c][who]) for c in names}))
+    return out
 
 
 def peak_time(curve):
@@ -110,13 +115,14 @@ def main():
     fitted = {}
     for direction, pairs in PAIRS.items():
         model = specimens.run_kang(direction, tempfile.mkdtemp(prefix="kang-newton-"))
-        data, mod = curves(direction, model)
+        sets = curves(direction, model)
+        data = sets[1][1]
         acc, rot, sense = PLANE[direction]
         for axis, force, psign in pairs:
             head_ch = acc if axis != "z" else "head_acc_z"
             t1 = 1.2 * max(peak_time(data[head_ch]), peak_time(data[force]))
             pulse = (tp, psign * ap) if psign else None
-            for label, c in (("model", mod), ("specimens", data)):
+            for label, c in sets:
                 grid = np.arange(0.0, 200.0, 0.1)
                 lab_in, lab_z = lab_acceleration(*(np.interp(grid, *c[k]) for k in (acc, "head_acc_z", rot)), sense)
                 head = (grid, lab_z if axis == "z" else lab_in)
