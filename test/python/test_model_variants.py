@@ -64,21 +64,30 @@ def test_segmental_muscles_join_adjacent_subaxial_vertebrae(tmp_path):
     _program_reads(tmp_path, seg)
 
 
-def test_sub_bend_scales_only_the_subaxial_discs_bending(tmp_path):
-    plain, soft = _generate(), _generate("--sub-bend", "0.2")
-    a, b = _cards(plain), _cards(soft)
-    subaxial = {"T1C7", "C7C6", "C6C5", "C5C4", "C4C3", "C3C2"}
+def _only_disc_fields_scaled(plain, variant, discs, scaled, factor):
+    """Every DISC and LIGAMENT card of `variant` as in `plain`, but the
+    third lines of the DISC cards `discs`, whose fields `scaled` (G 1, Ix 2,
+    Iy 3, J 4, k 5) are `factor` times plain's and the others kept; every
+    card of another kind unchanged."""
+    a, b = _cards(plain), _cards(variant)
     n = 0
     for key, lines in a.items():
-        if key[0] != "DISC" or key[1] not in subaxial:
+        if key[0] != "DISC" or key[1] not in discs:
             assert b[key] == lines, key
             continue
         n += 1
+        assert b[key][:2] == lines[:2], key
         g0, g1 = segments._fields(lines[2]), segments._fields(b[key][2])
-        assert [g1[1], g1[4], g1[5]] == [g0[1], g0[4], g0[5]]               # G, J, k kept
-        assert float(g1[2]) == pytest.approx(0.2 * float(g0[2]), rel=1e-5)  # Ix
-        assert float(g1[3]) == pytest.approx(0.2 * float(g0[3]), rel=1e-5)  # Iy
-    assert n == 6
+        for k in range(1, 6):
+            want = factor * float(g0[k]) if k in scaled else float(g0[k])
+            assert float(g1[k]) == pytest.approx(want, rel=1e-5), (key, k)
+    assert n == len(discs)
+    assert [l for l in variant if not l.startswith(" ")] == [l for l in plain if not l.startswith(" ")]
+
+
+def test_sub_bend_scales_only_the_subaxial_discs_bending(tmp_path):
+    soft = _generate("--sub-bend", "0.2")
+    _only_disc_fields_scaled(_generate(), soft, {"T1C7", "C7C6", "C6C5", "C5C4", "C4C3", "C3C2"}, (2, 3), 0.2)
     _program_reads(tmp_path, soft)
 
 
@@ -86,21 +95,8 @@ def test_sub_flexion_scales_only_the_lower_discs_flexion_extension(tmp_path):
     """--sub-flexion F: Iy (flexion-extension bending) of the discs C3-C4
     ... C7-T1 times F, and nothing else of any card; C2-C3 and the upper
     joints kept; the program reads the deck."""
-    plain, soft = _generate(), _generate("--sub-flexion", "0.25")
-    a, b = _cards(plain), _cards(soft)
-    levels = {"T1C7", "C7C6", "C6C5", "C5C4", "C4C3"}
-    n = 0
-    for key, lines in a.items():
-        if key[0] != "DISC" or key[1] not in levels:
-            assert b[key] == lines, key
-            continue
-        n += 1
-        assert b[key][:2] == lines[:2]
-        g0, g1 = segments._fields(lines[2]), segments._fields(b[key][2])
-        assert [g1[k] for k in (1, 2, 4, 5)] == [g0[k] for k in (1, 2, 4, 5)]   # G, Ix, J, k kept
-        assert float(g1[3]) == pytest.approx(0.25 * float(g0[3]), rel=1e-5)    # Iy
-    assert n == 5
-    assert [l for l in soft if not l.startswith(" ")] == [l for l in plain if not l.startswith(" ")]
+    soft = _generate("--sub-flexion", "0.25")
+    _only_disc_fields_scaled(_generate(), soft, {"T1C7", "C7C6", "C6C5", "C5C4", "C4C3"}, (3,), 0.25)
     _program_reads(tmp_path, soft)
 
 
