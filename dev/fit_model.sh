@@ -25,9 +25,16 @@
 # Every step is deterministic, so the shipped deck and reference/nz_springs.csv
 # come out as they are committed (the springs fitted at the starting point,
 # not refitted at the fit: docs/validation.md says what that changes).
-# Usage: dev/fit_model.sh [FIT]   (default fit12.txt; about 15 minutes)
+# Usage: dev/fit_model.sh [FIT]   (default fit12.txt; about 15 minutes). It
+# rewrites input/head_neck_54dof.inp and reference/nz_springs.csv in place:
+# run an experiment's variant in a scratch copy (git worktree add), not in a
+# tree you commit from while it runs.
 set -e
 cd "$(dirname "$0")/.."
+# this tree's Python package, whichever tree the installed one points to, so
+# that a scratch copy's fit writes its own springs (hhneck-fit-joints writes
+# reference/nz_springs.csv below the package's tree)
+export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"
 fit=${1:-fit12.txt}
 exe=$(fpm run --profile release --runner echo 2>/dev/null | tail -1)
 case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
