@@ -15,9 +15,9 @@
 #      same section's other experiment; SEGMENTAL=1 the segmental muscles with
 #      the subaxial discs' bending at 0.2 (SUB_BEND=F another fraction),
 #      --segmental yes --sub-bend 0.2, docs/validation.md "Segmental
-#      muscles"; SUB_FLEXION=F the flexion-
-#      extension bending of the discs C3-C4 ... C7-T1 at F, --sub-flexion F,
-#      docs/validation.md "The subaxial discs' flexion-extension");
+#      muscles"; SUB_FLEXION=F the flexion-extension bending of the discs
+#      C3-C4 ... C7-T1 at F, --sub-flexion F, docs/validation.md "The
+#      subaxial discs' flexion-extension");
 #   3. hhneck --calibrate < input/calibrate_nbdl12g.inp on the model deck with
 #      those springs: muscles, damping and the discs' and stops' factors fitted
 #      to the NBDL 12 g volunteers -> the listing FIT;

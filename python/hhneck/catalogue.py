@@ -141,13 +141,15 @@ SPECIMEN_NOTES = {
 }
 #: the SAFER HBM v11's published ISO/TS 18571 on a case (mean of its channels), where there is one
 SAFER = {"Kang 2018 side 14 km/h": "0.684 (6 channels: kinematics 0.75, loads 0.62)"}
-#: the section of docs/validation.md that says, per case or source, what stops it and what was tried
-#: for it with what each experiment changed (the report links it under each case that misses its goal)
+#: the sections of docs/validation.md that say, per case or source, what stops it and what was tried
+#: for it with what each experiment changed (the report links them under each case that misses its goal)
 KANG_SECTION = "The Kang cases: the head's accelerometer, and the neck's own inertia in the load cell"
-STOPS = {"Stemper 2004 rear 1.8 m/s": "What is not validated, and what limits the fit",
-         "Kang 2018 front 14 km/h": KANG_SECTION, "Kang 2018 side 14 km/h": KANG_SECTION,
-         "Panjabi 2001": "Neutral-zone springs, and which fit predicts better",
-         "Nightingale 2007": "Neutral-zone springs, and which fit predicts better"}
+SUBAXIAL_SECTION = "The subaxial discs' flexion–extension"
+SEGMENT_SECTIONS = ("Neutral-zone springs, and which fit predicts better", SUBAXIAL_SECTION,
+                    "The upper cervical joints")
+STOPS = {"Stemper 2004 rear 1.8 m/s": ("What is not validated, and what limits the fit", SUBAXIAL_SECTION),
+         "Kang 2018 front 14 km/h": (KANG_SECTION,), "Kang 2018 side 14 km/h": (KANG_SECTION,),
+         "Panjabi 2001": SEGMENT_SECTIONS, "Nightingale 2007": SEGMENT_SECTIONS}
 CHANNEL_FLOOR = 0.50    # no channel below it (the specimen goal); the curves listed under a source below it
 
 
@@ -160,8 +162,8 @@ def anchor(heading):
 def stops_line(title, misses):
     """The report's line under a case that misses its goal: what misses
     (computed from this run's ratings) and the link to what was tried."""
-    return "**What stops it**: %s. What was tried, and what each experiment changed: [docs/validation.md, " \
-        "\"%s\"](validation.md%s)." % ("; ".join(misses), STOPS[title], anchor(STOPS[title]))
+    return "**What stops it**: %s. What was tried, and what each experiment changed: docs/validation.md, %s." % (
+        "; ".join(misses), ", ".join("[\"%s\"](validation.md%s)" % (h, anchor(h)) for h in STOPS[title]))
 
 
 def specimen_section(cases, variants, figdir, relto):
