@@ -4,12 +4,13 @@ Newton's second law together, in time?
 
     python3 studies/kang_newton_check.py
 
-The load cell carries everything above it: its force (the load on the part
-above, SAE J211 axes, tared) is the sum of m (a - g) over the head and the
-neck, less its value at rest. Two terms hold nearly all of it: the head's
-lab-frame acceleration times an effective mass Mh (the head and the upper
-neck moving with it) and T1's acceleration (the source's pulse) times Mn
-(the lower neck riding with the potted T1):
+The load cell carries everything above it (hhneck.newton_balance, whose
+functions this study runs): its force (the load on the part above, SAE
+J211 axes, tared) is the sum of m (a - g) over the head and the neck, less
+its value at rest. Two terms hold nearly all of it: the head's lab-frame
+acceleration times an effective mass Mh (the head and the upper neck
+moving with it) and T1's acceleration (the source's pulse) times Mn (the
+lower neck riding with the potted T1):
 
     F(t) = Mh a_head(t + s) + Mn a_T1(t)
 
@@ -44,47 +45,7 @@ import numpy as np
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 from hhneck import segments, specimen_data, specimens  # noqa: E402
 from hhneck.compare_nbdl import s3  # noqa: E402
-
-G = 9.81
-LAGS = np.arange(-40.0, 40.25, 0.5)
-#: per case: the head's in-plane acceleration channel, its rotation channel
-#: and the rotation's sense (lab_acceleration); per axis compared, (axis, the cell's force channel, the T1 pulse's
-#: sign on that axis: 0 where T1 is not driven)
-PLANE = {"front": ("head_acc_x", "head_rot_y", 1.0), "side": ("head_acc_y", "head_rot_x", -1.0)}
-PAIRS = {"front": [("x", "loadcell_force_x", -1.0), ("z", "loadcell_force_z", 0.0)],
-         "side": [("y", "loadcell_force_y", 1.0), ("z", "loadcell_force_z", 0.0)]}
-
-
-def lab_acceleration(a_in, a_z, rot_deg, sense):
-    """The head's lab acceleration [m/s^2] (J211 axes, in the plane of the
-    rotation) from the accelerometer's tared readings [g] along the head's
-    in-plane axis (x front, y side) and z, and the head's rotation [deg]
-    as the catalogue's channels give it; sense: +1 for rotation about y
-    in the (x, z) plane, -1 about x in the (y, z) plane (the planes' axes
-    turn the other way round their normals; both checked on the model's
-    own bodies)."""
-    f1, f3 = a_in * G, a_z * G - G          # untared: upright, the z axis reads -g
-    c, s = np.cos(np.radians(rot_deg)), sense * np.sin(np.radians(rot_deg))
-    return c * f1 + s * f3, -s * f1 + c * f3 + G
-
-
-def fit_lag(cell, head, pulse, window, lags=LAGS):
-    """Least squares F(t) = Mh a(t + s) + Mn a_T1(t) over the window [ms]
-    for every lag s: the best (R^2, s [ms], Mh, Mn). cell, head, pulse:
-    (t [ms], value) curves; a pulse of None fits the head's term alone."""
-    g = np.arange(window[0], window[1], 0.1)
-    f = np.interp(g, *cell)
-    best = None
-    for s in lags:
-        cols = [np.interp(g + s, *head)] + ([np.interp(g, *pulse)] if pulse is not None else [])
-        x = np.column_stack(cols)
-        coef = np.linalg.lstsq(x, f, rcond=None)[0]
-        r = f - x @ coef
-        r2 = 1.0 - r @ r / ((f - f.mean()) @ (f - f.mean()))
-        cand = (r2, s, coef[0], coef[1] if pulse is not None else 0.0)
-        if best is None or cand[0] > best[0]:
-            best = cand
-    return best
+from hhneck.newton_balance import G, PAIRS, PLANE, balance, lab_acceleration  # noqa: E402
 
 
 def curves(direction, model):
@@ -101,36 +62,23 @@ def curves(direction, model):
     return out
 
 
-def peak_time(curve):
-    t, v = curve
-    keep = t >= 0.0
-    return t[keep][int(np.argmax(np.abs(v[keep])))]
-
-
 def main():
     tp, ap = specimen_data.read_pulse(os.path.join(segments.DATA_DIR, "kang2018_sled_pulse.csv"))
     tp = tp * 1e3
     print("| case | axis | curves | window (ms) | lag s (ms) | Mh (kg) | Mn (kg) | R^2 | R^2 at s = 0 (Mh, Mn) |")
     print("|---|---|---|---|---|---|---|---|---|")
     fitted = {}
-    for direction, pairs in PAIRS.items():
+    for direction in PAIRS:
         model = specimens.run_kang(direction, tempfile.mkdtemp(prefix="kang-newton-"))
         sets = curves(direction, model)
-        data = sets[1][1]
-        acc, rot, sense = PLANE[direction]
-        for axis, force, psign in pairs:
-            head_ch = acc if axis != "z" else "head_acc_z"
-            t1 = 1.2 * max(peak_time(data[head_ch]), peak_time(data[force]))
-            pulse = (tp, psign * ap) if psign else None
-            for label, c in sets:
-                grid = np.arange(0.0, 200.0, 0.1)
-                lab_in, lab_z = lab_acceleration(*(np.interp(grid, *c[k]) for k in (acc, "head_acc_z", rot)), sense)
-                head = (grid, lab_z if axis == "z" else lab_in)
-                best = fit_lag(c[force], head, pulse, (0.0, t1))
-                at0 = fit_lag(c[force], head, pulse, (0.0, t1), lags=[0.0])
+        rows = {label: balance(direction, c, sets[1][1], (tp, ap)) for label, c in sets}
+        for k, (axis, _, _) in enumerate(PAIRS[direction]):
+            for label, _ in sets:
+                r = rows[label][k]
+                best, at0 = r["best"], r["at_zero"]
                 fitted[(direction, axis, label)] = best
                 print("| %s | %s | %s | 0-%.0f | %+.1f | %s | %s | %s | %s (%s, %s) |" % (
-                    direction, axis, label, t1, best[1], s3(best[2]), s3(best[3]), s3(best[0]),
+                    direction, axis, label, r["window"][1], best[1], s3(best[2]), s3(best[3]), s3(best[0]),
                     s3(at0[0]), s3(at0[2]), s3(at0[3])))
     # the front head z-acceleration the specimens' own load cell implies
     path = os.path.join(segments.DATA_DIR, "kang2018_front_experiment.csv")

@@ -9,7 +9,9 @@ of its set-up) and Kang 2018 (front and side, the head's 3 kinematic channels
 and the T1 load cell's 3 each, with the settled start as a variant), set up
 by hhneck.specimens. The NBDL volunteer sleds (15 g, 12 g) are run and rated
 as hhneck-compare-nbdl rates them (docs/validation.md has their tables).
-Under each case or source that misses its goal, a "What stops it" line
+Under each Kang case, the Newton balance of its head and load cell
+(hhneck.newton_balance), the data's and the model's. Under each case or
+source that misses its goal, a "What stops it" line
 names what misses, from this run's ratings (the mean's shortfall, every
 channel or curve below 0.50 with the peaks), and links the section of
 docs/validation.md (STOPS) that gives the experiments tried for it.
@@ -26,7 +28,8 @@ import time
 
 import numpy as np
 
-from . import compare_nbdl, run, segments, specimens
+from . import compare_nbdl, newton_balance, run, segments, specimens
+from .compare_nbdl import s3
 
 REPORT = os.path.join(segments.ROOT, "docs", "catalogue.md")
 NBDL_GOAL = 0.85        # CORA-style, at both severities (the goal of the catalogue)
@@ -166,10 +169,30 @@ def stops_line(title, misses):
         "; ".join(misses), ", ".join("[\"%s\"](validation.md%s)" % (h, anchor(h)) for h in STOPS[title]))
 
 
-def specimen_section(cases, variants, figdir, relto):
+def newton_lines(rows):
+    """Markdown lines of a Kang case's Newton balance (newton_balance.kang_rows)."""
+    lines = ["Newton's law between the head and the load cell (`hhneck.newton_balance`): F = Mh a_head(t + s) + "
+             "Mn a_T1(t) fitted by least squares along each axis, the lag s on a 0.5 ms grid; channels on one time "
+             "base fit near s = 0 with Mh near a head's mass, and the model's rows, which obey the law by "
+             "construction, check the method (docs/validation.md, \"Do the specimens' head and load cell obey "
+             "Newton's law together?\"):", "",
+             "| axis | curves | window (ms) | lag s (ms) | Mh (kg) | Mn (kg) | R² | at s = 0: Mh, Mn (kg), R² |",
+             "|---|---|---|---|---|---|---|---|"]
+    for k in range(len(rows["model"])):
+        for label in ("model", "specimens"):
+            r = rows[label][k]
+            (r2, lag, mh, mn), (r20, _, mh0, mn0) = r["best"], r["at_zero"]
+            lines.append("| %s | %s | 0–%.0f | %+.1f | %s | %s | %.3f | %s, %s, %.3f |" % (
+                r["axis"], label, r["window"][1], lag, s3(mh), s3(mn), r2, s3(mh0), s3(mn0), r20))
+    return lines + [""]
+
+
+def specimen_section(cases, variants, figdir, relto, newton=None):
     """Markdown lines of the specimen cases: per case the ISO/TS 18571 scores
-    and peaks of every rated channel, the channels not rated, a figure; its
-    set-up variants' means (variants: {title: {(support, muscles): rated}})."""
+    and peaks of every rated channel, the channels not rated, a figure, the
+    Newton balance of its head and load cell where given (newton: {title:
+    newton_balance.kang_rows}); its set-up variants' means (variants:
+    {title: {(support, muscles): rated}})."""
     lines = ["## Specimen sled tests", "",
              "**Prediction**: nothing of the model was fitted to these data; set-ups in "
              "`python/hhneck/specimens.py` (its docstring names each decision of the data's README).", ""]
@@ -199,6 +222,8 @@ def specimen_section(cases, variants, figdir, relto):
         fig = _case_figure(title, rated, figdir)
         if fig:
             lines += ["![%s: model (red) against the data](%s)" % (title, os.path.relpath(fig, relto)), ""]
+        if newton and title in newton:
+            lines += newton_lines(newton[title])
         if variants.get(title):
             lines += ["Variants of the set-up (the same channels; experiments, not the shipped set-up; "
                       "specimens.py's SUPPORT):", "",
@@ -252,9 +277,10 @@ def nbdl_scores(exe=None, workdir=None):
     return out
 
 
-def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, nbdl=None):
+def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, nbdl=None, newton=None):
     """docs/catalogue.md: the cases, their scores against the goals, the
-    figures (beside `path`) and the wall times; nbdl: nbdl_scores()."""
+    figures (beside `path`) and the wall times; nbdl: nbdl_scores();
+    newton: {title: newton_balance.kang_rows}."""
     d = os.path.dirname(os.path.abspath(path))
     seg = [r for r in results if r["source"] in ("Panjabi 2001", "Nightingale 2007")]
     night = [r for r in seg if r["lower"] is not None]
@@ -288,7 +314,7 @@ def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, 
     lines.append("")
     lines += segment_section(seg, d, d)
     if specimen_cases:
-        lines += specimen_section(specimen_cases, variants or {}, d, d)
+        lines += specimen_section(specimen_cases, variants or {}, d, d, newton)
     lines += ["## Wall time", "",
               "%d segment cases and the specimen runs in %.1f s wall time, segment runs %d at a time (the "
               "release build; each segment case's own run below)." % (len(results), wall, jobs), "",
@@ -314,9 +340,12 @@ def main(argv=None):
     results = segments.catalogue(a.exe, a.quick, a.data, a.out, a.jobs)
     work = a.out or None
     cases = {"Stemper 2004 rear 1.8 m/s": (specimens.rate_stemper(specimens.run_stemper(work, a.exe), a.data), [])}
+    newton = {}
     for d in ("front", "side"):
-        cases["Kang 2018 %s 14 km/h" % d] = (specimens.rate_kang(d, specimens.run_kang(d, work, a.exe), a.data),
-                                            [])
+        title = "Kang 2018 %s 14 km/h" % d
+        model = specimens.run_kang(d, work, a.exe)
+        cases[title] = (specimens.rate_kang(d, model, a.data), [])
+        newton[title] = newton_balance.kang_rows(d, model, a.data)
     variants = {}
     if not a.quick:
         stemper = "Stemper 2004 rear 1.8 m/s"
@@ -327,7 +356,7 @@ def main(argv=None):
                 d, specimens.run_kang(d, work, a.exe, "PRESTRAIN"), a.data)}
     nbdl = nbdl_scores(a.exe, os.path.join(work, "nbdl") if work else None)
     wall = time.perf_counter() - t0
-    write_report(results, a.report, wall, a.jobs, cases, variants, nbdl)
+    write_report(results, a.report, wall, a.jobs, cases, variants, nbdl, newton)
     print("hhneck-catalogue: %d cases rated in %.1f s; report %s" % (len(results), wall, a.report),
           file=sys.stderr)
     return 0

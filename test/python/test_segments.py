@@ -170,6 +170,14 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     import re
     headings = {catalogue.anchor(l.lstrip("#").strip()) for l in
                 open(os.path.join(segments.ROOT, "docs", "validation.md")).read().splitlines() if l.startswith("#")}
+    # under each Kang case the Newton balance of its head and load cell:
+    # the model obeys Newton's law, so its rows (its own channels, signs
+    # and frames as the catalogue reads them) fit on time with at least
+    # its head's mass (3.85 kg) and R^2 near 1
+    model_rows = [l.split("|") for l in text.splitlines() if re.match(r"\| [xyz] \| model \|", l)]
+    assert len(model_rows) == 4
+    for r in model_rows:
+        assert abs(float(r[4])) <= 3.0 and 3.85 < float(r[5]) < 8.0 and float(r[7]) > 0.9, r
     every = [l for l in text.splitlines() if l.startswith("**What stops it**")]
     assert every and all(set(re.findall(r"\(validation\.md(#[^)]+)\)", l)) <= headings for l in every)
     cases = re.split(r"^### ", text, flags=re.M)
