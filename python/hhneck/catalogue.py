@@ -11,10 +11,10 @@ by hhneck.specimens. The NBDL volunteer sleds (15 g, 12 g) are run and rated
 as hhneck-compare-nbdl rates them (docs/validation.md has their tables).
 Under each Kang case, the Newton balance of its head and load cell
 (hhneck.newton_balance), the data's and the model's. Under each case or
-source that misses its goal, a "What stops it" line
-names what misses, from this run's ratings (the mean's shortfall, every
-channel or curve below 0.50 with the peaks), and links the section of
-docs/validation.md (STOPS) that gives the experiments tried for it.
+source that misses its goal, a "What stops it" line names what misses,
+from this run's ratings (the mean's shortfall, every channel or curve
+below 0.50 with the peaks), and links the sections of docs/validation.md
+(STOPS) that give the experiments tried for it.
 
 Command: hhneck-catalogue [--quick] [--exe HHNECK] [--jobs N] [--out DIR]
 [--report docs/catalogue.md]. --quick runs one segment (C4-C5) per source
