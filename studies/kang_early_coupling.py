@@ -64,11 +64,11 @@ def upper_discs_model(path, factor):
 def front_deck(work, cards, upper):
     """The shipped Kang front deck with CHANGE cards (and the scratch model
     deck when the upper discs change) in work; its path."""
+    model = {}
     if upper != 1.0:
         upper_discs_model(os.path.join(work, "upper_model.inp"), upper)
-        deck = specimens.kang_deck(work, "front", model="upper_model.inp")
-    else:
-        deck = specimens.kang_deck(work, "front")
+        model = {"model": "upper_model.inp"}
+    deck = specimens.kang_deck(work, "front", **model)
     with open(deck, "a") as f:
         f.write("".join(c + "\n" for c in cards))
     return deck

@@ -45,7 +45,8 @@ import numpy as np
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 from hhneck import segments, specimen_data, specimens  # noqa: E402
 from hhneck.compare_nbdl import s3  # noqa: E402
-from hhneck.newton_balance import G, PAIRS, PLANE, balance, lab_acceleration  # noqa: E402
+from hhneck.newton_balance import (PAIRS, PLANE, accelerometer_reading, balance, kang_channels,  # noqa: E402
+                                   kang_pulse, lab_acceleration)
 
 
 def curves(direction, model):
@@ -53,7 +54,7 @@ def curves(direction, model):
     the data's references and, where the data give individual specimens
     (side), each specimen's own curves."""
     path = os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction)
-    names = set(PLANE[direction][:2]) | {"head_acc_z"} | {p[1] for p in PAIRS[direction]}
+    names = kang_channels(direction)
     out = [("model", {c: model[c] for c in names}),
            ("specimens", {c: specimen_data.reference(path, c)[:2] for c in names})]
     raw = specimen_data.read_curves(path)
@@ -63,8 +64,7 @@ def curves(direction, model):
 
 
 def main():
-    tp, ap = specimen_data.read_pulse(os.path.join(segments.DATA_DIR, "kang2018_sled_pulse.csv"))
-    tp = tp * 1e3
+    tp, ap = kang_pulse(segments.DATA_DIR)
     print("| case | axis | curves | window (ms) | lag s (ms) | Mh (kg) | Mn (kg) | R^2 | R^2 at s = 0 (Mh, Mn) |")
     print("|---|---|---|---|---|---|---|---|---|")
     fitted = {}
@@ -89,11 +89,8 @@ def main():
     _, _, mhz, _ = fitted[("front", "z", "model")]
     ax_lab = (np.interp(grid, *ref["loadcell_force_x"]) - mnx * np.interp(grid, tp, -ap)) / mhx
     az_lab = np.interp(grid, *ref["loadcell_force_z"]) / mhz
-    th = np.radians(np.interp(grid, *ref["head_rot_y"]))
-    # the accelerometer's reading: the lab's specific force turned into the head's axes, tared
-    fx, fz = ax_lab, az_lab - G
-    reading_z = (np.sin(th) * fx + np.cos(th) * fz + G) / G
-    sc = rate_as_catalogue(path, "head_acc_z", grid, reading_z)
+    _, reading_z = accelerometer_reading(ax_lab, az_lab, np.interp(grid, *ref["head_rot_y"]), PLANE["front"][2])
+    sc = specimens.rate_channel(*specimens.kang_reference("front", "head_acc_z"), grid, reading_z)
     print()
     print("front head z-acceleration implied by the specimens' load cell (Mh %s / %s kg, Mn %s kg): "
           "ISO/TS 18571 %s against the corridor, peak %s g at %.0f ms (corridor %s g at %.0f ms)" % (
@@ -106,21 +103,11 @@ def main():
     lab_y, _ = lab_acceleration(*(np.interp(grid, *ref[c]) for c in ("head_acc_y", "head_acc_z", "head_rot_x")),
                                 PLANE["side"][2])
     fy = mhy * lab_y + mny * np.interp(grid, tp, ap)
-    sc = rate_as_catalogue(path, "loadcell_force_y", grid, fy)
+    sc = specimens.rate_channel(*specimens.kang_reference("side", "loadcell_force_y"), grid, fy)
     print("side load cell Fy implied by the specimens' head (Mh %s kg, Mn %s kg): ISO/TS 18571 %s against "
           "the specimens' mean, peak %s N at %.0f ms (specimens %s N at %.0f ms)" % (
               s3(mhy), s3(mny), s3(sc["overall"]), s3(sc["peak_model"][0]), sc["peak_model"][1],
               s3(sc["peak_ref"][0]), sc["peak_ref"][1]))
-
-
-def rate_as_catalogue(path, channel, t, v):
-    """ISO/TS 18571 of the curve (t [ms], v) against the channel's
-    reference, on the catalogue's window (specimens.rate_kang's)."""
-    g, r, lo, hi = specimen_data.reference(path, channel)
-    keep = g >= 0.0
-    g, r, lo, hi = g[keep], r[keep], lo[keep], hi[keep]
-    keep = g <= 1.2 * g[int(np.argmax(np.abs(r)))]
-    return specimens.rate_channel(g[keep], r[keep], lo[keep], hi[keep], t, v)
 
 
 if __name__ == "__main__":

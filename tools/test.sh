@@ -35,14 +35,14 @@ TEST_JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
 times=build/test_times    # seconds per test program in the last run
 script_times=build/script_times    # seconds per script (and build) and of the Python tests in the last run
 
-# fpm's debug profile, without its -fcoarray=single: with it gfortran 12
-# writes test module files that it cannot read back once they use pFUnit
 # the test programs that run in the checking build alone when it runs: the
 # regression test re-runs whole case decks at rtol 1e-8, the longest
 # program by far, and the checking build's run-time checks include every
 # one of the debug build's (-fcheck=all, FPE traps); the debug build still
 # compiles it (its warnings), and runs it under --no-checking-build
 CHECKING_ONLY="test_regression"
+# fpm's debug profile, without its -fcoarray=single: with it gfortran 12
+# writes test module files that it cannot read back once they use pFUnit
 DEBUG_FLAGS="-Wall -Wextra -Wimplicit-interface -fPIC -fmax-errors=1 -g -fcheck=bounds -fcheck=array-temps -fbacktrace"
 CHECK_FLAGS="-g -O0 -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -Wall -Wno-unused-dummy-argument -Wno-maybe-uninitialized"
 
@@ -146,11 +146,9 @@ wait_next_build() {
 
 if [ "$checking" = yes ]; then
     step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS" "$CHECK_FLAGS"
+    step "test programs, checking build ($CHECK_FLAGS)" run_tests "$CHECK_FLAGS"
 else
     step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS"
-fi
-if [ "$checking" = yes ]; then
-    step "test programs, checking build ($CHECK_FLAGS)" run_tests "$CHECK_FLAGS"
 fi
 
 # the whole-program checks run the debug build's executable; a script

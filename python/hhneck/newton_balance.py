@@ -20,7 +20,8 @@ PAIRS; balance() gives the rows of one case (docs/validation.md, "Do the
 specimens' head and load cell obey Newton's law together?"; the
 catalogue prints them under each Kang case).
 
-API: lab_acceleration, fit_lag, balance, kang_rows, PLANE, PAIRS, LAGS.
+API: lab_acceleration, accelerometer_reading, fit_lag, balance, kang_channels, kang_pulse,
+kang_rows, PLANE, PAIRS, LAGS.
 """
 import os
 
@@ -50,6 +51,15 @@ def lab_acceleration(a_in, a_z, rot_deg, sense):
     f1, f3 = np.asarray(a_in) * G, np.asarray(a_z) * G - G   # untared: upright, the z axis reads -g
     c, s = np.cos(np.radians(rot_deg)), sense * np.sin(np.radians(rot_deg))
     return c * f1 + s * f3, -s * f1 + c * f3 + G
+
+
+def accelerometer_reading(lab_in, lab_z, rot_deg, sense):
+    """The inverse of lab_acceleration: the accelerometer's tared readings
+    [g] (in-plane, z) of a head with the lab acceleration (lab_in, lab_z)
+    [m/s^2] and the rotation rot_deg [deg]."""
+    f1, f3 = np.asarray(lab_in), np.asarray(lab_z) - G      # specific force a - g, lab axes
+    c, s = np.cos(np.radians(rot_deg)), sense * np.sin(np.radians(rot_deg))
+    return (c * f1 - s * f3) / G, (s * f1 + c * f3 + G) / G
 
 
 def fit_lag(cell, head, pulse, window, lags=LAGS):
@@ -99,14 +109,23 @@ def balance(direction, curves, reference, pulse):
     return rows
 
 
+def kang_channels(direction):
+    """The channels a Kang case's balance reads."""
+    return set(PLANE[direction][:2]) | {"head_acc_z"} | {p[1] for p in PAIRS[direction]}
+
+
+def kang_pulse(data_dir):
+    """The Kang sled pulse (t [ms], a [m/s^2]) of the data folder."""
+    t, a = specimen_data.read_pulse(os.path.join(data_dir, "kang2018_sled_pulse.csv"))
+    return t * 1e3, a
+
+
 def kang_rows(direction, model, data_dir):
     """{"model": balance rows of the model's catalogue curves (hhneck.specimens.
     model_channels), "specimens": those of the data's references}, the
     window from the data's; the pulse of the data folder, along the case's
     drive."""
     path = os.path.join(data_dir, "kang2018_%s_experiment.csv" % direction)
-    names = set(PLANE[direction][:2]) | {"head_acc_z"} | {p[1] for p in PAIRS[direction]}
-    data = {c: specimen_data.reference(path, c)[:2] for c in names}
-    t, a = specimen_data.read_pulse(os.path.join(data_dir, "kang2018_sled_pulse.csv"))
-    pulse = (t * 1e3, a)
+    data = {c: specimen_data.reference(path, c)[:2] for c in kang_channels(direction)}
+    pulse = kang_pulse(data_dir)
     return {"model": balance(direction, model, data, pulse), "specimens": balance(direction, data, data, pulse)}

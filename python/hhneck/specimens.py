@@ -97,7 +97,7 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
 
 API: CHANNELS (the rated channels: the data's and the run's); model_channels, filtered;
 stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
-kang_deck, run_kang, rate_kang; rate_channel.
+kang_deck, run_kang, rate_kang, kang_reference; rate_channel.
 """
 import os
 import subprocess
@@ -322,15 +322,18 @@ def rate_kang(direction, model, data_dir=segments.DATA_DIR, shifts=None):
     of the reference's largest magnitude). shifts: {channel: ms} moves
     those references' times (a study of the source notebook's comparison;
     the catalogue moves none)."""
+    return {ch: rate_channel(*kang_reference(direction, ch, data_dir, (shifts or {}).get(ch, 0.0)), *model[ch])
+            for ch in KANG_CHANNELS[direction]}
+
+
+def kang_reference(direction, channel, data_dir=segments.DATA_DIR, shift=0.0):
+    """(grid [ms], reference, lower, upper) of a Kang channel on its rated
+    window, 0 to 1.2 x the time of the reference's largest magnitude; the
+    times moved by shift [ms] first."""
     path = os.path.join(data_dir, "kang2018_%s_experiment.csv" % direction)
-    out = {}
-    for ch in KANG_CHANNELS[direction]:
-        g, ref, lo, hi = specimen_data.reference(path, ch)
-        g = g + (shifts or {}).get(ch, 0.0)
-        keep = g >= 0.0
-        g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
-        t1 = 1.2 * g[int(np.argmax(np.abs(ref)))]
-        keep = g <= t1
-        g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
-        out[ch] = rate_channel(g, ref, lo, hi, *model[ch])
-    return out
+    g, ref, lo, hi = specimen_data.reference(path, channel)
+    g = g + shift
+    keep = g >= 0.0
+    g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
+    keep = g <= 1.2 * g[int(np.argmax(np.abs(ref)))]
+    return g[keep], ref[keep], lo[keep], hi[keep]
