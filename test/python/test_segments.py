@@ -186,14 +186,21 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
         scores = {l.split("|")[1].strip(): float(l.split("|")[6].strip(" *")) for l in body.splitlines()
                   if re.match(r"\| (seg_|head_|loadcell_)", l)}
         stops = [l for l in body.splitlines() if l.startswith("**What stops it**")]
-        mean = np.mean(list(scores.values()))
-        if mean >= 0.75 and min(scores.values()) >= 0.5:
-            assert not stops, title
+        # the table and the line print 3 decimals of the same ratings: a
+        # value within half a unit of the last digit of 0.50 or 0.75 may go
+        # either way, anything further must be as the goal says
+        mean = float(re.search(r"rated channels: \*\*(\d\.\d{3})\*\*", body).group(1))
+        if not stops:
+            assert mean > 0.7495 and min(scores.values()) > 0.4995, title
             continue
         assert len(stops) == 1, title
-        named = set(re.findall(r"(\w+) \d\.\d{3} \(the model's peak", stops[0]))
-        assert named == {c for c, v in scores.items() if v < 0.5}, title
-        assert ("the mean %.3f" % mean in stops[0]) == (mean < 0.75), title
+        named = dict(re.findall(r"(\w+) (\d\.\d{3}) \(the model's peak", stops[0]))
+        assert all(float(v) == scores[c] for c, v in named.items()), title
+        assert {c for c, v in scores.items() if v < 0.4995} <= set(named) <= \
+            {c for c, v in scores.items() if v < 0.5005}, title
+        said = re.search(r"the mean (\d\.\d{3})", stops[0])
+        assert said is None or float(said.group(1)) == mean, title
+        assert (said is not None) == (mean < 0.75) or abs(mean - 0.75) <= 0.0005, title
         links = re.findall(r"\(validation\.md(#[^)]+)\)", stops[0])
         assert links and set(links) <= headings, title
     # the NBDL row: the decks run here, rated as hhneck-compare-nbdl rates them
