@@ -29,8 +29,6 @@ import subprocess
 import sys
 import tempfile
 
-import numpy as np
-
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 from hhneck.compare_nbdl import cfc, peak, run_deck, s3, stop  # noqa: E402
 from hhneck.deck_fields import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
