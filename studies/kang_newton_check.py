@@ -46,18 +46,16 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__f
 from hhneck import segments, specimen_data, specimens  # noqa: E402
 from hhneck.compare_nbdl import s3  # noqa: E402
 from hhneck.newton_balance import (PAIRS, PLANE, accelerometer_reading, balance, kang_channels,  # noqa: E402
-                                   kang_pulse, lab_acceleration)
+                                   kang_data, kang_pulse, lab_acceleration)
 
 
 def curves(direction, model):
     """[(label, {channel: (t [ms], value)})]: the model's catalogue curves,
     the data's references and, where the data give individual specimens
     (side), each specimen's own curves."""
-    path = os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction)
     names = kang_channels(direction)
-    out = [("model", {c: model[c] for c in names}),
-           ("specimens", {c: specimen_data.reference(path, c)[:2] for c in names})]
-    raw = specimen_data.read_curves(path)
+    out = [("model", {c: model[c] for c in names}), ("specimens", kang_data(direction, segments.DATA_DIR))]
+    raw = specimen_data.read_curves(os.path.join(segments.DATA_DIR, "kang2018_%s_experiment.csv" % direction))
     for who in sorted(set.intersection(*(set(raw[c]) for c in names)) - {"corridor_outline"}):
         out.append((who.upper(), {c: specimen_data._as_function(*raw[c][who]) for c in names}))
     return out
@@ -71,7 +69,7 @@ def main():
     for direction in PAIRS:
         model = specimens.run_kang(direction, tempfile.mkdtemp(prefix="kang-newton-"))
         sets = curves(direction, model)
-        rows = {label: balance(direction, c, sets[1][1], (tp, ap)) for label, c in sets}
+        rows = {label: balance(direction, c, dict(sets)["specimens"], (tp, ap)) for label, c in sets}
         for k, (axis, _, _) in enumerate(PAIRS[direction]):
             for label, _ in sets:
                 r = rows[label][k]
@@ -81,9 +79,7 @@ def main():
                     direction, axis, label, r["window"][1], best[1], s3(best[2]), s3(best[3]), s3(best[0]),
                     s3(at0[0]), s3(at0[2]), s3(at0[3])))
     # the front head z-acceleration the specimens' own load cell implies
-    path = os.path.join(segments.DATA_DIR, "kang2018_front_experiment.csv")
-    ref = {c: specimen_data.reference(path, c)[:2] for c in
-           ("head_rot_y", "loadcell_force_x", "loadcell_force_z")}
+    ref = kang_data("front", segments.DATA_DIR, ("head_rot_y", "loadcell_force_x", "loadcell_force_z"))
     grid = np.arange(0.0, 190.0, 0.1)
     _, _, mhx, mnx = fitted[("front", "x", "model")]
     _, _, mhz, _ = fitted[("front", "z", "model")]
@@ -97,8 +93,7 @@ def main():
               s3(mhx), s3(mhz), s3(mnx), s3(sc["overall"]), s3(sc["peak_model"][0]), sc["peak_model"][1],
               s3(sc["peak_ref"][0]), sc["peak_ref"][1]))
     # the side load cell's lateral force the specimens' own head implies
-    path = os.path.join(segments.DATA_DIR, "kang2018_side_experiment.csv")
-    ref = {c: specimen_data.reference(path, c)[:2] for c in ("head_acc_y", "head_acc_z", "head_rot_x")}
+    ref = kang_data("side", segments.DATA_DIR, ("head_acc_y", "head_acc_z", "head_rot_x"))
     _, _, mhy, mny = fitted[("side", "y", "model")]
     lab_y, _ = lab_acceleration(*(np.interp(grid, *ref[c]) for c in ("head_acc_y", "head_acc_z", "head_rot_x")),
                                 PLANE["side"][2])

@@ -20,7 +20,7 @@ PAIRS; balance() gives the rows of one case (docs/validation.md, "Do the
 specimens' head and load cell obey Newton's law together?"; the
 catalogue prints them under each Kang case).
 
-API: lab_acceleration, accelerometer_reading, fit_lag, balance, kang_channels, kang_pulse,
+API: lab_acceleration, accelerometer_reading, fit_lag, balance, kang_channels, kang_data, kang_pulse,
 kang_rows, PLANE, PAIRS, LAGS.
 """
 import os
@@ -120,12 +120,19 @@ def kang_pulse(data_dir):
     return t * 1e3, a
 
 
+def kang_data(direction, data_dir, channels=None):
+    """{channel: (t [ms], reference)} of a Kang case's data (the corridor
+    midline or the specimens' mean, as the catalogue rates them): the
+    channels its balance reads, or those named."""
+    path = os.path.join(data_dir, "kang2018_%s_experiment.csv" % direction)
+    return {c: specimen_data.reference(path, c)[:2] for c in channels or kang_channels(direction)}
+
+
 def kang_rows(direction, model, data_dir):
     """{"model": balance rows of the model's catalogue curves (hhneck.specimens.
     model_channels), "specimens": those of the data's references}, the
     window from the data's; the pulse of the data folder, along the case's
     drive."""
-    path = os.path.join(data_dir, "kang2018_%s_experiment.csv" % direction)
-    data = {c: specimen_data.reference(path, c)[:2] for c in kang_channels(direction)}
+    data = kang_data(direction, data_dir)
     pulse = kang_pulse(data_dir)
     return {"model": balance(direction, model, data, pulse), "specimens": balance(direction, data, data, pulse)}
