@@ -38,11 +38,11 @@ Pure arithmetic on the table's numbers: no solver code lives here.
 API: read_table, write_table, table_values, deck_lines, record, main."""
 import argparse
 import csv
+import io
 import math
 import os
 import re
 import sys
-import tempfile
 
 from . import segments, upper_cervical
 from .deck_fields import CardError, check_cards, scale_fields
@@ -95,13 +95,19 @@ def read_table(path=TABLE):
 def write_table(path, rows):
     """Write the table `rows` to `path` (replaced at once: a reader never
     sees half a table)."""
-    d = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".model_parameters.", suffix=".csv")
-    with os.fdopen(fd, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS, lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
-    os.replace(tmp, path)
+    text = io.StringIO()
+    w = csv.DictWriter(text, fieldnames=COLUMNS, lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+    _replace(path, text.getvalue())
+
+
+def _replace(path, text):
+    """Write `text` to `path` through a new file renamed over it."""
+    new = path + ".new"
+    with open(new, "w", newline="") as f:
+        f.write(text)
+    os.replace(new, path)
 
 
 def _number(text, where):
@@ -667,14 +673,6 @@ def _parser():
     return ap
 
 
-def _write(path, text):
-    d = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".model_deck.")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
-
-
 def main(argv=None):
     """Write the model deck from the table (and first, with --record, a fit
     stage's values into the table); 0, else 1 with the reason on standard
@@ -699,7 +697,7 @@ def main(argv=None):
         return 1
     text = "\n".join(lines) + "\n"
     if a.output:
-        _write(a.output, text)
+        _replace(a.output, text)
     else:
         sys.stdout.write(text)
     return 0

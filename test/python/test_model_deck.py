@@ -10,7 +10,8 @@ recorded again leave the table as it is); a real, quick NBDL 12 g
 calibration's listing recorded by the fit's writer lands in exactly its
 rows (status fitted, stage nbdl12g) and the regenerated deck differs from
 the shipped one in exactly those card fields, and the program reads it; a
-spring CSV recorded lands in the nz rows; a table, listing or CSV the
+spring CSV recorded lands in the nz rows; dev/fit_model.sh writes both
+stages into the table and the deck from it; a table, listing or CSV the
 writer cannot use is refused with the reason and nothing written."""
 import csv
 import os
@@ -336,3 +337,45 @@ def test_a_bad_table_is_refused_naming_the_line(tmp_path, edit, message):
     r = hhneck_module("model_deck", "--table", table, "--output", tmp_path / "d.inp", cwd=tmp_path)
     assert r.returncode == 1 and message in r.stderr, r.stderr
     assert not (tmp_path / "d.inp").exists()
+
+
+def _script(path, text):
+    path.write_text("#!/bin/sh\n" + text)
+    path.chmod(0o755)
+
+
+def test_fit_model_writes_the_table_then_the_deck(tmp_path):
+    """dev/fit_model.sh in a copy of the tree, the calibration in its quick
+    form (the real program, 4 evaluations from 2 starting points) and the
+    spring fit stood in for by a command that writes reference/nz_springs.csv
+    with C5 RY ths- at 12.5 deg: the table's rows of both stages are what
+    the two steps wrote, every other row unchanged, and the deck is the
+    generator's from that table."""
+    copy = tmp_path / "tree"
+    for d in ("dev", "input", "reference", "python"):
+        shutil.copytree(os.path.join(ROOT, d), copy / d, ignore=shutil.ignore_patterns("__pycache__", "*.h5"))
+    bin_ = tmp_path / "bin"
+    bin_.mkdir()
+    _script(bin_ / "fpm", "echo %s\n" % (bin_ / "hhneck"))
+    _script(bin_ / "hhneck", '[ "$1" = --calibrate ] || exit 9\n'
+            "sed 's/^FIT       NELDER    2500      300       /FIT       NELDER    4         2         /' > q.inp\n"
+            '"%s" --calibrate q.inp\n' % hhneck_executable())
+    _script(bin_ / "hhneck-fit-joints", "awk -F, 'BEGIN {OFS = \",\"} $1 == \"C5\" && $2 == \"RY\" {$6 = \"12.5\"} "
+            "{print}' reference/nz_springs.csv > nz.tmp && mv nz.tmp reference/nz_springs.csv\n")
+    env = dict(os.environ, PATH=str(bin_) + os.pathsep + os.environ["PATH"])
+    env.pop("PYTHONPATH", None)
+    r = subprocess.run(["sh", str(copy / "dev" / "fit_model.sh"), str(tmp_path / "fit.txt")], cwd=tmp_path, env=env,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-3000:]
+    fit = dict(md.read_fit(str(tmp_path / "fit.txt")))
+    assert len(fit) == 15
+    got, shipped = md.read_table(str(copy / "reference" / "model_parameters.csv")), _rows()
+    changed = {a["name"]: a["value"] for a, b in zip(got, shipped) if a != b}
+    assert [a["name"] for a in got] == [b["name"] for b in shipped]
+    old = {r["name"]: r["value"] for r in shipped}
+    want = {n: v for n, v in fit.items() if v != old[n]}
+    want["nz.C5.RY.ths_minus_deg"] = "12.5"
+    assert changed == want and len(want) > 10
+    assert all(a["status"] == "fitted" and a["stage"] == ("nz_springs" if a["name"].startswith("nz.") else "nbdl12g")
+               for a in got if a["name"] in changed)
+    assert (copy / "input" / "head_neck_54dof.inp").read_text().splitlines() == md.deck_lines(md.table_values(got))
