@@ -122,7 +122,6 @@ stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
 kang_deck, run_kang, rate_kang, kang_reference, kang_window; rated_reference, rate_channel.
 """
 import os
-import subprocess
 import tempfile
 
 import numpy as np
@@ -224,14 +223,18 @@ def filtered(t, v, cls):
 
 
 def _run(deck, workdir, exe):
-    """Run a deck in workdir (shipped decks found through -I ROOT); its result file."""
-    exe = exe or segments.default_executable()
-    with open(deck) as fin, open(deck[:-4] + ".txt", "w") as fout:
-        r = subprocess.run([exe, "-I", segments.ROOT], stdin=fin, stdout=fout, stderr=subprocess.PIPE,
-                           text=True, cwd=workdir)
-    if r.returncode != 0:
-        raise RuntimeError("%s: hhneck exit %d: %s" % (deck, r.returncode, r.stderr.strip()[-400:]))
+    """Run a deck in workdir (shipped decks found through -I ROOT), its
+    listing (.txt) and stderr (.err) beside it; its result file."""
+    segments.run_listed(deck, [exe or segments.default_executable(), "-I", segments.ROOT], workdir)
     return deck[:-4] + ".h5"
+
+
+def run_name(case, support="HOLD", muscles="PASSIVE"):
+    """The file name (no extension) of a case's deck, listing, stderr and
+    result file: case stemper, kang_front or kang_side."""
+    if case == "stemper":
+        return "stemper_%s_%s" % (support.lower(), muscles.lower())
+    return "%s_%s" % (case, support.lower())
 
 
 #: the T1 slope [deg] of each source's potting (module docstring)
@@ -280,7 +283,7 @@ def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.D
     pulse = os.path.join(workdir, "stemper_pulse.csv")
     with open(pulse, "w") as f:
         f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % p for p in zip(t, a)))
-    name = "stemper_%s_%s" % (support.lower(), muscles.lower())
+    name = run_name("stemper", support, muscles)
     lines = [
         "TITLE     STEMPER 2004 REAR 1.8 M/S, T1 POTTED (%s, MUSCLES %s)" % (support, muscles),
         "*         end (s)   step (s)  print (s) method    rtol      atol",
@@ -402,7 +405,7 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1
     with open(os.path.join(workdir, "kang_pulse.csv"), "w") as f:
         f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % (tt, sign * aa) for tt, aa in zip(t, a)))
     driven = {"front": "TX", "side": "TY"}[direction]
-    name = "kang_%s_%s" % (direction, support.lower())
+    name = run_name("kang_" + direction, support)
     lines = ["TITLE     KANG 2018 %s SLED 14 KM/H, T1 POTTED (%s, MUSCLES PASSIVE)" % (
                  direction.upper(), support),
              "CONTROL   0.2       1.0E-4    0.005     ROS34PW2  1.0E-3    1.0E-5",
