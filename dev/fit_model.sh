@@ -54,7 +54,7 @@ if [ -n "${SUB_FLEXION:-}" ]; then seg="$seg --sub-flexion $SUB_FLEXION"; fi
 python3 dev/make_head_neck_deck.py --fit "$start" --nz-springs reference/nz_springs.csv --upper-cervical none \
     --suboccipital $sub $seg > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
-HHNECK=$exe hhneck-fit-joints $flag
+HHNECK=$exe python3 -m hhneck.fit_joints $flag
 python3 dev/make_head_neck_deck.py --fit "$start" --upper-cervical $upper --suboccipital $sub $seg \
     > input/head_neck_54dof.inp.new
 mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
