@@ -115,4 +115,8 @@ sys.exit(v < (64, 0))" >/dev/null 2>&1; then
 fi
 
 [ "$python_only" = yes ] && exit 0
-fpm build --profile release >&2
+# fpm's progress to stderr as it comes, but for its line when nothing was
+# to build (a second run says nothing)
+status=$( { { fpm build --profile release 2>&1 && echo 0 >&3 || echo $? >&3; } |
+            { grep --line-buffered -v -x 'Project is up to date' >&2 || true; }; } 3>&1 )
+exit "$status"
