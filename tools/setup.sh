@@ -54,7 +54,7 @@ if [ "$python_only" = no ]; then
 fi
 
 # the machine's Python: the third-party packages, one copy for every checkout
-export PIP_DISABLE_PIP_VERSION_CHECK=1
+export PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
 pip_install() {
     # Debian's own Python refuses system-wide pip installs unless told (PEP 668)
     python3 -m pip install -q "$@" >&2 2>/dev/null || python3 -m pip install -q --break-system-packages "$@" >&2
