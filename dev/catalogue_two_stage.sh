@@ -9,6 +9,8 @@
 set -e
 cd "$(dirname "$0")/.."
 work=${1:-two_stage}
+# this tree's Python package, whichever one the machine's Python has
+export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"
 exe=$(fpm run --profile release --runner echo 2>/dev/null | tail -1)
 case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
 model=input/head_neck_54dof.inp
@@ -17,5 +19,5 @@ if [ "${SEGMENTAL:-0}" = 1 ]; then
         --output "$work.inp"
     model=$work.inp
 fi
-HHNECK=$exe hhneck-calibrate-catalogue "$work" --two-stage --evals 150 --starts 16 --model "$model" \
+HHNECK=$exe python3 -m hhneck.calibration "$work" --two-stage --evals 150 --starts 16 --model "$model" \
     --table "$work.md"

@@ -61,7 +61,7 @@ if [ "${SEGMENTAL:-0}" = 1 ]; then seg="--segmental yes --sub-bend ${SUB_BEND:-0
 if [ -n "${SUB_FLEXION:-}" ]; then seg="$seg --sub-flexion $SUB_FLEXION"; fi
 deck() { python3 -m hhneck.model_deck --upper-cervical $upper --suboccipital $sub $seg "$@"; }
 deck --fit "$start" --upper-cervical none --output input/head_neck_54dof.inp
-HHNECK=$exe hhneck-fit-joints $flag
+HHNECK=$exe ${FIT_JOINTS:-python3 -m hhneck.fit_joints} $flag
 python3 -m hhneck.model_deck --record nz_springs reference/nz_springs.csv
 deck --fit "$start" --output input/head_neck_54dof.inp
 "$exe" --calibrate < input/calibrate_nbdl12g.inp > "$fit"

@@ -137,8 +137,8 @@ def catalogue_row(copy, env, listing, tmp, label):
     """The catalogue on the copy's column at the disc and stop factors of `listing`."""
     generate(copy, env, listing)
     report = os.path.join(tmp, "catalogue_%s.md" % re.sub(r"\W", "_", label))
-    subprocess.run(["hhneck-catalogue", "--out", os.path.join(tmp, "cat"), "--report", report], cwd=copy, env=env,
-                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    subprocess.run([sys.executable, "-m", "hhneck.catalogue", "--out", os.path.join(tmp, "cat"), "--report", report],
+                   cwd=copy, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     cells = []
     for line in open(report):
         m = re.match(r"\| ([^|]+) \| (segment|specimen|volunteer)[^|]*\| \d+ \| ([^|]+) \|", line)

@@ -362,7 +362,7 @@ def test_fit_model_writes_the_table_then_the_deck(tmp_path):
             '"%s" --calibrate q.inp\n' % hhneck_executable())
     _script(bin_ / "hhneck-fit-joints", "awk -F, 'BEGIN {OFS = \",\"} $1 == \"C5\" && $2 == \"RY\" {$6 = \"12.5\"} "
             "{print}' reference/nz_springs.csv > nz.tmp && mv nz.tmp reference/nz_springs.csv\n")
-    env = dict(os.environ, PATH=str(bin_) + os.pathsep + os.environ["PATH"])
+    env = dict(os.environ, PATH=str(bin_) + os.pathsep + os.environ["PATH"], FIT_JOINTS=str(bin_ / "hhneck-fit-joints"))
     env.pop("PYTHONPATH", None)
     r = subprocess.run(["sh", str(copy / "dev" / "fit_model.sh"), str(tmp_path / "fit.txt")], cwd=tmp_path, env=env,
                        capture_output=True, text=True)
