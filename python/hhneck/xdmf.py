@@ -225,7 +225,7 @@ def main(argv=None):
     with h5py.File(side, "r") as f:
         surf = (f["surface/points"].shape[1], f["surface/triangles"].shape[0])
     write_xmf(res, steps, os.path.basename(args.result), os.path.basename(side), ne, xmf, surf)
-    print("hhneck-xdmf: wrote %s (%d time steps, %d bodies with %d surface triangles, %d elements) and %s"
+    print("hhneck-xdmf: wrote %s (%d time steps, %d bodies, %d surface triangles, %d elements) and %s"
           % (xmf, len(steps), res.nb, surf[1], ne, side))
     return 0
 
