@@ -23,9 +23,10 @@ from hhneck import animate
 t0, c0 = time.perf_counter(), time.process_time()
 animate.main([sys.argv[1], sys.argv[2], "--quiet"])
 wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+ext = sys.argv[2].rsplit(".", 1)[1]
 kids = resource.getrusage(resource.RUSAGE_CHILDREN)       # ffmpeg, for an MP4
-print("  %-4s %6.1f s wall, %6.1f s CPU (+ %.1f s in ffmpeg)"
-      % (sys.argv[2].rsplit(".", 1)[1], wall, cpu, kids.ru_utime + kids.ru_stime))
+print("  %-4s %6.1f s wall, %6.1f s CPU%s" % (ext, wall, cpu, "" if ext == "gif" else
+                                              " (+ %.1f s in ffmpeg)" % (kids.ru_utime + kids.ru_stime)))
 PY
 done
 [ "$formats" = gif ] && echo "  mp4  not measured: ffmpeg is not installed"
