@@ -397,8 +397,8 @@ class Scene:
             self.label_values = self.split_label(label_text)
             self.moving += [(label_text.figure, t) for t in self.label_values]
         for v, a in self.artists.items():
-            arts = [a[k] for k in ("ground", "sled", "start", "discs", "bodies", "cm") if a[k] is not None]
-            self.moving += [(axes[v], art) for art in arts[:4] + list(a["lines"].values()) + arts[4:]]
+            arts = [a["ground"], a["sled"], a["start"]] + list(a["lines"].values()) + [a["discs"], a["bodies"], a["cm"]]
+            self.moving += [(axes[v], art) for art in arts if art is not None]     # in the order of their zorder
         if animated:
             for _, art in self.moving:
                 art.set_animated(True)

@@ -106,8 +106,27 @@ if command -v ffmpeg > /dev/null 2>&1; then
     [ "$rc" -eq 0 ] && [ "$frames" = "6" ]
     check "MP4 with ffmpeg: exit $rc, $frames frames (expected 6)" $?
 else
-    echo "(ffmpeg not installed: MP4 writing not tried)"
+    echo "(ffmpeg not installed: MP4 encoding not tried)"
 fi
+# the frames handed to ffmpeg: a stand-in ffmpeg that keeps its standard
+# input (the raw RGBA frames) as the output file: 6 frames of 360 x 210 x 4 bytes
+mkdir -p "$tmp/fakebin"
+cat > "$tmp/fakebin/ffmpeg" <<'SH'
+#!/bin/sh
+for a in "$@"; do out=$a; done
+cat > "$out"
+SH
+chmod +x "$tmp/fakebin/ffmpeg"
+PATH="$tmp/fakebin:$PATH" "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/raw" --slow 1 --fps 50 --dpi 30 --quiet \
+    > /dev/null 2>&1
+rc=$?
+size=$(wc -c < "$tmp/raw.mp4" 2> /dev/null || echo 0)
+[ "$rc" -eq 0 ] && [ "$size" -eq $((6 * 360 * 210 * 4)) ]
+check "OUT without a suffix and ffmpeg on PATH: OUT.mp4, ffmpeg given 6 raw frames of 360x210 RGBA ($size bytes)" $?
+PATH=/nonexistent "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/plain" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && [ "$(head -c 6 "$tmp/plain.gif" 2> /dev/null)" = "GIF89a" ] && [ ! -e "$tmp/plain.mp4" ]
+check "OUT without a suffix and no ffmpeg: OUT.gif (exit $rc)" $?
 
 # --- the drawn geometry against independent truth
 pycheck "$tmp/c62.h5" input/head_neck_54dof.inp <<'EOF'
