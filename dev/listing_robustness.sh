@@ -11,6 +11,7 @@
 #   dev/listing_robustness.sh
 set -u
 cd "$(dirname "$0")/.."
+. test/scripts/lib/reference_listings.sh
 pass=0; fail=0
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -23,8 +24,8 @@ for build in native debug; do
     fpm build $args >&2 || { echo "FAIL  the $build build"; fail=$((fail + 1)); continue; }
     # shellcheck disable=SC2086
     exe=$(fpm run $args --runner echo 2>/dev/null | tail -n 1)
-    for c in case6-1 case6-2 case6-5 nbdl15g nbdl12g hybrid3_flexion rear8g; do
-        "$exe" --no-h5 --rtol 1.0E-7 < "input/$c.inp" > "$tmp/$c.txt" 2> /dev/null
+    for c in $REFERENCE_LISTINGS; do
+        reference_listing "$exe" "$c" > "$tmp/$c.txt" 2> /dev/null
         printf '%s build: ' "$build"
         if python3 -m hhneck.compare_listing "$tmp/$c.txt" "reference/outputs/$c.txt"; then
             pass=$((pass + 1))

@@ -2,7 +2,9 @@
 # Regenerates the reference outputs of every case deck ON PURPOSE, after a
 # change that is meant to change results (say why in the commit). The
 # regression test (test/test_regression.f90) never writes them.
-#   reference/outputs/CASE.txt   the listing (release build, the deck's sampling)
+#   reference/outputs/CASE.txt   the listing (release build, the deck's sampling;
+#                                CASE_all: the full listing, PRINT ALL, of case
+#                                CASE: test/scripts/lib/reference_listings.sh)
 #                                at rtol 1e-7 (--rtol: atol 1e-10), so that a
 #                                build or machine with other roundoff, and so
 #                                other step sequences, agrees far inside the
@@ -17,9 +19,11 @@ cd "$(dirname "$0")/.."
 fpm build --profile release >&2          # its progress must not go into a listing
 hhneck=$(fpm run --profile release --runner echo 2>/dev/null | tail -n 1)
 tmp=$(mktemp -d)
-for c in case6-1 case6-2 case6-5 nbdl15g nbdl12g hybrid3_flexion rear8g; do
+. test/scripts/lib/reference_listings.sh
+for c in $REFERENCE_LISTINGS; do
     echo "regenerating reference/outputs/$c" >&2
-    "$hhneck" --no-h5 --rtol 1.0E-7 < "input/$c.inp" > "reference/outputs/$c.txt"
+    reference_listing "$hhneck" "$c" > "reference/outputs/$c.txt"
+    case $c in *_all) continue ;; esac      # the same run as CASE: no result file of its own
     "$hhneck" --sample 1.0E-3 --rtol 1.0E-8 --h5 "$tmp/$c.h5" < "input/$c.inp" > /dev/null
     python3 dev/extract_reference.py "$tmp/$c.h5" "reference/outputs/$c.h5"
 done

@@ -14,6 +14,9 @@ by the physics of the number, not by its roundoff:
   out-of-plane channel of a sagittal run, zero but for roundoff
   (3.956E-13 N m against a flexion moment of 28.3 N m), is measured
   against its group, not against its own noise;
+* a channel's value may also differ by the listing's resolution (RESOLUTION
+  of its group's scale, docs/output-format.md): a value at the resolution
+  prints as itself on one machine and as 0 on another;
 * the time of an extreme (the peaks table, or a number followed by MS)
   within TIME_TOL ms, unless the extreme is noise -- its magnitude at or
   below ROUNDOFF of its group's scale, where its time is where the
@@ -45,6 +48,7 @@ RTOL = 5e-3        # of a channel's (or a line's) largest magnitude
 TIME_TOL = 2.0     # ms: a flat extreme may move by a few samples with the roundoff
 NOISE_FLOOR = 1e-4  # a channel's scale is at least this fraction of its group's
 ROUNDOFF = 1e-8    # an extreme at or below this fraction of its group's scale is noise
+RESOLUTION = 1e-6  # the listing prints a value below this fraction of its group's scale as 0 (hn_listing)
 
 
 def number(tok):
@@ -111,6 +115,10 @@ class Layout:
         """The scale a value of channel `name` is measured against."""
         return max(self.scale.get(name, 0.0), NOISE_FLOOR * self.group_scale(name))
 
+    def tolerance(self, name, rtol):
+        """What a value of channel `name` may differ by (but for its last printed digit)."""
+        return rtol * self.channel_scale(name) + RESOLUTION * self.group_scale(name)
+
     def is_noise(self, name, v):
         """An extreme of channel `name` at roundoff level against its group."""
         return abs(v) <= ROUNDOFF * self.group_scale(name)
@@ -124,9 +132,8 @@ def deviations(a, b, i, layout, rtol):
     out = []
     if i in layout.peaks:
         name = layout.peaks[i]
-        s = layout.channel_scale(name)
         for k in (len(tb) - 4, len(tb) - 2):  # max, min (the last four numbers; a unit may hold one: s^2)
-            tol = rtol * s + ulp(tb[k])
+            tol = layout.tolerance(name, rtol) + ulp(tb[k])
             out.append((abs(va[k] - vb[k]) / tol, k))
             if layout.is_noise(name, vb[k]) or abs(va[k] - vb[k]) <= 0.1 * tol:
                 continue                      # a noise extreme, or a flat one: its time is not compared
@@ -136,7 +143,7 @@ def deviations(a, b, i, layout, rtol):
         for k, name in enumerate(layout.columns[i]):
             if name in RESIDUALS:
                 continue
-            tol = (rtol * layout.channel_scale(name) if name else 0.0) + ulp(tb[k])
+            tol = (layout.tolerance(name, rtol) if name else 0.0) + ulp(tb[k])
             out.append((abs(va[k] - vb[k]) / tol, k))
         return out
     scale = max([abs(v) for v in vb] + [0.0])

@@ -51,6 +51,7 @@ module hn_cards
         card_info_t('HEADNECK', 0, grp_control, .false.), &
         card_info_t('CRITERIA', 0, grp_control, .false.), &
         card_info_t('LOADCELL', 0, grp_control, .true.), &
+        card_info_t('PRINT', 0, grp_control, .true.), &
         card_info_t('RUNLIMIT', 0, grp_control, .false.), &
         card_info_t('BODY', 0, grp_bodies, .true.), &
         card_info_t('BODYPI', 0, grp_bodies, .true.), &

@@ -35,6 +35,7 @@ module hn_case
         character(len=4) :: occupant = 'H50M'       !! CRITERIA: occupant whose Nij intercepts and neck reference values apply
         character(len=8) :: nic_frame = 'INERTIAL'  !! CRITERIA: NIC's x-accelerations, INERTIAL (global x) or HEAD (head x axis)
         type(section_t), allocatable :: loadcells(:)  !! LOADCELL cards: the sections whose loads are channels
+        character(len=10), allocatable :: print_groups(:)  !! PRINT cards: their keywords (none: the main groups; hn_print_card)
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
         real(wp) :: wall_limit = zero               !! RUNLIMIT: stop after this wall time [s] (0 = none)
         integer :: step_limit = 0                   !! RUNLIMIT: stop after this many steps (0 = none)

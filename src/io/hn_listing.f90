@@ -1,7 +1,9 @@
 !> The tabulated print listing in the legacy style of crash-victim codes:
 !! paged output with a header (code, version, case title, date, page), an
 !! echo of the deck under a column ruler, a model summary, time-history
-!! tables at the print interval and a summary of peaks.
+!! tables at the print interval (the main channel groups and those the
+!! PRINT cards select, hn_print_card) and a summary of peaks. A value below
+!! its channel's resolution (`resolution`) prints as 0.
 module hn_listing
     use hn_kinds, only: wp, zero, deg
     use hn_case, only: case_t, deck_line_t
@@ -13,13 +15,19 @@ module hn_listing
     use hn_injury, only: occupants
     use hn_deck_reader, only: upper
     use hn_history, only: history_t
+    use hn_print_card, only: print_selects, print_title
     implicit none
     private
 
     public :: listing_t
 
     integer, parameter :: page_lines = 60
+    !> Channels per time-history table: 9 + 12*9 = 117 columns, inside the
+    !! pages' 118-column frame of a 132-column listing.
     integer, parameter :: cols_per_table = 9
+    !> A channel's resolution: this fraction of the largest magnitude of the
+    !! listed channels of its unit over the run (docs/output-format.md).
+    real(wp), parameter, public :: resolution_fraction = 1.0e-6_wp
 
     !> A paged listing on one output unit.
     type :: listing_t
@@ -43,6 +51,15 @@ module hn_listing
         procedure :: message => listing_message
         procedure :: criteria => listing_criteria
     end type listing_t
+
+    !> Row r of a time-history source: its time t [s] and every channel's value v.
+    abstract interface
+        subroutine row_source(r, t, v)
+            import :: wp
+            integer, intent(in) :: r
+            real(wp), intent(out) :: t, v(:)
+        end subroutine row_source
+    end interface
 
 contains
 
@@ -267,12 +284,39 @@ contains
         end if
     end function num
 
+    !> The value a listing prints for v: 0 below the channel's resolution r.
+    elemental real(wp) function shown(v, r)
+        real(wp), intent(in) :: v   !! the channel's value
+        real(wp), intent(in) :: r   !! its resolution (`resolution`)
+        shown = merge(zero, v, abs(v) < r)
+    end function shown
+
+    !> Each channel's resolution in the listing: resolution_fraction of the
+    !! largest magnitude over the run of the listed channels of its unit
+    !! (their extremes vmax, vmin; an extreme never set, +-huge, counts 0).
+    pure function resolution(ch, vmax, vmin) result(r)
+        type(channel_set_t), intent(in) :: ch   !! channel units, listed
+        real(wp), intent(in) :: vmax(:)         !! largest value of each channel
+        real(wp), intent(in) :: vmin(:)         !! smallest value of each channel
+        real(wp) :: r(ch%n)
+        real(wp) :: a(ch%n)
+        integer :: k
+        a = max(abs(vmax), abs(vmin))
+        where (.not. (a < huge(a))) a = zero      ! unset extremes; NaN
+        do k = 1, ch%n
+            r(k) = resolution_fraction*maxval(a, mask=ch%listed .and. ch%units == ch%units(k))
+        end do
+    end function resolution
+
     !> Time-history tables from a history store whose rows are (t, channel values).
-    subroutine listing_histories_store(me, ch, store)
+    subroutine listing_histories_store(me, ch, store, cs, vmax, vmin)
         class(listing_t), intent(inout) :: me
         type(channel_set_t), intent(in) :: ch   !! channel names, units, groups
         type(history_t), intent(in) :: store    !! rows of 1 + ch%n values
-        call tables(me, ch, store%n, row_of)
+        type(case_t), intent(in) :: cs          !! the case: its PRINT cards' selection
+        real(wp), intent(in) :: vmax(:)         !! largest value of each channel over the run (resolution)
+        real(wp), intent(in) :: vmin(:)         !! smallest value of each channel over the run
+        call tables(me, ch, store%n, row_of, cs, resolution(ch, vmax, vmin))
     contains
         subroutine row_of(r, t, v)
             integer, intent(in) :: r
@@ -284,14 +328,18 @@ contains
         end subroutine row_of
     end subroutine listing_histories_store
 
-    !> Time-history tables: one per channel group, at most 9 channels wide.
-    subroutine listing_histories(me, ch, times, rows, nrows)
+    !> Time-history tables of the channels the case's PRINT cards select
+    !! (`tables`) from arrays.
+    subroutine listing_histories(me, ch, times, rows, nrows, cs, vmax, vmin)
         class(listing_t), intent(inout) :: me
         type(channel_set_t), intent(in) :: ch   !! channel names, units, groups
         real(wp), intent(in) :: times(:)        !! print times [s]
         real(wp), intent(in) :: rows(:, :)      !! (channels, rows) channel values at those times
         integer, intent(in) :: nrows            !! rows to print
-        call tables(me, ch, nrows, row_of)
+        type(case_t), intent(in) :: cs          !! the case: its PRINT cards' selection
+        real(wp), intent(in) :: vmax(:)         !! largest value of each channel over the run (resolution)
+        real(wp), intent(in) :: vmin(:)         !! smallest value of each channel over the run
+        call tables(me, ch, nrows, row_of, cs, resolution(ch, vmax, vmin))
     contains
         subroutine row_of(r, t, v)
             integer, intent(in) :: r
@@ -301,65 +349,105 @@ contains
         end subroutine row_of
     end subroutine listing_histories
 
-    subroutine tables(me, ch, nrows, row_of)
+    !> The time-history tables, at most cols_per_table channels each, of the
+    !! listed channels the PRINT cards select (hn_print_card: the main groups
+    !! without one). Under PRINT ALL one table per run of channels of one
+    !! group (the listing of earlier versions); else the selected channels
+    !! packed into full tables, in channel order, named by their keywords.
+    subroutine tables(me, ch, nrows, row_of, cs, res)
         class(listing_t), intent(inout) :: me
         type(channel_set_t), intent(in) :: ch
         integer, intent(in) :: nrows
-        interface
-            subroutine row_of(r, t, v)
-                import :: wp
-                integer, intent(in) :: r
-                real(wp), intent(out) :: t, v(:)
-            end subroutine row_of
-        end interface
-        real(wp) :: t, v(ch%n)
-        integer :: c0, c1, k, r, line_len
-        character(len=16) :: grp
-        character(len=200) :: s, h1, h2
-        c0 = 1
-        do while (c0 <= ch%n)
-            if (.not. ch%listed(c0)) then      ! a channel of the result file only
-                c0 = c0 + 1
+        procedure(row_source) :: row_of
+        type(case_t), intent(in) :: cs
+        real(wp), intent(in) :: res(:)
+        character(len=10), allocatable :: selected(:)
+        logical :: sel(ch%n), full
+        integer :: cols(cols_per_table), nc, k, j
+        character(len=200) :: title
+        character(len=40) :: last
+        allocate (selected(0))
+        if (allocated(cs%print_groups)) selected = cs%print_groups
+        full = any(selected == 'ALL')
+        sel = [(ch%listed(k) .and. print_selects(selected, ch%group(k)), k=1, ch%n)]
+        k = 1
+        do while (k <= ch%n)
+            if (.not. sel(k)) then
+                k = k + 1
                 cycle
             end if
-            grp = ch%group(c0)
-            c1 = c0
-            do while (c1 < ch%n)
-                if (ch%group(c1 + 1) /= grp .or. .not. ch%listed(c1 + 1) .or. c1 - c0 + 1 >= cols_per_table) exit
-                c1 = c1 + 1
-            end do
-            h1 = '    TIME '
-            h2 = '    (MS) '
-            do k = c0, c1
-                h1 = h1(1:9 + 12*(k - c0))//' '//adjustr(ch%name(k)(1:11))
-                h2 = h2(1:9 + 12*(k - c0))//' '//adjustr(ch%units(k)(1:11))
-            end do
-            line_len = 9 + 12*(c1 - c0 + 1)
-            call me%new_page()
-            call me%put(' TIME HISTORY: '//trim(grp))
-            call me%put('')
-            call me%put(h1(1:line_len))
-            call me%put(h2(1:line_len))
-            do r = 1, nrows
-                if (me%line + 1 > page_lines) then
-                    call me%new_page()
-                    call me%put(' TIME HISTORY: '//trim(grp)//' (CONTINUED)')
-                    call me%put('')
-                    call me%put(h1(1:line_len))
-                    call me%put(h2(1:line_len))
+            nc = 1
+            cols(1) = k
+            k = k + 1
+            do while (k <= ch%n .and. nc < cols_per_table)
+                if (full) then
+                    if (.not. sel(k) .or. ch%group(k) /= ch%group(cols(1))) exit
+                else if (.not. sel(k)) then
+                    k = k + 1
+                    cycle
                 end if
-                call row_of(r, t, v)
-                write (s, '(f9.2)') 1000*t
-                do k = c0, c1
-                    s = s(1:9 + 12*(k - c0))//' '//num(v(k))
-                end do
-                call me%put(s(1:line_len))
+                nc = nc + 1
+                cols(nc) = k
+                k = k + 1
             end do
-            c0 = c1 + 1
+            if (full) then
+                title = ch%group(cols(1))
+            else
+                last = print_title(ch%group(cols(1)))
+                title = last
+                do j = 2, nc
+                    if (print_title(ch%group(cols(j))) == last) cycle
+                    last = print_title(ch%group(cols(j)))
+                    title = trim(title)//', '//last
+                end do
+            end if
+            call table(me, ch, cols(1:nc), trim(title), nrows, row_of, res)
         end do
     end subroutine tables
 
-    !> Summary of peaks of every channel (from the full sampled histories).
+    !> One time-history table: channels `cols`, every row, on as many pages as it takes.
+    subroutine table(me, ch, cols, title, nrows, row_of, res)
+        class(listing_t), intent(inout) :: me
+        type(channel_set_t), intent(in) :: ch
+        integer, intent(in) :: cols(:)
+        character(len=*), intent(in) :: title
+        integer, intent(in) :: nrows
+        procedure(row_source) :: row_of
+        real(wp), intent(in) :: res(:)
+        real(wp) :: t, v(ch%n)
+        integer :: j, r, line_len
+        character(len=200) :: s, h1, h2
+        h1 = '    TIME '
+        h2 = '    (MS) '
+        do j = 1, size(cols)
+            h1 = h1(1:9 + 12*(j - 1))//' '//adjustr(ch%name(cols(j))(1:11))
+            h2 = h2(1:9 + 12*(j - 1))//' '//adjustr(ch%units(cols(j))(1:11))
+        end do
+        line_len = 9 + 12*size(cols)
+        call me%new_page()
+        call me%put(' TIME HISTORY: '//title)
+        call me%put('')
+        call me%put(h1(1:line_len))
+        call me%put(h2(1:line_len))
+        do r = 1, nrows
+            if (me%line + 1 > page_lines) then
+                call me%new_page()
+                call me%put(' TIME HISTORY: '//title//' (CONTINUED)')
+                call me%put('')
+                call me%put(h1(1:line_len))
+                call me%put(h2(1:line_len))
+            end if
+            call row_of(r, t, v)
+            write (s, '(f9.2)') 1000*t
+            do j = 1, size(cols)
+                s = s(1:9 + 12*(j - 1))//' '//num(shown(v(cols(j)), res(cols(j))))
+            end do
+            call me%put(s(1:line_len))
+        end do
+    end subroutine table
+
+    !> Summary of peaks of every listed channel (from the full sampled
+    !! histories); an extreme below the channel's resolution prints as 0.
     subroutine listing_peaks(me, ch, vmax, tmax, vmin, tmin)
         class(listing_t), intent(inout) :: me
         type(channel_set_t), intent(in) :: ch   !! channel names and units
@@ -369,14 +457,16 @@ contains
         real(wp), intent(in) :: tmin(:)         !! when [s]
         integer :: k
         character(len=120) :: s
+        real(wp) :: res(ch%n)
+        res = resolution(ch, vmax, vmin)
         call me%new_page()
         call me%put(' SUMMARY OF PEAKS (ALL SAMPLES)')
         call me%put('')
         call me%put('   CHANNEL                  UNITS          MAXIMUM   AT (MS)      MINIMUM   AT (MS)')
         do k = 1, ch%n
             if (.not. ch%listed(k)) cycle
-            write (s, '(3x,a24,1x,a12,a11,f10.2,2x,a11,f10.2)') ch%name(k), ch%units(k), num(vmax(k)), &
-                1000*tmax(k), num(vmin(k)), 1000*tmin(k)
+            write (s, '(3x,a24,1x,a12,a11,f10.2,2x,a11,f10.2)') ch%name(k), ch%units(k), &
+                num(shown(vmax(k), res(k))), 1000*tmax(k), num(shown(vmin(k), res(k))), 1000*tmin(k)
             call me%put(s)
         end do
     end subroutine listing_peaks

@@ -724,7 +724,7 @@ contains
             call me%crit%clear()
             call assess(me%cs%t_start, me%cs%sample_dt, hist, me%ks, me%res%criteria, me%cs%occupant, &
                         me%cs%nic_frame)
-            call me%lst%histories(me%ch, me%rows)
+            call me%lst%histories(me%ch, me%rows, me%cs, me%peaks%vmax, me%peaks%vmin)
             call me%rows%clear()
             call me%lst%peaks(me%ch, me%peaks%vmax, me%peaks%tmax, me%peaks%vmin, me%peaks%tmin)
             call me%lst%criteria(me%res%criteria)

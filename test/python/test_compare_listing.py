@@ -1,7 +1,9 @@
 """hhneck-compare-listing against listings made by hand: a noise channel
 whose peak moves passes, a real peak that moves by 3 ms fails, a unit with
 a space is a row of the peaks table, and the one reference failure seen on
-another machine (the OC_MX noise peak of nbdl15g) passes."""
+another machine (the OC_MX noise peak of nbdl15g) passes; a value that
+differs by the listing's resolution (printed as 0 on one machine) passes,
+one of three resolutions fails."""
 import os
 
 import hhneck.compare_listing as cl
@@ -111,3 +113,26 @@ def test_the_other_machines_nbdl15g_listing_passes():
     new = edited(ref, "   OC_MX                    N m", "   OC_MX                    N m           3.956E-13    164.00   -1.888E-13    166.40")
     ok, text = cl.compare(new, ref)
     assert ok, text
+
+
+RESOLVED = """ SUMMARY OF PEAKS (ALL SAMPLES)
+
+   CHANNEL                  UNITS          MAXIMUM   AT (MS)      MINIMUM   AT (MS)
+   T1_DX                    mm             3000.000    250.00        0.000      0.00
+   HEAD_DY                  mm                0.000    100.00        0.000     53.10
+""".splitlines()
+
+
+def test_a_value_at_the_resolution_printed_as_itself_passes():
+    # HEAD_DY's maximum 2.9E-03 mm is just below the resolution (1e-6 of 3000 mm) on the machine that wrote
+    # the reference, 0 there, and just above it on another: it differs by the resolution alone
+    new = edited(RESOLVED, "HEAD_DY", "   HEAD_DY                  mm            3.100E-03    100.00        0.000     53.10")
+    ok, text = cl.compare(new, RESOLVED)
+    assert ok, text
+    assert abs(cl.Layout(RESOLVED).tolerance("HEAD_DY", cl.RTOL) - (cl.RTOL * 0.3 + 3.0e-3)) < 1e-9
+
+
+def test_a_value_of_three_resolutions_fails():
+    new = edited(RESOLVED, "HEAD_DY", "   HEAD_DY                  mm            9.000E-03    100.00        0.000     53.10")
+    ok, text = cl.compare(new, RESOLVED)
+    assert not ok and "9.000E-03 against 0.000" in text, text

@@ -1,8 +1,10 @@
 #!/bin/sh
 # The listings of the regression decks against their references
 # (reference/outputs/CASE.txt, written by dev/regenerate_references.sh):
-# same text, numbers within hhneck-compare-listing's tolerance. Run from
-# the project root; the executable in $HHNECK.
+# same text, numbers within hhneck-compare-listing's tolerance. The
+# default listings, and case 6-2's full listing (PRINT ALL: every table;
+# test/scripts/lib/reference_listings.sh). Run from the project root; the
+# executable in $HHNECK.
 # Each deck runs with its own integrator at --rtol 1.0E-7, as the
 # references were written: another build or machine has other roundoff and
 # so another step sequence, and at the decks' own tolerances (1e-3, 1e-4)
@@ -29,8 +31,9 @@ compare() {
         fail=$((fail + 1))
     fi
 }
-for c in case6-1 case6-2 case6-5 nbdl15g nbdl12g hybrid3_flexion rear8g; do
-    "$HHNECK" --no-h5 --rtol 1.0E-7 < "input/$c.inp" > "$tmp/$c.txt" 2> /dev/null
+. test/scripts/lib/reference_listings.sh
+for c in $REFERENCE_LISTINGS; do
+    reference_listing "$HHNECK" "$c" > "$tmp/$c.txt" 2> /dev/null
     compare "$tmp/$c.txt" "reference/outputs/$c.txt"
 done
 # the head's mass 3.847 kg -> 3.8470001 kg (2.6e-8 of itself)
