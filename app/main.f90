@@ -2,6 +2,7 @@
 !!
 !!   hhneck input/case6-2.inp              (or: hhneck < input/case6-2.inp)
 !!   hhneck --h5 out.h5 input/nbdl15g.inp
+!!   hhneck --set 'BODY.HEAD.MASS*=1.1' input/nbdl15g.inp
 !!   hhneck --sweep --h5 sweep.h5 input/sweep_nbdl_oat.inp
 !!
 !! The listing goes to standard output, diagnostics to standard error.
@@ -302,6 +303,10 @@ contains
                 index(errmsg, '--set '//trim(int_str(set_of(k)))//' ') > 0) &
                 errmsg = trim(errmsg)//' (--set '//trim(int_str(set_of(k)))//' stands for the card '''// &
                          trim(change_cards(k))//''')'
+            ! an ambiguous FIELDn change: the key that names field F2 of the card too
+            if (index(errmsg, 'in F7:') > 0 .and. index(errmsg, '--set '//trim(int_str(set_of(k)))) > 0) &
+                errmsg = trim(errmsg)//'; as --set: '//trim(adjustl(change_cards(k)(31:40)))//'.'// &
+                         trim(adjustl(change_cards(k)(41:50)))//'.<its F2>.F'//trim(change_cards(k)(26:30))
             if (allocated(cs%changes)) then
                 do j = 1, size(cs%changes)
                     call relabel(cs%changes(j), k)
