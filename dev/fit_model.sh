@@ -1,12 +1,18 @@
 #!/bin/sh
-# The shipped model deck from its fits, in order (docs/validation.md):
+# The shipped model deck from its fits, in order (docs/validation.md). The
+# fits write their values into the parameter table
+# reference/model_parameters.csv (status fitted, the stage named), and the
+# deck is regenerated from the table (python3 -m hhneck.model_deck;
+# reference/parameters.md):
 #   1. the model deck at the calibration's starting point (the PARAM values of
-#      the VALUES cards of input/calibrate_nbdl12g.inp), the discs' bending and
-#      torsion at DISC_ROT_FRACTION of dev/make_head_neck_deck.py, the upper-
-#      cervical cards as sourced (--upper-cervical none);
+#      the VALUES cards of input/calibrate_nbdl12g.inp, --fit: the table
+#      unchanged), the discs' bending and torsion at the table's
+#      disc.rot_fraction, the upper-cervical cards as sourced
+#      (--upper-cervical none);
 #   2. hhneck-fit-joints on it: the neutral-zone springs fitted to the segment
 #      tests (Panjabi 2001, Nightingale 2007) less the other elements' moment,
-#      its runs with the NZSPRING cards dropped -> reference/nz_springs.csv
+#      its runs with the NZSPRING cards dropped -> reference/nz_springs.csv,
+#      written into the table's rows nz.* (stage nz_springs)
 #      (with UPPER_CERVICAL=1 in the environment, first the upper-cervical
 #      factors, hhneck.upper_cervical -> reference/upper_cervical.csv, and the
 #      springs on the deck with them: an experiment, docs/validation.md "The
@@ -20,15 +26,17 @@
 #      subaxial discs' flexion-extension");
 #   3. hhneck --calibrate < input/calibrate_nbdl12g.inp on the model deck with
 #      those springs: muscles, damping and the discs' and stops' factors fitted
-#      to the NBDL 12 g volunteers -> the listing FIT;
-#   4. the model deck with that fit and those springs.
-# Every step is deterministic, so the shipped deck and reference/nz_springs.csv
-# come out as they are committed (the springs fitted at the starting point,
-# not refitted at the fit: docs/validation.md says what that changes).
+#      to the NBDL 12 g volunteers -> the listing FIT, its PARAM values
+#      written into the table's rows of those names (stage nbdl12g);
+#   4. the model deck from the table.
+# Every step is deterministic, so the shipped deck, reference/nz_springs.csv
+# and reference/model_parameters.csv come out as they are committed (the
+# springs fitted at the starting point, not refitted at the fit:
+# docs/validation.md says what that changes).
 # Usage: dev/fit_model.sh [FIT]   (default fit12.txt; about 15 minutes). It
-# rewrites input/head_neck_54dof.inp and reference/nz_springs.csv in place:
-# run an experiment's variant in a scratch copy (git worktree add), not in a
-# tree you commit from while it runs.
+# rewrites input/head_neck_54dof.inp, reference/nz_springs.csv and
+# reference/model_parameters.csv in place: run an experiment's variant in a
+# scratch copy (git worktree add), not in a tree you commit from while it runs.
 set -e
 cd "$(dirname "$0")/.."
 # this tree's Python package, whichever tree the installed one points to, so
@@ -39,7 +47,7 @@ fit=${1:-fit12.txt}
 exe=$(fpm run --profile release --runner echo 2>/dev/null | tail -1)
 case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
 start=$(mktemp)
-trap 'rm -f "$start" input/head_neck_54dof.inp.new' EXIT
+trap 'rm -f "$start"' EXIT
 # the VALUES point as the PARAM lines of a calibration listing
 awk '/^PARAM /{name[++n] = substr($0, 11, 10); gsub(/ /, "", name[n])}
      /^VALUES/{for (k = 11; k <= length($0); k += 10) {v = substr($0, k, 10); gsub(/ /, "", v);
@@ -51,15 +59,13 @@ else upper=none; flag=; fi
 if [ "${SUBOCCIPITAL:-0}" = 1 ]; then sub=yes; else sub=no; fi
 if [ "${SEGMENTAL:-0}" = 1 ]; then seg="--segmental yes --sub-bend ${SUB_BEND:-0.2}"; else seg=; fi
 if [ -n "${SUB_FLEXION:-}" ]; then seg="$seg --sub-flexion $SUB_FLEXION"; fi
-python3 dev/make_head_neck_deck.py --fit "$start" --nz-springs reference/nz_springs.csv --upper-cervical none \
-    --suboccipital $sub $seg > input/head_neck_54dof.inp.new
-mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
-HHNECK=$exe hhneck-fit-joints $flag
-python3 dev/make_head_neck_deck.py --fit "$start" --upper-cervical $upper --suboccipital $sub $seg \
-    > input/head_neck_54dof.inp.new
-mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
+deck() { python3 -m hhneck.model_deck --upper-cervical $upper --suboccipital $sub $seg "$@"; }
+deck --fit "$start" --upper-cervical none --output input/head_neck_54dof.inp
+HHNECK=$exe ${FIT_JOINTS:-python3 -m hhneck.fit_joints} $flag
+python3 -m hhneck.model_deck --record nz_springs reference/nz_springs.csv
+deck --fit "$start" --output input/head_neck_54dof.inp
 "$exe" --calibrate < input/calibrate_nbdl12g.inp > "$fit"
-python3 dev/make_head_neck_deck.py --fit "$fit" --upper-cervical $upper --suboccipital $sub $seg \
-    > input/head_neck_54dof.inp.new
-mv input/head_neck_54dof.inp.new input/head_neck_54dof.inp
-echo "fit_model.sh: input/head_neck_54dof.inp written from reference/nz_springs.csv (upper cervical: $upper) and $fit" >&2
+python3 -m hhneck.model_deck --record nbdl12g "$fit"
+deck --output input/head_neck_54dof.inp
+echo "fit_model.sh: reference/model_parameters.csv written from reference/nz_springs.csv and $fit," \
+     "input/head_neck_54dof.inp from it (upper cervical: $upper)" >&2

@@ -33,10 +33,12 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 from hhneck.compare_nbdl import stop  # noqa: E402
 from cross_severity import params, rating_text  # noqa: E402
 from hhneck.deck_fields import CardError, field, is_card, set_field, write_decks  # noqa: E402
+from hhneck import model_deck  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 CALIBRATION = "input/calibrate_nbdl.inp"
-TAU0 = 0.005                 # s: the retardation time SCALE VBEND multiplies (make_head_neck_deck.py)
+# s: the retardation time SCALE VBEND multiplies (the parameter table's disc.tau)
+TAU0 = model_deck.table_values(model_deck.read_table())["disc.tau"]
 # (label, tension fraction held at 1, PASSIVE card kept)
 FITS = [
     ("tension fraction 1 (linear eq 1), PASSIVE", True, True),

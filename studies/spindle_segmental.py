@@ -6,12 +6,12 @@ its discs, and what does that column give the catalogue?
     python3 studies/spindle_segmental.py [--fit LABEL=LISTING ...]
 
 The segmental column is docs/validation.md's "Segmental muscles" deck at
-its starting point: dev/make_head_neck_deck.py --segmental yes --sub-bend
+its starting point: python3 -m hhneck.model_deck --segmental yes --sub-bend
 0.2 (a multifidus-like extensor and an intertransversarius per subaxial
 level and side, the subaxial discs' bending at 0.2), its neutral-zone
-springs refitted by hhneck-fit-joints, the shipped calibration's starting
-point otherwise (the steps 1-2 of `SEGMENTAL=1 dev/fit_model.sh`), built in
-a scratch copy of the repository (shared/ beside it as a link). On it,
+springs refitted by hhneck-fit-joints (written into the copy's parameter
+table), the shipped calibration's starting point otherwise (the steps 1-2
+of `SEGMENTAL=1 dev/fit_model.sh`), built in a scratch copy of the repository (shared/ beside it as a link). On it,
 without --fit, two calibrations run side by side (release build):
 input/calibrate_nbdl12g_spindle.inp (the fifteen parameters and the loops'
 gains and delays, standing judged by the run at rest
@@ -78,13 +78,11 @@ def scratch_copy(tmp):
     return copy
 
 
-def generate(copy, env, fit, springs=True):
-    """The copy's model deck from the generator: the segmental column at the values of `fit` (a listing)."""
-    args = [sys.executable, "dev/make_head_neck_deck.py", "--fit", fit] + SEGMENTAL
-    if springs:
-        args += ["--nz-springs", "reference/nz_springs.csv"]
-    deck = subprocess.run(args, cwd=copy, env=env, capture_output=True, text=True, check=True).stdout
-    open(os.path.join(copy, "input/head_neck_54dof.inp"), "w").write(deck)
+def generate(copy, env, fit):
+    """The copy's model deck from the generator and the copy's parameter table: the segmental column
+    at the values of `fit` (a listing)."""
+    subprocess.run([sys.executable, "-m", "hhneck.model_deck", "--fit", fit, "--output",
+                    "input/head_neck_54dof.inp"] + SEGMENTAL, cwd=copy, env=env, check=True)
 
 
 def segmental_column(copy, env, tmp):
@@ -96,7 +94,9 @@ def segmental_column(copy, env, tmp):
     generate(copy, env, start)
     subprocess.run([sys.executable, "-c", "from hhneck.fit_joints import main; main([])"], cwd=copy, env=env,
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    generate(copy, env, start, springs=False)
+    subprocess.run([sys.executable, "-m", "hhneck.model_deck", "--record", "nz_springs", "reference/nz_springs.csv"],
+                   cwd=copy, env=env, check=True, stderr=subprocess.DEVNULL)
+    generate(copy, env, start)
     return start
 
 
@@ -135,10 +135,10 @@ def rest_row(values, cards, bind, tmp):
 
 def catalogue_row(copy, env, listing, tmp, label):
     """The catalogue on the copy's column at the disc and stop factors of `listing`."""
-    generate(copy, env, listing, springs=False)
+    generate(copy, env, listing)
     report = os.path.join(tmp, "catalogue_%s.md" % re.sub(r"\W", "_", label))
-    subprocess.run(["hhneck-catalogue", "--out", os.path.join(tmp, "cat"), "--report", report], cwd=copy, env=env,
-                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    subprocess.run([sys.executable, "-m", "hhneck.catalogue", "--out", os.path.join(tmp, "cat"), "--report", report],
+                   cwd=copy, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     cells = []
     for line in open(report):
         m = re.match(r"\| ([^|]+) \| (segment|specimen|volunteer)[^|]*\| \d+ \| ([^|]+) \|", line)
@@ -184,7 +184,7 @@ def report(rows, fits, calibration, start, copy, env, tmp):
     for label, values, _ in rows:
         point = merged(start, values, tmp)
         passive = tuple((n, v) for n, v in fitted_values(point) if n in PASSIVE)
-        generate(copy, env, point, springs=False)
+        generate(copy, env, point)
         rest = rest_row(values, cards, bind, tmp)
         if passive not in done:
             done[passive] = catalogue_row(copy, env, point, tmp, label)

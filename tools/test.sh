@@ -11,6 +11,10 @@
 #      build's for one with "# builds: release"),
 #   4. the Python tests of the tools, test/python (pytest), with HHNECK set
 #      to the release build's executable.
+# The scripts and the Python tests run with this checkout's Python
+# environment .venv (tools/setup.sh) first on PATH: its python3 imports
+# this checkout's package, and the console commands (hhneck-animate, ...)
+# are this checkout's.
 # The test programs of a build run $TEST_JOBS at a time (default: the
 # number of cores), and so do the scripts with the Python tests beside
 # them; each one's output is shown whole when all are done.
@@ -22,6 +26,10 @@
 #                                 name contains FILTER
 set -u
 cd "$(dirname "$0")/.."
+if [ -x .venv/bin/python3 ]; then
+    PATH=$(pwd -P)/.venv/bin:$PATH
+    export PATH
+fi
 
 checking=yes
 only=
@@ -62,6 +70,8 @@ if [ -n "$only" ]; then
     exec fpm test "$only" --flag "$DEBUG_FLAGS $PF_INC" --link-flag "$PF_LINK"
 fi
 
+[ -x .venv/bin/python3 ] ||
+    echo "test.sh: no .venv (tools/setup.sh makes it): the Python tests use the machine's python3" >&2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 log=$work/log

@@ -5,7 +5,8 @@ pandas with units), export (CSV, ISO-MME), compare_nbdl, iso18571,
 compare_listing, compare_sweeps, animate, xdmf, plot_sensitivity,
 plot_corridor, plot_work_precision, nbdl_tables, case_decks, deck_fields,
 segments, specimens, specimen_data, catalogue (the validation catalogue),
-calibration (calibration over the specimen cases).
+calibration (calibration over the specimen cases), model_deck (the model
+deck from its parameter table, reference/model_parameters.csv).
 Each module with a command line has main(argv=None), installed as the
 console command hhneck-NAME and runnable as python3 -m hhneck.MODULE."""
 __version__ = "0.3.0"

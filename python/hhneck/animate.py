@@ -2,6 +2,7 @@
 
     hhneck-animate RESULT.h5 OUT.gif            # GIF (matplotlib only)
     hhneck-animate RESULT.h5 OUT.mp4            # MP4 (needs ffmpeg)
+    hhneck-animate RESULT.h5 OUT                # OUT.mp4 with ffmpeg, else OUT.gif
     hhneck-animate RESULT.h5 --strip OUT.png    # key frames every 20 ms
     hhneck-animate RESULT.h5 --strip OUT.png --view front,side
 
@@ -13,9 +14,13 @@ their disc plates, the head is the uniform ellipsoid with its mass and
 principal inertia, discs, ligaments and muscles (through their via points)
 are lines coloured by their force. Bodies come from /bodies/position and /bodies/rotation, elements from
 /model/elements and their forces from /channels (docs/animation.md).
-Needs numpy, h5py and matplotlib; MP4 also needs ffmpeg.
+The animation draws the figure once and then, at each frame, only the
+moving artists over it (fixed view limits relative to T1), handing the
+Agg buffer straight to the GIF quantizer (Pillow) or to ffmpeg.
+Needs numpy, h5py and matplotlib (with Pillow); MP4 also needs ffmpeg.
 """
 import argparse
+import os
 import shutil
 import sys
 
@@ -58,6 +63,13 @@ class Family:
             vbody = np.asarray(g["via_body"][:], dtype=int).reshape(len(self.name), -1)
             vpoint = np.asarray(g["via_point"][:], dtype=float).reshape(len(self.name), -1, 3)
             self.via = [list(zip(vbody[e, :count[e]], vpoint[e, :count[e]])) for e in range(len(self.name))]
+        # every element's path as one list of (body, point): its end a, via
+        # points, end b; path_start[e] .. path_start[e + 1] are element e's
+        path = [[(self.body[e, 0], self.point[e, 0])] + list(self.via[e]) + [(self.body[e, 1], self.point[e, 1])]
+                for e in range(len(self.name))]
+        self.path_body = np.array([b for p in path for b, _ in p], dtype=int)
+        self.path_point = np.array([c for p in path for _, c in p], dtype=float).reshape(-1, 3)
+        self.path_start = np.cumsum([0] + [len(p) for p in path])
         nt = chan["_nt"]
         self.force = np.full((nt, len(self.name)), np.nan)
         for e, n in enumerate(self.name):
@@ -108,6 +120,14 @@ class Result:
             return np.asarray(c, dtype=float)
         return self.pos[i, body - 1] + np.asarray(c) @ self.rot[i, body - 1].T
 
+    def world_many(self, i, bodies, c):
+        """Points c (M, 3), point m fixed in body bodies[m] (1-based, 0 = R),
+        at sample i, in R: r + S c for each (one vectorised step)."""
+        b = np.asarray(bodies, dtype=int)
+        k = np.maximum(b - 1, 0)
+        out = self.pos[i, k] + np.einsum("mij,mj->mi", self.rot[i, k], c)
+        return np.where((b == 0)[:, None], c, out)
+
     def sagittal_angle(self, i, k, relative_to=None):
         """atan2(S13, S33) of body k (0-based) [deg], flexion positive; relative
         to body `relative_to` when given."""
@@ -148,12 +168,8 @@ class Result:
     def line_paths(self, i, fam):
         """The path in R of each element of a family at sample i: (M, 3)
         points from end a through its via points (muscles) to end b."""
-        ends = self.line_ends(i, fam)
-        paths = []
-        for e in range(len(fam.name)):
-            via = [self.world(i, b, c) for b, c in fam.via[e]]
-            paths.append(np.vstack([ends[e, 0]] + via + [ends[e, 1]]))
-        return paths
+        pts = self.world_many(i, fam.path_body, fam.path_point)
+        return [pts[a:b] for a, b in zip(fam.path_start[:-1], fam.path_start[1:])]
 
 
 def ellipsoid_axes(mass, inertia):
@@ -247,11 +263,36 @@ class Geometry:
     def __init__(self, res):
         self.res = res
         self.shapes = body_shapes(res)
+        self.local = self.local_outlines()
 
     def bodies(self, i):
         """{'side': (M, 3), 'front': (M, 3), 'top': (M, 3), 'iso': (M, 3)} outline points of each body."""
+        return [{v: self.res.world(i, k, c) for v, c in local.items()}
+                for k, local in enumerate(self.local, start=1)]
+
+    def body_parts(self, i, view):
+        """The bodies' outlines for a view at sample i, in R: a list of
+        polylines (M, 3) without NaN (one vectorised transform)."""
+        if not hasattr(self, "_parts"):
+            self._parts = {}
+            for v in VIEWS:
+                pts = [(k, c) for k, local in enumerate(self.local, start=1) for c in local[v]]
+                body = np.array([k for k, _ in pts], dtype=int)
+                c = np.array([c for _, c in pts], dtype=float)
+                gap = np.flatnonzero(np.isnan(c[:, 0]))
+                keep = ~np.isnan(c[:, 0])
+                # part boundaries: a NaN row, or a change of body
+                cut = sorted(set(gap.tolist()) | set(np.flatnonzero(np.diff(body) != 0) + 1))
+                self._parts[v] = (body[keep], c[keep], np.searchsorted(np.flatnonzero(keep), cut))
+        body, c, cut = self._parts[view]
+        w = self.res.world_many(i, body, c)
+        return [p for p in np.split(w, cut) if len(p)]
+
+    def local_outlines(self):
+        """Each body's outline for each view in its own frame, NaN-separated
+        polylines (fixed in the body: computed once)."""
         out = []
-        for k, sh in enumerate(self.shapes, start=1):
+        for sh in self.shapes:
             if sh[0] == "ellipsoid":
                 _, axes, dirs, _ = sh
                 xz, yz, xy = ellipse(axes, dirs, 0, 2), ellipse(axes, dirs, 1, 2), ellipse(axes, dirs, 0, 1)
@@ -267,8 +308,7 @@ class Geometry:
                 proc = [[[cx - r, 0, m], tip]] if tip is not None else []
                 side, front, top = [rect_xz] + proc, [rect_yz], [rect_xy] + proc
                 d3 = box_edges(cx, r, lo, hi) + proc
-            out.append({v: self.res.world(i, k, join(s)) for v, s in
-                        (("side", side), ("front", front), ("top", top), ("iso", d3))})
+            out.append({v: join(s) for v, s in (("side", side), ("front", front), ("top", top), ("iso", d3))})
         return out
 
     def sled(self, i, zfloor, xrange):
@@ -319,9 +359,16 @@ def view_window(res, geo, first, last):
 
 
 class Scene:
-    """The artists of the views; update(i) sets them to sample i."""
+    """The artists of the views; update(i) sets them to sample i.
 
-    def __init__(self, res, frames, axes, fmax=None, history_ax=None, label_text=None):
+    animated=False: every artist in R's coordinates, the views' limits moved
+    with T1 at each update (the strip, and a figure drawn whole). animated=
+    True (the animation's fast path): the views' limits are fixed and every
+    drawn point is taken relative to T1's mass centre, so the axes, ticks,
+    titles, colour bars and the history plot are drawn once and each frame
+    redraws only the moving artists (self.moving) over that background."""
+
+    def __init__(self, res, frames, axes, fmax=None, history_ax=None, label_text=None, animated=False):
         import matplotlib.pyplot as plt
         from matplotlib import colors
         self.res, self.geo, self.axes = res, Geometry(res), axes
@@ -337,31 +384,58 @@ class Scene:
         self.tension_norm = colors.Normalize(0.0, self.fmax)
         self.disc_norm = colors.Normalize(-pmax, pmax)
         self.win = view_window(res, self.geo, frames[0], frames[-1])
+        self.animated = animated
         self.artists = {v: self.make_artists(v, ax) for v, ax in axes.items()}
         self.history_ax, self.label_text = history_ax, label_text
+        self.moving = []            # (axes or figure, artist) redrawn at each frame when animated
         if history_ax is not None:
             self.cursor = history_ax.axvline(0.0, color="k", lw=0.8)
+            self.moving.append((history_ax, self.cursor))
+        if label_text is not None and not animated:
+            self.moving.append((label_text.figure, label_text))
+        if label_text is not None and animated:
+            self.label_values = self.split_label(label_text)
+            self.moving += [(label_text.figure, t) for t in self.label_values]
+        for v, a in self.artists.items():
+            arts = [a["ground"], a["sled"], a["start"]] + list(a["lines"].values()) + [a["discs"], a["bodies"], a["cm"]]
+            self.moving += [(axes[v], art) for art in arts if art is not None]     # in the order of their zorder
+        if animated:
+            for _, art in self.moving:
+                art.set_animated(True)
+            self.fix_limits()
 
     def make_artists(self, view, ax):
-        a = {"bodies": [], "cm": {}, "lines": {}, "discs": {}}
+        """The view's artists: sled, ground and start marks, the body outlines
+        (one line collection), the mass centres (one marker line), one line
+        collection per element family (self.index: element name -> (family,
+        position in its collection)) and one for the discs."""
+        from matplotlib.collections import LineCollection
+        from mpl_toolkits.mplot3d.art3d import Line3DCollection
+        a = {"lines": {}}
         is3d = view == "iso"
 
         def line(**kw):
             return ax.plot(*([[], [], []] if is3d else [[], []]), **kw)[0]
+
+        def collection(**kw):
+            c = Line3DCollection([], **kw) if is3d else LineCollection([], **kw)
+            ax.add_collection(c)
+            return c
         a["ground"] = line(color="0.45", lw=0.8)
         a["sled"] = line(color="0.3", lw=2.0)
         a["start"] = line(color="0.45", lw=0.8, ls=":")
-        for k, name in enumerate(self.res.bodies):
-            a["bodies"].append(line(color="k", lw=1.0, zorder=4))
-            a["cm"][name] = line(marker="o", ms=2.5, color="k", ls="none", zorder=5)
+        a["bodies"] = collection(colors="k", linewidths=1.0, zorder=4)
+        a["cm"] = line(marker="o", ms=2.5, color="k", ls="none", zorder=5)
+        self.index = {}
         for fam_name, fam in self.res.families.items():
             lw = {"muscles": 1.8, "ligaments": 0.9}.get(fam_name, 1.2)
             ls = "--" if fam_name == "springs" else "-"
-            for n in fam.name:
-                a["lines"][n] = line(lw=lw, ls=ls, color=SLACK_COLOUR)
+            a["lines"][fam_name] = collection(linewidths=lw, linestyles=ls, colors=SLACK_COLOUR)
+            self.index.update((n, (fam_name, k)) for k, n in enumerate(fam.name))
+        a["discs"] = None
         if self.res.discs is not None:
-            for n in self.res.discs.name:
-                a["discs"][n] = line(lw=3.5, color="0.5", solid_capstyle="butt", zorder=3)
+            a["discs"] = collection(linewidths=3.5, colors="0.5", capstyle="butt", zorder=3)
+            self.index.update((n, ("discs", k)) for k, n in enumerate(self.res.discs.name))
         if is3d:
             ax.set_xlabel("x [m]", fontsize=7, labelpad=-8)
             ax.set_ylabel("y [m]", fontsize=7, labelpad=-8)
@@ -378,6 +452,38 @@ class Scene:
             ax.set_ylabel(AXIS_NAMES[v] + " [m]", fontsize=7)
         return a
 
+    def split_label(self, label):
+        """The animated frame label: its words drawn once (the template with
+        blanks for the numbers, a monospace text), the numbers as their own
+        texts over the blanks (fewer glyphs to draw at each frame)."""
+        fig = label.figure
+        template = frame_label_template(self.res)
+        blanks = template.format(*(" " * w for w in LABEL_WIDTHS))
+        label.set_text(blanks)
+        box = label.get_window_extent(fig.canvas.get_renderer())
+        cw = box.width / len(blanks)
+        starts, k = [], 0
+        for part, w in zip(template.split("{}")[:-1], LABEL_WIDTHS):
+            k += len(part)
+            starts.append(k)
+            k += w
+        x, y = label.get_position()
+        return [fig.text((box.x0 + cw * c) / fig.bbox.width, y, "", ha="left", va="top", fontsize=label.get_fontsize(),
+                         family="monospace") for c in starts]
+
+    def fix_limits(self):
+        """The animation's fixed view limits, relative to T1's mass centre."""
+        for view, ax in self.axes.items():
+            if view == "iso":
+                lo, hi = self.win["lo3"], self.win["hi3"]
+                ax.set_xlim(lo[0], hi[0]); ax.set_ylim(lo[1], hi[1]); ax.set_zlim(lo[2], hi[2])
+            else:
+                h, v, _ = PLANES[view]
+                lo, hi = self.win["lo"], self.win["hi"]
+                ax.set_xlim(lo[h], hi[h]); ax.set_ylim(lo[v], hi[v])
+                ax.set_xlabel("%s - %s's [m]" % (AXIS_NAMES[h], self.res.bodies[self.res.root]), fontsize=7)
+                ax.set_ylabel("%s - %s's [m]" % (AXIS_NAMES[v], self.res.bodies[self.res.root]), fontsize=7)
+
     def put(self, art, view, p):
         """Set a line artist to R points p (M, 3), projected for the view."""
         if view == "iso":
@@ -386,36 +492,48 @@ class Scene:
             h, v, _ = PLANES[view]
             art.set_data(p[:, h], p[:, v])
 
-    def force_colour(self, f, disc=False):
-        if not np.isfinite(f):
-            return SLACK_COLOUR
-        if disc:
-            return self.disc_cmap(self.disc_norm(f))
-        return SLACK_COLOUR if f <= 0.0 else self.tension_cmap(0.15 + 0.85 * self.tension_norm(f))
+    def put_segments(self, coll, view, paths):
+        """Set a line collection to the R polylines `paths` (each (M, 3)),
+        projected for the view."""
+        if view == "iso":
+            coll.set_segments(paths)
+        else:
+            h, v, _ = PLANES[view]
+            coll.set_segments([p[:, [h, v]] for p in paths])
+
+    def force_colours(self, f, disc=False):
+        """RGBA colours (n, 4) of forces f: discs by axial force, ligaments and
+        muscles by tension (slack grey at zero, or where there is no channel)."""
+        from matplotlib.colors import to_rgba
+        f = np.asarray(f, dtype=float)
+        out = np.tile(to_rgba(SLACK_COLOUR), (len(f), 1))
+        ok = np.isfinite(f) if disc else np.isfinite(f) & (f > 0.0)
+        if ok.any():
+            out[ok] = self.disc_cmap(self.disc_norm(f[ok])) if disc else \
+                self.tension_cmap(0.15 + 0.85 * self.tension_norm(f[ok]))
+        return out
 
     def update(self, i):
         res, geo = self.res, self.geo
         ref = res.pos[i, res.root]
-        bodies = geo.bodies(i)
+        off = ref if self.animated else np.zeros(3)      # animated: every point relative to T1's
         sled, ground, start = geo.sled(i, ref[2] + self.win["zfloor"], SLED_X)
-        ends = {n: e for fam in res.families.values() for n, e in zip(fam.name, res.line_paths(i, fam))}
-        forces = {n: f for fam in res.families.values() for n, f in zip(fam.name, fam.force[i])}
-        dends = {}
+        paths = {k: [p - off for p in res.line_paths(i, fam)] for k, fam in res.families.items()}
+        colour = {k: self.force_colours(fam.force[i]) for k, fam in res.families.items()}
         if res.discs is not None:
-            dends = dict(zip(res.discs.name, res.line_ends(i, res.discs)))
+            paths["discs"] = list(res.line_ends(i, res.discs) - off)
+            colour["discs"] = self.force_colours(res.discs.force[i], disc=True)
         for view, a in self.artists.items():
-            for k, name in enumerate(res.bodies):
-                self.put(a["bodies"][k], view, bodies[k][view])
-                self.put(a["cm"][name], view, res.pos[i, k][None, :])
-            for n, art in a["lines"].items():
-                self.put(art, view, ends[n])
-                art.set_color(self.force_colour(forces[n]))
-            for e, (n, art) in enumerate(a["discs"].items()):
-                self.put(art, view, dends[n])
-                art.set_color(self.force_colour(res.discs.force[i, e], disc=True))
-            self.put(a["sled"], view, sled)
-            self.put(a["ground"], view, ground)
-            self.put(a["start"], view, start)
+            self.put_segments(a["bodies"], view, [p - off for p in geo.body_parts(i, view)])
+            self.put(a["cm"], view, res.pos[i] - off)
+            for k, coll in list(a["lines"].items()) + ([("discs", a["discs"])] if a["discs"] is not None else []):
+                self.put_segments(coll, view, paths[k])
+                coll.set_color(colour[k])
+            self.put(a["sled"], view, sled - off)
+            self.put(a["ground"], view, ground - off)
+            self.put(a["start"], view, start - off)
+            if self.animated:
+                continue
             ax = self.axes[view]
             if view == "iso":
                 lo, hi = ref + self.win["lo3"], ref + self.win["hi3"]
@@ -426,18 +544,36 @@ class Scene:
                 ax.set_xlim(lo[h], hi[h]); ax.set_ylim(lo[v], hi[v])
         if self.history_ax is not None:
             self.cursor.set_xdata([1000 * res.time[i]] * 2)
-        if self.label_text is not None:
+        if self.label_text is not None and self.animated:
+            for t, v in zip(self.label_values, frame_label_values(res, i)):
+                t.set_text(v)
+        elif self.label_text is not None:
             self.label_text.set_text(frame_label(res, i))
+
+
+LABEL_WIDTHS = (6, 6, 6, 6, 7)      # characters of each number of the frame label
+
+
+def frame_label_template(res):
+    """The frame label with a '{}' for each number (frame_label_values)."""
+    r = res.bodies[res.root]
+    return ("t = {} ms    head flexion {} deg ({} deg relative to %s), rotation {} deg    %s x displacement {} mm"
+            % (r, r))
+
+
+def frame_label_values(res, i):
+    """The numbers of the frame label at sample i, each LABEL_WIDTHS wide:
+    time [ms], head flexion and flexion relative to T1 [deg], head rotation
+    [deg], T1's x displacement [mm]."""
+    h, r = res.head, res.root
+    dx = 1000 * (res.pos[i, r, 0] - res.pos[0, r, 0])
+    v = (1000 * res.time[i], res.sagittal_angle(i, h), res.sagittal_angle(i, h, r), res.rotation_angle(i, h), dx)
+    return ["%*.1f" % (w, x) for w, x in zip(LABEL_WIDTHS, v)]
 
 
 def frame_label(res, i):
     """Time, head rotation and T1 displacement at sample i."""
-    h, r = res.head, res.root
-    dx = 1000 * (res.pos[i, r, 0] - res.pos[0, r, 0])
-    return ("t = %6.1f ms    head flexion %.1f deg (%.1f deg relative to %s), rotation %.1f deg"
-            "    %s x displacement %.1f mm"
-            % (1000 * res.time[i], res.sagittal_angle(i, h), res.sagittal_angle(i, h, r),
-               res.bodies[r], res.rotation_angle(i, h), res.bodies[r], dx))
+    return frame_label_template(res).format(*frame_label_values(res, i))
 
 
 def add_colourbars(fig, scene, axes):
@@ -538,10 +674,11 @@ def resolve_views(res, views, frames, animation=False):
     return list(views)
 
 
-def build_figure(res, frames, dpi, fmax=None, rate_label="", views=("side", "front", "iso")):
+def build_figure(res, frames, dpi, fmax=None, rate_label="", views=("side", "front", "iso"), animated=False):
     """The animation figure: the views (side, front, top, iso) side by side,
     the head's angle about the first plane view's normal against time,
-    colour bars; returns (fig, scene)."""
+    colour bars; returns (fig, scene). animated: the Scene's fast path
+    (fixed limits relative to T1, moving artists drawn over a background)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -577,7 +714,7 @@ def build_figure(res, frames, dpi, fmax=None, rate_label="", views=("side", "fro
     fig.text(0.5, 0.975, head, ha="center", va="top", fontsize=9, weight="bold")
     label = fig.text(0.5, 0.945, "", ha="center", va="top", fontsize=8, family="monospace")
     fig.text(0.98, 0.012, rate_label, ha="right", fontsize=7)
-    scene = Scene(res, frames, axes, fmax=fmax, history_ax=hist, label_text=label)
+    scene = Scene(res, frames, axes, fmax=fmax, history_ax=hist, label_text=label, animated=animated)
     add_colourbars(fig, scene, cax)
     return fig, scene
 
@@ -591,27 +728,82 @@ def animation_frames(res, start, end, fps, slow):
     return frame_indices(res.time, t0 + dt * np.arange(n))
 
 
+class GifFrames:
+    """GIF writer: the palette of the first frame (the whole figure, colour
+    bars included: every colour a frame draws) made by Pillow's fast octree,
+    each frame mapped to it as it comes, all written at close."""
+
+    def __init__(self, out, fps):
+        self.out, self.fps, self.frames, self.palette = out, fps, [], None
+
+    def add(self, rgba):
+        from PIL import Image
+        h, w = rgba.shape[:2]
+        im = Image.frombuffer("RGBA", (w, h), np.ascontiguousarray(rgba), "raw", "RGBA", 0, 1).convert("RGB")
+        if self.palette is None:
+            self.palette = im.quantize(256, method=Image.Quantize.FASTOCTREE)
+        self.frames.append(im.quantize(palette=self.palette, dither=Image.Dither.NONE))
+
+    def close(self):
+        self.frames[0].save(self.out, save_all=True, append_images=self.frames[1:], loop=0,
+                            duration=round(1000.0 / self.fps), optimize=False)
+
+
+class Mp4Frames:
+    """MP4 writer: raw RGBA frames piped to ffmpeg (H.264, yuv420p)."""
+
+    def __init__(self, out, fps, size):
+        import subprocess
+        w, h = size
+        self.proc = subprocess.Popen(
+            ["ffmpeg", "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgba", "-s", "%dx%d" % (w, h),
+             "-r", "%g" % fps, "-i", "-", "-c:v", "libx264", "-pix_fmt", "yuv420p", out],
+            stdin=subprocess.PIPE)
+
+    def add(self, rgba):
+        self.proc.stdin.write(np.ascontiguousarray(rgba).tobytes())
+
+    def close(self):
+        self.proc.stdin.close()
+        if self.proc.wait() != 0:
+            raise OSError("ffmpeg failed (exit %d)" % self.proc.returncode)
+
+
 def write_animation(res, out, args):
+    """Write the animation (GIF or MP4, from out's suffix): the figure drawn
+    once whole, then each frame the moving artists drawn over that
+    background (Scene's animated path) and the Agg buffer handed to the
+    writer; returns (number of frames, views drawn)."""
     import matplotlib
     matplotlib.use("Agg")
-    from matplotlib import animation
     frames = animation_frames(res, args.start, args.end, args.fps, args.slow)
     views = resolve_views(res, args.views, frames, animation=True)
     rate = "real time" if args.slow == 1 else "slow motion %gx" % args.slow
     fig, scene = build_figure(res, frames, args.dpi, args.fmax,
-                              "%s, %g frames/s, %d frames" % (rate, args.fps, len(frames)), views=views)
-    if out.lower().endswith(".gif"):
-        writer = animation.PillowWriter(fps=args.fps)
-    else:
-        writer = animation.FFMpegWriter(fps=args.fps, codec="libx264",
-                                        extra_args=["-pix_fmt", "yuv420p"])
-    with writer.saving(fig, out, dpi=args.dpi):
+                              "%s, %g frames/s, %d frames" % (rate, args.fps, len(frames)), views=views,
+                              animated=True)
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+    canvas = fig.canvas
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
+    size = canvas.get_width_height()
+    writer = GifFrames(out, args.fps) if out.lower().endswith(".gif") else Mp4Frames(out, args.fps, size)
+    try:
         for n, i in enumerate(frames):
             scene.update(i)
-            writer.grab_frame()
+            canvas.restore_region(background)
+            for owner, art in scene.moving:
+                if isinstance(art, Line3DCollection):
+                    art.do_3d_projection()         # a normal draw of the 3-D axes does this
+                owner.draw_artist(art)
+            writer.add(np.asarray(canvas.buffer_rgba()))
             if not args.quiet and (n % 25 == 0 or n == len(frames) - 1):
                 print("hhneck-animate: frame %d of %d (t = %.1f ms)" % (n + 1, len(frames), 1000 * res.time[i]),
                       file=sys.stderr)
+    finally:
+        writer.close()
+    import matplotlib.pyplot as plt
+    plt.close(fig)
     return len(frames), views
 
 
@@ -669,7 +861,8 @@ def main(argv=None):
     p = argparse.ArgumentParser(prog="hhneck-animate", description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("result", help="hhneck HDF5 result file")
-    p.add_argument("out", nargs="?", help="animation to write: NAME.gif or NAME.mp4")
+    p.add_argument("out", nargs="?", help="animation to write: NAME.gif, NAME.mp4, or NAME (NAME.mp4 when "
+                                          "ffmpeg is installed, else NAME.gif)")
     p.add_argument("--slow", type=float, default=20.0,
                    help="slow-motion factor: 1 is real time, 20 (default) plays 1 ms of the run in 20 ms")
     p.add_argument("--fps", type=float, default=25.0, help="frames per second of the video (default 25)")
@@ -694,9 +887,12 @@ def main(argv=None):
     except ValueError as e:
         p.error(str(e))
     if args.out is not None:
+        if "." not in os.path.basename(args.out):         # no suffix: MP4 when ffmpeg is there, else GIF
+            args.out += ".mp4" if shutil.which("ffmpeg") else ".gif"
         suffix = args.out.lower().rsplit(".", 1)[-1]
         if suffix not in ("gif", "mp4"):
-            p.error("the animation must be NAME.gif or NAME.mp4, not %s" % args.out)
+            p.error("the animation must be NAME.gif, NAME.mp4 or NAME (MP4 when ffmpeg is installed, else GIF), "
+                    "not %s" % args.out)
         if suffix == "mp4" and shutil.which("ffmpeg") is None:
             print("hhneck-animate: MP4 needs ffmpeg, which is not installed: install it "
                   "(sudo apt-get install ffmpeg) or ask for OUT.gif instead", file=sys.stderr)

@@ -28,13 +28,16 @@ SAMPLES) as the catalogue rates rotation against moment.
 Reference CSVs: each case's rated channels, their reference curve (the
 corridor's midline or the specimens' mean, hhneck.specimen_data) and
 bounds, on the common grid k 0.1 ms (each channel linearly interpolated
-from its own 0.1 ms grid onto the grid points its curve covers; Kang: 0 to
-1.2 x the time of the reference's largest magnitude, as hhneck.specimens
-rates), empty cells elsewhere. The model channel of each column is a
+from its own 0.1 ms grid onto the grid points its curve covers, the
+window hhneck.specimens.rated_reference rates; Kang: 0 to 1.2 x the time
+of the reference's largest magnitude in 0-99.9 ms), empty cells elsewhere. The model channel of each column is a
 RATED card: the sign changes, "from the start" and the CFC class of
 hhneck.specimens.
 The rated channels and their model channels are those of the catalogue
-(hhneck.specimens.CHANNELS), load cells included.
+(hhneck.specimens.CHANNELS), load cells included; where the catalogue
+rates a head angle the result file has no channel of (hhneck.specimens.
+ANGLES: the Kang head rotations, integrals of the angular velocity), the
+RATED card rates the file's nearest (its Bryant angle).
 
 Parameters (PARAMS): scale factors of the passive elements, within bounds
 from reference/parameters.md where sourced (VAXIAL: the disc damping range
@@ -54,7 +57,7 @@ import sys
 
 import numpy as np
 
-from . import segments, specimen_data, specimens
+from . import segments, specimens
 from .deck_fields import field, is_card, number_field, set_field, write_deck
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
@@ -147,18 +150,10 @@ def case_channels(case):
 
 def write_reference(case, path, data_dir=segments.DATA_DIR):
     """The reference CSV of `case` (module docstring); its RATED card lines."""
-    stem, kang = CASES[case]
     chans = case_channels(case)
-    src = os.path.join(data_dir, stem + "_experiment.csv")
     curves = []
     for col, ch, *_ in chans:
-        g, ref, lo, hi = specimen_data.reference(src, ch)
-        if kang:
-            keep = g >= 0.0
-            g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
-            keep = g <= 1.2 * g[int(np.argmax(np.abs(ref)))]
-            g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
-        curves.append((col, g, ref, lo, hi))
+        curves.append((col, *specimens.rated_reference(case, ch, data_dir)))
     k0 = int(np.ceil(min(c[1][0] for c in curves) / GRID - 1e-9))
     k1 = int(np.floor(max(c[1][-1] for c in curves) / GRID + 1e-9))
     grid = GRID * np.arange(k0, k1 + 1)

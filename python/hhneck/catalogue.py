@@ -1,6 +1,6 @@
 """The validation catalogue: runs every case of it, rates each curve by
-ISO/TS 18571 (objective-rating-metrics) and writes docs/catalogue.md with a
-table and a figure per source.
+ISO/TS 18571 (objective-rating-metrics) and writes a report with a table
+and a figure per source (docs/catalogue.md when asked for it).
 
 Cases in it now: the quasi-static segment tests of Panjabi et al. 2001 (21
 curves) and Nightingale et al. 2007 (3), set up by hhneck.segments; the
@@ -14,14 +14,28 @@ Under each Kang case, the Newton balance of its head and load cell
 source that misses its goal, a "What stops it" line names what misses,
 from this run's ratings (the mean's shortfall, every channel or curve
 below 0.50 with the peaks), and links the sections of docs/validation.md
-(STOPS) that give the experiments tried for it.
+(STOPS) that give the experiments tried for it. A section lists the
+warnings the runs printed on their stderr (joints past their range, the
+energy balance).
 
 Command: hhneck-catalogue [--quick] [--exe HHNECK] [--jobs N] [--out DIR]
-[--report docs/catalogue.md]. --quick runs one segment (C4-C5) per source
-and motion: the form the test suite runs.
+[--report FILE | --update-docs]. The report goes to catalogue/catalogue.md
+in the current directory (its figures beside it), to FILE with --report,
+and to the project's docs/catalogue.md only with --update-docs (or
+--report docs/catalogue.md); the default never writes into the project's
+docs. The report's folder (and --out) is created and checked before any
+run; a folder that cannot be written stops the command at once (exit 2).
+The report is rewritten as each case ends (its figures at the end), so an
+interrupted run (Ctrl-C: exit 130) or a failed case (exit 1, the other
+cases run on) leaves a report of every case done, with a line saying what
+is missing. A progress line per case on stderr. The runs' decks, listings,
+stderr (NAME.err) and result files go to --out, or to a temporary folder
+removed after a complete run. --quick runs one segment (C4-C5) per source
+and motion and no set-up variants: the form the test suite runs.
 """
 import argparse
 import os
+import shutil
 import sys
 import tempfile
 import time
@@ -91,7 +105,10 @@ def segment_section(results, figdir, relto):
 
 
 def figure(src, rows, figdir):
-    """One figure per source: every moment-rotation curve, model against data."""
+    """One figure per source: every moment-rotation curve, model against
+    data (None when figdir is None)."""
+    if figdir is None:
+        return None
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -128,8 +145,10 @@ SPECIMEN_NOTES = {
     "coordinates, a pre-stress of the joints (a load pair between its two bodies, no external support), the preload "
     "the specimens stood in when the labs cut their positioning cables (released at the pulse instead, the model's "
     "unstressed neutral starts in free fall: a variant below). "
-    "Reference: the corridor "
-    "outline's midline; ISO/TS 18571 over the 0.3–126 ms the corridors cover.",
+    "Angles as the source measured them, in the sagittal plane: the segments' planar angles and the head's planar "
+    "angle relative to T1 (from the result file's rotation matrices). Reference: the midline of each corridor "
+    "outline's two boundaries (the outline's closing edges cut out); ISO/TS 18571 over the 0.3–126 ms the corridors "
+    "cover.",
     "Kang 2018 front 14 km/h": "T1 potted and driven rearward by the source's pulse, muscles passive, posture "
     "held as for Stemper, T1 tilted to 24 deg, SAE J211 axes; the head's accelerations as its accelerometer reads them "
     "(the specific force a - g in the head's axes, from its value at t = 0: HEAD_AXS ...; in the lab's axes they score "
@@ -137,8 +156,9 @@ SPECIMEN_NOTES = {
     "the neck and head, in T1's axes) about the potting centre as the set-up placed it (81 mm behind, 229 mm below "
     "the head's mass centre), from its value at t = 0 (the data are tared); every model channel then filtered by the "
     "class the source's notebook gives the SAFER HBM's (head x-acceleration and cell forces CFC 60, the rest CFC 180), "
-    "as its rating beside ours was made. Reference: the corridor's midline; window 0 to 1.2 × the time of its "
-    "largest magnitude (the source notebook's).",
+    "as its rating beside ours was made. The head's rotation the time integral of its angular velocity about the "
+    "sled's axes, as the source's notebook reads its model (LS-DYNA nodal rotations). Reference: the corridor's "
+    "midline; window 0 to 1.2 × the time of its largest magnitude in 0–99.9 ms (the source notebook's).",
     "Kang 2018 side 14 km/h": "T1 driven toward the specimen's right (the direction the data's signs fit), "
     "otherwise (load cell included) as the front case. Reference: the mean of PMHS1 and PMHS2; window as the front case.",
 }
@@ -215,6 +235,10 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
                 ch, sc["corridor"], sc["phase"], sc["magnitude"], sc["slope"], sc["overall"], sc["peak_model"][0],
                 sc["peak_model"][1], sc["peak_ref"][0], sc["peak_ref"][1], 100 * sc["inside"]))
         mean, low, met = case_summary(rated)
+        cut = ["%s to %.1f ms of %.1f" % (ch, sc["window"][1], sc["reference_end"]) for ch, sc in rated.items()
+               if sc.get("reference_end", sc["grid"][-1]) > sc["grid"][-1] + 1e-6]
+        if cut:
+            lines += ["", "Rated to the run's end, where the reference runs past it: %s ms." % ", ".join(cut)]
         lines += ["", "Mean over the %d rated channels: **%.3f** (goal %s: %s; the "
                   "lowest, %s, %.3f).%s%s" % (
                       len(rated), mean, GOAL_SPECIMEN.replace(", ", " with "), "met" if met else "not met", low,
@@ -247,6 +271,8 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
 
 
 def _case_figure(title, rated, figdir):
+    if figdir is None:
+        return None
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -271,27 +297,50 @@ def _case_figure(title, rated, figdir):
     return out
 
 
-def nbdl_scores(exe=None, workdir=None):
-    """The NBDL 15 g and 12 g decks run and rated as hhneck-compare-nbdl
-    rates them: {"15g", "12g": dict(cora, iso (the mean ISO/TS 18571 of the
-    rated channels), peaks (within 1 SD), npeaks)}."""
+def nbdl_score(sev, exe=None, workdir=None):
+    """One NBDL deck (sev "15g" or "12g") run and rated as
+    hhneck-compare-nbdl rates it: dict(cora, iso (the mean ISO/TS 18571 of
+    the rated channels), peaks (within 1 SD), npeaks, warnings (its run's,
+    its stderr kept in workdir as nbdlSEV.err))."""
     work = workdir or tempfile.mkdtemp(prefix="hhneck-catalogue-nbdl-")
     os.makedirs(work, exist_ok=True)
-    out = {}
-    for sev in ("15g", "12g"):
-        h5 = run.run_deck(os.path.join(segments.ROOT, "input", "nbdl%s.inp" % sev), executable=exe,
-                          h5=os.path.join(work, "nbdl%s.h5" % sev), cwd=segments.ROOT).h5
-        chans, peaks, overall = compare_nbdl.compare(sev, h5)[:3]
-        out[sev] = dict(cora=float(overall), iso=float(np.mean([c["iso"] for c in chans if c["rated"]])),
-                        peaks=sum(bool(p["ok_peak"]) for p in peaks), npeaks=len(peaks))
-    return out
+    # the volunteers' runs of the project (compare_nbdl reads reference/ relative to the current directory)
+    compare_nbdl.DATA_DIRS.setdefault(sev, os.path.join(segments.ROOT, "reference", "nbdl_" + sev))
+    r = run.run_deck(os.path.join(segments.ROOT, "input", "nbdl%s.inp" % sev), executable=exe,
+                     h5=os.path.join(work, "nbdl%s.h5" % sev), cwd=segments.ROOT)
+    with open(os.path.join(work, "nbdl%s.err" % sev), "w") as f:
+        f.write(r.stderr)
+    chans, peaks, overall = compare_nbdl.compare(sev, r.h5)[:3]
+    return dict(cora=float(overall), iso=float(np.mean([c["iso"] for c in chans if c["rated"]])),
+                peaks=sum(bool(p["ok_peak"]) for p in peaks), npeaks=len(peaks),
+                warnings=segments.warning_lines(r.stderr))
 
 
-def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, nbdl=None, newton=None):
-    """docs/catalogue.md: the cases, their scores against the goals, the
-    figures (beside `path`) and the wall times; nbdl: nbdl_scores();
-    newton: {title: newton_balance.kang_rows}."""
+def warnings_section(warnings):
+    """Markdown lines of the runs' warnings (warnings: [(case, line)], the
+    WARNING lines of each run's stderr: joints past their range, the
+    energy balance)."""
+    lines = ["## Warnings of the runs", ""]
+    if not warnings:
+        return lines + ["No run printed a warning on its stderr (joints past their range plus margin, the "
+                        "energy balance, a long run).", ""]
+    lines += ["Each run's stderr is kept beside its listing in the work folder (`--out`, NAME.err); its "
+              "warning lines (a run's listing says which joints and when):", "",
+              "| case | warning |", "|---|---|"]
+    return lines + ["| %s | %s |" % (case, line.replace("|", "/")) for case, line in warnings] + [""]
+
+
+def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, nbdl=None, newton=None,
+                 warnings=None, status=None, figures=True):
+    """The catalogue's report at `path` (docs/catalogue.md when asked): the
+    cases, their scores against the goals, the figures (beside `path`,
+    unless figures is False), the runs' warnings and the wall times; nbdl:
+    {sev: nbdl_score()}; newton: {title: newton_balance.kang_rows};
+    warnings: [(case, line)]; status: None for a complete run, else the
+    line that says what is missing (an interrupted or failed run). Written
+    to a temporary file and renamed, so a report is never half written."""
     d = os.path.dirname(os.path.abspath(path))
+    figdir = d if figures else None
     seg = [r for r in results if r["source"] in ("Panjabi 2001", "Nightingale 2007")]
     night = [r for r in seg if r["lower"] is not None]
     inside = sum(int(np.sum((r["model"] >= r["lower"]) & (r["model"] <= r["upper"]))) for r in night)
@@ -299,8 +348,10 @@ def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, 
     lines = ["# Validation catalogue", "",
              "Written by `hhneck-catalogue` (python/hhneck/catalogue.py); do not edit by hand. Every curve is "
              "rated by ISO/TS 18571 through `objective-rating-metrics` (the implementation the open human-body "
-             "model catalogues use). Data: `shared/data/pmhs_neck` (its README: sources, signs, decisions).", "",
-             "| source | kind | curves | mean ISO 18571 | goal | met |", "|---|---|---|---|---|---|"]
+             "model catalogues use). Data: `shared/data/pmhs_neck` (its README: sources, signs, decisions).", ""]
+    if status:
+        lines += ["**Incomplete**: %s" % status, ""]
+    lines += ["| source | kind | curves | mean ISO 18571 | goal | met |", "|---|---|---|---|---|---|"]
     for src in sorted({r["source"] for r in seg}):
         rows = [r for r in seg if r["source"] == src]
         met = "no: %d of %d levels inside ±1 SD" % (inside, levels) if src.startswith("Nightingale") else \
@@ -314,60 +365,213 @@ def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, 
                         "; SAFER HBM %s" % SAFER[title] if title in SAFER else ""))
     if nbdl:
         good = all(v["cora"] >= NBDL_GOAL for v in nbdl.values())
-        lines.append("| NBDL 15 g (prediction), 12 g (calibration) | volunteer sled | 5 each | %s | CORA-style "
+        lines.append("| NBDL %s | volunteer sled | 5 each | %s | CORA-style "
                      "≥ 0.85 (and on the runs not in the repository) | %s |" % (
+                         ", ".join("%s g (%s)" % (sev[:-1], NBDL_ROLE[sev]) for sev in nbdl),
                          "; ".join("%s %.3f (CORA-style %.3f, %d of %d head peaks within 1 SD)" % (
                              sev.replace("g", " g"), v["iso"], v["cora"], v["peaks"], v["npeaks"])
                                    for sev, v in nbdl.items()),
-                         "yes on these two; the runs not in the repository are not rated here" if good else "no"))
+                         "yes on %s; the runs not in the repository are not rated here" % (
+                             "these two" if len(nbdl) == 2 else "this one") if good else "no"))
     lines.append("")
-    lines += segment_section(seg, d, d)
+    if seg:
+        lines += segment_section(seg, figdir, d)
     if specimen_cases:
-        lines += specimen_section(specimen_cases, variants or {}, d, d, newton)
+        lines += specimen_section(specimen_cases, variants or {}, figdir, d, newton)
+    lines += warnings_section(warnings or [])
     lines += ["## Wall time", "",
               "%d segment cases and the specimen runs in %.1f s wall time, segment runs %d at a time (the "
               "release build; each segment case's own run below)." % (len(results), wall, jobs), "",
               "| case | wall time [s] |", "|---|---|"]
     lines += ["| %s %s %s | %.2f |" % (r["source"], r["segment"].replace("_", "–"), r["motion"].replace("_", " "),
                                        r["wall"]) for r in results]
-    with open(path, "w") as f:
+    part = path + ".part"
+    with open(part, "w") as f:
         f.write("\n".join(lines) + "\n")
+    os.replace(part, path)
     return path
+
+
+#: the role of each NBDL severity in the model's calibration (the catalogue's summary row)
+NBDL_ROLE = {"15g": "prediction", "12g": "calibration"}
+#: the report written with no option: in the folder the command runs in, never the project's docs
+DEFAULT_REPORT = os.path.join("catalogue", "catalogue.md")
+
+
+def report_path(report=None, update_docs=False, cwd=None):
+    """The report's path: --report's, docs/catalogue.md with --update-docs,
+    else DEFAULT_REPORT in cwd (the current directory). ValueError when
+    both options name different files, or when the default would land in
+    the project's docs folder (run it elsewhere, or ask for the docs)."""
+    if update_docs:
+        if report and os.path.abspath(report) != REPORT:
+            raise ValueError("--update-docs writes %s; --report names another file (%s)" % (REPORT, report))
+        return REPORT
+    if report:
+        return os.path.abspath(report)
+    path = os.path.abspath(os.path.join(cwd or os.getcwd(), DEFAULT_REPORT))
+    docs = os.path.dirname(REPORT)
+    if os.path.commonpath([path, docs]) == docs:
+        raise ValueError("the default report %s would be inside the project's docs: run from another folder, "
+                         "or name the report (--report FILE, --update-docs)" % path)
+    return path
+
+
+def writable_folder(path, what):
+    """Create the folder `path` (and its parents) if missing and check that a
+    file can be written in it; ValueError naming the folder and why not."""
+    try:
+        os.makedirs(path, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path, prefix=".hhneck-catalogue-"):
+            pass
+    except OSError as e:
+        raise ValueError("cannot write the %s folder %s: %s" % (what, path, e.strerror or e))
+    return path
+
+
+class Progress:
+    """A catalogue run's results as they come, its progress lines (stderr)
+    and its report rewritten as each case ends (write_report)."""
+
+    def __init__(self, path, jobs, steps, total):
+        self.path, self.jobs, self.pending, self.total = path, jobs, list(steps), total
+        self.results, self.cases, self.variants, self.newton, self.nbdl = [], {}, {}, {}, {}
+        self.warnings, self.failed = [], []
+        self.t0 = time.perf_counter()
+        self.done = 0
+
+    def line(self, text):
+        self.done += 1
+        print("hhneck-catalogue: [%d/%d] %s (%.1f s)" % (self.done, self.total, text,
+                                                         time.perf_counter() - self.t0), file=sys.stderr, flush=True)
+
+    def warn(self, case, lines):
+        self.warnings += [(case, w) for w in lines]
+
+    def status(self, interrupted=None):
+        """The report's "Incomplete" line, None when every step ran."""
+        parts = []
+        if interrupted:
+            parts.append("interrupted during %s" % interrupted)
+        parts += ["%s failed: %s" % (name, msg) for name, msg in self.failed]
+        pending = [name for name in self.pending if name != interrupted]
+        if pending:
+            parts.append("not run: %s" % ", ".join(pending))
+        return "; ".join(parts) + "." if parts else None
+
+    def write(self, figures=False, interrupted=None):
+        return write_report(self.results, self.path, time.perf_counter() - self.t0, self.jobs, self.cases,
+                            self.variants, self.nbdl, self.newton, self.warnings, self.status(interrupted),
+                            figures)
+
+
+def catalogue_steps(a, work):
+    """[(name, function(progress))] of a catalogue run, in order (options a:
+    main's)."""
+    def segment_cases(pr):
+        def one(r):
+            pr.results.append(r)
+            label = "%s %s %s" % (r["source"], r["segment"].replace("_", "–"), r["motion"].replace("_", " "))
+            pr.warn(label, r["warnings"])
+            pr.line("%s: ISO 18571 %.3f" % (label, r["iso"]["overall"]))
+            pr.write()
+        order = segments.catalogue(a.exe, a.quick, a.data, os.path.join(work, "segments"), a.jobs, on_case=one)
+        pr.results[:] = order
+
+    def specimen(case, title, support="HOLD", muscles="PASSIVE"):
+        def step(pr):
+            if case == "stemper":
+                rated = specimens.rate_stemper(specimens.run_stemper(work, a.exe, support, muscles), a.data)
+            else:
+                model = specimens.run_kang(case[5:], work, a.exe, support)
+                rated = specimens.rate_kang(case[5:], model, a.data)
+            variant = (support, muscles) != ("HOLD", "PASSIVE")
+            if variant:
+                pr.variants.setdefault(title, {})[support, muscles] = rated
+            else:
+                pr.cases[title] = (rated, [])
+                if case != "stemper":
+                    pr.newton[title] = newton_balance.kang_rows(case[5:], model, a.data)
+            label = title + (" (%s, muscles %s)" % (support, muscles) if variant else "")
+            with open(os.path.join(work, specimens.run_name(case, support, muscles) + ".err")) as f:
+                pr.warn(label, segments.warning_lines(f.read()))
+            pr.line("%s: mean ISO 18571 %.3f over %d channels" % (
+                label, np.mean([v["overall"] for v in rated.values()]), len(rated)))
+        return step
+
+    def nbdl(sev):
+        def step(pr):
+            pr.nbdl[sev] = v = nbdl_score(sev, a.exe, os.path.join(work, "nbdl"))
+            pr.warn("NBDL %s g" % sev[:-1], v["warnings"])
+            pr.line("NBDL %s g: CORA-style %.3f, ISO 18571 %.3f" % (sev[:-1], v["cora"], v["iso"]))
+        return step
+
+    stemper = "Stemper 2004 rear 1.8 m/s"
+    steps = [("the segment tests", segment_cases), (stemper, specimen("stemper", stemper))]
+    steps += [("Kang 2018 %s 14 km/h" % d, specimen("kang_" + d, "Kang 2018 %s 14 km/h" % d))
+              for d in ("front", "side")]
+    if not a.quick:
+        steps += [("%s, %s %s" % (stemper, sup, mus), specimen("stemper", stemper, sup, mus))
+                  for sup, mus in (("RELEASE", "PASSIVE"), ("HOLD", "REFLEX"), ("PRESTRAIN", "PASSIVE"))]
+        steps += [("Kang 2018 %s 14 km/h, PRESTRAIN" % d, specimen("kang_" + d, "Kang 2018 %s 14 km/h" % d,
+                                                                    "PRESTRAIN")) for d in ("front", "side")]
+    return steps + [("NBDL %s g" % sev[:-1], nbdl(sev)) for sev in ("15g", "12g")]
 
 
 def main(argv=None):
     """hhneck-catalogue: run, rate and report every case of the catalogue."""
     p = argparse.ArgumentParser(prog="hhneck-catalogue", description=__doc__.split("\n\n")[0])
-    p.add_argument("--quick", action="store_true", help="C4-C5 only for the segment tests (the test suite's form)")
+    p.add_argument("--quick", action="store_true", help="C4-C5 only for the segment tests, no set-up variants "
+                   "(the test suite's form)")
     p.add_argument("--exe", help="the hhneck executable (default $HHNECK, else fpm's release build)")
     p.add_argument("--data", default=segments.DATA_DIR, help="the pmhs_neck data folder")
-    p.add_argument("--out", help="working directory for the decks, listings and result files")
+    p.add_argument("--out", help="working directory for the decks, listings, stderr and result files "
+                   "(default: a temporary folder, removed after a complete run)")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="runs at a time (default: the cores)")
-    p.add_argument("--report", default=REPORT, help="the report to write (default docs/catalogue.md)")
+    p.add_argument("--report", help="the report to write, its figures beside it (default: %s in the current "
+                   "directory)" % DEFAULT_REPORT)
+    p.add_argument("--update-docs", action="store_true",
+                   help="write the project's committed report, docs/catalogue.md, and its figures")
     a = p.parse_args(argv)
-    t0 = time.perf_counter()
-    results = segments.catalogue(a.exe, a.quick, a.data, a.out, a.jobs)
-    work = a.out or None
-    cases = {"Stemper 2004 rear 1.8 m/s": (specimens.rate_stemper(specimens.run_stemper(work, a.exe), a.data), [])}
-    newton = {}
-    for d in ("front", "side"):
-        title = "Kang 2018 %s 14 km/h" % d
-        model = specimens.run_kang(d, work, a.exe)
-        cases[title] = (specimens.rate_kang(d, model, a.data), [])
-        newton[title] = newton_balance.kang_rows(d, model, a.data)
-    variants = {}
-    if not a.quick:
-        stemper = "Stemper 2004 rear 1.8 m/s"
-        variants[stemper] = {(sup, mus): specimens.rate_stemper(specimens.run_stemper(work, a.exe, sup, mus), a.data)
-                             for sup, mus in (("RELEASE", "PASSIVE"), ("HOLD", "REFLEX"), ("PRESTRAIN", "PASSIVE"))}
-        for d in ("front", "side"):
-            variants["Kang 2018 %s 14 km/h" % d] = {("PRESTRAIN", "PASSIVE"): specimens.rate_kang(
-                d, specimens.run_kang(d, work, a.exe, "PRESTRAIN"), a.data)}
-    nbdl = nbdl_scores(a.exe, os.path.join(work, "nbdl") if work else None)
-    wall = time.perf_counter() - t0
-    write_report(results, a.report, wall, a.jobs, cases, variants, nbdl, newton)
-    print("hhneck-catalogue: %d cases rated in %.1f s; report %s" % (len(results), wall, a.report),
-          file=sys.stderr)
+    try:
+        path = report_path(a.report, a.update_docs)
+        writable_folder(os.path.dirname(path), "report")
+        if a.out:
+            writable_folder(a.out, "work")
+        if not os.path.isdir(a.data):
+            raise ValueError("no data folder %s (--data)" % a.data)
+        a.exe = a.exe or segments.default_executable()
+    except (ValueError, RuntimeError) as e:
+        print("hhneck-catalogue: %s" % e, file=sys.stderr)
+        return 2
+    work = a.out or tempfile.mkdtemp(prefix="hhneck-catalogue-")
+    steps = catalogue_steps(a, work)
+    total = len(segments.case_list(a.quick, a.data)) + len(steps) - 1
+    pr = Progress(path, a.jobs, [name for name, _ in steps], total)
+    print("hhneck-catalogue: %d cases; report %s, runs in %s" % (total, path, work), file=sys.stderr)
+    for name, step in steps:
+        try:
+            step(pr)
+        except KeyboardInterrupt:
+            pr.write(figures=True, interrupted=name)
+            print("hhneck-catalogue: interrupted during %s; the report %s keeps the cases done, the runs are "
+                  "in %s" % (name, path, work), file=sys.stderr)
+            return 130
+        except (Exception, SystemExit) as e:
+            pr.failed.append((name, " ".join(str(e).split())[:300] or type(e).__name__))
+            pr.line("%s FAILED: %s" % (name, pr.failed[-1][1]))
+        pr.pending.remove(name)
+        pr.write()
+    pr.write(figures=True)
+    wall = time.perf_counter() - pr.t0
+    if pr.failed:
+        print("hhneck-catalogue: %d of %d steps failed (%s); report %s, runs kept in %s" % (
+            len(pr.failed), len(steps), ", ".join(n for n, _ in pr.failed), path, work), file=sys.stderr)
+        return 1
+    if not a.out:
+        shutil.rmtree(work, ignore_errors=True)
+    print("hhneck-catalogue: %d segment cases and %d other steps rated in %.1f s; report %s" % (
+        len(pr.results), len(steps) - 1, wall, path), file=sys.stderr)
     return 0
 
 

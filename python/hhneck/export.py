@@ -9,14 +9,34 @@ ISO-MME folders (docs/output-format.md, "Export").
                      [--position 11] [--fine3 VH]
         an ISO-MME 1.6 folder DIR: DIR/NAME.mme, DIR/Channel/NAME.chn and
         one DIR/Channel/NAME.001, .002, ... per channel, in SAE J211 signs
-        with ISO channel codes (the channels that have one: J211_CHANNELS;
-        default all of them that the file has). NAME defaults to DIR's name.
+        with ISO channel codes (the channels that have one: J211_CHANNELS,
+        and the lower neck from a LOADCELL card at the T1 section; default
+        all of them that the file has). NAME defaults to DIR's name. The
+        channels of the file left out (no defensible code) are listed.
     hhneck-export mme-info DIR
         the test attributes and the channels (code, name, unit, samples) of
         an ISO-MME folder.
 
 As a module: read_mme(DIR) -> MmeTest, write_mme(DIR, test), mme_from_result
-(RESULT.h5, ...) -> MmeTest, to_j211(channel, values), write_csv(...).
+(RESULT.h5, ...) -> MmeTest, to_j211(channel, values), write_csv(...),
+parse_code(CODE) -> dict of its eight elements, iso_channels(RESULT.h5) ->
+(coded, left_out).
+
+Sources. The code structure (16 characters: test object, position, main
+location, fine locations 1-3, physical dimension, direction, filter class)
+and every element used here (ISO_ELEMENTS) are those of the ISO/TS 13499
+channel-code list RED B version 1.6.2 (2020-06-17), as transcribed in the
+code list of the pyisomme project (github.com/jonaskeller14/pyisomme,
+pyisomme/channel_codes.xml): NECK with fine location 1 UP / LO for the
+upper / lower neck load cell, THSP (thoracic spine) with fine location 1
+01 for T1, EKIN (kinetic energy, numerical simulation), fine location 3 VH
+(50th percentile human male, human models), dimensions AC AV AA AN DS FO
+MO EN, filter classes 0 A B. The header fields are those of ISO-MME 1.6
+test and channel files (ISO/TS 13499 RED A) as public ISO-MME 1.6 files
+spell them ("Data format edition number", "Laboratory test ref. number",
+"Name of test object 1", ...; "Channel code", "Reference system",
+"Channel frequency class", "First global maximum value", "Data status",
+...); a field hhneck has no value for is NOVALUE, as the format allows.
 """
 import argparse
 import os
@@ -62,12 +82,137 @@ J211_CHANNELS = {
     "OC_MX": ("NECK", "UP", "00", "MO", "X", -1, None, "channels", "local"),
     "OC_MY": ("NECK", "UP", "00", "MO", "Y", +1, None, "channels", "local"),
     "OC_MZ": ("NECK", "UP", "00", "MO", "Z", +1, None, "channels", "local"),
+    # T1 (the HEADNECK card's lower body), in R: the thoracic spine's first vertebra
+    "T1_AX": ("THSP", "01", "00", "AC", "X", +1, None, "channels", "global"),
+    "T1_AY": ("THSP", "01", "00", "AC", "Y", -1, None, "channels", "global"),
+    "T1_AZ": ("THSP", "01", "00", "AC", "Z", -1, None, "channels", "global"),
+    "T1_THETX": ("THSP", "01", "00", "AN", "X", +1, None, "channels", "global"),
+    "T1_THETY": ("THSP", "01", "00", "AN", "Y", -1, None, "channels", "global"),
+    "T1_THETZ": ("THSP", "01", "00", "AN", "Z", -1, None, "channels", "global"),
+    "T1_DX": ("THSP", "01", "00", "DS", "X", +1, None, "channels", "global"),
+    "T1_DY": ("THSP", "01", "00", "DS", "Y", -1, None, "channels", "global"),
+    "T1_DZ": ("THSP", "01", "00", "DS", "Z", -1, None, "channels", "global"),
+    # the model's kinetic energy (a scalar: no direction)
+    "E_KINETIC": ("EKIN", "00", "00", "EN", "0", +1, None, "channels", "global"),
     # the filtered histories of /injury/history
     "HEAD_AR_CFC1000": ("HEAD", "00", "00", "AC", "R", +1, 1000, "injury/history/head_ar_cfc1000", "local"),
     "OC_FX_CFC600": ("NECK", "UP", "00", "FO", "X", -1, 600, "injury/history/oc_fx_cfc600", "local"),
     "OC_FZ_CFC600": ("NECK", "UP", "00", "FO", "Z", +1, 600, "injury/history/oc_fz_cfc600", "local"),
     "OC_MY_CFC600": ("NECK", "UP", "00", "MO", "Y", +1, 600, "injury/history/oc_my_cfc600", "local"),
 }
+
+# The lower-neck load cell: a LOADCELL card (docs/deck-format.md) whose body
+# is the child of the root body (the section between T1 and the vertebra
+# above it); its J211 channels NAME_JFX ... NAME_JMZ are already in J211
+# signs (the load on the part above the section).
+LOWER_NECK = {"JFX": ("FO", "X"), "JFY": ("FO", "Y"), "JFZ": ("FO", "Z"),
+              "JMX": ("MO", "X"), "JMY": ("MO", "Y"), "JMZ": ("MO", "Z")}
+
+# The elements of ISO/TS 13499 channel codes used here, with the code
+# list's descriptions (RED B 1.6.2; see the module's docstring).
+ISO_ELEMENTS = {
+    "main location": {"HEAD": "Head", "NECK": "Neck", "THSP": "Thoracic Spine", "EKIN": "Kinetic Energy"},
+    "fine location 1": {"00": "Not defined", "UP": "Upper", "LO": "Lower", "01": "1."},
+    "fine location 2": {"00": "Not defined"},
+    "fine location 3": {"VH": "50th Percentile Human Male", "VF": "5th Percentile Human Female",
+                        "VM": "95th Percentile Human Male", "H3": "Hybrid III Mid-Sized Adult Male Dummy"},
+    "physical dimension": {"AC": "Acceleration", "AV": "Angular Velocity", "AA": "Angular Acceleration",
+                           "AN": "Angle", "DS": "Displacement", "FO": "Force", "MO": "Moment", "EN": "Energy"},
+    "direction": {"X": "Longitudinal", "Y": "Lateral", "Z": "Vertical", "R": "Resultant", "0": "Undefined/other"},
+    "filter class": {"0": "Unfiltered", "A": "CFC 1000", "B": "CFC 600", "C": "CFC 180", "D": "CFC 60"},
+}
+CODE_FIELDS = (("test object and position", 0, 2), ("main location", 2, 6), ("fine location 1", 6, 8),
+               ("fine location 2", 8, 10), ("fine location 3", 10, 12), ("physical dimension", 12, 14),
+               ("direction", 14, 15), ("filter class", 15, 16))
+
+
+def parse_code(code):
+    """The eight elements of a 16-character ISO channel code, {element:
+    characters}; ValueError when it is not 16 characters or an element is
+    not one of the code list's (ISO_ELEMENTS; the test object and position
+    is two digits or capitals)."""
+    if len(code) != 16:
+        raise ValueError("channel code %r: %d characters, not 16" % (code, len(code)))
+    out = {name: code[a:b] for name, a, b in CODE_FIELDS}
+    if not re.fullmatch(r"[0-9A-Z]{2}", out["test object and position"]):
+        raise ValueError("channel code %r: test object and position %r" % (code, out["test object and position"]))
+    for name, value in out.items():
+        if name in ISO_ELEMENTS and value not in ISO_ELEMENTS[name]:
+            raise ValueError("channel code %r: %s %r is not in the code list's %s"
+                             % (code, name, value, ", ".join(ISO_ELEMENTS[name])))
+    return out
+
+
+# Channels of a result file left out of the ISO-MME export, with why (a
+# pattern on the name, first match wins; see docs/output-format.md).
+LEFT_OUT = (
+    (r"HEAD_A[XYZ]$|HEAD_A[XYZ]S$", "the head-axes channel HEAD_A?L carries the head acceleration code"),
+    (r"HEAD_D[XYZ]$|HT1_|OCT1_|HEADL_", "a motion relative to T1 or a rotation decomposition: no code"),
+    (r".*_(RX|RY|RZ|PX|PY|PZ)$", "a joint's relative rotation: no code for a vertebral joint"),
+    (r"E_|W_", "an energy-balance term: no code (the code list's energies are EKIN, EINT, EXWO, ETOT)"),
+    (r"L_", "a joint-limit generalized force: no code"),
+)
+
+
+def _left_out_reason(name, elements, cells):
+    if name in elements or name.rsplit("_", 1)[0] in elements or name[2:] in elements:
+        return "a disc, ligament or muscle load or a muscle's activation: no code for a model element"
+    for cell, reason in cells.items():
+        if name.startswith(cell + "_"):
+            return reason
+    for pattern, reason in LEFT_OUT:
+        if re.match(pattern, name):
+            return reason
+    return "no defensible ISO code"
+
+
+def load_cells(f):
+    """{name: body} of the LOADCELL cards of an open result file's deck (/deck/text)."""
+    if "deck/text" not in f:
+        return {}
+    out = {}
+    for card in f["deck/text"][()]:
+        card = card.decode() if isinstance(card, bytes) else str(card)
+        if card.startswith("LOADCELL"):
+            out[card[10:20].strip()] = card[20:30].strip()
+    return out
+
+
+def iso_channels(path):
+    """(coded, left_out) of a result file: coded {channel: ISO-code tuple as
+    in J211_CHANNELS} for every channel the export writes, left_out
+    {channel: why} for every channel of /channels without a code."""
+    import h5py
+    with h5py.File(path, "r") as f:
+        names = hhneck_results.text_list(f["channels"].attrs["names"]) if "names" in f["channels"].attrs \
+            else sorted(f["channels"].keys())
+        bodies = hhneck_results.text_list(f["model"].attrs["bodies"]) if "model" in f else []
+        parent = np.asarray(f["model/parent"][:], dtype=int) if "model" in f else np.zeros(0, dtype=int)
+        cells = load_cells(f)
+        elements = set()
+        if "model/elements" in f:
+            for g in f["model/elements"].values():
+                elements.update(hhneck_results.text(n) for n in g["name"][:])
+        history = {c for c, m in J211_CHANNELS.items() if m[7] != "channels" and m[7] in f}
+    coded = {c: m for c, m in J211_CHANNELS.items() if (m[7] == "channels" and c in names) or c in history}
+    root = [k + 1 for k in range(len(parent)) if parent[k] == 0]
+    reasons = {}
+    for cell, body in cells.items():
+        k = bodies.index(body) + 1 if body in bodies else 0
+        if k and parent[k - 1] in root:
+            for suffix, (dim, d) in LOWER_NECK.items():
+                if cell + "_" + suffix in names:
+                    coded[cell + "_" + suffix] = ("NECK", "LO", "00", dim, d, +1, None, "channels", "local")
+            reasons[cell] = ("a LOADCELL's loads in its frame body's axes: its J211 channels %s_J* carry the "
+                             "lower-neck code" % cell)
+        elif body == "HEAD":
+            reasons[cell] = "a LOADCELL at the head: the OC_ channels carry the upper-neck code"
+        else:
+            reasons[cell] = "a LOADCELL at %s: the code list has no neck section between the upper and lower neck" \
+                % body
+    left = {n: _left_out_reason(n, elements, reasons) for n in names if n not in coded}
+    return coded, left
+
 
 # ISO-MME spellings of the project's units
 MME_UNITS = {"N m": "Nm", "rad/s^2": "rad/(s*s)", "m/s^2": "m/(s*s)", "m^2/s^2": "m*m/(s*s)"}
@@ -93,9 +238,10 @@ def neck_load_to_j211(v):
     return -kinematic_to_j211(v)
 
 
-def channel_code(channel, position="11", fine3="VH"):
-    """The 16-character ISO code of a project channel (J211_CHANNELS)."""
-    loc, f1, f2, dim, d, _, cfc, _, _ = J211_CHANNELS[channel]
+def channel_code(channel, position="11", fine3="VH", entry=None):
+    """The 16-character ISO code of a project channel (J211_CHANNELS, or
+    the table entry given)."""
+    loc, f1, f2, dim, d, _, cfc, _, _ = entry or J211_CHANNELS[channel]
     code = position + loc + f1 + f2 + fine3 + dim + d + FILTER_CLASS[cfc]
     if len(code) != 16:
         raise ValueError("channel code %r of %s is not 16 characters (position %r, fine3 %r)"
@@ -145,6 +291,7 @@ class MmeTest:
     info: list
     channels: list = field(default_factory=list)
     chn_info: list = field(default_factory=list)
+    left_out: dict = field(default_factory=dict)   # channels of the source without a code, with why
 
     def get(self, key, default=None):
         for k, v in self.info:
@@ -271,64 +418,107 @@ def _uniform_interval(t, path):
     return float(dt.mean())
 
 
+def _novalue(v):
+    return "NOVALUE" if v is None or v == "" else v
+
+
 def mme_from_result(path, test_name, channels=None, position="11", fine3="VH"):
     """An MmeTest of the result file's channels in J211 signs. `channels`
-    (default: every channel of J211_CHANNELS the file has) must have an
-    ISO code; an unknown one raises KeyError naming the ones that do."""
+    (default: every channel with an ISO code, iso_channels) must have one;
+    an unknown one raises KeyError naming the ones that do. The test's
+    .left_out lists the file's channels without a code, with why."""
     import h5py
+    coded, left = iso_channels(path)
+    want = list(coded) if channels is None else list(channels)
+    unknown = [c for c in want if c not in coded]
+    if unknown:
+        absent = [c for c in unknown if c in J211_CHANNELS]
+        if absent and len(absent) == len(unknown):
+            raise KeyError("%s: no channel %s in the file" % (path, ", ".join(absent)))
+        raise KeyError("no ISO-MME code for %s; channels with one: %s"
+                       % (", ".join(c for c in unknown if c not in J211_CHANNELS), ", ".join(coded)))
     with h5py.File(path, "r") as f:
         t = np.asarray(f["time"][:], dtype=float)
-        have = [c for c, m in J211_CHANNELS.items()
-                if (m[7] == "channels" and isinstance(f.get("channels"), h5py.Group) and c in f["channels"])
-                or (m[7] != "channels" and m[7] in f)]
-        want = have if channels is None else list(channels)
-        unknown = [c for c in want if c not in J211_CHANNELS]
-        if unknown:
-            raise KeyError("no ISO-MME code for %s; channels with one: %s"
-                           % (", ".join(unknown), ", ".join(J211_CHANNELS)))
-        absent = [c for c in want if c not in have]
-        if absent:
-            raise KeyError("%s: no channel %s in the file" % (path, ", ".join(absent)))
         dt = _uniform_interval(t, path)
         title = hhneck_results.text(f.attrs.get("title", ""))
         code = hhneck_results.text(f.attrs.get("code", ""))
+        mass = float(np.sum(f["model/mass"][:])) if "model/mass" in f else None
         out = []
         for c in want:
-            m = J211_CHANNELS[c]
+            m = coded[c]
             ds = f["channels"][c] if m[7] == "channels" else f[m[7]]
             unit = hhneck_results.text(ds.attrs.get("units", ""))
-            values = to_j211(c, ds[:])
+            values = m[5] * np.asarray(ds[:], dtype=float)
             cfc = m[6]
+            iso = channel_code(c, position, fine3, m)
+            kmax, kmin = int(np.argmax(values)), int(np.argmin(values))
             header = [
                 ("Name of the channel", "%s, SAE J211 sign (%s)" % (c, "as hhneck's" if m[5] > 0 else "hhneck's negated")),
                 ("Laboratory channel code", c),
                 ("Customer channel code", "NOVALUE"),
-                ("Channel code", channel_code(c, position, fine3)),
-                ("Location", position + m[0] + m[1] + m[2] + fine3),
-                ("Direction", {"X": "x-direction", "Y": "y-direction", "Z": "z-direction", "R": "resultant"}[m[4]]),
-                ("Reference system", m[8]),
+                ("Channel code", iso),
+                ("Test object number", "1"),
                 ("Data source", "calculation"),
+                ("Reference channel", "implicit"),
+                ("Location", position + m[0] + m[1] + m[2] + fine3),
+                ("Direction", {"X": "x-direction", "Y": "y-direction", "Z": "z-direction", "R": "resultant",
+                               "0": "NOVALUE"}[m[4]]),
+                ("Reference system", m[8]),
+                ("Transducer type", "NOVALUE"),
+                ("Transducer id", "NOVALUE"),
+                ("Pre-filter type", "NOVALUE"),
+                ("Cut off frequency", "NOVALUE"),
                 ("Channel frequency class", "NOVALUE" if cfc is None else str(cfc)),
+                ("Channel amplitude class", "NOVALUE"),
                 ("Unit", MME_UNITS.get(unit, unit)),
+                ("Dimension", m[3]),
                 ("Sampling interval", repr(dt)),
+                ("Bit resolution", "NOVALUE"),
                 ("Time of first sample", repr(float(t[0]))),
                 ("Number of samples", len(values)),
+                ("First global maximum value", repr(float(values[kmax]))),
+                ("Time of maximum value", repr(float(t[kmax]))),
+                ("First global minimum value", repr(float(values[kmin]))),
+                ("Time of minimum value", repr(float(t[kmin]))),
+                ("Data status", "ok"),
                 ("Comments", "simulated by %s; unfiltered" % code if cfc is None
                  else "simulated by %s; filtered CFC %d" % (code, cfc)),
             ]
             out.append(MmeChannel(header, values))
-    info = [
-        ("Data format", "ISO-MME"),
-        ("Version", MME_VERSION),
-        ("Laboratory name", "NOVALUE"),
-        ("Laboratory test ref. number", test_name),
-        ("Title", title),
+    info = [("Data format edition number", MME_VERSION)]
+    info += [(k, "NOVALUE") for k in ("Laboratory name", "Laboratory contact name", "Laboratory contact phone",
+                                       "Laboratory contact fax", "Laboratory contact email")]
+    info.append(("Laboratory test ref. number", test_name))
+    info += [(k, "NOVALUE") for k in ("Customer name", "Customer test ref. number", "Customer project ref. number",
+                                       "Customer order number", "Customer cost unit", "Customer test engineer name",
+                                       "Customer test engineer phone", "Customer test engineer fax",
+                                       "Customer test engineer email")]
+    info += [
+        ("Title", _novalue(title)),
+        ("Medium No./number of media", "1/1"),
+        ("Timestamp", "NOVALUE"),
         ("Type of the test", "simulation"),
+        ("Subtype of the test", "NOVALUE"),
+        ("Regulation", "NOVALUE"),
+        ("Reference temperature", "NOVALUE"),
+        ("Relative air humidity", "NOVALUE"),
+        ("Date of the test", "NOVALUE"),
         ("Number of test objects", "1"),
+        ("Name of test object 1", "hhneck head-neck model (%s)" % (code or "hhneck")),
+        ("Velocity test object 1", "NOVALUE"),
+        ("Mass test object 1", "NOVALUE" if mass is None else "%.6g" % mass),
+        ("Driver position object 1", "NOVALUE"),
+        ("Impact side test object 1", "NOVALUE"),
+        ("Type of test object 1", "human model"),
+        ("Class of test object 1", "NOVALUE"),
+        ("Code of test object 1", fine3),
+        ("Ref. number of test object 1", "NOVALUE"),
         ("Comments", "written by hhneck-export from %s; SAE J211 signs (docs/output-format.md)"
          % os.path.basename(path)),
     ]
-    return MmeTest(test_name, info, out, [("Instrumentation standard", "SAE J211 (simulation)")])
+    test = MmeTest(test_name, info, out, [("Instrumentation standard", "SAE J211 (simulation)")])
+    test.left_out = left
+    return test
 
 
 def write_csv(path, out, channels=None):
@@ -376,6 +566,13 @@ def main(argv=None):
             t = mme_from_result(a.result, name, chans, a.position, a.fine3)
             write_mme(a.output, t)
             print("%s: ISO-MME %s, %d channels" % (a.output, MME_VERSION, len(t.channels)))
+            if chans is None and t.left_out:
+                print("left out, %d channels without an ISO code:" % len(t.left_out))
+                by_reason = {}
+                for n, why in t.left_out.items():
+                    by_reason.setdefault(why, []).append(n)
+                for why, names in by_reason.items():
+                    print("  %s: %s" % (why, " ".join(names)))
         else:
             t = read_mme(a.folder)
             for k, v in t.info:

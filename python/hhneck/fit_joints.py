@@ -47,10 +47,10 @@ method_plus, method_minus, segment, mlin), a table on standard output, and
 the dropped and extrapolated points.
 
 The flow is dev/fit_model.sh: the model deck at the calibration's starting
-point with the discs' bending and torsion at DISC_ROT_FRACTION of
-dev/make_head_neck_deck.py (the others must see them so: 60 % in the
-shipped model), this command, the deck with the springs, the NBDL
-calibration, the deck with its fit. Since the others' runs drop the
+point with the discs' bending and torsion at disc.rot_fraction of
+reference/model_parameters.csv (the others must see them so: 60 % in the
+shipped model), this command (its springs then written into that table),
+the deck with the springs, the NBDL calibration, the deck with its fit. Since the others' runs drop the
 NZSPRING cards, fitting again on a deck that has them gives the same
 constants. --check runs each segment case with the cards and reports the
 rotation at each data moment against the data (model/data).
@@ -477,8 +477,8 @@ def main(argv=None):
     t0 = time.perf_counter()
     if a.check:
         if not _has_nzspring(a.model):
-            print("hhneck-fit-joints: %s has no NZSPRING card (write it with dev/make_head_neck_deck.py from %s)"
-                  % (a.model, os.path.relpath(a.csv, segments.ROOT)), file=sys.stderr)
+            print("hhneck-fit-joints: %s has no NZSPRING card (write it with python3 -m hhneck.model_deck "
+                  "--nz-springs %s)" % (a.model, os.path.relpath(a.csv, segments.ROOT)), file=sys.stderr)
             return 1
         res = check(a.exe, a.model, a.data, a.work, a.jobs)
         print("%-5s %-18s %-16s %9s %9s %9s %9s" % ("seg", "motion", "source", "M [N m]", "data", "model",

@@ -27,7 +27,7 @@ import os
 
 import numpy as np
 
-from . import specimen_data
+from . import specimen_data, specimens
 
 G = 9.81
 #: the lags tried [ms]
@@ -83,8 +83,11 @@ def fit_lag(cell, head, pulse, window, lags=LAGS):
 
 
 def _peak_time(curve):
+    """The time of a curve's largest magnitude where the Kang rating
+    searches it (hhneck.specimens.KANG_PEAK_SEARCH)."""
     t, v = curve
-    keep = t >= 0.0
+    lo, hi = specimens.KANG_PEAK_SEARCH
+    keep = (t >= lo - 1e-9) & (t <= hi + 1e-9)
     return t[keep][int(np.argmax(np.abs(v[keep])))]
 
 
@@ -93,7 +96,8 @@ def balance(direction, curves, reference, pulse):
     (ms), best=(R^2, s, Mh, Mn), at_zero=(R^2, 0, Mh, Mn)) of `curves`
     ({channel: (t [ms], value)}, the model's or the data's). The window
     is 0 to 1.2 x the later of the two channels' peak times in
-    `reference` (the data's curves, so that model and data share it);
+    `reference` (the data's curves, so that model and data share it; each
+    peak searched where the rating searches it, _peak_time);
     pulse: (t [ms], T1's acceleration along the case's drive [m/s^2])."""
     acc, rot, sense = PLANE[direction]
     grid = np.arange(0.0, 200.0, 0.1)
@@ -122,10 +126,13 @@ def kang_pulse(data_dir):
 
 def kang_data(direction, data_dir, channels=None):
     """{channel: (t [ms], reference)} of a Kang case's data (the corridor
-    midline or the specimens' mean, as the catalogue rates them): the
-    channels its balance reads, or those named."""
-    path = os.path.join(data_dir, "kang2018_%s_experiment.csv" % direction)
-    return {c: specimen_data.reference(path, c)[:2] for c in channels or kang_channels(direction)}
+    midline or the specimens' mean, as the catalogue rates them:
+    hhneck.specimens.REFERENCE): the channels its balance reads, or those
+    named."""
+    case = "kang_" + direction
+    path = os.path.join(data_dir, specimens.DATA_FILE[case])
+    return {c: specimen_data.reference(path, c, specimens.REFERENCE[case])[:2]
+            for c in channels or kang_channels(direction)}
 
 
 def kang_rows(direction, model, data_dir):

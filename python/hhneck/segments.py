@@ -227,12 +227,28 @@ def run_case(segment, motion, peak, workdir, exe=None, disc_only=False, drop=(),
     deck = os.path.join(workdir, name + ".inp")
     channels = write_deck(deck, segment, motion, peak, model=model, disc_only=disc_only, drop=drop,
                           protocol=protocol)
-    exe = exe or default_executable()
-    with open(deck) as fin, open(os.path.join(workdir, name + ".txt"), "w") as fout:
-        res = subprocess.run([exe], stdin=fin, stdout=fout, stderr=subprocess.PIPE, text=True, cwd=workdir)
+    run_listed(deck, [exe or default_executable()], workdir)
+    return rotation_curve(os.path.join(workdir, name + ".h5"), channels, MOTIONS[motion][1])
+
+
+def run_listed(deck, cmd, workdir):
+    """Run hhneck (the command line cmd) on a deck in workdir, its listing
+    to the deck's name with .txt and its stderr (warnings included) to .err;
+    a failed run raises RuntimeError with the end of its stderr."""
+    stem = os.path.splitext(deck)[0]
+    with open(deck) as fin, open(stem + ".txt", "w") as fout:
+        res = subprocess.run(cmd, stdin=fin, stdout=fout, stderr=subprocess.PIPE, text=True, cwd=workdir)
+    with open(stem + ".err", "w") as ferr:
+        ferr.write(res.stderr)
     if res.returncode != 0:
         raise RuntimeError("%s: hhneck exit %d: %s" % (deck, res.returncode, res.stderr.strip()[-400:]))
-    return rotation_curve(os.path.join(workdir, name + ".h5"), channels, MOTIONS[motion][1])
+    return res.stderr
+
+
+def warning_lines(stderr):
+    """The warnings of a run's stderr: its lines that say WARNING (joints
+    past their range, the energy balance, a long run), stripped."""
+    return [line.strip() for line in stderr.splitlines() if "warning" in line.lower()]
 
 
 def rotation_curve(h5path, channels, sign):
@@ -322,48 +338,73 @@ def _run_timed(args):
     seg, motion, peak, work, exe = args
     t0 = time.perf_counter()
     t, rot = run_case(seg, motion, peak, work, exe)
-    return t, rot, time.perf_counter() - t0
+    with open(os.path.join(work, "%s_%s_%gNm.err" % (seg, motion, peak))) as f:
+        stderr = f.read()
+    return t, rot, time.perf_counter() - t0, stderr
 
 
-def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None):
+def case_list(quick=False, data_dir=DATA_DIR):
+    """The segment cases of the catalogue: [(source, segment, motion, peak
+    moment [N m])]; quick: C4-C5 only."""
+    cases = [("Panjabi 2001", seg, motion, 1.0) for (seg, motion) in sorted(load_panjabi(data_dir))]
+    cases += [("Nightingale 2007", seg, "flexion_extension", 3.5) for seg in sorted(load_nightingale(data_dir))]
+    return [c for c in cases if c[1] == "C4_C5"] if quick else cases
+
+
+def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None):
     """Run and rate every segment case; returns a list of dicts, one per
     (source, segment, motion), with the case's wall time [s] (its run, in
-    `jobs` parallel processes, default the number of cores). quick: C4-C5
-    only (one segment per source and motion)."""
-    from concurrent.futures import ThreadPoolExecutor
+    `jobs` parallel processes, default the number of cores) and its run's
+    warnings (warning_lines of its stderr, kept beside its listing as .err).
+    quick: C4-C5 only (one segment per source and motion). on_case(r) is
+    called with each case's dict as its run ends (in the calling thread);
+    the list is in the cases' order whatever order they end in."""
+    from concurrent.futures import ThreadPoolExecutor, as_completed
     panjabi, night = load_panjabi(data_dir), load_nightingale(data_dir)
     work = workdir or tempfile.mkdtemp(prefix="hhneck-segments-")
     os.makedirs(work, exist_ok=True)
     exe = exe or default_executable()
-    cases = [("Panjabi 2001", seg, motion, 1.0) for (seg, motion) in sorted(panjabi)]
-    cases += [("Nightingale 2007", seg, "flexion_extension", 3.5) for seg in sorted(night)]
-    if quick:
-        cases = [c for c in cases if c[1] == "C4_C5"]
+    cases = case_list(quick, data_dir)
+    results = {}
     with ThreadPoolExecutor(max_workers=jobs or os.cpu_count() or 1) as pool:
-        runs = list(pool.map(_run_timed, [(seg, motion, peak, work, exe) for _, seg, motion, peak in cases]))
-    results = []
-    for (src, seg, motion, peak), (t, rot, wall) in zip(cases, runs):
-        grid = np.round(np.arange(-peak, peak + 1e-9, 0.01), 10)
-        model = rotations_at(t, rot, peak, grid)
-        r = dict(source=src, segment=seg, motion=motion, peak=peak, grid=grid, curve=model, t=t, rot=rot,
-                 wall=wall, lower=None, upper=None)
-        if src.startswith("Panjabi"):
-            m, rr = panjabi[(seg, motion)]
-            r["levels"] = np.array([1.0, 0.67, 0.33, -0.33, -0.67, -1.0])
-            r["reference"] = reference_on(grid, m, rr)
-            r["data"] = reference_on(r["levels"], m, rr)
-        else:
-            stats = night[seg]
-            mm, rm = stats["mean"]
-            r["levels"] = np.array([3.5, 2.5, 1.5, 1.0, 0.5, -0.5, -1.0, -1.5, -2.5, -3.5])
-            r["reference"] = np.interp(grid, mm, rm)
-            r["data"] = np.interp(r["levels"], mm, rm)
-            bounds = [np.interp(r["levels"], *stats[s]) for s in ("lower", "upper")]
-            r["lower"], r["upper"] = np.minimum(*bounds), np.maximum(*bounds)
-        r["model"] = rotations_at(t, rot, peak, r["levels"])
-        r["iso"] = rate_curve(grid, r["reference"], model)
-        results.append(r)
-    return results
+        futures = {pool.submit(_run_timed, (seg, motion, peak, work, exe)): k
+                   for k, (_, seg, motion, peak) in enumerate(cases)}
+        try:
+            for fut in as_completed(futures):
+                k = futures[fut]
+                results[k] = _rated_case(cases[k], *fut.result(), panjabi, night)
+                if on_case:
+                    on_case(results[k])
+        except BaseException:
+            for fut in futures:
+                fut.cancel()
+            raise
+    return [results[k] for k in sorted(results)]
+
+
+def _rated_case(case, t, rot, wall, stderr, panjabi, night):
+    """The catalogue's dict of one segment case (catalogue) from its run."""
+    src, seg, motion, peak = case
+    grid = np.round(np.arange(-peak, peak + 1e-9, 0.01), 10)
+    model = rotations_at(t, rot, peak, grid)
+    r = dict(source=src, segment=seg, motion=motion, peak=peak, grid=grid, curve=model, t=t, rot=rot,
+             wall=wall, lower=None, upper=None, warnings=warning_lines(stderr))
+    if src.startswith("Panjabi"):
+        m, rr = panjabi[(seg, motion)]
+        r["levels"] = np.array([1.0, 0.67, 0.33, -0.33, -0.67, -1.0])
+        r["reference"] = reference_on(grid, m, rr)
+        r["data"] = reference_on(r["levels"], m, rr)
+    else:
+        stats = night[seg]
+        mm, rm = stats["mean"]
+        r["levels"] = np.array([3.5, 2.5, 1.5, 1.0, 0.5, -0.5, -1.0, -1.5, -2.5, -3.5])
+        r["reference"] = np.interp(grid, mm, rm)
+        r["data"] = np.interp(r["levels"], mm, rm)
+        bounds = [np.interp(r["levels"], *stats[s]) for s in ("lower", "upper")]
+        r["lower"], r["upper"] = np.minimum(*bounds), np.maximum(*bounds)
+    r["model"] = rotations_at(t, rot, peak, r["levels"])
+    r["iso"] = rate_curve(grid, r["reference"], model)
+    return r
 
 
 def main(argv=None):

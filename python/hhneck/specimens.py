@@ -40,15 +40,32 @@ Set-up (decisions of the README's "Ambiguities" named by number):
   whole column turns with T1 and the neck's own posture (the discs'
   neutral shape) stays the model deck's; t1_slope= sets another.
 
-Channels, every one the Fortran run's own (docs/output-format.md; their
-signs as the README derives them): segment angles C2-C3 ... C6-C7 =
--(change of the upper body's planar angle about y relative to the lower
-one, its parent: C2_PY for C2-C3 ... C6_PY for C6-C7; extension positive), head-T1 angle = -(change of HT1_RY, the head's Bryant y angle in
-T1's axes), retraction = HT1_DX [mm] (head mass centre relative to T1 in
-T1's axes, from the start). The motion is sagittal, where the planar and
-Bryant angles and the film's angle differences are one angle. Reference:
-each corridor outline's midline (hhneck.specimen_data), rated by ISO/TS
-18571 over the times the corridor covers (0.3-126 ms), no offsets.
+Channels (docs/output-format.md; their signs as the README derives them):
+segment angles C2-C3 ... C6-C7 = -(change of the upper body's planar angle
+about y relative to the lower one, its parent: C2_PY for C2-C3 ... C6_PY
+for C6-C7; extension positive), head-T1 angle = -(change of the head's
+planar angle about y in T1's sagittal plane, from the result file's
+rotation matrices: ANGLES), retraction = HT1_DX [mm] (head mass centre
+relative to T1 in T1's axes, from the start). Reference: each corridor
+outline's midline, the outline named (REFERENCE; hhneck.specimen_data),
+rated by ISO/TS 18571 over the times the corridor covers (0.3-126 ms) and
+the run covers (to 130 ms), no offsets.
+
+Head angles (ANGLES): each rotation is rated as its source defined it.
+Stemper's corridors are angles "in the sagittal plane" (README, Case 1:
+the film's angles of one plane; the notebook's model readout, differences
+of nodal rotations about the global y axis, is the same angle in a
+sagittal motion): the planar angles, for the segments (BODY_PY) and for
+the head relative to T1 (planar_angle, the result file has no channel of
+it; in the sagittal Stemper run it equals HT1_RY). Kang's head rotations
+are compared by the source's notebook with the LS-DYNA nodal rotations of
+the head's node (README, "What the notebook computes"), the time
+integrals of its angular velocity about the fixed global axes: the
+catalogue integrates the head's angular velocity in R (HEAD_OMEGX,
+HEAD_OMEGY; integrated_rotation), R being the sled's axes (T1 only
+translates). In the side case the head's Bryant x angle (HEADL_RX) peaks
+at -63.6 deg, the integrated one at -64.9 and the rotation vector's x
+component (HEADL_VX) at -66.2: in 3-D the three differ.
 
 Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
 * the potted body is T1 (4: the FE model is potted at T3, the data speak of
@@ -76,7 +93,8 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   y; side: y- and z-acceleration, rotation about x) and the load cell
   (front: Fx, Fz, My; side: Mx, Fy, Fz), all in SAE J211 axes (x forward,
   y right, z down: the model's y and z change sign; the head's rotations
-  are HEADL_RX and -HEADL_RY, its Bryant angles in R, from the start);
+  the integrals of its angular velocity about R's x and -y, "Head
+  angles" above);
 * the head's accelerations as the specimens' head-mounted accelerometers
   give them: in the head's own axes (SAE J211 records a head's
   acceleration in its anatomical, moving frame; the source's notebook
@@ -86,8 +104,11 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   acceleration HEAD_AX ... peaks 24 ms early in the side case, where the
   head turns 64 deg (studies/kang_head_frame.py rates the three readings).
   Reference: the corridor's midline (front) or the mean of PMHS1 and PMHS2
-  (side); window 0 to 1.2 x the time of the reference's largest magnitude,
-  as the source's notebook rates;
+  (side), named in REFERENCE; window 0 to 1.2 x the time of the
+  reference's largest magnitude between 0 and 99.9 ms (KANG_PEAK_SEARCH),
+  as the source's notebook rates (searched over the whole reference, the
+  front's head rotation and moment, still rising at 99.9 ms, would widen
+  their windows to 122 and 126 ms);
 * each model channel filtered (after its tare) by the SAE J211 class the
   source's notebook gives the SAFER HBM's channels whose ratings the
   catalogue prints beside ours (README "What the notebook computes"): the
@@ -95,12 +116,12 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   z-accelerations, its rotations and the cell's moments CFC 180. The
   Stemper channels are unfiltered, as its notebook plots them.
 
-API: CHANNELS (the rated channels: the data's and the run's); model_channels, filtered;
+API: CHANNELS (the rated channels: the data's and the run's), ANGLES, REFERENCE;
+model_channels, filtered, planar_angle, integrated_rotation;
 stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
-kang_deck, run_kang, rate_kang, kang_reference; rate_channel.
+kang_deck, run_kang, rate_kang, kang_reference, kang_window; rated_reference, rate_channel.
 """
 import os
-import subprocess
 import tempfile
 
 import numpy as np
@@ -128,17 +149,69 @@ CHANNELS = {
 STEMPER_CHANNELS = [c[0] for c in CHANNELS["stemper"]]
 
 
+#: the angle each rated rotation is, as its source defined it (module
+#: docstring, "Head angles"): (case, data channel) -> ("planar", body,
+#: parent, axis): the body's rotation relative to its parent seen in the
+#: parent's plane normal to axis (planar_angle, from the result file's
+#: rotation matrices); ("integrated", channel): the time integral of an
+#: angular velocity channel [rad/s] (integrated_rotation). The channel of
+#: CHANNELS beside it is the result file's nearest (what the calibration's
+#: RATED cards rate: a Fortran channel): HT1_RY equals the planar angle in
+#: a sagittal motion; HEADL_RX and HEADL_RY are Bryant angles.
+ANGLES = {("stemper", "head_T1_angle"): ("planar", "HEAD", "T1", "y"),
+          ("kang_front", "head_rot_y"): ("integrated", "HEAD_OMEGY"),
+          ("kang_side", "head_rot_x"): ("integrated", "HEAD_OMEGX")}
+
+
+def planar_angle(s_parent, s_body, axis):
+    """[deg] The rotation of a body relative to its parent seen in the
+    parent's plane normal to `axis` (x, y or z) at every sample: with R =
+    S_parent^T S_body (S the body-to-R matrices, shape (nt, 3, 3)), about
+    y atan2(R13, R33), about x atan2(-R23, R33), about z atan2(R21, R11)
+    (a film of that anatomical plane; the result file's BODY_PX/PY/PZ for
+    a joint), continued from sample to sample."""
+    r = np.einsum("tji,tjk->tik", np.asarray(s_parent, float), np.asarray(s_body, float))
+    num, den = {"x": (-r[:, 1, 2], r[:, 2, 2]), "y": (r[:, 0, 2], r[:, 2, 2]), "z": (r[:, 1, 0], r[:, 0, 0])}[axis]
+    return np.degrees(np.unwrap(np.arctan2(num, den)))
+
+
+def integrated_rotation(t, omega):
+    """[deg] The time integral of an angular velocity omega [rad/s] at the
+    times t [s] from the first (trapezoidal): the rotation an angular-rate
+    sensor, or a finite-element code's nodal rotation about a fixed axis,
+    reports."""
+    t, w = np.asarray(t, float), np.asarray(omega, float)
+    return np.degrees(np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))]))
+
+
+def body_rotations(f, name):
+    """The body-to-R matrices S (nt, 3, 3), S[t, i, j] = S_ij, of the body
+    `name` of an open result file."""
+    names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["model"].attrs["bodies"]]
+    return np.swapaxes(f["bodies/rotation"][:, names.index(name)], 1, 2)
+
+
+def angle_channel(f, definition):
+    """The values [deg] of an ANGLES definition from an open result file."""
+    if definition[0] == "planar":
+        _, body, parent, axis = definition
+        return planar_angle(body_rotations(f, parent), body_rotations(f, body), axis)
+    return integrated_rotation(f["time"][:], f["channels"][definition[1]][:])
+
+
 def model_channels(case, h5):
     """The rated channels of `case` from its result file:
-    {data channel: (t [ms], model value in the data's signs)} (CHANNELS):
-    scaled, less its start value where the table says so, then filtered
-    by its CFC class (the order of the calibration's RATED cards)."""
+    {data channel: (t [ms], model value in the data's signs)} (CHANNELS,
+    the rotations as ANGLES defines them): scaled, less its start value
+    where the table says so, then filtered by its CFC class (the order of
+    the calibration's RATED cards)."""
     import h5py
     with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
         out = {}
         for name, run, scale, start, cls in CHANNELS[case]:
-            v = np.asarray(f["channels"][run][:], dtype=float)
+            v = angle_channel(f, ANGLES[case, name]) if (case, name) in ANGLES \
+                else np.asarray(f["channels"][run][:], dtype=float)
             out[name] = (t, filtered(t, scale * (v - v[0] if start else v), cls))
     return out
 
@@ -150,14 +223,18 @@ def filtered(t, v, cls):
 
 
 def _run(deck, workdir, exe):
-    """Run a deck in workdir (shipped decks found through -I ROOT); its result file."""
-    exe = exe or segments.default_executable()
-    with open(deck) as fin, open(deck[:-4] + ".txt", "w") as fout:
-        r = subprocess.run([exe, "-I", segments.ROOT], stdin=fin, stdout=fout, stderr=subprocess.PIPE,
-                           text=True, cwd=workdir)
-    if r.returncode != 0:
-        raise RuntimeError("%s: hhneck exit %d: %s" % (deck, r.returncode, r.stderr.strip()[-400:]))
+    """Run a deck in workdir (shipped decks found through -I ROOT), its
+    listing (.txt) and stderr (.err) beside it; its result file."""
+    segments.run_listed(deck, [exe or segments.default_executable(), "-I", segments.ROOT], workdir)
     return deck[:-4] + ".h5"
+
+
+def run_name(case, support="HOLD", muscles="PASSIVE"):
+    """The file name (no extension) of a case's deck, listing, stderr and
+    result file: case stemper, kang_front or kang_side."""
+    if case == "stemper":
+        return "stemper_%s_%s" % (support.lower(), muscles.lower())
+    return "%s_%s" % (case, support.lower())
 
 
 #: the T1 slope [deg] of each source's potting (module docstring)
@@ -206,7 +283,7 @@ def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.D
     pulse = os.path.join(workdir, "stemper_pulse.csv")
     with open(pulse, "w") as f:
         f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % p for p in zip(t, a)))
-    name = "stemper_%s_%s" % (support.lower(), muscles.lower())
+    name = run_name("stemper", support, muscles)
     lines = [
         "TITLE     STEMPER 2004 REAR 1.8 M/S, T1 POTTED (%s, MUSCLES %s)" % (support, muscles),
         "*         end (s)   step (s)  print (s) method    rtol      atol",
@@ -240,26 +317,67 @@ def run_stemper(workdir=None, exe=None, support="HOLD", muscles="PASSIVE"):
     return model_channels("stemper", _run(stemper_deck(work, support, muscles), work, exe))
 
 
+#: the reference curve of each case's channels (hhneck.specimen_data.reference's
+#: curve): the corridor outline named in the data file, or the specimens whose mean is taken
+REFERENCE = {"stemper": "stemper2004_corridor_outline", "kang_front": "corridor_outline",
+             "kang_side": ("pmhs1", "pmhs2")}
+#: each case's experiment file in the data folder
+DATA_FILE = {"stemper": "stemper2004_1p8ms_experiment.csv", "kang_front": "kang2018_front_experiment.csv",
+             "kang_side": "kang2018_side_experiment.csv"}
+#: [ms] the times the Kang rating searches for the reference's largest
+#: magnitude (its window ends at 1.2 x that time): the source's, 0-99.9 ms
+KANG_PEAK_SEARCH = (0.0, 99.9)
+
+
+def rated_reference(case, channel, data_dir=segments.DATA_DIR, shift=0.0):
+    """(grid [ms], reference, lower, upper) of a channel of `case` on its
+    rated window: the named reference (REFERENCE) over the times it covers;
+    Kang from 0 to 1.2 x the time of the reference's largest magnitude in
+    KANG_PEAK_SEARCH (kang_window), the times moved by shift [ms] first."""
+    g, ref, lo, hi = specimen_data.reference(os.path.join(data_dir, DATA_FILE[case]), channel, REFERENCE[case])
+    if case.startswith("kang"):
+        return kang_window(g + shift, ref, lo, hi)
+    return g + shift, ref, lo, hi
+
+
+def kang_window(g, ref, lo, hi):
+    """The Kang rating's window of a reference (grid [ms], reference, lower,
+    upper): from 0 to 1.2 x the time of the reference's largest magnitude
+    between KANG_PEAK_SEARCH's times."""
+    keep = g >= 0.0
+    g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
+    search = np.flatnonzero((g >= KANG_PEAK_SEARCH[0] - 1e-9) & (g <= KANG_PEAK_SEARCH[1] + 1e-9))
+    keep = g <= 1.2 * g[search[int(np.argmax(np.abs(ref[search])))]]
+    return g[keep], ref[keep], lo[keep], hi[keep]
+
+
 def rate_stemper(model, data_dir=segments.DATA_DIR):
     """ISO/TS 18571 of every Stemper channel: {channel: dict(scores...,
     grid, reference, lower, upper, model, peak_model, peak_ref)}."""
-    path = os.path.join(data_dir, "stemper2004_1p8ms_experiment.csv")
-    out = {}
-    for ch in STEMPER_CHANNELS:
-        g, ref, lo, hi = specimen_data.reference(path, ch)
-        out[ch] = rate_channel(g, ref, lo, hi, *model[ch])
-    return out
+    return {ch: rate_channel(*rated_reference("stemper", ch, data_dir), *model[ch]) for ch in STEMPER_CHANNELS}
 
 
 def rate_channel(g, ref, lo, hi, t, m):
     """ISO/TS 18571 of the model curve (t [ms], m) against the reference on
-    the grid g [ms], with its bounds: the scores, the curves on the grid,
-    both peaks (value, time) and the share of the grid inside the bounds."""
+    the grid g [ms], with its bounds, over the times both cover (a reference
+    that runs past the model's run is rated to the run's end, never against
+    a held last value): the scores, the curves on that grid, both peaks
+    (value, time), the share of the grid inside the bounds, the rated
+    window (first, last time) and the reference's own last time."""
+    g, ref, lo, hi = (np.asarray(x, float) for x in (g, ref, lo, hi))
+    t, m = np.asarray(t, float), np.asarray(m, float)
+    common = (g >= t[0] - 1e-9) & (g <= t[-1] + 1e-9)
+    if np.count_nonzero(common) < 2:
+        raise ValueError("the model's run (%.4g to %.4g ms) does not cover the reference (%.4g to %.4g ms)"
+                         % (t[0], t[-1], g[0], g[-1]))
+    end = g[-1]
+    g, ref, lo, hi = g[common], ref[common], lo[common], hi[common]
     mi = np.interp(g, t, m)
     sc = iso18571.rate(g * 1e-3, ref, mi)
     km, kr = int(np.argmax(np.abs(mi))), int(np.argmax(np.abs(ref)))
     sc.update(grid=g, reference=ref, lower=lo, upper=hi, model=mi, peak_model=(mi[km], g[km]),
-              peak_ref=(ref[kr], g[kr]), inside=float(np.mean((mi >= lo) & (mi <= hi))))
+              peak_ref=(ref[kr], g[kr]), inside=float(np.mean((mi >= lo) & (mi <= hi))),
+              window=(g[0], g[-1]), reference_end=end)
     return sc
 
 
@@ -287,7 +405,7 @@ def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1
     with open(os.path.join(workdir, "kang_pulse.csv"), "w") as f:
         f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % (tt, sign * aa) for tt, aa in zip(t, a)))
     driven = {"front": "TX", "side": "TY"}[direction]
-    name = "kang_%s_%s" % (direction, support.lower())
+    name = run_name("kang_" + direction, support)
     lines = ["TITLE     KANG 2018 %s SLED 14 KM/H, T1 POTTED (%s, MUSCLES PASSIVE)" % (
                  direction.upper(), support),
              "CONTROL   0.2       1.0E-4    0.005     ROS34PW2  1.0E-3    1.0E-5",
@@ -319,7 +437,7 @@ def run_kang(direction, workdir=None, exe=None, support="HOLD"):
 
 def rate_kang(direction, model, data_dir=segments.DATA_DIR, shifts=None):
     """ISO/TS 18571 of the rated Kang channels (window 0 to 1.2 x the time
-    of the reference's largest magnitude). shifts: {channel: ms} moves
+    of the reference's largest magnitude in KANG_PEAK_SEARCH). shifts: {channel: ms} moves
     those references' times (a study of the source notebook's comparison;
     the catalogue moves none)."""
     return {ch: rate_channel(*kang_reference(direction, ch, data_dir, (shifts or {}).get(ch, 0.0)), *model[ch])
@@ -328,12 +446,5 @@ def rate_kang(direction, model, data_dir=segments.DATA_DIR, shifts=None):
 
 def kang_reference(direction, channel, data_dir=segments.DATA_DIR, shift=0.0):
     """(grid [ms], reference, lower, upper) of a Kang channel on its rated
-    window, 0 to 1.2 x the time of the reference's largest magnitude; the
-    times moved by shift [ms] first."""
-    path = os.path.join(data_dir, "kang2018_%s_experiment.csv" % direction)
-    g, ref, lo, hi = specimen_data.reference(path, channel)
-    g = g + shift
-    keep = g >= 0.0
-    g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
-    keep = g <= 1.2 * g[int(np.argmax(np.abs(ref)))]
-    return g[keep], ref[keep], lo[keep], hi[keep]
+    window (rated_reference), the times moved by shift [ms] first."""
+    return rated_reference("kang_" + direction, channel, data_dir, shift)

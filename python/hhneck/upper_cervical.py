@@ -37,7 +37,7 @@ beyond these elements. Found by bisection in log f (BISECTIONS steps);
 the rotation grows monotonically as a factor falls.
 
 The factors are written to reference/upper_cervical.csv; the deck
-generator (dev/make_head_neck_deck.py) writes the model deck's cards
+generator (python3 -m hhneck.model_deck) writes the model deck's cards
 through scale_cards, the same function the fit runs its cases on, and the
 deck says so in a comment line (MARKER). A deck that has the line is not
 fitted again (its cards would be scaled twice).
@@ -172,7 +172,7 @@ def fit_factors(exe, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, work
     had to reach (the data's, or the range edge where that is less)."""
     if deck_has_factors(model):
         raise ValueError("%s already has the upper-cervical factors; fit them on the deck without them "
-                         "(dev/make_head_neck_deck.py --upper-cervical none)" % model)
+                         "(python3 -m hhneck.model_deck --upper-cervical none)" % model)
     work = workdir or tempfile.mkdtemp(prefix="hhneck-upper-cervical-")
     os.makedirs(work, exist_ok=True)
     with open(model) as f:

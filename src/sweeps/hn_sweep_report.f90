@@ -129,6 +129,21 @@ contains
         end associate
     end function param_label
 
+    !> Units of parameter p's values: '1' for a FAMILY or BODY scale
+    !! factor, 'units of CARD Fn' for a FIELD parameter (the value is in
+    !! that deck field's own units, docs/deck-format.md).
+    pure function param_units(sw, p) result(s)
+        type(sweep_t), intent(in) :: sw   !! the sweep
+        integer, intent(in) :: p          !! parameter number
+        character(len=32) :: s
+        associate (q => sw%params(p))
+            select case (q%kind)
+            case (par_family, par_body); s = '1'
+            case default; s = 'units of '//trim(q%target)//' F'//trim(int_str(q%field))
+            end select
+        end associate
+    end function param_units
+
     !> The sweep listing on unit lu.
     subroutine sweep_listing(sw, o, lu, version)
         type(sweep_t), intent(in) :: sw                !! the sweep
@@ -322,8 +337,9 @@ contains
         character(len=msglen), intent(out) :: errmsg   !! why the file could not be written ('' when stat_ok)
         type(h5_file_t) :: h5
         character(len=:), allocatable :: deck
-        character(len=32) :: labels(size(o%v, 1))
+        character(len=32) :: labels(size(o%v, 1)), punits(size(o%v, 1))
         character(len=10) :: names(size(o%v, 1))
+        character(len=len(output_units)) :: ounits(nout)
         real(wp) :: outs(nout, size(o%recs)), col(size(o%recs)), pcol(size(o%v, 1))
         integer :: icol(size(o%recs)), ipcol(size(o%v, 1))
         character(len=msglen) :: msgs(size(o%recs))
@@ -356,7 +372,10 @@ contains
             do k = 1, np
                 names(k) = sw%params(k)%name
                 labels(k) = param_label(sw, k)
+                punits(k) = param_units(sw, k)
             end do
+            ounits = output_units
+            where (ounits == '-') ounits = '1'   ! dimensionless, as in the result file
             call h5%write_text('/params/name', names)
             call h5%write_text('/params/what', labels)
             pcol = sw%params%low
@@ -367,12 +386,18 @@ contains
             call h5%write_real('/params/nominal', pcol, [np])
             ipcol = merge(1, 0, sw%params%log_spacing)
             call h5%write_int('/params/log_spacing', ipcol, [np])
+            call per_column('/params/low', punits)
+            call per_column('/params/high', punits)
+            call per_column('/params/nominal', punits)
+            call h5%attr_string('/params/log_spacing', 'units', '1')
             call h5%group('/runs')
             call h5%write_real('/runs/inputs', v, [np, nrun])
+            call per_column('/runs/inputs', punits)
             do k = 1, nrun
                 outs(:, k) = recs(k)%outputs
             end do
             call h5%write_real('/runs/outputs', outs, [nout, nrun])
+            call per_column('/runs/outputs', ounits)
             call h5%write_text('/runs/output_names', output_names)
             call h5%write_text('/runs/output_units', output_units)
             icol = recs%status
@@ -387,6 +412,11 @@ contains
             call h5%write_int('/runs/evaluations', icol, [nrun])
             col = recs%t_reached
             call h5%write_real('/runs/t_reached', col, [nrun])
+            call h5%attr_string('/runs/status', 'units', '1')
+            call h5%attr_string('/runs/rank', 'units', '1')
+            call h5%attr_string('/runs/wall', 'units', 's')
+            call h5%attr_string('/runs/evaluations', 'units', '1')
+            call h5%attr_string('/runs/t_reached', 'units', 's')
             call h5%group('/sensitivity')
             if (sw%design == design_oat) then
                 call h5%attr_string('/sensitivity', 'method', 'OAT elasticity')
@@ -397,9 +427,22 @@ contains
             call h5%write_int('/sensitivity/valid', merge(1, 0, valid), [np, nout])
             call h5%write_real('/sensitivity/r2', r2, [nout])
             call h5%write_int('/sensitivity/roundoff', merge(1, 0, o%roundoff), [nout])
+            call h5%attr_string('/sensitivity/coefficient', 'units', '1')
+            call h5%attr_string('/sensitivity/valid', 'units', '1')
+            call h5%attr_string('/sensitivity/r2', 'units', '1')
+            call h5%attr_string('/sensitivity/roundoff', 'units', '1')
             call h5%attr_string('/', 'status', 'complete')
             call h5%close(.true., stat, errmsg)
         end associate
+    contains
+        !> Units of a dataset with one column per parameter or output: the
+        !! text attribute `units` says so, the list `column_units` gives them.
+        subroutine per_column(path, units)
+            character(len=*), intent(in) :: path       !! the dataset
+            character(len=*), intent(in) :: units(:)   !! units of each column
+            call h5%attr_string(path, 'units', 'per column in column_units')
+            call h5%attr_strings(path, 'column_units', units)
+        end subroutine per_column
     end subroutine sweep_write_h5
 
 end module hn_sweep_report

@@ -1,6 +1,7 @@
 """Shared by the Python tests of the tools (test/python): the project's
-package hhneck (python/hhneck: the installed one when it is this project's,
-else python/ put first on the import path), result files made by the program
+package hhneck (python/hhneck: the one of the checkout's environment .venv
+that tools/setup.sh makes and tools/test.sh uses, else python/ put first on
+the import path), result files made by the program
 from short decks (case 6-2 cut to 20 ms, and a lateral variant of
 it), and the closing line "N passed, N failed" that tools/test.sh and CI
 count. The executable is $HHNECK (tools/test.sh: the release build), else
@@ -17,8 +18,9 @@ PACKAGE = os.path.join(ROOT, "python")
 
 def use_project_package():
     """Import hhneck from this project: the installed package when it is
-    python/hhneck of this tree (pip install -e python), else python/ first
-    on sys.path (not installed, or installed from another copy)."""
+    python/hhneck of this tree (the checkout's .venv, tools/setup.sh), else
+    python/ first on sys.path (not installed, or installed from another
+    copy)."""
     try:
         import hhneck
         if os.path.dirname(os.path.dirname(os.path.abspath(hhneck.__file__))) == PACKAGE:

@@ -138,6 +138,8 @@ def test_filtered_reference_case_agrees_with_the_catalogue(tmp_path):
     catalogue = specimens.rate_kang("side", specimens.run_kang("side", str(tmp_path / "run"), hhneck_executable()))
     names = [c[0] for c in specimens.CHANNELS["kang_side"]]
     for k, name in enumerate(names):
+        if ("kang_side", name) in specimens.ANGLES:   # the catalogue's angle is no Fortran channel
+            continue
         assert abs(fortran[(1, "C%02d" % (k + 1))]["overall"] - catalogue[name]["overall"]) < 0.005, name
 
 

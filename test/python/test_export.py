@@ -4,13 +4,15 @@ written and read back equal, SAE J211 signs on known vectors, the ISO-MME
 folder and the CSV file of the short deck's result file."""
 import csv
 import os
+import re
 
 import h5py
 import numpy as np
 import pytest
 
 import hhneck.export as hx
-from conftest import DATA
+import hhneck.results as hr
+from conftest import DATA, run_short, short_deck
 
 EXAMPLE = os.path.join(DATA, "mme_example")
 
@@ -95,7 +97,7 @@ def test_mme_from_the_result_file(result_file, tmp_path):
     out = tmp_path / "SHORT"
     assert hx.main(["mme", result_file, "-o", str(out), "--channels", "OC_FX,OC_FZ,HEAD_AYL,OC_MY_CFC600"]) == 0
     t = hx.read_mme(str(out))
-    assert t.name == "SHORT" and t.get("Version") == "1.6"
+    assert t.name == "SHORT" and t.get("Data format edition number") == "1.6"
     with h5py.File(result_file, "r") as f:
         time = f["time"][:]
         fx, fz, ayl = f["channels/OC_FX"][:], f["channels/OC_FZ"][:], f["channels/HEAD_AYL"][:]
@@ -111,8 +113,8 @@ def test_mme_from_the_result_file(result_file, tmp_path):
 
 
 def test_mme_refuses_a_channel_without_a_code(result_file, tmp_path, capsys):
-    assert hx.main(["mme", result_file, "-o", str(tmp_path / "X"), "--channels", "OC_FZ,E_KINETIC"]) == 1
-    assert "no ISO-MME code for E_KINETIC" in capsys.readouterr().err
+    assert hx.main(["mme", result_file, "-o", str(tmp_path / "X"), "--channels", "OC_FZ,HT1_RX"]) == 1
+    assert "no ISO-MME code for HT1_RX" in capsys.readouterr().err
     assert not (tmp_path / "X").exists()
 
 
@@ -126,3 +128,83 @@ def test_csv_has_units_in_the_header_and_the_values(result_file, tmp_path):
     with h5py.File(result_file, "r") as f:
         assert np.allclose(data[:, 0], f["time"][:], rtol=1e-11, atol=0)
         assert np.allclose(data[:, 2], f["channels/OC_FZ"][:], rtol=1e-11, atol=1e-300)
+
+
+# ISO/TS 13499 channel-code elements (code list RED B 1.6.2) of the channels
+# hhneck exports, written out here from the code list, not from the module
+CODE = re.compile(r"(?P<pos>[0-9A-Z]{2})(?P<loc>HEAD|NECK|THSP|EKIN)(?P<fl1>00|UP|LO|01)(?P<fl2>00)"
+                  r"(?P<fl3>VH)(?P<dim>AC|AV|AA|AN|DS|FO|MO|EN)(?P<dir>[XYZR0])(?P<filter>[0AB])")
+# header fields of ISO-MME 1.6 test (.mme) and channel files
+TEST_FIELDS = ["Data format edition number", "Laboratory name", "Laboratory test ref. number", "Customer name",
+               "Title", "Timestamp", "Type of the test", "Regulation", "Date of the test", "Number of test objects",
+               "Name of test object 1", "Mass test object 1", "Type of test object 1", "Code of test object 1",
+               "Comments"]
+CHANNEL_FIELDS = ["Name of the channel", "Laboratory channel code", "Customer channel code", "Channel code",
+                  "Test object number", "Data source", "Location", "Direction", "Reference system",
+                  "Transducer type", "Pre-filter type", "Cut off frequency", "Channel frequency class",
+                  "Channel amplitude class", "Unit", "Dimension", "Sampling interval", "Bit resolution",
+                  "Time of first sample", "Number of samples", "First global maximum value", "Time of maximum value",
+                  "First global minimum value", "Time of minimum value", "Data status", "Comments"]
+
+
+@pytest.fixture(scope="module")
+def loadcell_file(tmp_path_factory):
+    """The short deck with a LOADCELL at the T1 section (body C7, the root's
+    child) and one mid-neck (C4)."""
+    deck = short_deck().splitlines()
+    k = next(n for n, line in enumerate(deck) if line.startswith("TITLE"))
+    deck[k + 1:k + 1] = ["LOADCELL  LNECK     C7", "LOADCELL  MIDC4     C4"]
+    return run_short(tmp_path_factory, "cells", "\n".join(deck) + "\n")
+
+
+def test_full_export_codes_headers_and_values(loadcell_file, tmp_path, capsys):
+    out = tmp_path / "FULL"
+    assert hx.main(["mme", loadcell_file, "-o", str(out)]) == 0
+    printed = capsys.readouterr().out
+    t = hx.read_mme(str(out))
+    keys = [k for k, _ in t.info]
+    assert all(k in keys for k in TEST_FIELDS), [k for k in TEST_FIELDS if k not in keys]
+    assert t.get("Data format edition number") == "1.6" and t.get("Number of test objects") == "1"
+    with h5py.File(loadcell_file, "r") as f:
+        mass = float(np.sum(f["model/mass"][:]))
+        time = f["time"][:]
+        chan = {n: f["channels"][n][:] for n in f["channels"]}
+    assert float(t.get("Mass test object 1")) == pytest.approx(mass, rel=1e-5)
+    codes = [c.code for c in t.channels]
+    assert len(codes) == len(set(codes)), "every code once"
+    byname = {}
+    for c in t.channels:
+        keys = [k for k, _ in c.header]
+        assert all(k in keys for k in CHANNEL_FIELDS), (c.code, [k for k in CHANNEL_FIELDS if k not in keys])
+        m = CODE.fullmatch(c.code)
+        assert m, c.code
+        assert hx.parse_code(c.code)["main location"] == m["loc"]
+        assert c.get("Dimension") == m["dim"] and len(c.values) == len(time)
+        assert float(c.get("First global maximum value")) == c.values.max()
+        assert float(c.get("First global minimum value")) == c.values.min()
+        byname[c.get("Laboratory channel code")] = c
+    # what the file has: head, upper neck, T1, the lower neck from LNECK, the kinetic energy
+    for name, code, sign in (("HEAD_AXL", "11HEAD0000VHACX0", 1), ("OC_MY", "11NECKUP00VHMOY0", 1),
+                             ("OC_FX", "11NECKUP00VHFOX0", -1), ("T1_AX", "11THSP0100VHACX0", 1),
+                             ("T1_AY", "11THSP0100VHACY0", -1), ("T1_THETY", "11THSP0100VHANY0", -1),
+                             ("T1_DZ", "11THSP0100VHDSZ0", -1), ("LNECK_JFZ", "11NECKLO00VHFOZ0", 1),
+                             ("LNECK_JMY", "11NECKLO00VHMOY0", 1), ("E_KINETIC", "11EKIN0000VHEN00", 1)):
+        assert byname[name].code == code
+        assert np.array_equal(byname[name].values, sign * chan[name]), name
+    assert len([c for c in codes if c[2:10] == "NECKLO00"]) == 6
+    assert byname["LNECK_JFZ"].unit == "N" and byname["LNECK_JMY"].unit == "Nm"
+    assert byname["T1_DZ"].unit == "mm" and byname["T1_THETY"].get("Reference system") == "global"
+    # every channel of the file is exported or listed as left out, with why
+    coded, left = hx.iso_channels(loadcell_file)
+    assert set(coded) | set(left) >= set(hr.read_channels(loadcell_file).columns)
+    assert set(byname) == set(coded) and not set(coded) & set(left)
+    assert "MIDC4_JFZ" in left and "no neck section" in left["MIDC4_JFZ"]
+    assert "LNECK_FZ" in left and "HT1_RX" in left and "HEAD_AX" in left
+    assert printed.count("left out") == 1 and "MIDC4_JFZ" in printed
+
+
+def test_parse_code_refuses_what_the_code_list_lacks():
+    assert hx.parse_code("11NECKLO00VHFOZB")["fine location 1"] == "LO"
+    for bad in ("11NECKLO00VHFOZ", "11NECKMI00VHFOZ0", "11NECKLO00VHFQZ0", "11NECKLO00VHFOZK", "1xNECKLO00VHFOZ0"):
+        with pytest.raises(ValueError):
+            hx.parse_code(bad)

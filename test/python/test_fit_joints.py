@@ -11,17 +11,16 @@ import csv
 import math
 import os
 import subprocess
-import sys
 
 import numpy as np
 import pytest
 
-from conftest import ROOT, hhneck_executable
+from conftest import ROOT, hhneck_executable, hhneck_module
 from hhneck import fit_joints as fj
 from hhneck import segments
 from test_segments import _disc_card, _relaxation_time
+from test_upper_cervical import _generate
 
-GENERATOR = os.path.join(ROOT, "dev", "make_head_neck_deck.py")
 
 
 # ---------------------------------------------------------------- the sinh fit
@@ -140,12 +139,6 @@ def _csv_rows():
     return out
 
 
-def _generate(*args):
-    r = subprocess.run([sys.executable, GENERATOR] + list(args), capture_output=True, text=True, cwd=ROOT)
-    assert r.returncode == 0, r.stderr
-    return r.stdout.splitlines()
-
-
 def test_csv_round_trip(tmp_path):
     path = str(tmp_path / "nz.csv")
     fj.write_csv(path, _csv_rows())
@@ -209,7 +202,7 @@ def test_generator_refuses_a_row_of_an_unknown_body(tmp_path):
     rows = _csv_rows()
     rows[0]["body"] = "C8"
     fj.write_csv(path, rows)
-    r = subprocess.run([sys.executable, GENERATOR, "--nz-springs", path], capture_output=True, text=True, cwd=ROOT)
+    r = hhneck_module("model_deck", "--nz-springs", path)
     assert r.returncode != 0 and "C8" in r.stderr
 
 

@@ -1,4 +1,4 @@
-"""The deck generator's model variants (dev/make_head_neck_deck.py; the
+"""The deck generator's model variants (python3 -m hhneck.model_deck; the
 experiments of docs/validation.md "The upper cervical joints" and
 "Segmental muscles"), each against the shipped deck: --suboccipital yes
 adds exactly the four suboccipital muscles per side with F0 = sectional
@@ -121,9 +121,9 @@ def test_suboccipital_muscles_only_when_asked(tmp_path):
 
 def test_values_listing_regenerates_the_shipped_deck(tmp_path):
     # the shipped deck's values of the NBDL fit's parameters, as the
-    # generator's --fit reads them (dev/catalogue_two_stage.sh), give the
-    # shipped deck byte for byte: the variant of the two-stage fit differs
-    # from it by its option alone
+    # generator's --fit reads them (the starting point of dev/fit_model.sh
+    # and the joint fit's, calibration.values_listing), and the springs of
+    # reference/nz_springs.csv give the shipped deck byte for byte
     from hhneck import calibration
     listing = tmp_path / "values.txt"
     listing.write_text(calibration.values_listing())

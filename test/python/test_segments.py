@@ -145,10 +145,11 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     every case in the report, its data column the data file's own values,
     its model column the result file's rotation at the ramp times."""
     from hhneck import catalogue
-    report = tmp_path / "catalogue.md"
+    report = tmp_path / "new" / "folder" / "catalogue.md"          # a report folder that does not exist: created
     assert catalogue.main(["--quick", "--exe", exe, "--out", str(tmp_path), "--report", str(report),
                            "--jobs", "2"]) == 0
     text = report.read_text()
+    assert "**Incomplete**" not in text and "## Warnings of the runs" in text
     rows = [l for l in text.splitlines() if l.startswith("| C4–C5 |")]
     assert len(rows) == 4                                     # 3 Panjabi motions + Nightingale
     flex = next(l for l in rows if "flexion extension" in l and "+0.67" in l).split("|")
@@ -158,12 +159,12 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     # and (0.66, 4.93) points of the data file
     assert 5.4 < data[0] < 5.52
     import h5py
-    with h5py.File(tmp_path / "C4_C5_flexion_extension_1Nm.h5", "r") as f:
+    with h5py.File(tmp_path / "segments" / "C4_C5_flexion_extension_1Nm.h5", "r") as f:
         t = f["time"][:]
         c4 = f["channels"]["C4_RY"][:]
     at_peak = np.interp(segments.RAMP, t, c4) - c4[0]
     assert model[0] == pytest.approx(at_peak, abs=0.006)     # 3 significant digits in the table
-    assert "catalogue_panjabi.png" in text and (tmp_path / "catalogue_panjabi.png").exists()
+    assert "catalogue_panjabi.png" in text and (report.parent / "catalogue_panjabi.png").exists()
     # under each specimen case: every channel of its table below 0.50, and
     # only those, named on its "What stops it" line, with a link to the
     # section of docs/validation.md that exists as a heading

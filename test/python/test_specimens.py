@@ -210,3 +210,126 @@ def test_kang_shifted_reference_rates_its_own_shifted_curve():
     for ch in specimens.KANG_CHANNELS["front"]:             # the others are their own references
         if ch != "head_acc_z":
             assert moved[ch]["overall"] > 0.999 and given[ch]["overall"] > 0.999
+
+
+def test_rating_stops_at_the_runs_end():
+    """A reference that runs past the model's run is rated over the times
+    both cover: the model equal to the reference up to its end at 60 ms
+    rates 1 (held at its last value to 100 ms it rated lower), the rated
+    window and the reference's own end are reported; a run that does not
+    reach the reference is refused."""
+    g = np.arange(0.0, 100.05, 0.1)
+    ref = np.sin(np.pi * g / 100.0)
+    t = np.arange(0.0, 60.05, 0.1)
+    sc = specimens.rate_channel(g, ref, ref - 0.1, ref + 0.1, t, np.sin(np.pi * t / 100.0))
+    assert sc["overall"] > 0.999 and sc["inside"] == 1.0
+    assert sc["window"] == pytest.approx((0.0, 60.0)) and sc["reference_end"] == pytest.approx(100.0)
+    assert sc["grid"][-1] == pytest.approx(60.0) and sc["model"].size == sc["reference"].size == 601
+    with pytest.raises(ValueError, match="does not cover"):
+        specimens.rate_channel(g, ref, ref, ref, t + 200.0, t)
+
+
+def test_kang_window_searches_the_sources_times():
+    """The Kang window ends at 1.2 x the time of the reference's largest
+    magnitude between 0 and 99.9 ms: a larger value at 150 ms is not
+    searched. The front head rotation's corridor is still rising at
+    99.9 ms: its window ends near 119.9 ms (searched over the whole
+    reference, at 1.2 x 101.4 ms = 121.7)."""
+    g = 0.1 * np.arange(-100, 2001)
+    ref = np.exp(-((g - 60.0) / 10.0) ** 2) + 2.0 * np.exp(-((g - 150.0) / 10.0) ** 2)
+    wg, wr, wl, wh = specimens.kang_window(g, ref, ref - 1, ref + 1)
+    assert wg[0] == pytest.approx(0.0, abs=1e-9) and wg[-1] == pytest.approx(72.0, abs=0.051)
+    assert np.allclose(wl, wr - 1) and wr.size == wg.size
+    wg = specimens.kang_reference("front", "head_rot_y")[0]
+    assert 119.5 < wg[-1] <= 119.9                              # its grid's last point before 1.2 x 99.9
+
+
+def _rot(axis, angle):
+    c, s = np.cos(angle), np.sin(angle)
+    i, j = {"x": (1, 2), "y": (2, 0), "z": (0, 1)}[axis]
+    r = np.eye(3)
+    r[i, i], r[i, j], r[j, i], r[j, j] = c, -s, s, c
+    return r
+
+
+def test_planar_angle_of_a_hand_built_rotation():
+    """The head turned relative to a tilted T1 by theta about T1's y, then
+    by phi about its own x (a sagittal angle with a lateral bend): its
+    planar angle in T1's sagittal plane is theta exactly, where the Bryant
+    angle asin(R13) reads asin(sin theta cos phi); likewise about x and
+    about z; a turn past 180 deg goes on."""
+    theta = np.radians(np.linspace(0.0, 60.0, 7))
+    phi = np.radians(40.0)
+    parent = np.array([_rot("y", np.radians(24.0)) @ _rot("z", 0.1)] * theta.size)
+    body = np.array([p @ _rot("y", a) @ _rot("x", phi) for p, a in zip(parent, theta)])
+    assert np.allclose(specimens.planar_angle(parent, body, "y"), np.degrees(theta), atol=1e-9)
+    bryant = np.degrees(np.arcsin(np.sin(theta) * np.cos(phi)))
+    assert abs(bryant[-1] - 60.0) > 10.0                       # the Bryant angle is another angle
+    body = np.array([p @ _rot("x", a) @ _rot("y", phi) for p, a in zip(parent, theta)])
+    assert np.allclose(specimens.planar_angle(parent, body, "x"), np.degrees(theta), atol=1e-9)
+    body = np.array([p @ _rot("z", a) @ _rot("x", phi) for p, a in zip(parent, theta)])
+    assert np.allclose(specimens.planar_angle(parent, body, "z"), np.degrees(theta), atol=1e-9)
+    turn = np.radians(np.linspace(0.0, 200.0, 41))
+    body = np.array([parent[0] @ _rot("y", a) for a in turn])
+    assert np.allclose(specimens.planar_angle(parent[:1].repeat(41, 0), body, "y"), np.degrees(turn), atol=1e-9)
+
+
+def test_integrated_rotation_of_a_hand_built_rotation():
+    """A head turned about a fixed axis n by theta(t) = 50 deg sin^2(pi t /
+    0.2 s) has the angular velocity theta'(t) n: its integral is theta(t)
+    n, the rotation vector of the turn (Rodrigues' formula gives the
+    matrices), to the trapezoid's error on a 0.1 ms step."""
+    n = np.array([1.0, -2.0, 2.0]) / 3.0
+    t = np.arange(0.0, 0.2 + 1e-12, 1e-4)
+    amp = np.radians(50.0)
+    theta = amp * np.sin(np.pi * t / 0.2) ** 2
+    dtheta = amp * np.pi / 0.2 * np.sin(2 * np.pi * t / 0.2)
+    k = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
+    s = np.array([np.eye(3) + np.sin(a) * k + (1 - np.cos(a)) * k @ k for a in theta])
+    # the rotation vector of each matrix (axis x angle) against the integral
+    angle = np.arccos(np.clip((np.trace(s, axis1=1, axis2=2) - 1) / 2, -1, 1))
+    for c in range(3):
+        got = specimens.integrated_rotation(t, dtheta * n[c])
+        assert np.allclose(got, np.degrees(angle * n[c]), atol=2e-4)
+    assert specimens.integrated_rotation(t, dtheta)[0] == 0.0
+
+
+def _fake_result(path, case, t, channels, rotations=None):
+    """A result file with the datasets model_channels reads: every run
+    channel of `case` (zeros unless given), the time and, when given,
+    /bodies/rotation ({body: (nt, 3, 3) S_ij}) with the bodies' names."""
+    with h5py.File(path, "w") as f:
+        f["time"] = t
+        for _, run, *_ in specimens.CHANNELS[case]:
+            f["channels/" + run] = channels.get(run, np.zeros_like(t))
+        for name, v in channels.items():
+            if "channels/" + name not in f:
+                f["channels/" + name] = v
+        if rotations:
+            names = list(rotations)
+            f["model"] = h5py.Empty("f")
+            f["model"].attrs["bodies"] = names
+            f["bodies/rotation"] = np.stack([np.swapaxes(rotations[b], 1, 2) for b in names], axis=1)
+
+
+def test_model_channels_rate_each_sources_angle(tmp_path):
+    """model_channels reads each rotation as ANGLES defines it, not the
+    result file's Bryant channel beside it in CHANNELS: Kang's head
+    rotation the integral of its angular velocity (side: about x, J211
+    sign as is; front: about y, sign changed), Stemper's head-T1 angle
+    the planar angle from the rotation matrices (extension positive)."""
+    t = np.arange(0.0, 0.1 + 1e-12, 1e-4)
+    w = 10.0 * np.sin(np.pi * t / 0.1)                         # rad/s
+    turned = np.degrees(10.0 * 0.1 / np.pi * (1 - np.cos(np.pi * t / 0.1)))
+    _fake_result(tmp_path / "side.h5", "kang_side", t, {"HEAD_OMEGX": w, "HEADL_RX": -7.0 * np.ones_like(t)})
+    got = specimens.model_channels("kang_side", str(tmp_path / "side.h5"))["head_rot_x"][1]
+    assert np.allclose(got, cfc(turned, 180, 1e-4), atol=1e-3) and got.max() > 30.0
+    _fake_result(tmp_path / "front.h5", "kang_front", t, {"HEAD_OMEGY": w, "HEADL_RY": 3.0 * t})
+    got = specimens.model_channels("kang_front", str(tmp_path / "front.h5"))["head_rot_y"][1]
+    assert np.allclose(got, cfc(-turned, 180, 1e-4), atol=1e-3)
+    theta = -np.radians(turned)                                # extension: a negative turn about y
+    t1 = np.array([_rot("y", np.radians(1.2))] * t.size)
+    head = np.array([a @ _rot("y", b) @ _rot("x", 0.3) for a, b in zip(t1, theta)])
+    _fake_result(tmp_path / "stemper.h5", "stemper", t, {"HT1_RY": np.zeros_like(t)}, {"T1": t1, "HEAD": head})
+    got = specimens.model_channels("stemper", str(tmp_path / "stemper.h5"))["head_T1_angle"][1]
+    assert np.allclose(got, turned, atol=1e-9)

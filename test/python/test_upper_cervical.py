@@ -10,19 +10,18 @@ fitter refuses a deck that already carries them. The generator's muscle
 and disc variants: test_model_variants.py."""
 import os
 import subprocess
-import sys
+import tempfile
 
 import pytest
 
-from conftest import ROOT, hhneck_executable
+from conftest import ROOT, hhneck_executable, hhneck_module
 from hhneck import fit_joints, segments
 from hhneck import upper_cervical as uc
 
-GENERATOR = os.path.join(ROOT, "dev", "make_head_neck_deck.py")
-
-
 def _generate(*args):
-    r = subprocess.run([sys.executable, GENERATOR] + list(args), capture_output=True, text=True, cwd=ROOT)
+    """The lines of the model deck the generator (python3 -m hhneck.model_deck
+    ARGS) writes, run outside the repository."""
+    r = hhneck_module("model_deck", *args, cwd=tempfile.gettempdir())
     assert r.returncode == 0, r.stderr
     return r.stdout.splitlines()
 

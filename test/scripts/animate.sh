@@ -106,8 +106,27 @@ if command -v ffmpeg > /dev/null 2>&1; then
     [ "$rc" -eq 0 ] && [ "$frames" = "6" ]
     check "MP4 with ffmpeg: exit $rc, $frames frames (expected 6)" $?
 else
-    echo "(ffmpeg not installed: MP4 writing not tried)"
+    echo "(ffmpeg not installed: MP4 encoding not tried)"
 fi
+# the frames handed to ffmpeg: a stand-in ffmpeg that keeps its standard
+# input (the raw RGBA frames) as the output file: 6 frames of 360 x 210 x 4 bytes
+mkdir -p "$tmp/fakebin"
+cat > "$tmp/fakebin/ffmpeg" <<'SH'
+#!/bin/sh
+for a in "$@"; do out=$a; done
+cat > "$out"
+SH
+chmod +x "$tmp/fakebin/ffmpeg"
+PATH="$tmp/fakebin:$PATH" "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/raw" --slow 1 --fps 50 --dpi 30 --quiet \
+    > /dev/null 2>&1
+rc=$?
+size=$(wc -c < "$tmp/raw.mp4" 2> /dev/null || echo 0)
+[ "$rc" -eq 0 ] && [ "$size" -eq $((6 * 360 * 210 * 4)) ]
+check "OUT without a suffix and ffmpeg on PATH: OUT.mp4, ffmpeg given 6 raw frames of 360x210 RGBA ($size bytes)" $?
+PATH=/nonexistent "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/plain" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && [ "$(head -c 6 "$tmp/plain.gif" 2> /dev/null)" = "GIF89a" ] && [ ! -e "$tmp/plain.mp4" ]
+check "OUT without a suffix and no ffmpeg: OUT.gif (exit $rc)" $?
 
 # --- the drawn geometry against independent truth
 pycheck "$tmp/c62.h5" input/head_neck_54dof.inp <<'EOF'
@@ -134,21 +153,25 @@ scene.update(i)
 head = bodies.index("HEAD") + 1
 side, front, d3 = (scene.artists[v] for v in ("side", "front", "iso"))
 r = f["bodies/position"][i, head - 1]
-x, z = side["cm"]["HEAD"].get_data()
-y, z2 = front["cm"]["HEAD"].get_data()
-p3 = np.array(d3["cm"]["HEAD"].get_data_3d()).ravel()
-err = max(abs(x[0] - r[0]), abs(z[0] - r[2]), abs(y[0] - r[1]), abs(z2[0] - r[2]), *abs(p3 - r))
+k = head - 1                                   # the mass-centre markers: one line, a point per body
+x, z = (np.asarray(a)[k] for a in side["cm"].get_data())
+y, z2 = (np.asarray(a)[k] for a in front["cm"].get_data())
+p3 = np.array([np.asarray(a)[k] for a in d3["cm"].get_data_3d()])
+err = max(abs(x - r[0]), abs(z - r[2]), abs(y - r[1]), abs(z2 - r[2]), *abs(p3 - r))
 print(("PASS" if err < 1e-12 else "FAIL") +
       "  head mass centre drawn at /bodies/position (side, front, 3-D views, t = %.0f ms): error %.1e m"
       % (1000 * f["time"][i], err))
 for name in ("SCML", "ALLC2C1", "TRAPR"):
     b, c = card(name)
     want = np.array([truth(i, b[e], c[e]) for e in range(2)])
-    got3 = np.array(d3["lines"][name].get_data_3d()).T
-    xs, zs = side["lines"][name].get_data()
-    err = max(abs(got3 - want).max(), abs(xs - want[:, 0]).max(), abs(zs - want[:, 2]).max())
+    fam, e = scene.index[name]                 # one line collection per family and view
+    xs, zs = side["lines"][fam].get_segments()[e].T
+    ys, zf = front["lines"][fam].get_segments()[e].T
+    err = max(abs(ys - want[:, 1]).max(), abs(xs - want[:, 0]).max(), abs(zs - want[:, 2]).max(),
+              abs(zf - want[:, 2]).max())
     print(("PASS" if err < 1e-12 else "FAIL") +
-          "  %s (%s to %s) drawn from r + S c of its deck card: error %.1e m, ends (%.4f %.4f %.4f) (%.4f %.4f %.4f)"
+          "  %s (%s to %s) drawn from r + S c of its deck card (side and front views): error %.1e m, "
+          "ends (%.4f %.4f %.4f) (%.4f %.4f %.4f)"
           % (name, bodies[b[0] - 1], bodies[b[1] - 1], err, *want[0], *want[1]))
 label = scene.label_text.get_text()
 shown = float(label.split("head flexion")[1].split()[0])
@@ -217,8 +240,8 @@ def value(item):
     return v
 steps = root.find("Domain/Grid").findall("Grid")
 times = [float(g.find("Time").get("Value")) for g in steps]
-arrays = [[{(c.get("Name") or c.tag): value(c.find("DataItem")) for c in grid} for grid in g.findall("Grid")]
-          for g in steps]
+arrays = [{grid.get("Name"): {(c.get("Name") or c.tag): value(c.find("DataItem")) for c in grid}
+           for grid in g.findall("Grid")} for g in steps]
 print(("PASS" if not bad and nref > 0 else "FAIL") +
       "  every one of %d HDF5 references exists with its declared shape, hyperslabs in bounds%s"
       % (nref, "" if not bad else ": " + "; ".join(sorted(set(bad))[:5])))
@@ -228,7 +251,7 @@ print(("PASS" if len(times) == 101 and np.allclose(times, np.arange(101) * 1e-3,
       "  temporal collection: %d steps, 0 to %.0f ms every 1 ms (expected 101)" % (len(times), 1000 * times[-1]))
 # at 100 ms: body points = /bodies/position; head z axis gives HEAD_THETY; LCAPL ends = r + S c
 i, s = len(t) - 1, len(steps) - 1
-bod, el = arrays[s]
+bod, el = arrays[s]["bodies"], arrays[s]["elements"]
 head = 8
 err_p = abs(bod["Geometry"].reshape(-1, 3) - f["bodies/position"][i]).max()
 z = bod["z_axis"].reshape(-1, 3)[head]

@@ -6,7 +6,8 @@
 # characters. A data card that a long path would push beyond column 80 (an
 # INCLUDE or CASE card naming a file there) is refused with a message naming
 # the line. The shipped decks are what their writers write
-# (make_head_neck_deck.py, make_case_decks.py, make_nbdl_tables.py).
+# (hhneck.model_deck from reference/model_parameters.csv, hhneck.case_decks,
+# hhneck.nbdl_tables).
 # make_nbdl_tables.py --data with a long data folder: new_nbdl_case.sh.
 # builds: debug checking
 . test/scripts/lib/checks.sh
@@ -88,9 +89,9 @@ check "the long directory path has ${#long} characters (at least 120)" [ ${#long
 # shipped decks again, each valid with the others it includes.
 ln -s "$root/reference" "$long/proj/reference"
 cp input/nbdl15g.inp input/nbdl12g.inp input/nbdl8g.inp "$long/proj/input/"
-(cd "$long/proj" && python3 "$root/dev/make_head_neck_deck.py" > input/head_neck_54dof.inp &&
+(cd "$long/proj" && python3 -m hhneck.model_deck --output input/head_neck_54dof.inp &&
      python3 -m hhneck.case_decks && python3 -m hhneck.nbdl_tables)
-check "make_head_neck_deck.py, make_case_decks.py and make_nbdl_tables.py run (exit $?)" [ $? -eq 0 ]
+check "hhneck.model_deck, hhneck.case_decks and hhneck.nbdl_tables run (exit $?)" [ $? -eq 0 ]
 for f in head_neck_54dof case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g_t1 nbdl12g_t1 nbdl8g_t1; do
     check "input/$f.inp as written: within 80 columns, the shipped deck" written "$long/proj/input/$f.inp" "input/$f.inp"
 done
@@ -98,13 +99,13 @@ for f in case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g nbdl12g nbdl8g; do
     check "input/$f.inp with the written decks it includes: hhneck --check passes" valid "$long/proj" "input/$f.inp"
 done
 
-# make_head_neck_deck.py's other postures, and --fit with a listing under the
+# hhneck.model_deck's other postures, and --fit with a listing under the
 # long path (the shipped values: the shipped deck)
 for opt in "--posture straight" "--posture seated-held" "--t1-slope 20 --lordosis 10"; do
     # shellcheck disable=SC2086
-    python3 dev/make_head_neck_deck.py $opt > "$long/proj/input/head_neck_54dof.inp"
-    check "make_head_neck_deck.py $opt: within 80 columns" within80 "$long/proj/input/head_neck_54dof.inp"
-    check "make_head_neck_deck.py $opt: hhneck --check passes on case 6-2 with it" valid "$long/proj" input/case6-2.inp
+    python3 -m hhneck.model_deck $opt > "$long/proj/input/head_neck_54dof.inp"
+    check "hhneck.model_deck $opt: within 80 columns" within80 "$long/proj/input/head_neck_54dof.inp"
+    check "hhneck.model_deck $opt: hhneck --check passes on case 6-2 with it" valid "$long/proj" input/case6-2.inp
 done
 # a calibration listing's PARAM lines, in the order of the calibration's
 # PARAM cards, with the values of the shipped model deck
@@ -120,8 +121,8 @@ for hist, s in (("FLEX", "F"), ("EXT", "E")):
 names = [field(l, 1) for l in open(sys.argv[2]).read().splitlines() if is_card(l, "PARAM")]
 open(sys.argv[3], "w").write("".join("PARAM %-10s= %s\n" % (n, par[n]) for n in names))
 PY
-python3 dev/make_head_neck_deck.py --fit "$long/fit listing.txt" > "$long/proj/input/head_neck_54dof.inp"
-check "make_head_neck_deck.py --fit LISTING (shipped values): the shipped deck" \
+python3 -m hhneck.model_deck --fit "$long/fit listing.txt" > "$long/proj/input/head_neck_54dof.inp"
+check "hhneck.model_deck --fit LISTING (shipped values): the shipped deck" \
     cmp -s "$long/proj/input/head_neck_54dof.inp" input/head_neck_54dof.inp
 
 # The tools that write decks into a temporary directory to run them: valid
