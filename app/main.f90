@@ -2,6 +2,7 @@
 !!
 !!   hhneck input/case6-2.inp              (or: hhneck < input/case6-2.inp)
 !!   hhneck --h5 out.h5 input/nbdl15g.inp
+!!   hhneck --set 'BODY.HEAD.MASS*=1.1' input/nbdl15g.inp
 !!   hhneck --sweep --h5 sweep.h5 input/sweep_nbdl_oat.inp
 !!
 !! The listing goes to standard output, diagnostics to standard error.
@@ -11,7 +12,7 @@ program hhneck
     use hn_kinds, only: msglen, wp, i8
     use hn_case, only: case_t, path_len
     use hn_deck, only: read_case
-    use hn_deck_reader, only: parse_real, stdin_path, add_environment_path
+    use hn_deck_reader, only: parse_real, stdin_path, add_environment_path, int_str
     use hn_version, only: code_version
     use hn_run, only: run_state_t, run_result_t, exit_usage, exit_deck, exit_ok, exit_output, &
                       exit_members_failed, exit_interrupted
@@ -21,21 +22,26 @@ program hhneck
     use hn_signals, only: catch_signals, defer_signals
     use hn_progress, only: progress_off, progress_auto, progress_on, run_budget
     use hn_posix, only: is_terminal, stdin_kind, kind_char_device, exit_now
+    use hn_set_option, only: set_card
+    use hn_results, only: results_replaceable
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
     type(run_state_t) :: run
     character(len=path_len) :: h5name, arg, deck, source
     character(len=path_len), allocatable :: search(:)
-    character(len=path_len), allocatable :: change_cards(:)   ! --change card images
+    character(len=path_len), allocatable :: change_cards(:)   ! --change and --set card images, in order
+    integer, allocatable :: set_of(:)   ! for each of change_cards: the number of its --set option (0: --change)
     character(len=msglen) :: msg, budget_warning
-    logical :: h5_given, no_h5, check_only, sweep, calib
+    character(len=80) :: card
+    logical :: h5_given, no_h5, check_only, sweep, calib, overwrite, ok
     integer :: i, stat, nargs, progress, max_steps, n
     real(wp) :: sample, rtol, max_wall
 
     ! until the deck is read there is nothing to close: a signal ends the program at once
     call catch_signals(exit_interrupted)
     h5_given = .false.; no_h5 = .false.; check_only = .false.; sweep = .false.; calib = .false.
+    overwrite = .false.
     sample = -1.0_wp
     rtol = -1.0_wp
     max_wall = -1.0_wp
@@ -43,7 +49,7 @@ program hhneck
     progress = progress_auto
     h5name = ''
     deck = ''
-    allocate (search(0), change_cards(0))
+    allocate (search(0), change_cards(0), set_of(0))
     nargs = command_argument_count()
     i = 1
     do while (i <= nargs)
@@ -77,6 +83,19 @@ program hhneck
             call get_command_argument(i, arg, length=n)
             if (n > len(arg)) call usage('--change: found a card image of more than 80 columns')
             change_cards = [character(len=path_len) :: change_cards, arg]
+            set_of = [set_of, 0]
+        case ('--set')
+            if (i == nargs) call usage('--set needs KEY=VALUE or KEY*=FACTOR, e.g. --set BODY.HEAD.MASS*=1.1')
+            i = i + 1
+            call get_command_argument(i, arg, length=n)
+            if (n > len(arg)) call usage('--set: found an argument of more than '//trim(int_str(len(arg)))// &
+                                         ' characters')
+            call set_card(trim(arg), count(set_of > 0) + 1, card, stat, msg)
+            if (stat /= 0) call usage(trim(msg))
+            change_cards = [character(len=path_len) :: change_cards, card]
+            set_of = [set_of, count(set_of > 0) + 1]
+        case ('--overwrite')
+            overwrite = .true.
         case ('--check')
             check_only = .true.
         case ('--sweep')
@@ -107,12 +126,15 @@ program hhneck
     end if
 
     if ((sweep .or. calib) .and. size(change_cards) > 0) &
-        call usage('--change changes the deck of a single run; a sweep or calibration varies its parameters '// &
-                   'through its own PARAM cards')
+        call usage('--change and --set change the deck of a single run; a sweep or calibration varies its '// &
+                   'parameters through its own PARAM cards')
     if (sweep) call run_sweep()
     if (calib) call run_calibration()
     call read_case(trim(deck), trim(source), cs, stat, msg, search, change_cards)
+    call name_set_options(msg)
     call stop_on_deck_error('')
+    cs%deck_file = 'stdin'
+    if (source /= 'stdin') cs%deck_file = base_name(deck)
     do i = 1, size(cs%warnings)
         write (error_unit, '(a)') 'hhneck: warning: '//trim(cs%warnings(i))
     end do
@@ -135,8 +157,20 @@ program hhneck
         cs%atol = rtol*1.0e-3_wp
     end if
     cs%progress = progress
-    if (.not. h5_given) h5name = cs%h5file
+    if (.not. h5_given) then
+        h5name = cs%h5file
+        ! a variant deck that inherits an INCLUDEd deck's H5FILE: the file named after the variant
+        if (cs%h5file_included .and. source /= 'stdin') h5name = stem(base_name(deck))//'.h5'
+    end if
     if (no_h5) h5name = ''
+    ! a result file of another deck is replaced only on request: refused before the run starts
+    if (len_trim(h5name) > 0 .and. .not. overwrite) then
+        call results_replaceable(trim(h5name), cs, ok, msg)
+        if (.not. ok) then
+            write (error_unit, '(a)') 'hhneck: '//trim(msg)
+            stop exit_output, quiet=.true.
+        end if
+    end if
     ! from here on a signal stops the run at its next step, files closed and marked
     call defer_signals()
     call run%execute(cs, output_unit, trim(h5name), res)
@@ -247,6 +281,74 @@ contains
         if (.not. (v >= lo .and. v <= hi)) call usage(problem//', found "'//trim(arg)//'"')
     end function real_argument
 
+    !> The change notes and a deck error of a --set option's CHANGE card
+    !! located as "--set N" (read_case locates every option card as
+    !! "--change K", K counting --change and --set together).
+    subroutine name_set_options(errmsg)
+        character(len=*), intent(inout) :: errmsg   !! the deck error, if any
+        integer :: k, j
+        if (allocated(cs%deck)) then
+            do j = 1, size(cs%deck)
+                if (cs%deck(j)%source /= '--change') cycle
+                if (cs%deck(j)%line < 1 .or. cs%deck(j)%line > size(set_of)) cycle
+                if (set_of(cs%deck(j)%line) == 0) cycle
+                cs%deck(j)%source = '--set'
+                cs%deck(j)%line = set_of(cs%deck(j)%line)
+            end do
+        end if
+        do k = size(set_of), 1, -1     ! "--change 12" before "--change 1"
+            if (set_of(k) == 0) cycle
+            call relabel(errmsg, k)
+            if (index(errmsg, '--set '//trim(int_str(set_of(k)))//',') > 0 .or. &
+                index(errmsg, '--set '//trim(int_str(set_of(k)))//' ') > 0) &
+                errmsg = trim(errmsg)//' (--set '//trim(int_str(set_of(k)))//' stands for the card '''// &
+                         trim(change_cards(k))//''')'
+            ! an ambiguous FIELDn change: the key that names field F2 of the card too
+            if (index(errmsg, 'in F7:') > 0 .and. index(errmsg, '--set '//trim(int_str(set_of(k)))) > 0) &
+                errmsg = trim(errmsg)//'; as --set: '//trim(adjustl(change_cards(k)(31:40)))//'.'// &
+                         trim(adjustl(change_cards(k)(41:50)))//'.<its F2>.F'//trim(change_cards(k)(26:30))
+            if (allocated(cs%changes)) then
+                do j = 1, size(cs%changes)
+                    call relabel(cs%changes(j), k)
+                end do
+            end if
+        end do
+    end subroutine name_set_options
+
+    subroutine relabel(text, k)
+        character(len=*), intent(inout) :: text
+        integer, intent(in) :: k
+        character(len=:), allocatable :: old, new
+        integer :: p
+        old = '--change '//trim(int_str(k))
+        new = '--set '//trim(int_str(set_of(k)))
+        do
+            p = index(text, old)
+            if (p == 0) exit
+            if (p + len(old) <= len(text)) then
+                if (index('0123456789', text(p + len(old):p + len(old))) > 0) exit
+            end if
+            text = text(1:p - 1)//new//text(p + len(old):)
+        end do
+    end subroutine relabel
+
+    !> A path without its directories.
+    function base_name(path) result(s)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: s
+        s = trim(path(index(trim(path), '/', back=.true.) + 1:))
+    end function base_name
+
+    !> A file name without its last extension ("x.inp" -> "x").
+    function stem(name) result(s)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: s
+        integer :: p
+        p = index(name, '.', back=.true.)
+        s = name
+        if (p > 1) s = name(1:p - 1)
+    end function stem
+
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
         write (error_unit, '(a)') 'hhneck: '//problem
@@ -262,12 +364,16 @@ contains
             '', &
             'Runs the case deck DECK (a file, or standard input when DECK is absent or -): the', &
             '54-DOF head/neck model of Huston, Huston & Harlow (1978). The listing goes to standard', &
-            'output, messages to standard error, results to the HDF5 file the deck names (H5FILE).', &
+            'output, messages to standard error, results to the HDF5 file the deck names (H5FILE;', &
+            'a variant deck that INCLUDEs the H5FILE of another writes DECK''s name .h5 instead).', &
             'Deck format: docs/deck-format.md; result file: docs/output-format.md.', &
             '', &
             'options:', &
             '  --h5 FILE          write the HDF5 results to FILE (instead of the H5FILE card);', &
-            '                     a missing directory is created, an older FILE is replaced', &
+            '                     a missing directory is created, an older FILE of the same deck', &
+            '                     is replaced', &
+            '  --overwrite        replace a result file written by another deck (without it the', &
+            '                     run is refused before it starts, exit 4, the file kept)', &
             '  --no-h5            write no HDF5 file', &
             '  --sample SECONDS   HDF5 sampling interval (instead of the OUTPUT card)', &
             '  --rtol TOL         relative tolerance of the error-controlled integrators', &
@@ -276,6 +382,11 @@ contains
             '                     e.g. ''CHANGE    E12       FAMILY    DISCS     E         SCALE     1.2'')', &
             '                     after the deck''s own cards (repeatable; docs/deck-format.md);', &
             '                     the listing and the result file note it as "--change N"', &
+            '  --set KEY=VALUE    a change without a card image (repeatable): KEY*=FACTOR scales;', &
+            '                     BODY.body.MASS=4.2, BODY.body.INERTIA*=1.1,', &
+            '                     FAMILY.family.item*=1.2 (e.g. FAMILY.DISCS.E*=1.2),', &
+            '                     CARD.Fn=V, CARD.name.Fn=V, CARD.name.F2text.Fn=V (field n of the', &
+            '                     card, e.g. CONTROL.F5=1E-7, LIMIT.C7.RY.F5*=2); noted "--set N"', &
             '  --check            read and check the deck (warnings included), do not run', &
             '  --sweep            the deck is a parameter-sweep deck (docs/sweeps.md)', &
             '  --calibrate        the deck is a calibration deck: fit its parameters (docs/sweeps.md)', &

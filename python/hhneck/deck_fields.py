@@ -105,20 +105,36 @@ def number_text(value, digits=6):
 
 def number_field(value, where="a field"):
     """A number in a field: number_text with the most significant digits
-    (6 down to 1) that fit its 10 columns, left-aligned; CardError naming
-    `where` when none does."""
+    (6 down to 1) that fit 9 of its 10 columns, left-aligned: its last
+    column stays blank, so the number never touches the next field's (the
+    program refuses a number across a field boundary, docs/deck-format.md);
+    CardError naming `where` when none does."""
     for digits in range(6, 0, -1):
         s = number_text(value, digits)
-        if len(s) <= FIELD:
+        if len(s) < FIELD:
             return field_text(s, where)
-    return field_text(number_text(value, 1), where)
+    raise CardError("%r does not fit 9 columns of %s" % (value, where))
 
 
 def set_field(line, n, value):
-    """The card image with field n replaced by `value` (text, left-aligned;
-    field_text())."""
-    text = field_text(value, "field F%d of %s" % (n, line.rstrip()))
+    """The card image with field n replaced by `value` (text, field_text()):
+    left-aligned, unless the field before ends in its last column (a deck of
+    right-aligned numbers), then right-aligned, or with a blank on both
+    sides when both neighbours touch it: a number written never runs into
+    the next or the previous field's text (the program refuses a number
+    across a field boundary, docs/deck-format.md)."""
+    where = "field F%d of %s" % (n, line.rstrip())
+    text = field_text(value, where)
+    v = str(value).strip()
     line = line.ljust(80)
+    free_before = line[10 * n - 1] == " "
+    free_after = 10 * n + 10 >= COLUMNS or line[10 * n + 10] == " "
+    if free_before and (len(v) < FIELD or free_after):
+        pass
+    elif free_after and len(v) < FIELD:
+        text = v.rjust(FIELD)
+    elif len(v) < FIELD - 1:
+        text = (" " + v).ljust(FIELD)
     return (line[:10 * n] + text + line[10 * n + 10:]).rstrip()
 
 

@@ -6,6 +6,12 @@
 !! Card layout (80 columns): columns 1-8 the card name, 9-10 blank, then
 !! seven fields of ten columns: F1 = 11-20, F2 = 21-30, ... F7 = 71-80.
 !! A card whose columns 1-10 are blank continues the card above it.
+!! A number stays inside its field: a field read as a number whose text
+!! touches the next (or previous) field's text, a digit or point against
+!! a digit, sign or point with no blank between, or that joins with it into
+!! one number, is an error naming both fields (`separated`); a field in the
+!! form the program writes into ten columns (`field_text`, CHANGE cards and
+!! sweeps) is whole.
 !! '*' in column 1 marks a comment; blank lines are ignored. CR LF line ends
 !! read as LF line ends; a carriage return anywhere else is an error.
 !!
@@ -78,6 +84,7 @@ module hn_deck_reader
         procedure :: text => reader_text
         procedure :: where => reader_where
         procedure :: context
+        procedure :: separated => reader_separated
         procedure :: read_data_file
         procedure :: find_file => resolve_include
     end type deck_reader_t
@@ -181,6 +188,102 @@ contains
         end if
     end function context
 
+    !> Field f of card image i kept apart from its neighbours: when the text
+    !! of F(f-1)/Ff or Ff/F(f+1) runs across their boundary with no blank
+    !! between (a digit or point against a digit, sign or point, or two
+    !! pieces that join into one number), a located error naming both fields
+    !! and the columns the number spills into: `12.5` over the F3/F4
+    !! boundary would otherwise read as 12 and 0.5. A field in the form
+    !! `field_text` writes (ten columns, CHANGE cards and sweeps) is whole.
+    subroutine reader_separated(me, i, f, what)
+        class(deck_reader_t), intent(inout) :: me
+        integer, intent(in) :: i               !! card image number
+        integer, intent(in) :: f               !! field number, 1..nfields
+        character(len=*), intent(in) :: what   !! what field f holds (named in messages)
+        integer :: g
+        if (me%failed()) return
+        do g = f - 1, f
+            if (g < 1 .or. g >= nfields) cycle
+            call boundary(g)
+            if (me%failed()) return
+        end do
+    contains
+        !> The boundary between fields g and g + 1.
+        subroutine boundary(g)
+            integer, intent(in) :: g
+            character(len=80) :: t
+            character(len=:), allocatable :: token, fields, spill
+            integer :: c, a, b
+            real(wp) :: v
+            logical :: ok
+            t = me%lines(i)%text
+            c = 10*g + 10                      ! the last column of field g
+            if (t(c:c) == ' ' .or. t(c + 1:c + 1) == ' ') return
+            a = c
+            do while (a > 10*g + 1)
+                if (t(a - 1:a - 1) == ' ') exit
+                a = a - 1
+            end do
+            b = c + 1
+            do while (b < c + 10)
+                if (t(b + 1:b + 1) == ' ') exit
+                b = b + 1
+            end do
+            token = t(a:b)
+            call parse_real(token, v, ok)
+            if (.not. ok .and. .not. (index('0123456789.', t(c:c)) > 0 .and. &
+                                      index('0123456789.+-', t(c + 1:c + 1)) > 0)) return
+            if (whole_field(t(c - 9:c)) .or. whole_field(t(c + 1:c + 10))) return
+            ! the number belongs to the field holding most of it, and spills into the other
+            if (c - a + 1 >= b - c) then
+                spill = 'columns '//trim(int_str(c + 1))//'-'//trim(int_str(b))//' of F'//achar(49 + g)
+            else
+                spill = 'columns '//trim(int_str(a))//'-'//trim(int_str(c))//' of F'//achar(48 + g)
+            end if
+            if (g == f) then
+                fields = 'fields F'//achar(48 + g)//' '''//what//''' and F'//achar(49 + g)
+            else
+                fields = 'fields F'//achar(48 + g)//' and F'//achar(49 + g)//' '''//what//''''
+            end if
+            call me%fail(me%where(i)//', columns '//trim(int_str(a))//'-'//trim(int_str(b))//' ('// &
+                         card_name(me, i)//', '//fields//'): found "'//token//'" across the boundary of F'// &
+                         achar(48 + g)//' (columns '//trim(int_str(c - 9))//'-'//trim(int_str(c))//') and F'// &
+                         achar(49 + g)//' (columns '//trim(int_str(c + 1))//'-'//trim(int_str(c + 10))// &
+                         ') with no blank between: the number spills into '//spill// &
+                         '; expected each number inside its own field''s ten columns')
+        end subroutine boundary
+    end subroutine reader_separated
+
+    !> A field's ten columns all filled in the form field_text writes (a
+    !! value put there by a CHANGE card or a sweep): a whole field.
+    logical function whole_field(s)
+        character(len=10), intent(in) :: s   !! the field's columns
+        real(wp) :: v
+        logical :: ok
+        whole_field = .false.
+        if (index(s, ' ') > 0) return
+        call parse_real(s, v, ok)
+        if (ok) whole_field = field_text(v) == s
+    end function whole_field
+
+    !> "BODY card", or "TABLE card continuation 3" for a continuation card.
+    function card_name(me, i) result(s)
+        class(deck_reader_t), intent(in) :: me
+        integer, intent(in) :: i   !! card image number
+        character(len=:), allocatable :: s
+        integer :: j
+        if (len_trim(me%key(i)) > 0) then
+            s = trim(me%key(i))//' card'
+            return
+        end if
+        j = i
+        do while (j > 1)
+            if (len_trim(me%lines(j)%text(1:10)) > 0) exit
+            j = j - 1
+        end do
+        s = trim(me%key(j))//' card continuation '//trim(int_str(i - j))
+    end function card_name
+
     !> Real number from field f of line i, in [lo, hi]; a blank field takes
     !! `default` when present and is an error otherwise.
     subroutine reader_real(me, i, f, what, units, v, lo, hi, default)
@@ -198,6 +301,8 @@ contains
         character(len=10) :: why
         logical :: ok
         v = 0.0_wp
+        if (me%failed()) return
+        call me%separated(i, f, what)
         if (me%failed()) return
         s = me%raw(i, f)
         if (len_trim(s) == 0) then
@@ -245,6 +350,8 @@ contains
         character(len=60) :: range
         integer :: k, ios
         v = 0
+        if (me%failed()) return
+        call me%separated(i, f, what)
         if (me%failed()) return
         s = me%raw(i, f)
         if (len_trim(s) == 0) then

@@ -224,7 +224,7 @@ module hn_integrators
             real(wp), intent(in) :: t                      !! time of the failure [s]
             real(wp), intent(in) :: hmin                   !! the smallest step allowed [s]
             integer, intent(out) :: stat                   !! stat_step_failed
-            character(len=msglen), intent(out) :: errmsg   !! the message, with a hint to try ROS34PW2
+            character(len=msglen), intent(out) :: errmsg   !! the message (the run adds the remedy for its method)
         end subroutine step_too_small
         module subroutine rk4_step(me, sys, tstop, stat, errmsg)
             class(rk4_t), intent(inout) :: me

@@ -34,7 +34,7 @@ contains
     module procedure step_too_small
         stat = stat_step_failed
         write (errmsg, '(a,es10.3,a,es12.5,a)') 'the step fell below ', hmin, ' s at t = ', t, &
-            ' s: the deck may be too stiff for this method (try ROS34PW2) or the tolerance too tight'
+            ' s: the method cannot meet the tolerance there'
     end procedure step_too_small
 
 end submodule hn_integrators_common

@@ -37,6 +37,8 @@ module hn_case
         type(section_t), allocatable :: loadcells(:)  !! LOADCELL cards: the sections whose loads are channels
         character(len=10), allocatable :: print_groups(:)  !! PRINT cards: their keywords (none: the main groups; hn_print_card)
         character(len=path_len) :: h5file = ''      !! HDF5 result file ('' = none)
+        logical :: h5file_included = .false.        !! the H5FILE card is an INCLUDEd deck's (a variant's file is its own)
+        character(len=path_len) :: deck_file = ''   !! the deck's file name without directories ('stdin'), in the result file
         real(wp) :: wall_limit = zero               !! RUNLIMIT: stop after this wall time [s] (0 = none)
         integer :: step_limit = 0                   !! RUNLIMIT: stop after this many steps (0 = none)
         character(len=400) :: control_at = ''       !! where the CONTROL card's step is, for messages

@@ -171,8 +171,8 @@ contains
                 cs%output_xdd = s(1:8)
             end if
         end if
-        ic = single(rd, cards, 'H5FILE', .false.)
-        if (ic > 0) cs%h5file = rd%text(cards(ic)%first, 11)
+        call h5file_card(rd, cards, cs)
+        if (rd%failed()) return
         ic = single(rd, cards, 'EVENTS', .false.)
         if (ic > 0) then
             call rd%choice(cards(ic)%first, 1, 'event handling', [character(len=5) :: 'NONE', 'TIME', 'STATE'], s)
@@ -196,6 +196,36 @@ contains
                 call rd%fail(rd%where(i)//', columns 11-80 (DUMP card): found no times; expected 1 to 7 times [s]')
         end do
     end subroutine control_cards
+
+    !> H5FILE: the result file. One card per file of the deck; the deck's
+    !! own card wins over an INCLUDEd deck's (a variant names its own file),
+    !! and an INCLUDEd deck's only is marked h5file_included: a variant's
+    !! run is then named after the variant's deck file (hhneck's main).
+    subroutine h5file_card(rd, cards, cs)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
+        type(case_t), intent(inout) :: cs  !! the run case: h5file, h5file_included
+        integer :: k, i, j, chosen
+        chosen = 0
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'H5FILE') cycle
+            i = cards(k)%first
+            do j = 1, k - 1
+                if (cards(j)%key /= 'H5FILE' .or. rd%lines(cards(j)%first)%via /= rd%lines(i)%via) cycle
+                call rd%fail(rd%where(i)//', columns 1-8: found a second H5FILE card; expected only one (the '// &
+                             'first is at '//rd%where(cards(j)%first)//')')
+                return
+            end do
+            if (chosen == 0) then
+                chosen = i
+            else if (rd%lines(i)%via == 0) then
+                chosen = i
+            end if
+        end do
+        if (chosen == 0) return
+        cs%h5file = rd%text(chosen, 11)
+        cs%h5file_included = rd%lines(chosen)%via > 0
+    end subroutine h5file_card
 
     !> HOLD POSTURE t_r t_d: the start posture held by constant generalized
     !! forces, released at t_r [s] (blank: never) as a step (t_d blank or 0)

@@ -90,10 +90,14 @@ contains
         call rd%choice(i, 2, 'shape', pulse_shapes, s)
         if (rd%failed()) return
         code = pulse_code(s)
+        ! a number shifted across the F3/F4 boundary is named as such, not as "both"
+        call rd%separated(i, 3, 'peak')
+        call rd%separated(i, 4, 'velocity change')
+        if (rd%failed()) return
         if (rd%is_blank(i, 3) .eqv. rd%is_blank(i, 4)) then
             call rd%fail(rd%where(i)//', columns 31-50 (PULSE card, peak and velocity change): found '// &
                          trim(merge('both   ', 'neither', .not. rd%is_blank(i, 3)))//'; expected either the peak (F3) '// &
-                         'or the velocity change (F4), the other blank')
+                         'or the velocity change (F4), the other blank'//shifted())
             return
         end if
         call rd%real(i, 5, 'duration', 's', duration, 1.0e-6_wp, 1.0e3_wp)
@@ -148,6 +152,21 @@ contains
                                     ms(duration)//' MS FROM '//ms(onset)//' MS'
         call add_scene_note(cs, note)
     contains
+        !> The likely cause of "both": the duration (F5 blank) written in F4,
+        !! or F4's text shifted from the start of its field.
+        function shifted() result(r)
+            character(len=:), allocatable :: r
+            integer :: p
+            r = ''
+            if (rd%is_blank(i, 3)) return
+            p = verify(rd%lines(i)%text(41:50), ' ')
+            if (rd%is_blank(i, 5)) then
+                r = ' (F5, the duration, is blank: is it written in F4, columns 41-50?)'
+            else if (p > 1 .and. len_trim(rd%lines(i)%text(41:50)) < 10) then   ! neither left nor right aligned
+                r = ' (the text of F4 begins at column '//trim(int_str(40 + p))//', not 41: are the fields '// &
+                    'after F3 shifted by '//trim(int_str(p - 1))//' columns?)'
+            end if
+        end function shifted
         !> x with three significant digits (E format outside 0.01 .. 1E5).
         function three_digits(x) result(r)
             real(wp), intent(in) :: x

@@ -17,7 +17,7 @@ module hn_results
     use hn_channels, only: channel_set_t
     use hn_dynamics, only: dyn_workspace_t
     use hn_tree, only: dof_label
-    use hn_h5, only: h5_file_t
+    use hn_h5, only: h5_file_t, h5_read_string_attr
     use hn_dump, only: dump_open
     use hn_assessment, only: assessment_t
     use hn_injury, only: occupants
@@ -26,7 +26,7 @@ module hn_results
     implicit none
     private
 
-    public :: results_t
+    public :: results_t, results_replaceable
 
     integer, parameter :: block = 1024              !! samples per written block (and chunk)
     !> Version of the file's layout (root attribute schema_version; the
@@ -54,6 +54,53 @@ module hn_results
 
 contains
 
+    !> Whether a run of case `cs` may write `fname` (before it starts): yes
+    !! when there is no such file, or when the file was written by the same
+    !! deck, the same title (root attribute `title`) from the same deck file
+    !! (`deck_file`, a name without directories; a deck read from standard
+    !! input matches any). Otherwise `errmsg` names the file, the deck that
+    !! wrote it and this run's deck, and what to do (--overwrite, --h5).
+    subroutine results_replaceable(fname, cs, ok, errmsg)
+        character(len=*), intent(in) :: fname            !! the result file the run would write
+        type(case_t), intent(in) :: cs                   !! the run's case (title, deck file)
+        logical, intent(out) :: ok                       !! the run may write it
+        character(len=msglen), intent(out) :: errmsg     !! why not ('' when ok)
+        character(len=200) :: title, file
+        character(len=:), allocatable :: mine
+        integer :: st, st2
+        ok = .true.
+        errmsg = ''
+        if (file_kind(fname) /= kind_regular) return
+        call h5_read_string_attr(fname, '/', 'title', title, st)
+        call h5_read_string_attr(fname, '/', 'deck_file', file, st2)
+        if (st2 /= 0) file = ''
+        mine = trim(deck_file_name(cs))
+        if (st == 0) then
+            ok = trim(title) == trim(cs%model%title)
+            if (ok .and. len_trim(file) > 0 .and. file /= 'stdin' .and. mine /= 'stdin') ok = trim(file) == mine
+        else
+            ok = .false.
+        end if
+        if (ok) return
+        if (st == 0) then
+            errmsg = 'the result file '//trim(fname)//' holds the results of another deck ("'//trim(title)//'"'
+            if (len_trim(file) > 0) errmsg = trim(errmsg)//', '//trim(file)
+            errmsg = trim(errmsg)//'), not of this one ("'//trim(cs%model%title)//'", '//mine//')'
+        else
+            errmsg = 'the file '//trim(fname)//' is not a result file of hhneck (it has no title)'
+        end if
+        errmsg = trim(errmsg)//'; nothing was run and the file is kept: give --overwrite to replace it, or '// &
+                 '--h5 FILE to write another file'
+    end subroutine results_replaceable
+
+    !> The deck file a case was read from, as the result file records it.
+    pure function deck_file_name(cs) result(s)
+        type(case_t), intent(in) :: cs   !! the case (deck_file: '' when not set)
+        character(len=len(cs%deck_file)) :: s
+        s = cs%deck_file
+        if (len_trim(s) == 0) s = 'stdin'
+    end function deck_file_name
+
     !> Create the file and write the deck and model tables. `note` says what
     !! was done to files already there (an older result removed, a missing
     !! directory created).
@@ -78,6 +125,7 @@ contains
             call h%attr_string('/', 'code', 'HHNECK '//code_version)
             call h%attr_int('/', 'schema_version', results_schema_version)
             call h%attr_string('/', 'title', trim(cs%model%title))
+            call h%attr_string('/', 'deck_file', trim(deck_file_name(cs)))
             call h%attr_string('/', 'status', 'incomplete')
             call h%attr_string('/', 'message', 'the run has not closed this file: it is running, or was killed')
             call write_deck(h, cs)

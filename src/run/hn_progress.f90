@@ -21,10 +21,15 @@ module hn_progress
     use hn_sorting, only: sort_index
     use hn_integrators, only: spectral_radius
     use hn_tree, only: dof_label
+    use hn_linsolve, only: solver_gauss
     implicit none
     private
 
-    public :: progress_t, limit_diagnosis, fixed_steps, run_budget
+    public :: progress_t, limit_diagnosis, fixed_steps, run_budget, remedy, stop_remedy
+
+    !> What holds a run's step down (`remedy`).
+    integer, parameter, public :: held_by_stiffness = 1   !! h |lambda| of order one: stability
+    integer, parameter, public :: held_by_accuracy = 2    !! h |lambda| small: the tolerance or a fixed step
 
     integer, parameter, public :: progress_off = 0, progress_auto = 1, progress_on = 2
 
@@ -285,16 +290,107 @@ contains
         write (buf, '(a,es9.2,3a,es9.2,a)') '. The fastest mode has |lambda| =', rho, ' 1/s, mostly in ', &
             trim(dof_label(sys%model%tree, sys%ws%ifree(1 + mod(lead - 1, nf)))), ' (h |lambda| =', h*rho, ')'
         s = trim(buf)
-        if (h*rho > 0.3_wp .and. trim(integrator) /= 'ROS2') then
-            s = s//': the step is held down by stiffness, not accuracy. Remedy: the linearly implicit ROS2 '// &
-                '(CONTROL F4), or a softer element on that coordinate (STIFFEN or its card)'
+        if (h*rho > 0.3_wp .and. (trim(integrator) == 'ROS2' .or. trim(integrator) == 'ROS34PW2')) then
+            s = s//': '//trim(integrator)//' is stable there; accuracy with a stiff mode sets its step. '// &
+                remedy(integrator, sys%model%solver, sys%model%jacobian, held_by_stiffness, &
+                       trim(dof_label(sys%model%tree, sys%ws%ifree(1 + mod(lead - 1, nf)))))
         else if (h*rho > 0.3_wp) then
-            s = s//': the model is stiff. Remedy: a looser tolerance (--rtol), or a softer element on '// &
-                'that coordinate (STIFFEN or its card)'
+            s = s//': the step is held down by stiffness, not accuracy ('//trim(integrator)//' is explicit). '// &
+                remedy(integrator, sys%model%solver, sys%model%jacobian, held_by_stiffness, &
+                       trim(dof_label(sys%model%tree, sys%ws%ifree(1 + mod(lead - 1, nf)))))
         else
-            s = s//': the step is limited by accuracy, not stability. Remedy: a looser tolerance (--rtol), '// &
-                'or fewer discontinuities in the inputs'
+            s = s//': the step is limited by accuracy, not stability ('//trim(integrator)//'). '// &
+                remedy(integrator, sys%model%solver, sys%model%jacobian, held_by_accuracy, '')
         end if
     end function limit_diagnosis
+
+    !> The remedy of a run too slow to finish, for the run's own method:
+    !! "Remedy: ..." naming what to change (CONTROL F4, --rtol, SOLVER,
+    !! the stiff coordinate's element, LOCK or SCENE). A run held down by
+    !! stiffness on an explicit method is pointed to ROS34PW2; one already on
+    !! ROS2 to ROS34PW2, which keeps its Jacobian over many steps; one on
+    !! ROS34PW2 to a looser tolerance, the stiff coordinate's element or its
+    !! removal, and the structured Jacobian or a faster solver when the run
+    !! has the slower one. A run held down by accuracy: a longer step for
+    !! RK4 and ABM4, a looser tolerance for the error-controlled methods.
+    pure function remedy(integrator, solver, jacobian, cause, dof) result(s)
+        character(len=*), intent(in) :: integrator  !! the run's method (CONTROL F4)
+        integer, intent(in) :: solver               !! the run's solver code (SOLVER F1, hn_linsolve)
+        character(len=*), intent(in) :: jacobian    !! the stiff methods' Jacobian (SOLVER F2): STRUCT or FD
+        integer, intent(in) :: cause                !! held_by_stiffness or held_by_accuracy
+        character(len=*), intent(in) :: dof         !! the coordinate of the fastest mode ('' if not known)
+        character(len=:), allocatable :: s, element, faster
+        element = 'a softer element on that coordinate (STIFFEN or its card)'
+        if (len_trim(dof) > 0) element = 'a softer element on '//trim(dof)//' (STIFFEN or its card)'
+        faster = ''
+        if (solver == solver_gauss) faster = ', SOLVER CHOLESKY or ABA (faster than GAUSS)'
+        select case (trim(integrator))
+        case ('ROS34PW2')
+            if (cause == held_by_stiffness) then
+                s = 'Remedy: a looser tolerance (--rtol), '//element//', or '// &
+                    trim(merge_text(dof, 'that coordinate'))//' out of the model (LOCK, SCENE SAGITTAL)'
+            else
+                s = 'Remedy: a looser tolerance (--rtol), or fewer discontinuities in the inputs'
+            end if
+            if (trim(jacobian) == 'FD') s = s//', SOLVER F2 STRUCT (no differenced Jacobian)'
+        case ('ROS2')
+            if (cause == held_by_stiffness) then
+                s = 'Remedy: ROS34PW2 (CONTROL F4; it keeps its Jacobian), a looser tolerance (--rtol), or '//element
+            else
+                s = 'Remedy: a looser tolerance (--rtol), or ROS34PW2 (CONTROL F4, order 3)'
+            end if
+        case ('RK4', 'ABM4')
+            if (cause == held_by_stiffness) then
+                s = 'Remedy: the stiff ROS34PW2 (CONTROL F4), or '//element
+            else
+                s = 'Remedy: a longer step (CONTROL F2), or an error-controlled method (DOPRI5; ROS34PW2 if stiff)'
+            end if
+        case default   ! DOPRI5, ADAMS: explicit, error-controlled
+            if (cause == held_by_stiffness) then
+                s = 'Remedy: the stiff ROS34PW2 (CONTROL F4), or '//element
+            else
+                s = 'Remedy: a looser tolerance (--rtol), or fewer discontinuities in the inputs'
+            end if
+        end select
+        s = s//faster
+    contains
+        pure function merge_text(text, otherwise) result(r)
+            character(len=*), intent(in) :: text, otherwise
+            character(len=:), allocatable :: r
+            r = trim(text)
+            if (len(r) == 0) r = otherwise
+        end function merge_text
+    end function remedy
+
+    !> The advice added to an integrator's stop message (`msg`) for the
+    !! run's method: the step fell below its minimum (an explicit method on a
+    !! stiff deck: ROS34PW2; a stiff method: a looser tolerance, an
+    !! undeclared discontinuity), or the iteration matrix of a Rosenbrock
+    !! method is singular (a shorter first step, the other Jacobian). ''
+    !! for any other message.
+    pure function stop_remedy(integrator, jacobian, msg) result(s)
+        character(len=*), intent(in) :: integrator  !! the run's method (CONTROL F4)
+        character(len=*), intent(in) :: jacobian    !! the stiff methods' Jacobian (SOLVER F2): STRUCT or FD
+        character(len=*), intent(in) :: msg         !! the stop message
+        character(len=:), allocatable :: s
+        s = ''
+        if (index(msg, 'the step fell below') > 0) then
+            select case (trim(integrator))
+            case ('ROS2', 'ROS34PW2')
+                s = ' ('//trim(integrator)//', a stiff method). Remedy: a looser tolerance (--rtol), or EVENTS '// &
+                    'STATE if an element switches there'
+            case default
+                s = ' ('//trim(integrator)//', explicit). Remedy: the stiff ROS34PW2 (CONTROL F4), or a looser '// &
+                    'tolerance (--rtol)'
+            end select
+        else if (index(msg, 'iteration matrix') > 0) then
+            s = '. Remedy: a shorter first step (CONTROL F2) or a tighter tolerance, or '
+            if (trim(jacobian) == 'FD') then
+                s = s//'the structured Jacobian (SOLVER F2 STRUCT)'
+            else
+                s = s//'a differenced Jacobian (SOLVER F2 FD)'
+            end if
+        end if
+    end function stop_remedy
 
 end module hn_progress

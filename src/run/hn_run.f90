@@ -30,7 +30,7 @@ module hn_run
     use hn_assessment, only: assessment_t, assess, criteria_input_t, criteria_input_from, criteria_channels, &
                              ncriteria_columns
     use hn_signals, only: signal_received
-    use hn_progress, only: progress_t, limit_diagnosis
+    use hn_progress, only: progress_t, limit_diagnosis, stop_remedy
     use hn_history, only: history_t
     use hn_version, only: code_version
     use hn_joint_limits, only: joint_range_t, range_track, range_warnings, range_margin
@@ -400,7 +400,8 @@ contains
                 call me%integ%restart(me%sys, stat, msg)
                 me%pending_restart = .false.
                 if (stat /= stat_ok) then
-                    call me%fail(exit_diverged, 'run stopped at a restart: '//trim(msg)//me%diagnosis())
+                    call me%fail(exit_diverged, 'run stopped at a restart: '//trim(msg)//me%diagnosis()// &
+                                 stop_remedy(me%cs%integrator, me%cs%model%jacobian, msg))
                     return
                 end if
             end if
@@ -413,7 +414,8 @@ contains
             end if
             if (stat == stat_ok) call me%check_state(stat, msg)
             if (stat /= stat_ok) then
-                call me%fail(exit_diverged, 'run stopped: '//trim(msg)//me%diagnosis())
+                call me%fail(exit_diverged, 'run stopped: '//trim(msg)//me%diagnosis()// &
+                             stop_remedy(me%cs%integrator, me%cs%model%jacobian, msg))
                 return
             end if
             if (me%nsw > 0) then
@@ -651,7 +653,7 @@ contains
                 trim(dof_label(cs%model%tree, me%sys%ws%ifree(1 + mod(lead - 1, nf)))), &
                 ' (h |lambda| = ', cs%h*rho, ' at the last good state; limit ', limit, &
                 '); use a step below ', stable_step_margin*limit/rho, &
-                ' s, an error-controlled method (DOPRI5, ADAMS) or ROS2'
+                ' s, an error-controlled method (DOPRI5, ADAMS) or the stiff ROS34PW2'
         end associate
         s = trim(buf)
     end function diagnosis

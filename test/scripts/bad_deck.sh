@@ -4,7 +4,10 @@
 # mistakes that once passed --check and then cost the run: two elements of
 # one name in an included deck, a second NEUTRAL card, an INITIAL card on a
 # prescribed coordinate, a fixed-step run of 1E8 steps, a fixed-step run
-# beyond its step limit; a calibration deck checked, not run.
+# beyond its step limit; numbers across a field boundary (12.5 over F3/F4
+# once read as 12 and 0.5), refused with the exact located message in
+# --check and in a run, while a CHANGE that fills its field edge to edge
+# passes; a calibration deck checked, not run.
 # builds: debug checking
 . test/scripts/lib/checks.sh
 
@@ -57,6 +60,33 @@ check "and warns with the CONTROL card, the step count and the wall time" \
 rc=$?
 check "beyond --max-steps: refused by --check, exit code 2 (got $rc)" [ "$rc" -eq 2 ]
 check "the refusal names the step limit" grep -q "more than its step limit of 100000" "$tmp/rk4limit.err"
+
+# numbers across a field boundary: exit 2 with the located message, in
+# --check and in a run (nothing written)
+# straddled FILE WHAT CARD MESSAGE: the nbdl15g deck with CARD after its HOLD card
+straddled() {
+    awk -v card="$3" '{print} /^HOLD/ {print card}' input/nbdl15g.inp > "$tmp/$1.inp"
+    "$HHNECK" --check < "$tmp/$1.inp" > /dev/null 2> "$tmp/$1.check"
+    rc=$?
+    check "$2: --check refuses it, exit code 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "$2: --check names line and columns, both fields and the spill" \
+        [ "$(cat "$tmp/$1.check")" = "hhneck: deck error: $4" ]
+    "$HHNECK" --h5 "$tmp/$1.h5" < "$tmp/$1.inp" > /dev/null 2> "$tmp/$1.err"
+    rc=$?
+    check "$2: a run refuses it, exit code 2 (got $rc), the same message, no result file" \
+        sh -c "[ $rc -eq 2 ] && cmp -s '$tmp/$1.check' '$tmp/$1.err' && [ ! -e '$tmp/$1.h5' ]"
+}
+straddled across "12.5 over the F3/F4 boundary of INITIAL" 'INITIAL   C7        RY                12.5' \
+    "stdin line 16, columns 39-42 (INITIAL card, fields F3 'initial value' and F4): found \"12.5\" across the boundary of F3 (columns 31-40) and F4 (columns 41-50) with no blank between: the number spills into columns 41-42 of F4; expected each number inside its own field's ten columns"
+straddled back "a rate spilling back into F3" 'INITIAL   C7        RY        0.0     -12.5' \
+    "stdin line 16, columns 39-43 (INITIAL card, fields F3 'initial value' and F4): found \"-12.5\" across the boundary of F3 (columns 31-40) and F4 (columns 41-50) with no blank between: the number spills into columns 39-40 of F3; expected each number inside its own field's ten columns"
+straddled long "a long number spilling over F3" 'INITIAL   C7        RY        1.23456789012' \
+    "stdin line 16, columns 31-43 (INITIAL card, fields F3 'initial value' and F4): found \"1.23456789012\" across the boundary of F3 (columns 31-40) and F4 (columns 41-50) with no blank between: the number spills into columns 41-43 of F4; expected each number inside its own field's ten columns"
+# a FIELD change writes ten columns edge to edge (1.23457E+0) against F4's 5.0: a whole field, accepted
+"$HHNECK" --check --change 'CHANGE    I3        FIELD3    INITIAL   C3        SET       1.23456789' \
+    input/rest_spindle.inp > /dev/null 2> "$tmp/whole.err"
+rc=$?
+check "a CHANGE that fills F3 edge to edge beside F4's 5.0: --check passes (exit $rc)" [ "$rc" -eq 0 ]
 
 # a calibration deck is checked, not run
 "$HHNECK" --calibrate --check input/calibrate_nbdl.inp > "$tmp/cal.out" 2> "$tmp/cal.err"

@@ -148,9 +148,10 @@ rc=$?
     && [ ! -e "$T/both.h5.part" ] && [ ! -e "$T/both.h5.lock" ] && python3 test/scripts/lib/check_incomplete.py "$T/both.h5" 0.25 > /dev/null
 check $? "the first run, stopped by SIGTERM: exit 5 ($rc), its file valid and marked incomplete, lock released"
 
-# 4. a SIGKILL never leaves an older complete result under the name
+# 4. a SIGKILL never leaves an older complete result under the name (the
+# long run is another deck: --overwrite lets it replace case 6-2's file)
 "$HHNECK" --h5 "$T/k.h5" < "$T/short.inp" > /dev/null 2>&1
-"$HHNECK" --h5 "$T/k.h5" < "$T/long.inp" > /dev/null 2>&1 &
+"$HHNECK" --overwrite --h5 "$T/k.h5" < "$T/long.inp" > /dev/null 2>&1 &
 pid=$!
 sleep 2
 kill -KILL "$pid"
@@ -287,6 +288,19 @@ rc=$?
 [ "$rc" -eq 3 ] && has "$T/stiff3000.err" 'the step limit of 3000 steps' \
     && has "$T/stiff3000.err" 'mostly in C5.ry (h |lambda| = 3.' && has "$T/stiff3000.err" 'held down by stiffness'
 check $? "the same deck stopped after 3000 steps: exit 3 ($rc), the step held down by stiffness in C5.ry"
+# the remedy fits the run's method: DOPRI5 is pointed to the stiff ROS34PW2;
+# the same deck on ROS34PW2 is not pointed to another method
+has "$T/stiff3000.err" '(DOPRI5 is explicit). Remedy: the stiff ROS34PW2 (CONTROL F4), or a softer element on C5.ry' \
+    && ! has "$T/stiff3000.err" 'ROS2 '
+check $? "its remedy fits DOPRI5: the stiff ROS34PW2, a softer element on C5.ry, never ROS2"
+sed 's/^CONTROL .*/CONTROL   0.25      1.0E-4    0.005     ROS34PW2  1.0E-4    1.0E-7/' "$T/stiff.inp" > "$T/stiffros.inp"
+"$HHNECK" --max-steps 20 --no-h5 < "$T/stiffros.inp" > /dev/null 2> "$T/stiffros.err"
+rc=$?
+[ "$rc" -eq 3 ] && has "$T/stiffros.err" 'the step limit of 20 steps' && has "$T/stiffros.err" 'ROS34PW2 is stable there' \
+    && has "$T/stiffros.err" 'Remedy: a looser tolerance (--rtol), a softer element on C5.ry' \
+    && has "$T/stiffros.err" 'C5.ry out of the model (LOCK, SCENE SAGITTAL)' && ! has "$T/stiffros.err" 'CONTROL F4' \
+    && ! has "$T/stiffros.err" 'ROS2 '
+check $? "the same deck on ROS34PW2 stopped after 20 steps (exit $rc): its remedy names a looser tolerance, no other method"
 { cat "$T/stiff.inp"; echo 'RUNLIMIT            200'; } > "$T/steps.inp"
 "$HHNECK" --no-h5 < "$T/steps.inp" > /dev/null 2> "$T/steps.err"
 rc=$?
@@ -302,8 +316,8 @@ check $? "hhneck DECK gives the listing of hhneck < DECK"
 "$HHNECK" --help > "$T/help.txt" 2>&1
 rc=$?
 missing=""
-for opt in --h5 --no-h5 --sample --rtol --check --sweep --include-path HHNECK_PATH --progress --no-progress \
-        --max-wall --max-steps --version --help 'exit codes'; do
+for opt in --h5 --no-h5 --overwrite --sample --rtol --change --set --check --sweep --include-path HHNECK_PATH \
+        --progress --no-progress --max-wall --max-steps --version --help 'exit codes'; do
     grep -q -- "$opt" "$T/help.txt" || missing="$missing $opt"
 done
 [ "$rc" -eq 0 ] && [ -z "$missing" ] && grep -q '5  interrupted by SIGINT or SIGTERM' "$T/help.txt"
