@@ -3,8 +3,9 @@
 !! input tables. Every input table of a case is piecewise linear in a
 !! quantity that enters the equations of motion directly (the acceleration
 !! of a prescribed coordinate, an applied force or couple, the input tables
-!! of an element family, `input_tables`: the muscles' activations), so
-!! at each knot the right-hand side keeps its value and changes its slope. A knot is
+!! of an element family, `input_tables`: the muscles' activations), so at
+!! each knot the right-hand side keeps its value and changes its slope. A
+!! knot is
 !!   smooth  when the slope changes little against the table's range over
 !!           the knot's neighbourhood (sampled smooth data, such as the NBDL
 !!           sled tables every 1 ms): the error control of the method takes
