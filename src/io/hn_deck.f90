@@ -146,9 +146,11 @@ contains
         type(deck_state_t) :: st
         type(change_t), allocatable :: changes(:)
         type(family_card_t), allocatable :: fc(:)
+        logical, allocatable :: coordinate(:)
         integer, allocatable :: first(:)
         integer :: k, p, f
         fc = cards_with(families)
+        coordinate = fc%coordinate   ! the family cards whose F1, F2 name a body and coordinate
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
             call group_cards(rd, st%cards, more=fc)
@@ -165,7 +167,7 @@ contains
         ! cards that repeat one another are refused before a change can be ambiguous, and again
         ! when a change rewrote a field that identifies a card (F1, F2)
         if (.not. rd%failed()) call check_repeats(rd, st%cards, fc)
-        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes, keys_of(fc, fc%coordinate))
+        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes, keys_of(fc, coordinate))
         if (.not. rd%failed()) then
             if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, st%cards, fc)
         end if
