@@ -340,8 +340,10 @@ contains
     end function no_neutral_warning
 
     !> The cards of a family the registry (hn_families, family_cards) does
-    !! not list, one added to a model in code (model_add_family); the
-    !! default: none (a registry family's cards are the registry's).
+    !! not list, one added to a model in code (model_add_family) or brought
+    !! to a deck (read_case's `families`), with their repeat rule and
+    !! coordinate flag; the default: none (a registry family's cards are the
+    !! registry's).
     pure function registry_cards(this) result(c)
         class(element_family_t), intent(in) :: this      !! the family
         type(family_card_t), allocatable :: c(:)
