@@ -16,7 +16,8 @@
 program test_fuzz
     use hn_kinds, only: wp, msglen
     use hn_case, only: case_t
-    use hn_model, only: family_count, fam_ligaments
+    use hn_model, only: family_count
+    use hn_families, only: family_index
     use hn_deck, only: read_case
     use hn_testing, only: test_suite_t
     use hn_test_models, only: rng_t
@@ -439,7 +440,8 @@ contains
         if (sa == 0 .and. sb == 0 .and. size(a%deck) == size(b%deck)) then
             if (a%model%tree%ndof == b%model%tree%ndof .and. all(abs(a%x0 - b%x0) <= 0.0_wp) .and. &
                 abs(a%t_end - b%t_end) <= 0.0_wp .and. &
-                family_count(a%model, fam_ligaments) == family_count(b%model, fam_ligaments)) &
+                family_count(a%model, family_index('LIGAMENTS')) == &
+                family_count(b%model, family_index('LIGAMENTS'))) &
                 ncrlf_ok = ncrlf_ok + 1
         end if
     end subroutine check_crlf

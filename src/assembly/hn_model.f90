@@ -11,8 +11,7 @@ module hn_model
     use hn_linsolve, only: solver_gauss
     use hn_sorting, only: merge_times
     use hn_element_family, only: element_family_t, family_slot_t, max_family_items, item_len
-    use hn_families, only: nfamilies, family_name, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs, &
-                           new_family
+    use hn_families, only: nfamilies, family_name, new_family
     implicit none
     private
 
@@ -20,7 +19,7 @@ module hn_model
     public :: scale_family, model_set_family, model_add_family
     public :: hold_factor, hold_pass, hold_unreleased, hold_breakpoints, control_times, control_pass
     ! the registry's names, for the modules that know the model only
-    public :: max_family_items, nfamilies, family_name, fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
+    public :: max_family_items, nfamilies, family_name
 
     !> A complete mechanical model.
     type :: model_t
@@ -29,7 +28,7 @@ module hn_model
         real(wp) :: gravity(3) = [zero, zero, -g_std]  !! gravitational acceleration in R [m/s^2]
         logical, allocatable :: prescribed(:)          !! (n) coordinate driven by `motion`
         type(motion_t), allocatable :: motion(:)       !! (n) its time history
-        !> the element families: the registry's in its order (fam_*), then any added by model_add_family
+        !> the element families: the registry's in its order (family_name), then any added by model_add_family
         type(family_slot_t), allocatable :: family(:)
         type(applied_load_t), allocatable :: applied(:)
         real(wp), allocatable :: q_hold(:)             !! (n) generalized forces holding the start posture, full value
@@ -46,7 +45,7 @@ contains
     !> Number of elements of family f in the model.
     pure integer function family_count(model, f) result(n)
         type(model_t), intent(in) :: model       !! the model
-        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
+        integer, intent(in) :: f                 !! family (family_index, or model_add_family's number)
         n = 0
         if (f < 1 .or. f > size(model%family)) return
         n = model%family(f)%f%count()
@@ -72,7 +71,7 @@ contains
     !> Put family f (elements of the kind the registry names) into the model.
     pure subroutine model_set_family(model, f, fam)
         type(model_t), intent(inout) :: model          !! the model; out: slot f holds a copy of fam
-        integer, intent(in) :: f                       !! family (fam_discs ... fam_springs)
+        integer, intent(in) :: f                       !! family (family_index, or model_add_family's number)
         class(element_family_t), intent(in) :: fam     !! the family
         if (allocated(model%family(f)%f)) deallocate (model%family(f)%f)
         allocate (model%family(f)%f, source=fam)
@@ -223,7 +222,7 @@ contains
 
     !> Properties of a family that a FAMILY parameter may scale.
     pure function family_items(f) result(items)
-        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
+        integer, intent(in) :: f                 !! family (family_index, or model_add_family's number)
         character(len=item_len) :: items(max_family_items)
         type(family_slot_t) :: slot
         items = ''
@@ -234,7 +233,7 @@ contains
 
     !> The properties of a family that a FAMILY parameter may scale, as text: "A, B or C".
     pure function family_items_text(f) result(s)
-        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
+        integer, intent(in) :: f                 !! family (family_index, or model_add_family's number)
         character(len=:), allocatable :: s
         character(len=item_len) :: items(max_family_items)
         integer :: k, n
@@ -253,7 +252,7 @@ contains
     !> Multiply one property of every element of a family by `factor`.
     pure subroutine scale_family(model, f, item, factor)
         type(model_t), intent(inout) :: model    !! the model
-        integer, intent(in) :: f                 !! family (fam_discs ... fam_springs)
+        integer, intent(in) :: f                 !! family (family_index, or model_add_family's number)
         character(len=*), intent(in) :: item     !! property, one of family_items(f)
         real(wp), intent(in) :: factor           !! the factor
         call model%family(f)%f%scale(item, factor)

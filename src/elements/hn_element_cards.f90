@@ -11,8 +11,10 @@
 !! the field access of hn_deck_reader and no module of src/io/.
 !!
 !! `family_card_t` is one card of a family as the registry (hn_families)
-!! lists it: key, family, continuation cards, and when in the reading it is
-!! read (`card_first`, `card_in_order`, `card_last`).
+!! lists it: key, family, continuation cards, when in the reading it is
+!! read (`card_first`, `card_in_order`, `card_last`), which repeats of it
+!! the deck refuses (`unique_element`, `unique_name`, `unique_coordinate`)
+!! and whether its fields F1, F2 name a body and one of its coordinates.
 module hn_element_cards
     use hn_kinds, only: wp, zero, one, deg, g_std
     use hn_deck_reader, only: deck_reader_t
@@ -38,6 +40,13 @@ module hn_element_cards
     !! they name, e.g. ACTIVATE histories), in deck order with them, or
     !! after them (what adds to elements read before, e.g. VIA points).
     integer, parameter, public :: card_first = 1, card_in_order = 2, card_last = 3
+
+    !> Which repeats of a family's card the deck refuses (at the later card,
+    !! naming the earlier): none; the element name in F1 used by another
+    !! card of any family with this rule (one namespace of element names);
+    !! the name in F1 used by another card of the same name; a second card
+    !! of the same name for the body and coordinate in F1, F2.
+    integer, parameter, public :: unique_none = 0, unique_element = 1, unique_name = 2, unique_coordinate = 3
 
     !> One card with its continuation cards: deck lines first .. first+ncont.
     type :: card_t
@@ -91,12 +100,16 @@ module hn_element_cards
     end type card_context_t
 
     !> A deck card that belongs to a family: its key, its family, its
-    !! continuation cards, when it is read (card_first, card_in_order, card_last).
+    !! continuation cards, when it is read (card_first, card_in_order,
+    !! card_last), which repeats are refused, and its coordinate fields.
     type :: family_card_t
         character(len=8) :: key = ''
         integer :: family = 0
         integer :: ncont = 0
         integer :: order = card_in_order
+        integer :: unique = unique_none       !! which repeats the deck refuses (unique_none ... unique_coordinate)
+        logical :: coordinate = .false.       !! F1 names a body, F2 one of its coordinates (CHANGE ... F7 names F2)
+        character(len=16) :: what = 'name'    !! what F1 holds, in a unique_name message
     end type family_card_t
 
 contains

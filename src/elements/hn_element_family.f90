@@ -17,6 +17,16 @@
 !! its elements; `end_cards`, what follows when every card is read), with
 !! the cards of a family the registry does not list (`deck_cards`). These
 !! three have defaults: no card, nothing after the cards.
+!!
+!! What the run and the studies ask of a family, with defaults (none): the
+!! input tables whose corners the run's steps land on (`input_tables`), the
+!! times its controllers sample (`control_times`, `control_update`), a
+!! pre-strained neutral (`prestrain`), whether it is active muscle (what a
+!! passive state switches off, `active_muscle`), and its run monitors:
+!! quantities the run watches at every output time (`monitor_count`,
+!! `monitor`: their excess beyond what the family allows), the listing
+!! lines and the run's warning from their peaks (`monitor_report`), and a
+!! warning on a settled start (`neutral_warning`).
 module hn_element_family
     use hn_kinds, only: wp, zero
     use hn_kinematics, only: kinematics_t
@@ -26,6 +36,7 @@ module hn_element_family
     use hn_line_elements, only: line_geometry_t, line_geometry, max_via, line_attach_t
     use hn_deck_reader, only: deck_reader_t
     use hn_element_cards, only: card_context_t, family_card_t
+    use hn_tables, only: table_t
     implicit none
     private
 
@@ -101,6 +112,12 @@ module hn_element_family
         procedure :: prestrain => no_prestrain
         procedure :: control_times => no_control_times
         procedure :: control_update => no_control_update
+        procedure :: input_tables => no_input_tables
+        procedure :: active_muscle => not_active_muscle
+        procedure :: monitor_count => no_monitor_count
+        procedure :: monitor => no_monitor
+        procedure :: monitor_report => no_monitor_report
+        procedure :: neutral_warning => no_neutral_warning
     end type element_family_t
 
     !> One slot of the model: a family of any kind.
@@ -268,9 +285,65 @@ contains
         real(wp), intent(in) :: tol                      !! time tolerance [s] (unused)
     end subroutine no_control_update
 
+    !> The piecewise-linear input tables of the family, in time, whose
+    !! corners the run's steps land on (hn_breakpoints); the default: none.
+    pure function no_input_tables(this) result(tabs)
+        class(element_family_t), intent(in) :: this   !! the family
+        type(table_t), allocatable :: tabs(:)
+        allocate (tabs(0))
+    end function no_input_tables
+
+    !> Whether the family is active muscle, which a passive state of the
+    !! model (the calibration's PASSIVE) switches off; the default: no.
+    pure logical function not_active_muscle(this) result(yes)
+        class(element_family_t), intent(in) :: this   !! the family
+        yes = .false.
+    end function not_active_muscle
+
+    !> Number of quantities the family's run monitor watches; the default: none.
+    pure integer function no_monitor_count(this) result(n)
+        class(element_family_t), intent(in) :: this   !! the family
+        n = 0
+    end function no_monitor_count
+
+    !> The monitor's quantities at coordinates x: the excess of each beyond
+    !! what the family allows (0 inside); the run keeps the peak of each and
+    !! when it occurred. The default: none.
+    pure subroutine no_monitor(this, x, excess)
+        class(element_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: x(:)                  !! active coordinates [m, rad]
+        real(wp), intent(out) :: excess(:)            !! (monitor_count) the excess of each (>= 0)
+        excess = zero
+    end subroutine no_monitor
+
+    !> The monitor's report at the end of a run from the peaks of its
+    !! quantities: lines for the listing and, when any, the run's one-line
+    !! warning (blank: none). The default: nothing to report.
+    pure subroutine no_monitor_report(this, peak, tpeak, lines, summary)
+        class(element_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: peak(:)               !! (monitor_count) largest excess of each
+        real(wp), intent(in) :: tpeak(:)              !! (monitor_count) when [s]
+        character(len=warning_len), allocatable, intent(out) :: lines(:)   !! the listing's lines
+        character(len=:), allocatable, intent(out) :: summary              !! the run's warning ('': none)
+        allocate (lines(0))
+        summary = ''
+    end subroutine no_monitor_report
+
+    !> A warning on a settled start (HOLD PRESTRAIN): the neutral xr
+    !! displaced by dx, where the run starts; '' when none (the default).
+    pure function no_neutral_warning(this, xr, dx) result(w)
+        class(element_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: xr(:)                 !! neutral active coordinates [m, rad]
+        real(wp), intent(in) :: dx(:)                 !! the settled displacement [m, rad]
+        character(len=:), allocatable :: w
+        w = ''
+    end function no_neutral_warning
+
     !> The cards of a family the registry (hn_families, family_cards) does
-    !! not list, one added to a model in code (model_add_family); the
-    !! default: none (a registry family's cards are the registry's).
+    !! not list, one added to a model in code (model_add_family) or brought
+    !! to a deck (read_case's `families`), with their repeat rule and
+    !! coordinate flag; the default: none (a registry family's cards are the
+    !! registry's).
     pure function registry_cards(this) result(c)
         class(element_family_t), intent(in) :: this      !! the family
         type(family_card_t), allocatable :: c(:)

@@ -6,6 +6,11 @@
 !! model holds one slot per family in this order, and every evaluation
 !! visits them in this order (discs, ligaments, muscles, limits, springs).
 !!
+!! The numbers `fam_*` are for src/elements/ alone: elsewhere a family is
+!! found by name (`family_index`) or asked through its bindings, and what
+!! the deck reader needs of a family's card (its repeat rule, its
+!! coordinate fields) is in its entry of `family_cards`.
+!!
 !! Adding a family: its module (a type extending `element_family_t` of
 !! hn_element_family, which reads the family's own cards, `read_card`), one
 !! `fam_*` number, one name, its cards in `family_cards`, one case in
@@ -19,7 +24,7 @@ module hn_families
     use hn_muscle, only: activation_t
     use hn_feedback, only: feedback_t
     use hn_element_family, only: element_family_t, family_slot_t
-    use hn_element_cards, only: family_card_t, card_first, card_last
+    use hn_element_cards, only: family_card_t, card_first, card_last, unique_element, unique_name, unique_coordinate
     use hn_disc_family, only: disc_family_t
     use hn_ligament_family, only: ligament_family_t
     use hn_muscle_family, only: muscle_family_t
@@ -30,7 +35,7 @@ module hn_families
     private
 
     public :: new_family, family_index, family_names_text, family_card_t, family_cards, card_continuations, &
-              family_card_index
+              family_card_index, cards_with
 
     !> The families, in evaluation order.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
@@ -45,18 +50,18 @@ module hn_families
     !! card_in_order: in deck order; ACTIVATE first, the histories HILL cards
     !! name; VIA, FEEDBACK and SPINDLE last, on the muscles and histories read before).
     type(family_card_t), parameter :: family_cards(*) = [ &
-        family_card_t('DISC', fam_discs, 2), &
-        family_card_t('LIGAMENT', fam_ligaments, 1), &
-        family_card_t('MUSCLE', fam_muscles, 1), &
-        family_card_t('HILL', fam_muscles, 1), &
+        family_card_t('DISC', fam_discs, 2, unique=unique_element), &
+        family_card_t('LIGAMENT', fam_ligaments, 1, unique=unique_element), &
+        family_card_t('MUSCLE', fam_muscles, 1, unique=unique_element), &
+        family_card_t('HILL', fam_muscles, 1, unique=unique_element), &
         family_card_t('VIA', fam_muscles, 0, card_last), &
-        family_card_t('ACTIVATE', fam_muscles, 1, card_first), &
+        family_card_t('ACTIVATE', fam_muscles, 1, card_first, unique_name, what='history name'), &
         family_card_t('FEEDBACK', fam_muscles, 0, card_last), &
         family_card_t('SPINDLE', fam_muscles, 0, card_last), &
-        family_card_t('LIMIT', fam_limits, 0), &
-        family_card_t('ROM', fam_limits, 0), &
-        family_card_t('SPRING', fam_springs, 1), &
-        family_card_t('NZSPRING', fam_nz, 0)]
+        family_card_t('LIMIT', fam_limits, 0, unique=unique_coordinate, coordinate=.true.), &
+        family_card_t('ROM', fam_limits, 0, unique=unique_coordinate, coordinate=.true.), &
+        family_card_t('SPRING', fam_springs, 1, unique=unique_element), &
+        family_card_t('NZSPRING', fam_nz, 0, unique=unique_coordinate, coordinate=.true.)]
 
 contains
 
@@ -121,6 +126,19 @@ contains
         k = family_card_index(key)
         if (k > 0) n = family_cards(k)%ncont
     end function card_continuations
+
+    !> The cards of every family of a deck: the registry's, then the
+    !! `deck_cards` of `families`, families the registry does not list that
+    !! a program brings to its decks (read_case's `families`).
+    pure function cards_with(families) result(c)
+        type(family_slot_t), intent(in) :: families(:)   !! the families outside the registry
+        type(family_card_t), allocatable :: c(:)
+        integer :: f
+        c = family_cards
+        do f = 1, size(families)
+            c = [c, families(f)%f%deck_cards()]
+        end do
+    end function cards_with
 
     !> Place of card `key` in `family_cards`, 0 when no family of the registry reads it.
     pure integer function family_card_index(key) result(k)

@@ -3,7 +3,9 @@
 !! from hn_joint_limits, behind the element-family interface. Output per
 !! damper: its generalized force [N or N m]. The family reads its LIMIT and
 !! ROM cards; those on a locked or merged coordinate are dropped, with a
-!! scene note.
+!! scene note. Its run monitor watches the joints' excess beyond their
+!! ranges of motion (a warning past range_margin), and a settled start
+!! (HOLD PRESTRAIN) whose neutrals leave their ranges.
 module hn_limit_family
     use hn_kinds, only: wp, zero, deg
     use hn_deck_reader, only: deck_reader_t
@@ -12,7 +14,8 @@ module hn_limit_family
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
-    use hn_joint_limits, only: joint_limit_t, joint_range_t, limit_force, range_moment, range_energy
+    use hn_joint_limits, only: joint_limit_t, joint_range_t, limit_force, range_moment, range_energy, range_excess, &
+                               range_warnings, range_margin
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_range
     implicit none
@@ -44,6 +47,10 @@ module hn_limit_family
         procedure :: scale_items => limit_items
         procedure :: scale => limit_scale
         procedure :: stiffen => limit_stiffen
+        procedure :: monitor_count => range_count
+        procedure :: monitor => range_monitor
+        procedure :: monitor_report => range_report
+        procedure :: neutral_warning => range_neutral_warning
     end type limit_family_t
 
 contains
@@ -225,6 +232,75 @@ contains
             allocate (items(0))
         end select
     end function limits_of
+
+    !> The run monitor watches one quantity per range of motion.
+    pure integer function range_count(this) result(n)
+        class(limit_family_t), intent(in) :: this   !! the family
+        n = size(this%ranges)
+    end function range_count
+
+    !> |excess| of each joint beyond its range of motion at coordinates x [rad].
+    pure subroutine range_monitor(this, x, excess)
+        class(limit_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: x(:)                !! active coordinates [m, rad]
+        real(wp), intent(out) :: excess(:)          !! (ranges) |excess| of each [rad]
+        integer :: k
+        do k = 1, size(this%ranges)
+            excess(k) = abs(range_excess(this%ranges(k), x(this%ranges(k)%dof)))
+        end do
+    end subroutine range_monitor
+
+    !> Joints past their physiological range by more than range_margin: one
+    !! line each for the listing, and summed up in the run's warning.
+    pure subroutine range_report(this, peak, tpeak, lines, summary)
+        class(limit_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: peak(:)             !! (ranges) largest |excess| of each [rad]
+        real(wp), intent(in) :: tpeak(:)            !! (ranges) when [s]
+        character(len=warning_len), allocatable, intent(out) :: lines(:)   !! one line per joint past range and margin
+        character(len=:), allocatable, intent(out) :: summary              !! the run's warning ('': none)
+        character(len=400) :: w
+        integer :: k
+        lines = range_warnings(this%ranges, peak, tpeak, range_margin)
+        summary = ''
+        if (size(lines) == 0) return
+        k = count(peak(1:maxloc(peak, dim=1)) > range_margin)
+        write (w, '(a,i0,2a)') 'WARNING: ', size(lines), ' joint rotation(s) past the physiological '// &
+            'range plus margin; largest: ', trim(lines(k)(16:))
+        summary = trim(w)
+    end subroutine range_report
+
+    !> HOLD PRESTRAIN: the joints whose settled neutral xr + dx is out of
+    !! their range of motion ('' when none).
+    pure function range_neutral_warning(this, xr, dx) result(w)
+        class(limit_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: xr(:)               !! neutral active coordinates [m, rad]
+        real(wp), intent(in) :: dx(:)               !! the settled displacement [m, rad]
+        character(len=:), allocatable :: w
+        character(len=400) :: line
+        real(wp) :: e, excess
+        integer :: k, nout, worst
+        nout = 0
+        worst = 0
+        excess = zero
+        associate (rom => this%ranges)
+            do k = 1, size(rom)
+                e = max(xr(rom(k)%dof) + dx(rom(k)%dof) - rom(k)%xmax, rom(k)%xmin - xr(rom(k)%dof) - dx(rom(k)%dof))
+                if (e <= zero) cycle
+                nout = nout + 1
+                if (e > excess) then
+                    excess = e
+                    worst = k
+                end if
+            end do
+            w = ''
+            if (nout == 0) return
+            write (line, '(a,i0,3a,f8.2,a)') 'WARNING: HOLD PRESTRAIN moves ', nout, &
+                ' joint neutral(s) out of their range of motion; largest: ', trim(rom(worst)%label), ' by ', &
+                excess/deg, ' deg (the start load is not a preload of the joints: held by the muscles, it is '// &
+                'HOLD POSTURE''s)'
+        end associate
+        w = trim(line)
+    end function range_neutral_warning
 
     !> The ranges of motion of a model's family slot (a copy; none when the slot holds another family).
     pure function ranges_of(fam) result(items)

@@ -27,7 +27,7 @@ module hn_muscle_family
     implicit none
     private
 
-    public :: muscle_family_t, muscles_of, activation_tables, activation_histories
+    public :: muscle_family_t, muscles_of, activation_histories
 
     real(wp), parameter :: ref_muscle_m1 = 3000.0_wp      !! N/m (reference/parameters.md)
     real(wp), parameter :: ref_muscle_m2 = 400.0_wp       !! N s/m
@@ -58,6 +58,8 @@ module hn_muscle_family
         procedure :: activation => muscle_activation
         procedure :: control_times => muscle_control_times
         procedure :: control_update => muscle_control_update
+        procedure :: input_tables => muscle_input_tables
+        procedure :: active_muscle => muscle_active
     end type muscle_family_t
 
 contains
@@ -304,17 +306,18 @@ contains
         end select
     end function muscles_of
 
-    !> The activation tables (eq 11) of a model's family slot (a copy; none when the slot holds another family).
-    pure function activation_tables(fam) result(items)
-        class(element_family_t), intent(in) :: fam   !! the slot's family
-        type(table_t), allocatable :: items(:)
-        select type (fam)
-        type is (muscle_family_t)
-            items = fam%tables
-        class default
-            allocate (items(0))
-        end select
-    end function activation_tables
+    !> The activation tables (eq 11): the run lands its steps on their corners.
+    pure function muscle_input_tables(this) result(tabs)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        type(table_t), allocatable :: tabs(:)
+        tabs = this%tables
+    end function muscle_input_tables
+
+    !> The muscles are active muscle (a passive state switches them off).
+    pure logical function muscle_active(this) result(yes)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        yes = .true.
+    end function muscle_active
 
     !> The activation histories of a model's family slot (a copy; none when the slot holds another family).
     pure function activation_histories(fam) result(items)

@@ -7,9 +7,10 @@
 !!   CHANGE  name  FIELDn  card    name-in-F1     SCALE|SET   value   [F2 of the card]
 !!
 !! A FIELD change addresses its card by the card name, the name in its
-!! field F1 and, for cards that F1 alone does not tell apart (LIMIT, ROM,
-!! NEUTRAL, INITIAL, PRESCRIB: body and coordinate), the text of its field
-!! F2 in the CHANGE card's F7. A change that finds no card, or more than
+!! field F1 and, for cards that F1 alone does not tell apart (NEUTRAL,
+!! INITIAL, PRESCRIB and the families' cards that name a coordinate, such
+!! as LIMIT and ROM: body and coordinate), the text of its field F2 in the
+!! CHANGE card's F7. A change that finds no card, or more than
 !! one, names the candidates with their locations.
 !!
 !! A FIELD change rewrites the field before the cards are interpreted, so
@@ -124,10 +125,11 @@ contains
 
     !> Rewrite the fields that FIELD changes name, in rd's card images (the
     !! deck kept for the listing and the result file is not touched).
-    subroutine apply_field_changes(rd, changes, notes)
+    subroutine apply_field_changes(rd, changes, notes, coordinate_cards)
         type(deck_reader_t), intent(inout) :: rd                   !! the deck
         type(change_t), intent(in) :: changes(:)                   !! the changes
         character(len=note_len), allocatable, intent(inout) :: notes(:)  !! one line per change made
+        character(len=*), intent(in) :: coordinate_cards(:)        !! the element families' cards whose F2 is a coordinate
         integer :: k, nfound, line, c1, c2
         integer, allocatable :: cands(:)
         real(wp) :: old, new
@@ -139,7 +141,7 @@ contains
                 call locate_field(rd%lines(1:rd%nlines), c%target, c%item, c%field, nfound, line, c1, c2, &
                                   name2=c%key2, matches=cands)
                 if (nfound /= 1) then
-                    call rd%fail(rd%where(i)//' (CHANGE '//trim(c%name)//'): '//not_one(rd, c, cands))
+                    call rd%fail(rd%where(i)//' (CHANGE '//trim(c%name)//'): '//not_one(rd, c, cands, coordinate_cards))
                     return
                 end if
                 if (line == 0) then
@@ -173,10 +175,11 @@ contains
     !> Why a FIELD change does not address exactly one card: none (with the
     !! cards of that name under other card names or other second keys), or
     !! several, listed with their locations and what would tell them apart.
-    function not_one(rd, c, cands) result(s)
+    function not_one(rd, c, cands, coordinate_cards) result(s)
         type(deck_reader_t), intent(in) :: rd
         type(change_t), intent(in) :: c
         integer, intent(in) :: cands(:)
+        character(len=*), intent(in) :: coordinate_cards(:)
         character(len=:), allocatable :: s, what, second
         integer, allocatable :: others(:)
         integer :: j, n, line, c1, c2
@@ -187,8 +190,8 @@ contains
         if (len_trim(c%item) == 0) what = what//'s'
         if (len_trim(c%key2) > 0) what = what//' with '//trim(c%key2)//' in F2'
         second = 'field F2 of the card'
-        if (any(c%target == [character(len=10) :: 'NEUTRAL', 'INITIAL', 'PRESCRIB', 'LIMIT', 'ROM', 'NZSPRING'])) &
-            second = 'the coordinate'
+        if (any(c%target == [character(len=10) :: 'NEUTRAL', 'INITIAL', 'PRESCRIB']) .or. &
+            any(c%target == coordinate_cards)) second = 'the coordinate'
         if (size(cands) == 0) then
             s = 'found 0 '//what//' in the deck; expected exactly one'
             if (len_trim(c%key2) > 0) then

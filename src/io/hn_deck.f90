@@ -4,12 +4,19 @@
 !! what was expected. This module reads the deck and runs the passes of
 !! the card registry (hn_cards) over it; each card group has its module
 !! (hn_deck_control, _bodies, _scene, _coordinates, _tables, _elements,
-!! _loads), on what they share (hn_deck_state).
+!! _loads), on what they share (hn_deck_state). What the deck knows of the
+!! element families (their cards, which repeats are refused, which fields
+!! name a coordinate) is the family registry's (hn_families, `cards_with`),
+!! also for families a program brings that the registry does not list
+!! (`families`).
 module hn_deck
     use hn_kinds, only: msglen
     use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
-    use hn_model, only: model_set_neutral
+    use hn_model, only: model_set_neutral, model_add_family
+    use hn_element_family, only: family_slot_t
+    use hn_element_cards, only: family_card_t, unique_element, unique_name, unique_coordinate
+    use hn_families, only: cards_with
     use hn_integrators, only: integrator_names
     use hn_plausibility, only: plausibility_warnings
     use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
@@ -34,7 +41,10 @@ contains
     !! the including file, in the working directory, then in `include_path`.
     !! `change_cards` (the command line's --change options) are CHANGE card
     !! images put after the deck's own cards, located as "--change N".
-    subroutine read_case(path, source, cs, stat, errmsg, include_path, change_cards)
+    !! `families` are element families the registry does not list, put into
+    !! the model after the registry's (model_add_family), which read their
+    !! own cards (`deck_cards`) in the deck like the registry's families.
+    subroutine read_case(path, source, cs, stat, errmsg, include_path, change_cards, families)
         character(len=*), intent(in) :: path                       !! file to read
         character(len=*), intent(in) :: source                     !! its name in messages
         type(case_t), intent(out) :: cs                            !! the run case (model and run control)
@@ -42,6 +52,7 @@ contains
         character(len=msglen), intent(out) :: errmsg               !! the first error, located in the deck
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE files
         character(len=*), intent(in), optional :: change_cards(:)  !! CHANGE card images added after the deck's cards
+        type(family_slot_t), intent(in), optional :: families(:)   !! families outside the registry, each empty
         type(deck_reader_t) :: rd
         rd%top = source
         if (present(include_path)) rd%search = include_path
@@ -49,7 +60,11 @@ contains
         if (.not. rd%failed() .and. rd%nlines == 0) &
             call rd%fail(source//' line 1: the deck is empty (no cards); expected a TITLE card first')
         if (present(change_cards) .and. .not. rd%failed()) call add_option_cards(rd, change_cards)
-        call interpret(rd, cs)
+        if (present(families)) then
+            call interpret(rd, cs, families)
+        else
+            call interpret(rd, cs, [family_slot_t ::])
+        end if
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_case
@@ -116,23 +131,29 @@ contains
         rd%lines = lines
         rd%nlines = size(lines)
         if (rd%nlines == 0) call rd%fail(source//': the deck is empty (no cards); expected a TITLE card first')
-        call interpret(rd, cs)
+        call interpret(rd, cs, [family_slot_t ::])
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_case_lines
 
     !> The cards of `rd` into the case, card group by card group: the
-    !! passes of the card registry (hn_cards, `deck_passes`) in their order.
-    subroutine interpret(rd, cs)
+    !! passes of the card registry (hn_cards, `deck_passes`) in their order;
+    !! `families` (outside the registry) join the model after its bodies.
+    subroutine interpret(rd, cs, families)
         type(deck_reader_t), intent(inout) :: rd
         type(case_t), intent(out) :: cs
+        type(family_slot_t), intent(in) :: families(:)
         type(deck_state_t) :: st
         type(change_t), allocatable :: changes(:)
+        type(family_card_t), allocatable :: fc(:)
+        logical, allocatable :: coordinate(:)
         integer, allocatable :: first(:)
-        integer :: k, p
+        integer :: k, p, f
+        fc = cards_with(families)
+        coordinate = fc%coordinate   ! the family cards whose F1, F2 name a body and coordinate
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
-            call group_cards(rd, st%cards)
+            call group_cards(rd, st%cards, more=fc)
         end if
         allocate (cs%scene(0), cs%changes(0), cs%subtitles(0))
         ! CHANGE cards: fields rewritten in rd's images (cs%deck keeps the deck as read)
@@ -145,15 +166,20 @@ contains
         end if
         ! cards that repeat one another are refused before a change can be ambiguous, and again
         ! when a change rewrote a field that identifies a card (F1, F2)
-        if (.not. rd%failed()) call check_repeats(rd, st%cards)
-        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes)
+        if (.not. rd%failed()) call check_repeats(rd, st%cards, fc)
+        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes, keys_of(fc, coordinate))
         if (.not. rd%failed()) then
-            if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, st%cards)
+            if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, st%cards, fc)
         end if
         do p = 1, size(deck_passes)
             if (rd%failed()) exit
             select case (deck_passes(p)%handler)
-            case ('body_cards'); call body_cards(rd, st%cards, cs, st%bnames, st%bmap)
+            case ('body_cards')
+                call body_cards(rd, st%cards, cs, st%bnames, st%bmap)
+                if (rd%failed()) exit
+                do k = 1, size(families)
+                    call model_add_family(cs%model, families(k)%f, f)
+                end do
             case ('control_cards'); call control_cards(rd, st%cards, cs)
             case ('table_cards'); call table_cards(rd, st%cards, st%tabs, cs)
             case ('coordinate_cards'); call coordinate_cards(rd, st, cs)
@@ -205,29 +231,46 @@ contains
     !! (docs/deck-format.md, "Cards that must not repeat"): a name used twice
     !! in one namespace, a second card for the same body and coordinate, an
     !! INITIAL card for a prescribed coordinate. Refused at the later card,
-    !! with the earlier card's location.
-    subroutine check_repeats(rd, cards)
+    !! with the earlier card's location. The families' cards say their own
+    !! rule (`fc`, family_card_t's `unique`).
+    subroutine check_repeats(rd, cards, fc)
         type(deck_reader_t), intent(inout) :: rd
         type(card_t), intent(in) :: cards(:)
-        character(len=8), parameter :: elements(5) = [character(len=8) :: 'DISC', 'LIGAMENT', 'MUSCLE', 'HILL', &
-                                                                            'SPRING']
+        type(family_card_t), intent(in) :: fc(:)     !! the cards of the deck's element families
         character(len=*), parameter :: per_coordinate = 'one per body and coordinate'
-        call unique_fields(rd, cards, elements, 1, 'element name', 'a name no other element card uses')
+        integer :: k
+        call unique_fields(rd, cards, keys_of(fc, fc%unique == unique_element), 1, 'element name', &
+                           'a name no other element card uses')
         call unique_fields(rd, cards, [character(len=8) :: 'TABLE', 'PULSE'], 1, 'table name', 'a new name')
-        call unique_fields(rd, cards, ['ACTIVATE'], 1, 'history name', 'a new name')
+        do k = 1, size(fc)
+            if (fc(k)%unique == unique_name) call unique_fields(rd, cards, [fc(k)%key], 1, trim(fc(k)%what), 'a new name')
+        end do
         call unique_fields(rd, cards, ['SCALE'], 1, 'factor name', 'a new name')
         call unique_fields(rd, cards, ['JOINT'], 1, 'body', 'one JOINT card per body')
         call unique_fields(rd, cards, ['BODYPI'], 1, 'body', 'one BODYPI card per body')
         call unique_fields(rd, cards, ['NEUTRAL'], 2, 'body and coordinate', per_coordinate)
         call unique_fields(rd, cards, ['INITIAL'], 2, 'body and coordinate', per_coordinate)
         call unique_fields(rd, cards, ['PRESCRIB'], 2, 'body and coordinate', per_coordinate)
-        call unique_fields(rd, cards, ['LIMIT'], 2, 'body and coordinate', per_coordinate)
-        call unique_fields(rd, cards, ['ROM'], 2, 'body and coordinate', per_coordinate)
-        call unique_fields(rd, cards, ['NZSPRING'], 2, 'body and coordinate', per_coordinate)
+        do k = 1, size(fc)
+            if (fc(k)%unique == unique_coordinate) &
+                call unique_fields(rd, cards, [fc(k)%key], 2, 'body and coordinate', per_coordinate)
+        end do
         call unique_fields(rd, cards, [character(len=8) :: 'INITIAL', 'PRESCRIB'], 2, 'body and coordinate', &
                            'no INITIAL card for a prescribed coordinate (the PRESCRIB card gives its motion; '// &
                            'with ACCEL also its initial value and rate, F5 and F6)', across=.true.)
     end subroutine check_repeats
+
+    !> The keys of the family cards fc that `pick` picks.
+    pure function keys_of(fc, pick) result(keys)
+        type(family_card_t), intent(in) :: fc(:)
+        logical, intent(in) :: pick(:)              !! (size(fc)) which cards
+        character(len=8), allocatable :: keys(:)
+        integer :: k
+        allocate (keys(0))
+        do k = 1, size(fc)
+            if (pick(k)) keys = [character(len=8) :: keys, fc(k)%key]
+        end do
+    end function keys_of
 
     !> Refuse a card of one of `keys` whose fields F1..F`nf` (upper case)
     !! equal those of an earlier card of `keys`; `across`: only pairs of

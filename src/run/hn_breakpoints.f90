@@ -2,9 +2,10 @@
 !! run to end a step there and restart the integrator: the corners of the
 !! input tables. Every input table of a case is piecewise linear in a
 !! quantity that enters the equations of motion directly (the acceleration
-!! of a prescribed coordinate, an applied force or couple, a muscle
-!! activation), so at each knot the right-hand side keeps its value and
-!! changes its slope. A knot is
+!! of a prescribed coordinate, an applied force or couple, the input tables
+!! of an element family, `input_tables`: the muscles' activations), so at
+!! each knot the right-hand side keeps its value and changes its slope. A
+!! knot is
 !!   smooth  when the slope changes little against the table's range over
 !!           the knot's neighbourhood (sampled smooth data, such as the NBDL
 !!           sled tables every 1 ms): the error control of the method takes
@@ -19,8 +20,7 @@ module hn_breakpoints
     use hn_case, only: case_t
     use hn_motion, only: motion_kind_accel
     use hn_sorting, only: sort_index
-    use hn_families, only: fam_muscles
-    use hn_muscle_family, only: activation_tables
+    use hn_tables, only: table_t
     implicit none
     private
 
@@ -37,12 +37,13 @@ module hn_breakpoints
 contains
 
     !> Times in (t_start, t_end) where an input table has a corner: knots of
-    !! prescribed acceleration tables, applied-load tables and muscle
-    !! activation tables; sorted, without repeats.
+    !! prescribed acceleration tables, applied-load tables and the element
+    !! families' input tables (muscle activations); sorted, without repeats.
     function case_breakpoints(cs) result(tb)
         type(case_t), intent(in) :: cs   !! the run case (prescribed motions, load and activation tables, times)
         real(wp), allocatable :: tb(:), all(:)
-        integer :: j, e, i, n
+        type(table_t), allocatable :: tables(:)
+        integer :: j, e, i, n, f
         allocate (all(0))
         do j = 1, size(cs%model%prescribed)
             if (.not. cs%model%prescribed(j)) cycle
@@ -52,11 +53,12 @@ contains
         do e = 1, size(cs%model%applied)
             all = [all, table_corners(cs%model%applied(e)%magnitude%t, cs%model%applied(e)%magnitude%y)]
         end do
-        associate (tables => activation_tables(cs%model%family(fam_muscles)%f))
+        do f = 1, size(cs%model%family)
+            tables = cs%model%family(f)%f%input_tables()
             do e = 1, size(tables)
                 all = [all, table_corners(tables(e)%t, tables(e)%y)]
             end do
-        end associate
+        end do
         all = pack(all, all > cs%t_start .and. all < cs%t_end)
         all = all(sort_index(all))   ! ascending, then drop repeats
         allocate (tb(size(all)))

@@ -14,8 +14,6 @@ module hn_run
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
                            energy_t, dynamics_outputs, inertia_forces_free, state_to_coordinates
     use hn_forces, only: switch_count, switching_functions
-    use hn_families, only: fam_limits
-    use hn_limit_family, only: ranges_of
     use hn_integrators, only: integrator_t, new_integrator, spectral_radius, interpolate_hermite
     use hn_channels, only: channel_set_t, channels_define, channels_compute, channels_start, channel_index
     use hn_results, only: results_t
@@ -33,7 +31,6 @@ module hn_run
     use hn_progress, only: progress_t, limit_diagnosis, stop_remedy
     use hn_history, only: history_t
     use hn_version, only: code_version
-    use hn_joint_limits, only: joint_range_t, range_track, range_warnings, range_margin
     implicit none
     private
 
@@ -81,11 +78,18 @@ module hn_run
         real(wp) :: energy_residual = zero   !! largest |energy balance residual| [J]
         real(wp) :: energy_scale = zero      !! largest sum of energy-term magnitudes [J]
         integer :: nrows = 0                             !! rows of the listing's time histories
-        real(wp), allocatable :: range_peak(:)           !! largest excess beyond each joint's range (ROM cards) [rad]
+        !> peaks of the families' run monitors in family order (the limits':
+        !! excess beyond each joint's range, ROM cards) [rad]
+        real(wp), allocatable :: range_peak(:)
         real(wp), allocatable :: samples_t(:), samples(:, :)  !! (optional) every channel at every sample
         real(wp), allocatable :: samples_head_s(:, :, :)      !! (optional) head rotation matrix (head axes -> R) at every sample
         type(assessment_t) :: criteria                   !! injury criteria of the run
     end type run_result_t
+
+    !> The peaks of one family's run monitor and when they occurred.
+    type :: monitor_peaks_t
+        real(wp), allocatable :: peak(:), time(:)   !! (monitor_count) largest excess [family's units], when [s]
+    end type monitor_peaks_t
 
     !> Highest and lowest value of every channel and when they occurred.
     type :: peaks_t
@@ -104,7 +108,7 @@ module hn_run
         type(energy_t) :: en0                       !! energy terms at the start
         type(run_result_t) :: res
         type(peaks_t) :: peaks
-        real(wp), allocatable :: rom_peak(:), rom_time(:)   !! largest excess beyond each joint range [rad], when [s]
+        type(monitor_peaks_t), allocatable :: mon(:)  !! (families) peaks of each family's run monitor
         integer :: icol(size(criteria_channels)) = 0  !! the criteria_channels' indices in the channel set
         type(history_t) :: rows                     !! listing rows (t, every channel), memory bounded
         type(history_t) :: crit                     !! assessment inputs at every sample, memory bounded
@@ -137,6 +141,7 @@ module hn_run
         procedure :: finish => run_finish
         procedure :: next_output_time => run_next_output_time
         procedure :: is_running => run_is_running
+        procedure :: time_reached => run_time_reached
         procedure, private :: hold_posture, settle, init_outputs, check_state, diagnosis, fail, track_peaks
         procedure, private :: record_sample, control_sample
     end type run_state_t
@@ -262,10 +267,9 @@ contains
         integer, intent(out) :: stat
         character(len=msglen), intent(out) :: msg
         type(prestrain_t) :: ps
-        type(joint_range_t), allocatable :: rom(:)
         real(wp), allocatable :: xr(:)
-        real(wp) :: e, excess
-        integer :: k, nout, worst
+        character(len=:), allocatable :: w
+        integer :: f
         call settle_prestrain(me%cs%model, me%cs%t_start, me%cs%x0, me%cs%xd0, ps, stat, msg)
         if (stat /= stat_ok) return
         call model_ode_init(me%sys, me%cs%model)
@@ -273,24 +277,14 @@ contains
             ' NEWTON ITERATIONS'
         if (ps%largest > 0) write (me%cs%hold_note, '(a,f8.3,3a)') trim(me%cs%hold_note)//'; LARGEST ROTATION SHIFT ', &
             ps%dx(ps%largest)/deg, ' DEG AT ', trim(upper(dof_label(me%cs%model%tree, ps%largest)))
-        ! a neutral moved out of its joint's range: the start's load is not a joint preload
-        rom = ranges_of(me%cs%model%family(fam_limits)%f)
+        ! a warning of a family on the settled start (the limits': a neutral out of its joint's range)
         xr = neutral_coordinates(me%cs%model)
-        nout = 0
-        worst = 0
-        excess = zero
-        do k = 1, size(rom)
-            e = max(xr(rom(k)%dof) + ps%dx(rom(k)%dof) - rom(k)%xmax, rom(k)%xmin - xr(rom(k)%dof) - ps%dx(rom(k)%dof))
-            if (e <= zero) cycle
-            nout = nout + 1
-            if (e > excess) then
-                excess = e
-                worst = k
-            end if
+        do f = 1, size(me%cs%model%family)
+            w = me%cs%model%family(f)%f%neutral_warning(xr, ps%dx)
+            if (len(w) == 0) cycle
+            me%res%warning = w
+            exit
         end do
-        if (nout > 0) write (me%res%warning, '(a,i0,3a,f8.2,a)') 'WARNING: HOLD PRESTRAIN moves ', nout, &
-            ' joint neutral(s) out of their range of motion; largest: ', trim(rom(worst)%label), ' by ', excess/deg, &
-            ' deg (the start load is not a preload of the joints: held by the muscles, it is HOLD POSTURE''s)'
     end subroutine settle
 
     !> Output schedule, listing rows, sample store, peaks, breakpoints and
@@ -326,10 +320,13 @@ contains
             me%pending_control = .false.
             if (size(me%tc) > 0) call me%control_sample(cs%t_start, me%integ%current_state())
         end associate
-        associate (nrom => size(ranges_of(me%cs%model%family(fam_limits)%f)))
-            allocate (me%rom_peak(nrom), me%rom_time(nrom))
-        end associate
-        me%rom_peak = zero; me%rom_time = me%cs%t_start
+        allocate (me%mon(size(me%cs%model%family)))
+        do k = 1, size(me%mon)
+            associate (n => me%cs%model%family(k)%f%monitor_count())
+                allocate (me%mon(k)%peak(n), me%mon(k)%time(n))
+            end associate
+            me%mon(k)%peak = zero; me%mon(k)%time = me%cs%t_start
+        end do
     end subroutine init_outputs
 
     !> The model's controllers sample the state y at time t (its kinematics
@@ -362,6 +359,13 @@ contains
         class(run_state_t), intent(in) :: me
         run_is_running = me%running
     end function run_is_running
+
+    !> The time the integrator's last step ended [s] (a breakpoint it
+    !! landed on, or past the last output time).
+    real(wp) function run_time_reached(me) result(t)
+        class(run_state_t), intent(in) :: me
+        t = me%integ%current_time()
+    end function run_time_reached
 
     !> Integrate until the integrator has passed tout (its dense output then
     !! covers tout), with steps ending on the input breakpoints, events
@@ -672,8 +676,18 @@ contains
     subroutine track_peaks(me, t)
         class(run_state_t), intent(inout) :: me
         real(wp), intent(in) :: t
-        integer :: k
-        call range_track(ranges_of(me%cs%model%family(fam_limits)%f), me%sys%ws%x, t, me%rom_peak, me%rom_time)
+        integer :: k, f
+        real(wp), allocatable :: e(:)
+        do f = 1, size(me%mon)
+            if (size(me%mon(f)%peak) == 0) cycle
+            allocate (e(size(me%mon(f)%peak)))
+            call me%cs%model%family(f)%f%monitor(me%sys%ws%x, e)
+            where (e > me%mon(f)%peak)
+                me%mon(f)%time = t
+                me%mon(f)%peak = e
+            end where
+            deallocate (e)
+        end do
         do k = 1, me%ch%n
             if (me%ch%value(k) > me%peaks%vmax(k)) then
                 me%peaks%vmax(k) = me%ch%value(k); me%peaks%tmax(k) = t
@@ -700,10 +714,11 @@ contains
         call system_clock(c1, rate)
         if (me%clock0 > 0) me%res%wall = real(c1 - me%clock0, wp)/real(rate, wp)
         me%res%nevals_output = me%nev_out
-        if (allocated(me%rom_peak)) then
-            me%res%range_peak = me%rom_peak
-        else
-            allocate (me%res%range_peak(0))
+        allocate (me%res%range_peak(0))
+        if (allocated(me%mon)) then
+            do k = 1, size(me%mon)
+                me%res%range_peak = [me%res%range_peak, me%mon(k)%peak]
+            end do
         end if
         me%res%nevals = me%sys%nevals - me%nev_out
         if (allocated(me%integ)) then
@@ -745,20 +760,22 @@ contains
         res = me%res
     end subroutine run_finish
 
-    !> Joints past their physiological range by more than the margin: one
-    !! line each in the listing, and summed up in the run's warning (stderr).
+    !> The families' run monitors report: their lines in the listing, the
+    !! first one's warning as the run's (stderr) unless it has one already.
     subroutine range_report(me)
         type(run_state_t), intent(inout) :: me
         character(len=160), allocatable :: lines(:)
-        integer :: k
-        lines = range_warnings(ranges_of(me%cs%model%family(fam_limits)%f), me%rom_peak, me%rom_time, range_margin)
-        do k = 1, size(lines)
-            call me%lst%message(lines(k))
+        character(len=:), allocatable :: summary
+        integer :: k, f
+        if (.not. allocated(me%mon)) return
+        do f = 1, size(me%mon)
+            if (size(me%mon(f)%peak) == 0) cycle
+            call me%cs%model%family(f)%f%monitor_report(me%mon(f)%peak, me%mon(f)%time, lines, summary)
+            do k = 1, size(lines)
+                call me%lst%message(lines(k))
+            end do
+            if (len(summary) > 0 .and. len_trim(me%res%warning) == 0) me%res%warning = summary
         end do
-        if (size(lines) == 0 .or. len_trim(me%res%warning) > 0) return
-        k = count(me%rom_peak(1:maxloc(me%rom_peak, dim=1)) > range_margin)
-        write (me%res%warning, '(a,i0,2a)') 'WARNING: ', size(lines), ' joint rotation(s) past the physiological '// &
-            'range plus margin; largest: ', trim(lines(k)(16:))
     end subroutine range_report
 
     !> The energy balance, an accuracy warning, the counts and the status

@@ -76,7 +76,7 @@ module hn_calibrate
     use hn_iso18571, only: iso18571_rating_t, iso18571_rating, iso18571_min_samples, iso18571_dt
     use hn_prestrain, only: prestrain_t, settle_prestrain
     use hn_rest_modes, only: rest_mode_t, rest_modes
-    use hn_model, only: model_t, fam_muscles
+    use hn_model, only: model_t
     use hn_joint_limits, only: range_margin
     implicit none
     private
@@ -988,7 +988,7 @@ contains
         real(wp), intent(out) :: lp                  !! without them [1/s]
         type(case_t) :: cs
         type(rest_mode_t), allocatable :: modes(:)
-        integer :: c, stat
+        integer :: c, stat, f
         character(len=msglen) :: msg
         lmax = -huge(one)
         lp = merge(-huge(one), huge(one), cal%passive)
@@ -1001,7 +1001,9 @@ contains
             end if
             if (size(modes) > 0) lmax = max(lmax, modes(1)%re)
             if (.not. cal%passive) cycle
-            cs%model%family_on(fam_muscles) = .false.
+            do f = 1, size(cs%model%family)
+                if (cs%model%family(f)%f%active_muscle()) cs%model%family_on(f) = .false.
+            end do
             call case_rest_modes(cs, modes, stat, msg)
             if (stat /= stat_ok) then
                 lp = huge(one)

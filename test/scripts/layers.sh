@@ -4,7 +4,12 @@
 # folder above it in the order of the folder table of docs/architecture.md
 # (the one place the order is written); the table's module lists are the
 # modules of each folder. Also shown to fail: a copy of the tree with one
-# upward `use` added. Run from the project root.
+# upward `use` added. And the element families plug in: no file of src/,
+# app/ or test/ outside src/elements/ (the families and their registry)
+# names a family's number (`fam` and an underscore: the registry's
+# constants); it looks families up by name or calls
+# their bindings (shown to fail on a copy with one added). Run from the
+# project root.
 set -u
 pass=0; fail=0
 tmp=$(mktemp -d)
@@ -78,6 +83,30 @@ elif grep -q 'src/base/hn_kinds.f90 uses hn_run of src/run/' "$tmp/report2"; the
 else
     echo "FAIL  the check failed on the bad tree without naming the upward use:"
     sed 's/^/      /' "$tmp/report2"
+    fail=$((fail + 1))
+fi
+num='fam''_'   # a family number's prefix (split, so that this file does not hold it)
+numbers_outside() {   # numbers_outside ROOT: files under ROOT/{src,app,test} outside src/elements naming one
+    (cd "$1" && grep -rl "$num" src app test 2>/dev/null | grep -v '^src/elements/' | sort)
+}
+found=$(numbers_outside .)
+if [ -z "$found" ]; then
+    echo "PASS  no file outside src/elements/ names a family number ${num}*"
+    pass=$((pass + 1))
+else
+    echo "FAIL  files outside src/elements/ name a family number ${num}* (look the family up by name, or add a binding):"
+    echo "$found" | sed 's/^/      /'
+    fail=$((fail + 1))
+fi
+# the check must fail on a tree where run/hn_run names the limits' number
+mkdir -p "$tmp/numtree"
+cp -r src app test "$tmp/numtree/"
+echo "! ${num}limits" >> "$tmp/numtree/src/run/hn_run.f90"
+if [ "$(numbers_outside "$tmp/numtree")" = "src/run/hn_run.f90" ]; then
+    echo "PASS  a family number named outside src/elements/ (run/hn_run) is found"
+    pass=$((pass + 1))
+else
+    echo "FAIL  the family-number check did not find exactly the file that names one"
     fail=$((fail + 1))
 fi
 echo "$pass passed, $fail failed"

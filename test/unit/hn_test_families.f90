@@ -3,7 +3,7 @@
 !! a list (`set_springs`).
 module hn_test_families
     use hn_model, only: model_t, model_set_family
-    use hn_families, only: fam_discs, fam_ligaments, fam_muscles, fam_limits, fam_springs
+    use hn_families, only: family_index
     use hn_discs, only: disc_t
     use hn_line_elements, only: ligament_t, muscle_t, spring_t
     use hn_joint_limits, only: joint_limit_t, joint_range_t
@@ -33,12 +33,12 @@ contains
     pure function elements_of(model) result(v)
         type(model_t), intent(in) :: model   !! the model
         type(element_view_t) :: v
-        v%discs = discs_of(model%family(fam_discs)%f)
-        v%ligaments = ligaments_of(model%family(fam_ligaments)%f)
-        v%muscles = muscles_of(model%family(fam_muscles)%f)
-        v%limits = limits_of(model%family(fam_limits)%f)
-        v%ranges = ranges_of(model%family(fam_limits)%f)
-        v%springs = springs_of(model%family(fam_springs)%f)
+        v%discs = discs_of(model%family(family_index('DISCS'))%f)
+        v%ligaments = ligaments_of(model%family(family_index('LIGAMENTS'))%f)
+        v%muscles = muscles_of(model%family(family_index('MUSCLES'))%f)
+        v%limits = limits_of(model%family(family_index('LIMITS'))%f)
+        v%ranges = ranges_of(model%family(family_index('LIMITS'))%f)
+        v%springs = springs_of(model%family(family_index('SPRINGS'))%f)
     end function elements_of
 
     !> The model's springs become `springs`.
@@ -50,7 +50,7 @@ contains
         ! would give a component that the model's copy leaves unallocated
         allocate (s(size(springs)))
         s = springs
-        call model_set_family(model, fam_springs, spring_family_t(items=s))
+        call model_set_family(model, family_index('SPRINGS'), spring_family_t(items=s))
     end subroutine set_springs
 
 end module hn_test_families

@@ -1,23 +1,31 @@
 !> A toy element family for the tests, registered only in the models the
-!! tests build (model_add_family): linear spring-dampers on single
-!! coordinates, Q_j = -k (x_j - x0) - c xdot_j. It shows what a new family
-!! is: one type extending element_family_t with every binding, and nothing
-!! else in the code changed for the loads, the structured Jacobian, the
-!! channels, the plausibility checks and the scaling to use it. Output per
-!! spring: its generalized force [N or N m].
+!! tests build (model_add_family, or read_case's `families`): linear
+!! spring-dampers on single coordinates, Q_j = -k (x_j - x0) - c s(t) xdot_j.
+!! It shows what a new family is: one type extending element_family_t with
+!! every binding, and nothing else in the code changed for the deck (its
+!! card, its repeats refused, CHANGE on its fields), the loads, the
+!! structured Jacobian, the channels, the plausibility checks, the scaling,
+!! the run's breakpoints (its damping tables) and the run's monitors (its
+!! springs' stretch) to use it. Output per spring: its generalized force
+!! [N or N m].
 !!
 !! It reads its own deck card (`read_card`), which it names itself
 !! (`deck_cards`, as a family outside the registry does):
 !!
-!!   CSPRING   body      coord     k         c         x0        name
+!!   CSPRING   body      coord     k         c         x0        name      table
 !!
 !! a spring on coordinate `coord` (TX ... RZ) of `body`, stiffness k
 !! [N/m or N m/rad], damping c [N s/m or N m s/rad] (blank: 0), neutral
-!! value x0 [m or deg] (blank: 0); a card on a locked coordinate is refused.
+!! value x0 [m or deg] (blank: 0), and the name of a TABLE whose value
+!! s(t) multiplies the damping (blank: s = 1); a card on a locked
+!! coordinate is refused, and so is a second card on the same body and
+!! coordinate.
 module hn_test_toy_family
     use hn_kinds, only: wp, zero, half
     use hn_deck_reader, only: deck_reader_t
-    use hn_element_cards, only: card_context_t, family_card_t, active_coordinate, unit_of, unit_factor, unit_limit
+    use hn_element_cards, only: card_context_t, family_card_t, active_coordinate, unit_of, unit_factor, unit_limit, &
+                                table_ref, unique_coordinate
+    use hn_tables, only: table_t, table_value
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -35,11 +43,13 @@ module hn_test_toy_family
         real(wp) :: k = zero           !! stiffness [N/m or N m/rad]
         real(wp) :: c = zero           !! damping [N s/m or N m s/rad]
         real(wp) :: x0 = zero          !! neutral value [m or rad]
+        integer :: table = 0           !! the family's table s(t) on the damping (0: s = 1)
     end type coord_spring_t
 
     !> The coordinate springs of a model.
     type, extends(element_family_t) :: coord_spring_family_t
         type(coord_spring_t), allocatable :: items(:)
+        type(table_t), allocatable :: tables(:)   !! the damping tables its springs name
     contains
         procedure :: deck_cards => toy_deck_cards
         procedure :: read_card => toy_read_card
@@ -56,6 +66,10 @@ module hn_test_toy_family
         procedure :: scale_items => toy_items
         procedure :: scale => toy_scale
         procedure :: stiffen => toy_stiffen
+        procedure :: input_tables => toy_input_tables
+        procedure :: monitor_count => toy_monitor_count
+        procedure :: monitor => toy_monitor
+        procedure :: monitor_report => toy_monitor_report
     end type coord_spring_family_t
 
 contains
@@ -78,7 +92,16 @@ contains
         type(kinematics_t), intent(in) :: kin                 !! neutral kinematics (unused)
     end subroutine toy_neutral
 
-    !> Q_j = -k (x_j - x0) - c xdot_j; energy k d^2 / 2, dissipation c xdot^2.
+    !> Damping of spring e at time t: c s(t).
+    pure real(wp) function toy_damping(this, e, t) result(c)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: e                           !! the spring
+        real(wp), intent(in) :: t                          !! time [s]
+        c = this%items(e)%c
+        if (this%items(e)%table > 0) c = c*table_value(this%tables(this%items(e)%table), t)
+    end function toy_damping
+
+    !> Q_j = -k (x_j - x0) - c s(t) xdot_j; energy k d^2 / 2, dissipation c s(t) xdot^2.
     pure subroutine toy_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
         class(coord_spring_family_t), intent(in) :: this   !! the family
         real(wp), intent(in) :: t                          !! time [s]
@@ -94,15 +117,15 @@ contains
         integer :: e
         do e = 1, size(this%items)
             associate (s => this%items(e))
-                out(1, e) = -s%k*(x(s%dof) - s%x0) - s%c*xd(s%dof)
+                out(1, e) = -s%k*(x(s%dof) - s%x0) - toy_damping(this, e, t)*xd(s%dof)
                 loads%q(s%dof) = loads%q(s%dof) + out(1, e)
                 u_elastic = u_elastic + half*s%k*(x(s%dof) - s%x0)**2
-                p_diss = p_diss + s%c*xd(s%dof)**2
+                p_diss = p_diss + toy_damping(this, e, t)*xd(s%dof)**2
             end associate
         end do
     end subroutine toy_loads
 
-    !> K_jj += k, C_jj += c (the law is linear: its tangent exactly).
+    !> K_jj += k, C_jj += c s(t) (the law is linear: its tangent exactly).
     pure subroutine toy_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
         class(coord_spring_family_t), intent(in) :: this   !! the family
         type(body_tree_t), intent(in) :: tree              !! the body tree (unused)
@@ -122,7 +145,7 @@ contains
         do e = 1, size(this%items)
             associate (s => this%items(e))
                 kgen(s%dof, s%dof) = kgen(s%dof, s%dof) + s%k
-                cgen(s%dof, s%dof) = cgen(s%dof, s%dof) + s%c
+                cgen(s%dof, s%dof) = cgen(s%dof, s%dof) + toy_damping(this, e, t)
             end associate
         end do
     end subroutine toy_tangent
@@ -200,12 +223,59 @@ contains
         this%items%k = factor*this%items%k
     end subroutine toy_stiffen
 
-    !> Its one card, CSPRING, with no continuation card, read in deck order.
+    !> Its one card, CSPRING, with no continuation card, read in deck order,
+    !! one per body and coordinate (F1, F2).
     pure function toy_deck_cards(this) result(c)
         class(coord_spring_family_t), intent(in) :: this   !! the family
         type(family_card_t), allocatable :: c(:)
-        c = [family_card_t('CSPRING', 0, 0)]
+        c = [family_card_t('CSPRING', 0, 0, unique=unique_coordinate, coordinate=.true.)]
     end function toy_deck_cards
+
+    !> The damping tables: the run lands its steps on their corners.
+    pure function toy_input_tables(this) result(tabs)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        type(table_t), allocatable :: tabs(:)
+        if (allocated(this%tables)) then
+            tabs = this%tables
+        else
+            allocate (tabs(0))
+        end if
+    end function toy_input_tables
+
+    !> The monitor watches each spring's stretch.
+    pure integer function toy_monitor_count(this) result(n)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        n = size(this%items)
+    end function toy_monitor_count
+
+    !> |x_j - x0| of each spring [m or rad].
+    pure subroutine toy_monitor(this, x, excess)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: x(:)                       !! active coordinates
+        real(wp), intent(out) :: excess(:)                 !! (springs) their stretch
+        integer :: e
+        do e = 1, size(this%items)
+            excess(e) = abs(x(this%items(e)%dof) - this%items(e)%x0)
+        end do
+    end subroutine toy_monitor
+
+    !> One line per spring, its largest stretch and when; the run's warning
+    !! names the spring stretched most.
+    pure subroutine toy_monitor_report(this, peak, tpeak, lines, summary)
+        class(coord_spring_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: peak(:)                    !! (springs) largest stretch
+        real(wp), intent(in) :: tpeak(:)                   !! (springs) when [s]
+        character(len=warning_len), allocatable, intent(out) :: lines(:)   !! one line per spring
+        character(len=:), allocatable, intent(out) :: summary              !! the spring stretched most
+        integer :: e
+        allocate (lines(size(peak)))
+        do e = 1, size(peak)
+            write (lines(e), '(3a,es10.3,a,f8.2,a)') 'coordinate spring ', trim(this%items(e)%name), &
+                ': largest stretch ', peak(e), ' at ', 1000*tpeak(e), ' ms'
+        end do
+        summary = ''
+        if (size(peak) > 0) summary = 'WARNING: '//trim(lines(maxloc(peak, dim=1)))
+    end subroutine toy_monitor_report
 
     !> A CSPRING card: one spring more.
     subroutine toy_read_card(this, rd, ctx, i, key)
@@ -215,13 +285,20 @@ contains
         integer, intent(in) :: i                              !! the card's first deck line
         character(len=*), intent(in) :: key                   !! the card name (CSPRING)
         type(coord_spring_t) :: s
-        integer :: kb, m
+        integer :: kb, m, it
         call active_coordinate(rd, i, ctx%tree, ctx%bnames, ctx%bmap, kb, m, s%dof, .false.)
         call rd%real(i, 3, 'stiffness k', 'N/m or N m/rad', s%k, zero, 1.0e9_wp)
         call rd%real(i, 4, 'damping c', 'N s/m or N m s/rad', s%c, zero, 1.0e9_wp, default=zero)
         call rd%real(i, 5, 'neutral value', unit_of(m), s%x0, -unit_limit(m), unit_limit(m), default=zero)
         call rd%name(i, 6, 'spring name', s%name)
         if (rd%failed()) return
+        if (len_trim(rd%raw(i, 7)) > 0) then
+            it = table_ref(rd, i, 7, ctx%tabs)
+            if (rd%failed()) return
+            if (.not. allocated(this%tables)) allocate (this%tables(0))
+            this%tables = [this%tables, ctx%tabs(it)%tab]
+            s%table = size(this%tables)
+        end if
         s%x0 = s%x0*unit_factor(m)
         this%items = [this%items, s]
     end subroutine toy_read_card
