@@ -144,53 +144,86 @@ contains
         end associate
     end function param_units
 
-    !> The sweep listing on unit lu.
+    !> The sweep listing on unit lu: the deck's echo, the sweep and its
+    !! parameters, the member runs, their outputs, the sensitivities and
+    !! the most influential parameter per output.
     subroutine sweep_listing(sw, o, lu, version)
         type(sweep_t), intent(in) :: sw                !! the sweep
         type(sweep_outcome_t), intent(in) :: o         !! design, member records, sensitivities, ranks, wall time
         integer, intent(in) :: lu                      !! unit of the sweep listing
         character(len=*), intent(in) :: version        !! program version for the page headers
         type(listing_t) :: lst
+        integer :: nrun, nfail
+        nrun = size(o%v, 2)
+        nfail = count(o%recs%status /= 0)
+        call lst%start(lu, 'SWEEP: '//sw%title, version)
+        call lst%echo_deck(sw%deck)
+        call lst%new_page()
+        call listing_parameters(lst, sw, o)
+        call listing_members(lst, sw, o)
+        call output_table(lst, o, ' MEMBER RUNS: SAGITTAL OUTPUTS (head rotation and angular motion about y, upper-neck '// &
+                          'Fx, Fz, My)', shown_sagittal)
+        call output_table(lst, o, ' MEMBER RUNS: 3-D AND OUT-OF-PLANE OUTPUTS (Bryant angles x, z and total angle; '// &
+                          'resultants; Fy, Mx, Mz)', shown_3d)
+        ! the sensitivity tables
+        call sensitivity_table(lst, sw, o, ' SAGITTAL OUTPUTS', shown_sagittal)
+        call sensitivity_table(lst, sw, o, ' 3-D AND OUT-OF-PLANE OUTPUTS', shown_3d)
+        call influence_table(lst, sw, o)
+        if (nfail > 0) call lst%message(trim(int_str(nfail))//' OF '//trim(int_str(nrun))// &
+                                        ' MEMBER RUNS FAILED; SEE THE LIST ABOVE')
+    end subroutine sweep_listing
+
+    !> The sweep's page: base deck, design, runs, and the parameters' table.
+    subroutine listing_parameters(lst, sw, o)
+        type(listing_t), intent(inout) :: lst          !! the sweep listing
+        type(sweep_t), intent(in) :: sw                !! the sweep
+        type(sweep_outcome_t), intent(in) :: o         !! design, member records, ranks, wall time
         character(len=400) :: line
-        integer :: p, r, k, np, nrun, nfail
-        associate (v => o%v, recs => o%recs, s => o%s, valid => o%valid, r2 => o%r2, nranks => o%nranks, &
-                   wall => o%wall)
-            np = size(v, 1)
-            nrun = size(v, 2)
-            nfail = count(recs%status /= 0)
-            call lst%start(lu, 'SWEEP: '//sw%title, version)
-            call lst%echo_deck(sw%deck)
-            call lst%new_page()
-            call lst%put(' PARAMETER SWEEP')
-            call lst%put('')
-            call lst%put('   base deck       '//trim(sw%base))
-            select case (sw%design)
-            case (design_oat)
-                write (line, '(a,f8.3,a)') '   design          OAT: run 1 nominal, then each parameter at -/+', &
-                    sw%percent, ' % (normalised sensitivities)'
-            case default
-                line = '   design          '//trim(design_name(sw%design))
-                if (sw%levels > 0 .and. sw%design == design_factorial) line = trim(line)//', '//trim(int_str(sw%levels))// &
-                                                               ' levels per parameter'
-                if (sw%design == design_lhs) line = trim(line)//', seed '//trim(int_str(sw%seed))
-                line = trim(line)//' (standardised regression coefficients)'
-            end select
-            call lst%put(line)
-            write (line, '(a,i0,a,i0,a,i0,a,f10.2,a,f8.3,a)') '   runs            ', nrun, ' (', nrun - nfail, &
-                ' complete, ', nfail, ' failed) on ', real(nranks, wp), ' ranks, ', wall, ' s wall time'
-            call lst%put(line)
-            call lst%put('')
-            call lst%put('   NO  NAME        WHAT                              LOW           HIGH          NOMINAL   SPACING')
-            do p = 1, np
-                associate (q => sw%params(p))
-                    write (line, '(i5,2x,a10,2x,a32,3es14.5,2x,a)') p, q%name, param_label(sw, p), q%low, q%high, &
-                        q%nominal, merge('LOG', 'LIN', q%log_spacing)
-                    if (sw%design == design_oat) write (line, '(i5,2x,a10,2x,a32,28x,es14.5,2x,a)') p, q%name, &
-                        param_label(sw, p), q%nominal, 'OAT'
+        integer :: p, nrun, nfail
+        nrun = size(o%v, 2)
+        nfail = count(o%recs%status /= 0)
+        call lst%put(' PARAMETER SWEEP')
+        call lst%put('')
+        call lst%put('   base deck       '//trim(sw%base))
+        select case (sw%design)
+        case (design_oat)
+            write (line, '(a,f8.3,a)') '   design          OAT: run 1 nominal, then each parameter at -/+', &
+                sw%percent, ' % (normalised sensitivities)'
+        case default
+            line = '   design          '//trim(design_name(sw%design))
+            if (sw%levels > 0 .and. sw%design == design_factorial) line = trim(line)//', '//trim(int_str(sw%levels))// &
+                                                           ' levels per parameter'
+            if (sw%design == design_lhs) line = trim(line)//', seed '//trim(int_str(sw%seed))
+            line = trim(line)//' (standardised regression coefficients)'
+        end select
+        call lst%put(line)
+        write (line, '(a,i0,a,i0,a,i0,a,f10.2,a,f8.3,a)') '   runs            ', nrun, ' (', nrun - nfail, &
+            ' complete, ', nfail, ' failed) on ', real(o%nranks, wp), ' ranks, ', o%wall, ' s wall time'
+        call lst%put(line)
+        call lst%put('')
+        call lst%put('   NO  NAME        WHAT                              LOW           HIGH          NOMINAL   SPACING')
+        do p = 1, size(o%v, 1)
+            associate (q => sw%params(p))
+                write (line, '(i5,2x,a10,2x,a32,3es14.5,2x,a)') p, q%name, param_label(sw, p), q%low, q%high, &
+                    q%nominal, merge('LOG', 'LIN', q%log_spacing)
+                if (sw%design == design_oat) write (line, '(i5,2x,a10,2x,a32,28x,es14.5,2x,a)') p, q%name, &
+                    param_label(sw, p), q%nominal, 'OAT'
             end associate
             call lst%put(line)
         end do
-        ! the members: parameter values, then the two tables of outputs
+    end subroutine listing_parameters
+
+    !> The members' parameter values (the first max_shown_params), then the
+    !! failed runs with their exit codes and messages.
+    subroutine listing_members(lst, sw, o)
+        type(listing_t), intent(inout) :: lst          !! the sweep listing
+        type(sweep_t), intent(in) :: sw                !! the sweep
+        type(sweep_outcome_t), intent(in) :: o         !! design and member records
+        character(len=400) :: line
+        integer :: p, r, np, nrun, nfail
+        np = size(o%v, 1)
+        nrun = size(o%v, 2)
+        nfail = count(o%recs%status /= 0)
         call lst%new_page()
         call lst%put(' MEMBER RUNS: PARAMETER VALUES (FAMILY and BODY parameters as scale factors, FIELD parameters '// &
                      'as values)')
@@ -203,37 +236,40 @@ contains
         end do
         call lst%put(line)
         do r = 1, nrun
-            write (line, '(i6,i3)') r, recs(r)%status
+            write (line, '(i6,i3)') r, o%recs(r)%status
             do p = 1, min(np, max_shown_params)
-                write (line(len_trim(line) + 1:), '(2x,es10.3)') v(p, r)
+                write (line(len_trim(line) + 1:), '(2x,es10.3)') o%v(p, r)
             end do
-            if (recs(r)%status /= 0) line = trim(line)//'  FAILED (below)'
+            if (o%recs(r)%status /= 0) line = trim(line)//'  FAILED (below)'
             call lst%put(line)
         end do
         if (nfail > 0) then
             call lst%put('')
             call lst%put(' FAILED RUNS (exit code and message; they are excluded from the sensitivities)')
             do r = 1, nrun
-                if (recs(r)%status == 0) cycle
-                write (line, '(a,i0,a,i0,a)') '   run ', r, ' (exit ', recs(r)%status, '): '
-                call lst%put(trim(line)//' '//trim(recs(r)%message))
+                if (o%recs(r)%status == 0) cycle
+                write (line, '(a,i0,a,i0,a)') '   run ', r, ' (exit ', o%recs(r)%status, '): '
+                call lst%put(trim(line)//' '//trim(o%recs(r)%message))
             end do
         end if
-        call output_table(' MEMBER RUNS: SAGITTAL OUTPUTS (head rotation and angular motion about y, upper-neck '// &
-                          'Fx, Fz, My)', shown_sagittal)
-        call output_table(' MEMBER RUNS: 3-D AND OUT-OF-PLANE OUTPUTS (Bryant angles x, z and total angle; '// &
-                          'resultants; Fy, Mx, Mz)', shown_3d)
-        ! the sensitivity tables
-        call sensitivity_table(' SAGITTAL OUTPUTS', shown_sagittal)
-        call sensitivity_table(' 3-D AND OUT-OF-PLANE OUTPUTS', shown_3d)
+    end subroutine listing_members
+
+    !> The most influential parameter of every output (the largest
+    !! sensitivity in magnitude), or why there is none.
+    subroutine influence_table(lst, sw, o)
+        type(listing_t), intent(inout) :: lst          !! the sweep listing
+        type(sweep_t), intent(in) :: sw                !! the sweep
+        type(sweep_outcome_t), intent(in) :: o         !! sensitivities, their validity, roundoff outputs
+        character(len=400) :: line
+        integer :: p, k
         call lst%need(3 + nout)
         call lst%put('')
         call lst%put(' MOST INFLUENTIAL PARAMETER PER OUTPUT (every output; n/a: no sensitivity could be computed)')
         do k = 1, nout
-            if (any(valid(:, k))) then
-                p = maxloc(abs(s(:, k)), mask=valid(:, k), dim=1)
+            if (any(o%valid(:, k))) then
+                p = maxloc(abs(o%s(:, k)), mask=o%valid(:, k), dim=1)
                 write (line, '(3x,a12,1x,a8,2x,a10,f10.3)') output_names(k), output_units(k), sw%params(p)%name, &
-                    s(p, k)
+                    o%s(p, k)
             else if (o%roundoff(k)) then
                 write (line, '(3x,a12,1x,a8,2x,a)') output_names(k), output_units(k), &
                     'n/a: roundoff in every member (below 1E-8 of its group)'
@@ -242,90 +278,94 @@ contains
             end if
             call lst%put(line)
         end do
-        if (nfail > 0) call lst%message(trim(int_str(nfail))//' OF '//trim(int_str(nrun))// &
-                                        ' MEMBER RUNS FAILED; SEE THE LIST ABOVE')
-        end associate
-    contains
-        !> One row per member of the outputs `which`, under its title.
-        subroutine output_table(title, which)
-            character(len=*), intent(in) :: title
-            integer, intent(in) :: which(:)
-            integer :: j
-            real(wp) :: x
-            call lst%need(6 + min(size(o%recs), 10))
-            call lst%put('')
-            call lst%put(title)
-            call lst%put('')
-            line = '   RUN ST'
-            do j = 1, size(which)
-                line(10 + col*(j - 1):) = ' '//adjustr(output_names(which(j)))
-            end do
-            call lst%put(line)
-            line = ''
-            do j = 1, size(which)
-                line(10 + col*(j - 1):) = repeat(' ', col - 8)//adjustr(output_units(which(j)))
-            end do
-            call lst%put(line)
-            do r = 1, size(o%recs)
-                write (line, '(i6,i3)') r, o%recs(r)%status
-                if (o%recs(r)%status == 0) then
-                    do j = 1, size(which)
-                        x = o%recs(r)%outputs(which(j))
-                        write (line(10 + col*(j - 1):), '(1x,g12.4)') merge(zero, x, x == zero)   ! -0 as 0
-                    end do
-                else
-                    line = trim(line)//'  failed'
-                end if
-                call lst%put(line)
-            end do
-        end subroutine output_table
+    end subroutine influence_table
 
-        !> The sensitivities of the outputs `which` to every parameter.
-        subroutine sensitivity_table(title, which)
-            character(len=*), intent(in) :: title
-            integer, intent(in) :: which(:)
-            integer :: j, kk
-            call lst%need(8 + size(o%v, 1))
-            call lst%put('')
-            if (sw%design == design_oat) then
-                call lst%put(' SENSITIVITIES,'//title//': percent change of the output per percent change of the '// &
-                             'parameter')
+    !> One row per member of the outputs `which`, under its title.
+    subroutine output_table(lst, o, title, which)
+        type(listing_t), intent(inout) :: lst          !! the sweep listing
+        type(sweep_outcome_t), intent(in) :: o         !! member records
+        character(len=*), intent(in) :: title          !! the table's title
+        integer, intent(in) :: which(:)                !! the outputs shown
+        character(len=400) :: line
+        integer :: j, r
+        real(wp) :: x
+        call lst%need(6 + min(size(o%recs), 10))
+        call lst%put('')
+        call lst%put(title)
+        call lst%put('')
+        line = '   RUN ST'
+        do j = 1, size(which)
+            line(10 + col*(j - 1):) = ' '//adjustr(output_names(which(j)))
+        end do
+        call lst%put(line)
+        line = ''
+        do j = 1, size(which)
+            line(10 + col*(j - 1):) = repeat(' ', col - 8)//adjustr(output_units(which(j)))
+        end do
+        call lst%put(line)
+        do r = 1, size(o%recs)
+            write (line, '(i6,i3)') r, o%recs(r)%status
+            if (o%recs(r)%status == 0) then
+                do j = 1, size(which)
+                    x = o%recs(r)%outputs(which(j))
+                    write (line(10 + col*(j - 1):), '(1x,g12.4)') merge(zero, x, x == zero)   ! -0 as 0
+                end do
             else
-                call lst%put(' SENSITIVITIES,'//title//': standardised regression coefficients (R^2 of the linear '// &
-                             'fit below)')
+                line = trim(line)//'  failed'
             end if
-            call lst%put('')
-            line = '   PARAMETER '
+            call lst%put(line)
+        end do
+    end subroutine output_table
+
+    !> The sensitivities of the outputs `which` to every parameter.
+    subroutine sensitivity_table(lst, sw, o, title, which)
+        type(listing_t), intent(inout) :: lst          !! the sweep listing
+        type(sweep_t), intent(in) :: sw                !! the sweep
+        type(sweep_outcome_t), intent(in) :: o         !! sensitivities, their validity, R^2
+        character(len=*), intent(in) :: title          !! the table's title
+        integer, intent(in) :: which(:)                !! the outputs shown
+        character(len=400) :: line
+        integer :: j, kk, p
+        call lst%need(8 + size(o%v, 1))
+        call lst%put('')
+        if (sw%design == design_oat) then
+            call lst%put(' SENSITIVITIES,'//title//': percent change of the output per percent change of the '// &
+                         'parameter')
+        else
+            call lst%put(' SENSITIVITIES,'//title//': standardised regression coefficients (R^2 of the linear '// &
+                         'fit below)')
+        end if
+        call lst%put('')
+        line = '   PARAMETER '
+        do j = 1, size(which)
+            line(14 + col*(j - 1):) = ' '//adjustr(output_names(which(j)))
+        end do
+        call lst%put(line)
+        do p = 1, size(o%v, 1)
+            line = '   '//sw%params(p)%name
             do j = 1, size(which)
-                line(14 + col*(j - 1):) = ' '//adjustr(output_names(which(j)))
+                kk = which(j)
+                if (o%valid(p, kk)) then
+                    write (line(14 + col*(j - 1):), '(f13.3)') o%s(p, kk)
+                else
+                    line(14 + col*(j - 1):) = '          n/a'
+                end if
             end do
             call lst%put(line)
-            do p = 1, size(o%v, 1)
-                line = '   '//sw%params(p)%name
-                do j = 1, size(which)
-                    kk = which(j)
-                    if (o%valid(p, kk)) then
-                        write (line(14 + col*(j - 1):), '(f13.3)') o%s(p, kk)
-                    else
-                        line(14 + col*(j - 1):) = '          n/a'
-                    end if
-                end do
-                call lst%put(line)
+        end do
+        if (sw%design /= design_oat) then
+            line = '   R^2'
+            do j = 1, size(which)
+                kk = which(j)
+                if (any(o%valid(:, kk))) then
+                    write (line(14 + col*(j - 1):), '(f13.3)') o%r2(kk)
+                else
+                    line(14 + col*(j - 1):) = '          n/a'
+                end if
             end do
-            if (sw%design /= design_oat) then
-                line = '   R^2'
-                do j = 1, size(which)
-                    kk = which(j)
-                    if (any(o%valid(:, kk))) then
-                        write (line(14 + col*(j - 1):), '(f13.3)') o%r2(kk)
-                    else
-                        line(14 + col*(j - 1):) = '          n/a'
-                    end if
-                end do
-                call lst%put(line)
-            end if
-        end subroutine sensitivity_table
-    end subroutine sweep_listing
+            call lst%put(line)
+        end if
+    end subroutine sensitivity_table
 
     !> Write the sweep result file (layout in docs/sweeps.md).
     subroutine sweep_write_h5(sw, o, fname, version, stat, errmsg)
