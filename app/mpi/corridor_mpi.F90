@@ -22,6 +22,7 @@ program corridor_mpi
     use hn_case, only: path_len
     use hn_sweep, only: sweep_design
     use hn_calibrate, only: calibration_t, read_calibration, member_histories
+    use hn_strings, only: path_stem
     implicit none
     type(calibration_t) :: cal
     character(len=path_len) :: deck, prefix
@@ -75,7 +76,7 @@ program corridor_mpi
                 sd(:, k) = sqrt(sum((ysum(:, k, c, :) - spread(mean(:, k), 2, nm))**2, dim=2, &
                                     mask=spread(oksum > 0.5_wp, 1, nt))/(nok - 1))
             end do
-            open (newunit=u, file=trim(prefix)//'_'//trim(case_tag(cal%decks(c)))//'.csv', status='replace', &
+            open (newunit=u, file=trim(prefix)//'_'//trim(path_stem(cal%decks(c)))//'.csv', status='replace', &
                   action='write')
             write (u, '(a)', advance='no') 'time_ms'
             do k = 1, nrated
@@ -97,7 +98,7 @@ program corridor_mpi
                     inside = abs(cal%vol(c)%mean(i, k) - mean(i, k)) <= sd(i, k)
                     if (inside(1)) cover = cover + 1
                 end do
-                write (output_unit, '(a,a,a10,a,f6.1,a,i0,a,i0,a)') trim(case_tag(cal%decks(c))), ' ', &
+                write (output_unit, '(a,a,a10,a,f6.1,a,i0,a,i0,a)') trim(path_stem(cal%decks(c))), ' ', &
                     cal%channels(k)%name, ': volunteer mean inside the model mean +- 1 SD ', 100*cover/nwin, &
                     ' % of ', nint(cal%window(1)), '-', nint(cal%window(2)), ' ms'
             end do
@@ -105,16 +106,6 @@ program corridor_mpi
     end if
     call finish(0)
 contains
-    function case_tag(path) result(tag)
-        character(len=*), intent(in) :: path
-        character(len=path_len) :: tag
-        integer :: a, b
-        a = index(path, '/', back=.true.) + 1
-        b = index(path, '.inp', back=.true.) - 1
-        if (b < a) b = len_trim(path)
-        tag = path(a:b)
-    end function case_tag
-
     subroutine finish(code)
         integer, intent(in) :: code
 #ifdef HHNECK_MPI

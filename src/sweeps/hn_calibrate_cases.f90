@@ -10,6 +10,7 @@ module hn_calibrate_cases
     use hn_case, only: case_t, deck_line_t
     use hn_deck_state, only: real_str
     use hn_deck_reader, only: int_str
+    use hn_strings, only: int_field
     use hn_sweep, only: read_sweep_lines, sweep_member_case, field_text, param_target_text
     use hn_channels, only: channel_set_t, channels_define
     use hn_rating, only: window_samples, max_lag
@@ -359,12 +360,5 @@ contains
         l%source = source
         l%line = 0
     end function line_of
-
-    !> n as a left-justified field of 10 columns.
-    pure function int_field(n) result(f)
-        integer, intent(in) :: n   !! the number
-        character(len=10) :: f
-        write (f, '(i0)') n
-    end function int_field
 
 end module hn_calibrate_cases
