@@ -4,7 +4,8 @@
 !! the continuation cards each takes, and the concrete type of each
 !! (`new_family`). A family's number `fam_*` is its place in this list; the
 !! model holds one slot per family in this order, and every evaluation
-!! visits them in this order (discs, ligaments, muscles, limits, springs).
+!! visits them in this order (discs, ligaments, muscles, limits, springs,
+!! neutral-zone springs, contacts).
 !!
 !! The numbers `fam_*` are for src/elements/ alone: elsewhere a family is
 !! found by name (`family_index`) or asked through its bindings, and what
@@ -31,6 +32,7 @@ module hn_families
     use hn_limit_family, only: limit_family_t
     use hn_spring_family, only: spring_family_t
     use hn_nz_family, only: nz_family_t, nz_spring_t
+    use hn_contact_family, only: contact_family_t, contact_t
     implicit none
     private
 
@@ -39,11 +41,12 @@ module hn_families
 
     !> The families, in evaluation order.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
-                                  fam_limits = 4, fam_springs = 5, fam_nz = 6, nfamilies = 6
+                                  fam_limits = 4, fam_springs = 5, fam_nz = 6, fam_contacts = 7, &
+                                  nfamilies = 7
     integer, parameter, public :: family_name_len = 9
     !> Their names on FAMILY, SCALE, STIFFEN and CHANGE cards and in the listing.
     character(len=family_name_len), parameter, public :: family_name(nfamilies) = &
-        [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS', 'NZSPRINGS']
+        [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS', 'NZSPRINGS', 'CONTACTS']
 
     !> Every card of every family (VIA and ACTIVATE complete the muscles):
     !! key, family, continuation cards, and when it is read (the default
@@ -61,13 +64,14 @@ module hn_families
         family_card_t('LIMIT', fam_limits, 0, unique=unique_coordinate, coordinate=.true.), &
         family_card_t('ROM', fam_limits, 0, unique=unique_coordinate, coordinate=.true.), &
         family_card_t('SPRING', fam_springs, 1, unique=unique_element), &
-        family_card_t('NZSPRING', fam_nz, 0, unique=unique_coordinate, coordinate=.true.)]
+        family_card_t('NZSPRING', fam_nz, 0, unique=unique_coordinate, coordinate=.true.), &
+        family_card_t('CONTACT', fam_contacts, 2, unique=unique_element)]
 
 contains
 
     !> A family of kind f with no elements.
     pure subroutine new_family(f, slot)
-        integer, intent(in) :: f                    !! family (fam_discs ... fam_nz)
+        integer, intent(in) :: f                    !! family (fam_discs ... fam_contacts)
         type(family_slot_t), intent(out) :: slot    !! the slot, holding an empty family of that kind
         ! the empty arrays are allocated with size 0 (not taken from a
         ! zero-size array constructor, whose result gfortran copies into an
@@ -82,6 +86,7 @@ contains
         type(joint_range_t), allocatable :: jr(:)
         type(spring_t), allocatable :: sp(:)
         type(nz_spring_t), allocatable :: nz(:)
+        type(contact_t), allocatable :: ct(:)
         select case (f)
         case (fam_discs)
             allocate (d(0)); allocate (slot%f, source=disc_family_t(items=d))
@@ -96,6 +101,8 @@ contains
             allocate (sp(0)); allocate (slot%f, source=spring_family_t(items=sp))
         case (fam_nz)
             allocate (nz(0)); allocate (slot%f, source=nz_family_t(items=nz))
+        case (fam_contacts)
+            allocate (ct(0), tb(0)); allocate (slot%f, source=contact_family_t(items=ct, tables=tb))
         end select
     end subroutine new_family
 
@@ -107,7 +114,7 @@ contains
         f = findloc(family_name, name(1:min(len(name), family_name_len)), dim=1)
     end function family_index
 
-    !> The family names as text: "DISCS, LIGAMENTS, MUSCLES, LIMITS, SPRINGS or NZSPRINGS".
+    !> The family names as text: "DISCS, LIGAMENTS, ..., NZSPRINGS or CONTACTS".
     pure function family_names_text() result(s)
         character(len=:), allocatable :: s
         integer :: f
