@@ -44,6 +44,7 @@ module hn_print_card
         print_group_t('MUSCLES', 'MUSCLE*', 'MUSCLE TENSIONS AND ACTIVATIONS', .false.), &
         print_group_t('LIMITS', 'JOINT LIMITS', 'JOINT-LIMIT LOADS', .false.), &
         print_group_t('NZSPRINGS', 'NZ SPRINGS', 'NEUTRAL-ZONE SPRING MOMENTS', .false.), &
+        print_group_t('CONTACTS', 'CONTACT *', 'CONTACT FORCES AND DEPTHS', .false.), &
         print_group_t('ENERGY', 'ENERGY', 'ENERGY TERMS', .false.)]
 
 contains
