@@ -51,6 +51,7 @@ module hn_statics
         integer :: max_halve = 20           !! halvings of the line search
         integer :: max_split = 12           !! halvings of a level's load interval (continuation)
         real(wp) :: fd_step = 1.0e-7_wp     !! difference step of the exact Jacobian [m, rad]
+        real(wp) :: force_zero = 1.0e-14_wp !! a start whose |r| is below this is an equilibrium already [N, N m]
     end type statics_options_t
 
     !> Work counts of the solves.
@@ -108,7 +109,7 @@ contains
         if (n == 0) return
         x = xf
         call residual(x, r, rn)
-        if (stat /= stat_ok) return
+        if (stat /= stat_ok .or. rn <= opt%force_zero) return   ! the start is at rest already
         exact = .false.
         do it = 1, opt%max_iter
             cnt%iterations = cnt%iterations + 1
@@ -224,6 +225,7 @@ contains
         character(len=msglen), intent(out) :: errmsg   !! the failure ('' when stat_ok)
         real(wp) :: ta, dt
         integer :: depth
+        character(len=msglen) :: inner
         ta = t_prev
         dt = t - t_prev
         depth = 0
@@ -237,7 +239,12 @@ contains
                 depth = max(depth - 1, 0)
             else
                 depth = depth + 1
-                if (depth > opt%max_split .or. dt == zero) return
+                if (depth > opt%max_split .or. dt == zero) then
+                    inner = errmsg
+                    write (errmsg, '(a,es12.5,a,es12.5,2a)') 'STATICS: load time ', t, ' s not reached (equilibrium '// &
+                        'at ', ta, ' s); ', trim(inner)
+                    return
+                end if
                 dt = 0.5_wp*dt
                 cnt%splits = cnt%splits + 1
             end if
@@ -276,10 +283,8 @@ contains
         end if
         call lst%echo_deck(cs%deck)
         if (cs%hold_posture .or. cs%hold_prestrain) then
-            res%exit_code = exit_deck
-            res%status = 'failed'
-            res%message = 'STATICS: a HOLD card holds the start posture of a dynamic run; a static solve '// &
-                          'takes no HOLD card (remove one of them)'
+            call stop_with(exit_deck, 'failed', 'STATICS: a HOLD card holds the start posture of a dynamic run; '// &
+                           'a static solve takes no HOLD card (remove one of them)')
             call lst%message('RUN NOT STARTED: '//trim(res%message))
             return
         end if
@@ -297,22 +302,18 @@ contains
         if (len_trim(h5name) > 0) then
             call out%open(cs, ch, trim(h5name), code_version, stat, msg, res%file_note)
             if (stat /= stat_ok) then
-                res%exit_code = exit_output
-                res%status = 'failed'
-                res%message = msg
+                call stop_with(exit_output, 'failed', msg)
                 return
             end if
         end if
         call lst%put('')
-        call lst%put(' STATIC EQUILIBRIA (STATICS): LOAD TIME, NEWTON ITERATIONS, GENERALIZED COORDINATES REACHED')
+        call lst%put(' STATIC EQUILIBRIA (STATICS): LEVEL, LOAD TIME (S), NEWTON ITERATIONS')
         t_prev = cs%statics_times(1)
         do k = 1, size(cs%statics_times)
             it0 = cnt%iterations
             call statics_level(cs%model, ws, t_prev, cs%statics_times(k), xf, opt, cnt, stat, msg)
             if (stat /= stat_ok) then
-                res%exit_code = exit_diverged
-                res%status = 'incomplete'
-                res%message = msg
+                call stop_with(exit_diverged, 'incomplete', msg)
                 exit
             end if
             t_prev = cs%statics_times(k)
@@ -321,9 +322,7 @@ contains
             call channels_compute(cs, ws, t_prev, en, ch)
             call out%sample(t_prev, ch, ws)
             if (out%failed()) then
-                res%exit_code = exit_output
-                res%status = 'incomplete'
-                res%message = out%error()
+                call stop_with(exit_output, 'incomplete', out%error())
                 exit
             end if
             res%t_reached = t_prev
@@ -343,12 +342,16 @@ contains
         call lst%message(line)
         if (res%exit_code /= exit_ok) call lst%message('RUN INCOMPLETE: '//trim(res%message))
         call out%close(ch, trim(res%status), trim(res%message), st, line, note)
-        if (st /= stat_ok .and. res%exit_code == exit_ok) then
-            res%exit_code = exit_output
-            res%status = 'incomplete'
-            res%message = line
-        end if
+        if (st /= stat_ok .and. res%exit_code == exit_ok) call stop_with(exit_output, 'incomplete', line)
         if (len_trim(note) > 0) res%file_note = note
+    contains
+        subroutine stop_with(code, status, message)
+            integer, intent(in) :: code
+            character(len=*), intent(in) :: status, message
+            res%exit_code = code
+            res%status = status
+            res%message = message
+        end subroutine stop_with
     end subroutine statics_execute
 
 end module hn_statics
