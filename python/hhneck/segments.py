@@ -26,6 +26,12 @@ relaxation time d2b/d1 = 0.062 s with the model's VBEND factor) lag the
 rotation by 0.3 % on a 20 s ramp (on a 1 s ramp the rotation still grew
 5.5 % during the hold), and the slowest segment mode (the head on C1) has a
 period near 0.2 s; the tests check the closed form within 1 %.
+The calibration's protocol (protocol="sweep", hhneck.calibration): 0 -> -M
+over 20 s, held 2 s, -M -> +M over 40 s (t = SWEEP_START .. SWEEP_START +
+2 RAMP), held to 64 s: the whole moment-rotation curve on one rising ramp,
+rotation as a function of time as the calibration's reference rows need it
+(the negative branch read unloading from -M, as a cyclic test passes it; the
+catalogue's loading branches differ from it by the viscous lag only).
 
 The catalogue solves each test as statics (SOLUTIONS "statics", the
 default; "ramp" the dynamic runs above, hhneck-segments --protocol ramp):
@@ -35,12 +41,6 @@ rotations are the limit of ever slower ramps), read by the same readers
 with the load time as time. The segment decks hold no element with a
 history: the discs', ligaments' and neutral-zone springs' rate terms and
 the one-way joint-limit dampers vanish at rest.
-The calibration's protocol (protocol="sweep", hhneck.calibration): 0 -> -M
-over 20 s, held 2 s, -M -> +M over 40 s (t = SWEEP_START .. SWEEP_START +
-2 RAMP), held to 64 s: the whole moment-rotation curve on one rising ramp,
-rotation as a function of time as the calibration's reference rows need it
-(the negative branch read unloading from -M, as a cyclic test passes it; the
-catalogue's loading branches differ from it by the viscous lag only).
 
 Signs of the data (README): flexion +, extension -; lateral bending and
 axial rotation "(+)L". In the project's axes (x forward, y left, z up) a
@@ -50,7 +50,7 @@ rotation +RZ; the moment vector of the positive direction is (0, 1, 0),
 relative to the lower one minus its neutral value (for OC-C2 the sum of the
 C1 and head angles about the same axis, exact for a planar motion).
 
-API: moment_table, sweep_time, write_deck, run_case, rotation_curve, rotations_at, data_branches,
+API: moment_table, sweep_time, write_deck, case_name, run_case, rotation_curve, rotations_at, data_branches,
 rate_curve, catalogue (all cases; hhneck.catalogue writes docs/catalogue.md).
 Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
 [--protocol statics|ramp]
