@@ -24,6 +24,7 @@ program hhneck
     use hn_posix, only: is_terminal, stdin_kind, kind_char_device, exit_now
     use hn_set_option, only: set_card
     use hn_results, only: results_replaceable
+    use hn_statics, only: statics_execute
     implicit none
     type(case_t) :: cs
     type(run_result_t) :: res
@@ -173,7 +174,11 @@ program hhneck
     end if
     ! from here on a signal stops the run at its next step, files closed and marked
     call defer_signals()
-    call run%execute(cs, output_unit, trim(h5name), res)
+    if (allocated(cs%statics_times)) then
+        call statics_execute(cs, output_unit, trim(h5name), res)   ! STATICS: equilibria, no integration
+    else
+        call run%execute(cs, output_unit, trim(h5name), res)
+    end if
     if (res%exit_code /= exit_ok) then
         write (error_unit, '(a)') 'hhneck: '//trim(res%message)
         if (len_trim(res%file_note) > 0) write (error_unit, '(a)') 'hhneck: '//trim(res%file_note)

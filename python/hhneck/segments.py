@@ -33,6 +33,15 @@ rotation as a function of time as the calibration's reference rows need it
 (the negative branch read unloading from -M, as a cyclic test passes it; the
 catalogue's loading branches differ from it by the viscous lag only).
 
+The catalogue solves each test as statics (SOLUTIONS "statics", the
+default; "ramp" the dynamic runs above, hhneck-segments --protocol ramp):
+the same deck with a STATICS card, one equilibrium per 0.01 N m of the
+moment table (rates zero, so the viscous lag of the ramps is absent: the
+rotations are the limit of ever slower ramps), read by the same readers
+with the load time as time. The segment decks hold no element with a
+history: the discs', ligaments' and neutral-zone springs' rate terms and
+the one-way joint-limit dampers vanish at rest.
+
 Signs of the data (README): flexion +, extension -; lateral bending and
 axial rotation "(+)L". In the project's axes (x forward, y left, z up) a
 flexion is +RY of the upper body, a left lateral bending -RX, a left axial
@@ -41,9 +50,10 @@ rotation +RZ; the moment vector of the positive direction is (0, 1, 0),
 relative to the lower one minus its neutral value (for OC-C2 the sum of the
 C1 and head angles about the same axis, exact for a planar motion).
 
-API: moment_table, sweep_time, write_deck, run_case, rotation_curve, rotations_at, data_branches,
+API: moment_table, sweep_time, write_deck, case_name, run_case, rotation_curve, rotations_at, data_branches,
 rate_curve, catalogue (all cases; hhneck.catalogue writes docs/catalogue.md).
 Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
+[--protocol statics|ramp]
 (hhneck-catalogue writes the report).
 """
 import argparse
@@ -83,6 +93,13 @@ T_NEG = 2.0 * RAMP + HOLD              # start of the negative loading ramp
 T_END = 3.0 * RAMP + 2.0 * HOLD
 SWEEP_START = RAMP + HOLD              # start of the rising ramp -M -> +M of protocol "sweep"
 PROTOCOLS = ("loading", "sweep")
+#: how the catalogue solves a segment test: "statics" (the program's STATICS
+#: card: one equilibrium per 0.01 N m of the moment table, rates zero) or
+#: "ramp" (the dynamic run of the moment table, the check of the statics)
+SOLUTIONS = ("statics", "ramp")
+#: [N m] the moment step of the catalogue's curves (its grid) and of the
+#: STATICS levels
+GRID_STEP = 0.01
 #: element and coordinate cards of the model deck a segment deck takes
 ELEMENT_CARDS = ("DISC", "LIGAMENT")
 UPPER_CARDS = ("JOINT", "BODYPI", "NEUTRAL", "LIMIT", "ROM", "NZSPRING")
@@ -132,7 +149,7 @@ def sweep_time(moment, peak):
 
 
 def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None, drop=(),
-               protocol="loading"):
+               protocol="loading", statics=False):
     """Write the deck of one segment test (module docstring) to `path`:
     `segment` a key of SEGMENTS, `motion` of MOTIONS, `peak` the moment [N m].
     disc_only keeps the discs alone (the closed-form check of the tests).
@@ -140,7 +157,10 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
     that the segment would otherwise take, with the SCALE cards of their
     family (CARD_FAMILY: "NZSPRING" drops the NZSPRINGS SCALE cards too).
     protocol: "loading" (the catalogue's) or "sweep" (the calibration's;
-    moment_table). Returns the channel names of the upper bodies' rotation coordinate."""
+    moment_table). statics: a STATICS card solves the deck as equilibria
+    at load times 0, dt, ... T_END, dt = RAMP GRID_STEP / peak (every grid
+    moment of the loading ramps is a level), instead of the dynamic run.
+    Returns the channel names of the upper bodies' rotation coordinate."""
     lower, uppers = SEGMENTS[segment]
     coord, _, vec = MOTIONS[motion]
     bodies = (lower,) + uppers
@@ -188,6 +208,8 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
         "          " + pts[60:],
         "COUPLE    %-10sR         MOMENT    %-10s%-10s%-10s" % ((uppers[-1],) + tuple("%.1f" % v for v in vec)),
     ]
+    if statics:                            # equilibria at the table's times, one per grid moment
+        head.append("STATICS   0.0       %-10s%s" % ("%.6g" % T_END, ("%.8g" % (RAMP * GRID_STEP / peak))[:10]))
     if len(uppers) > 1:                    # the moment acts on the top body; say so
         head.insert(1, "* %s: the moment on %s, %s free between" % (segment, uppers[-1], " ".join(uppers[:-1])))
     lines = [line.rstrip() for line in head + [line for b in kept for line in b]]
@@ -214,19 +236,27 @@ def default_executable():
     return exe
 
 
+def case_name(segment, motion, peak, disc_only=False, drop=(), protocol="loading", statics=False):
+    """The file stem of a segment test (run_case)."""
+    return "%s_%s_%gNm%s%s%s%s" % (segment, motion, peak, "_disc" if disc_only else "",
+                                   "".join("_no" + d.lower() for d in drop), "_sweep" if protocol == "sweep" else "",
+                                   "_statics" if statics else "")
+
+
 def run_case(segment, motion, peak, workdir, exe=None, disc_only=False, drop=(), model=MODEL_DECK,
-             protocol="loading"):
+             protocol="loading", statics=False):
     """Write and run one segment test in `workdir`; returns (t [s], rotation
     [deg] of the upper body relative to the lower, in the data's sign).
     drop: card names left out of the deck (write_deck); model: the model
-    deck the segment's cards are taken from; protocol: write_deck's. The
-    files are named after the case (segment, motion, peak, and _disc or
-    _no<card> for each dropped card, _sweep for protocol "sweep")."""
-    name = "%s_%s_%gNm%s%s%s" % (segment, motion, peak, "_disc" if disc_only else "",
-                                 "".join("_no" + d.lower() for d in drop), "_sweep" if protocol == "sweep" else "")
+    deck the segment's cards are taken from; protocol, statics: write_deck's
+    (statics: the equilibria at the table's times, t their load times). The
+    files are named after the case (case_name: segment, motion, peak, and
+    _disc or _no<card> for each dropped card, _sweep for protocol "sweep",
+    _statics)."""
+    name = case_name(segment, motion, peak, disc_only, drop, protocol, statics)
     deck = os.path.join(workdir, name + ".inp")
     channels = write_deck(deck, segment, motion, peak, model=model, disc_only=disc_only, drop=drop,
-                          protocol=protocol)
+                          protocol=protocol, statics=statics)
     run_listed(deck, [exe or default_executable()], workdir)
     return rotation_curve(os.path.join(workdir, name + ".h5"), channels, MOTIONS[motion][1])
 
@@ -335,10 +365,10 @@ def rate_curve(grid, reference, model):
 
 def _run_timed(args):
     import time
-    seg, motion, peak, work, exe = args
+    seg, motion, peak, work, exe, statics = args
     t0 = time.perf_counter()
-    t, rot = run_case(seg, motion, peak, work, exe)
-    with open(os.path.join(work, "%s_%s_%gNm.err" % (seg, motion, peak))) as f:
+    t, rot = run_case(seg, motion, peak, work, exe, statics=statics)
+    with open(os.path.join(work, case_name(seg, motion, peak, statics=statics) + ".err")) as f:
         stderr = f.read()
     return t, rot, time.perf_counter() - t0, stderr
 
@@ -351,14 +381,18 @@ def case_list(quick=False, data_dir=DATA_DIR):
     return [c for c in cases if c[1] == "C4_C5"] if quick else cases
 
 
-def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None):
+def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None, solution="statics"):
     """Run and rate every segment case; returns a list of dicts, one per
     (source, segment, motion), with the case's wall time [s] (its run, in
     `jobs` parallel processes, default the number of cores) and its run's
     warnings (warning_lines of its stderr, kept beside its listing as .err).
     quick: C4-C5 only (one segment per source and motion). on_case(r) is
     called with each case's dict as its run ends (in the calling thread);
-    the list is in the cases' order whatever order they end in."""
+    the list is in the cases' order whatever order they end in. solution:
+    "statics" (the equilibria of the STATICS card) or "ramp" (the dynamic
+    runs of the moment protocol), SOLUTIONS."""
+    if solution not in SOLUTIONS:
+        raise ValueError("solution: one of %s, not %r" % (", ".join(SOLUTIONS), solution))
     from concurrent.futures import ThreadPoolExecutor, as_completed
     panjabi, night = load_panjabi(data_dir), load_nightingale(data_dir)
     work = workdir or tempfile.mkdtemp(prefix="hhneck-segments-")
@@ -367,7 +401,7 @@ def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None,
     cases = case_list(quick, data_dir)
     results = {}
     with ThreadPoolExecutor(max_workers=jobs or os.cpu_count() or 1) as pool:
-        futures = {pool.submit(_run_timed, (seg, motion, peak, work, exe)): k
+        futures = {pool.submit(_run_timed, (seg, motion, peak, work, exe, solution == "statics")): k
                    for k, (_, seg, motion, peak) in enumerate(cases)}
         try:
             for fut in as_completed(futures):
@@ -417,8 +451,10 @@ def main(argv=None):
     p.add_argument("--data", default=DATA_DIR, help="the pmhs_neck data folder")
     p.add_argument("--out", help="working directory for the decks, listings and result files")
     p.add_argument("--jobs", type=int, help="runs at a time (default: the number of cores)")
+    p.add_argument("--protocol", choices=SOLUTIONS, default="statics",
+                   help="statics (equilibria, the default) or ramp (the dynamic moment ramps, the check)")
     a = p.parse_args(argv)
-    for r in catalogue(a.exe, a.quick, a.data, a.out, a.jobs):
+    for r in catalogue(a.exe, a.quick, a.data, a.out, a.jobs, solution=a.protocol):
         print("%-17s %-6s %-18s ISO 18571 %.3f  model/data at +peak %.2f, -peak %.2f  (%.2f s)" % (
             r["source"], r["segment"], r["motion"], r["iso"]["overall"],
             r["model"][0] / r["data"][0], r["model"][-1] / r["data"][-1], r["wall"]))

@@ -53,6 +53,7 @@ module hn_cards
         card_info_t('LOADCELL', 0, grp_control, .true.), &
         card_info_t('PRINT', 0, grp_control, .true.), &
         card_info_t('RUNLIMIT', 0, grp_control, .false.), &
+        card_info_t('STATICS', 0, grp_control, .false.), &
         card_info_t('BODY', 0, grp_bodies, .true.), &
         card_info_t('BODYPI', 0, grp_bodies, .true.), &
         card_info_t('JOINT', 0, grp_bodies, .true.), &

@@ -44,6 +44,7 @@ module hn_case
         character(len=400) :: control_at = ''       !! where the CONTROL card's step is, for messages
         integer :: progress = 0                     !! progress on stderr: 0 off, 1 on a terminal, 2 always (hn_progress)
         real(wp), allocatable :: dump_times(:)      !! times of the cross-checking dump
+        real(wp), allocatable :: statics_times(:)   !! STATICS card: the load times of the equilibria (unallocated: a dynamic run)
         type(deck_line_t), allocatable :: deck(:)   !! the cards as read
         character(len=100), allocatable :: scene(:)  !! what the scene cards did (listing summary)
         character(len=160), allocatable :: warnings(:)  !! physical plausibility warnings

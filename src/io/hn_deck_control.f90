@@ -1,6 +1,6 @@
 !> The control cards of a deck: TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT,
 !! H5FILE, EVENTS, HOLD, DUMP (`control_cards`), HEADNECK, CRITERIA,
-!! LOADCELL and PRINT (`report_cards`, after the bodies) and RUNLIMIT (`runlimit_card`).
+!! LOADCELL, PRINT and STATICS (`report_cards`, after the bodies) and RUNLIMIT (`runlimit_card`).
 module hn_deck_control
     use hn_kinds, only: wp, zero
     use hn_case, only: case_t
@@ -10,6 +10,7 @@ module hn_deck_control
     use hn_criteria_card, only: criteria_card
     use hn_loadcell_card, only: loadcell_cards
     use hn_print_card, only: print_cards
+    use hn_statics_card, only: statics_card
     use hn_deck_state, only: card_t, body_map_t, single, body_ref, join, real_str
     implicit none
     private
@@ -268,7 +269,7 @@ contains
     end subroutine hold_card
 
     !> HEADNECK: the bodies reported as head and T1 (their merged bodies
-    !! when MERGE absorbed them); CRITERIA; the LOADCELL and PRINT cards.
+    !! when MERGE absorbed them); CRITERIA; the LOADCELL and PRINT cards; STATICS.
     subroutine report_cards(rd, cards, cs, bnames, bmap)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
         type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
@@ -290,6 +291,8 @@ contains
         if (ic > 0) call criteria_card(rd, cards(ic)%first, cs)
         call loadcell_cards(rd, cards, cs, bnames, bmap)
         call print_cards(rd, cards, cs)
+        ic = single(rd, cards, 'STATICS', .false.)
+        if (ic > 0) call statics_card(rd, cards(ic)%first, cs)
     end subroutine report_cards
 
 end module hn_deck_control

@@ -140,6 +140,28 @@ def test_data_branches_split_at_the_neutral_zone():
     assert np.all(np.diff(mm) >= 0) and rm[0] < 0 < rm[-1]
 
 
+def test_statics_are_the_limit_of_ever_slower_ramps(tmp_path, exe, monkeypatch):
+    """C4-C5 flexion with every element: the STATICS levels (the
+    catalogue's solution) against the dynamic ramps. On the 20 s ramps the
+    rotation lags the static one by the viscous terms (up to 2 % of it at
+    these levels); on ramps ten times slower the lag is a tenth: the
+    statics are the ramps' zero-rate limit, level by level."""
+    levels = np.array([1.0, 0.67, 0.33, -0.33, -0.67, -1.0])
+    t, rot = segments.run_case("C4_C5", "flexion_extension", 1.0, str(tmp_path), exe, statics=True)
+    static = segments.rotations_at(t, rot, 1.0, levels)
+    assert t.size == round(segments.T_END / (segments.RAMP * segments.GRID_STEP)) + 1
+    t, rot = segments.run_case("C4_C5", "flexion_extension", 1.0, str(tmp_path), exe)
+    lag = static - segments.rotations_at(t, rot, 1.0, levels)
+    assert np.all(lag * np.sign(levels) > 0) and np.all(np.abs(lag) < 0.02 * np.abs(static)), (static, lag)
+    for name, v in (("RAMP", 10 * segments.RAMP), ("T_NEG", 10 * segments.T_NEG),
+                    ("T_END", 10 * segments.T_END)):
+        monkeypatch.setattr(segments, name, v)
+    (tmp_path / "slow").mkdir()
+    t, rot = segments.run_case("C4_C5", "flexion_extension", 1.0, str(tmp_path / "slow"), exe)
+    slow_lag = static - segments.rotations_at(t, rot, 1.0, levels)
+    assert np.all(np.abs(slow_lag) < 0.2 * np.abs(lag)), (lag, slow_lag)
+
+
 def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     """The catalogue command's quick form (C4-C5 of each source and motion):
     every case in the report, its data column the data file's own values,
@@ -159,7 +181,7 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     # and (0.66, 4.93) points of the data file
     assert 5.4 < data[0] < 5.52
     import h5py
-    with h5py.File(tmp_path / "segments" / "C4_C5_flexion_extension_1Nm.h5", "r") as f:
+    with h5py.File(tmp_path / "segments" / "C4_C5_flexion_extension_1Nm_statics.h5", "r") as f:
         t = f["time"][:]
         c4 = f["channels"]["C4_RY"][:]
     at_peak = np.interp(segments.RAMP, t, c4) - c4[0]
