@@ -33,9 +33,10 @@ rotation as a function of time as the calibration's reference rows need it
 (the negative branch read unloading from -M, as a cyclic test passes it; the
 catalogue's loading branches differ from it by the viscous lag only).
 
-The catalogue solves each test as statics (SOLUTIONS "statics", the
-default; "ramp" the dynamic runs above, hhneck-segments --protocol ramp):
-the same deck with a STATICS card, one equilibrium per 0.01 N m of the
+The catalogue runs the dynamic ramps above (SOLUTIONS "ramp", the
+default: the neutral-zone springs are fitted on them, fit_joints) or solves
+each test as statics ("statics", hhneck-segments --protocol statics): the
+same deck with a STATICS card, one equilibrium per 0.01 N m of the
 moment table (rates zero, so the viscous lag of the ramps is absent: the
 rotations are the limit of ever slower ramps), read by the same readers
 with the load time as time. The segment decks hold no element with a
@@ -381,7 +382,7 @@ def case_list(quick=False, data_dir=DATA_DIR):
     return [c for c in cases if c[1] == "C4_C5"] if quick else cases
 
 
-def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None, solution="statics"):
+def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None, solution="ramp"):
     """Run and rate every segment case; returns a list of dicts, one per
     (source, segment, motion), with the case's wall time [s] (its run, in
     `jobs` parallel processes, default the number of cores) and its run's
@@ -389,8 +390,8 @@ def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None,
     quick: C4-C5 only (one segment per source and motion). on_case(r) is
     called with each case's dict as its run ends (in the calling thread);
     the list is in the cases' order whatever order they end in. solution:
-    "statics" (the equilibria of the STATICS card) or "ramp" (the dynamic
-    runs of the moment protocol), SOLUTIONS."""
+    "ramp" (the dynamic runs of the moment protocol, the default) or
+    "statics" (the equilibria of the STATICS card), SOLUTIONS."""
     if solution not in SOLUTIONS:
         raise ValueError("solution: one of %s, not %r" % (", ".join(SOLUTIONS), solution))
     from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -451,8 +452,9 @@ def main(argv=None):
     p.add_argument("--data", default=DATA_DIR, help="the pmhs_neck data folder")
     p.add_argument("--out", help="working directory for the decks, listings and result files")
     p.add_argument("--jobs", type=int, help="runs at a time (default: the number of cores)")
-    p.add_argument("--protocol", choices=SOLUTIONS, default="statics",
-                   help="statics (equilibria, the default) or ramp (the dynamic moment ramps, the check)")
+    p.add_argument("--protocol", choices=SOLUTIONS, default="ramp",
+                   help="ramp (the dynamic moment ramps, the default, as the springs' fit runs them) or "
+                        "statics (equilibria at each level: the ramps' zero-rate limit)")
     a = p.parse_args(argv)
     for r in catalogue(a.exe, a.quick, a.data, a.out, a.jobs, solution=a.protocol):
         print("%-17s %-6s %-18s ISO 18571 %.3f  model/data at +peak %.2f, -peak %.2f  (%.2f s)" % (

@@ -181,7 +181,7 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     # and (0.66, 4.93) points of the data file
     assert 5.4 < data[0] < 5.52
     import h5py
-    with h5py.File(tmp_path / "segments" / "C4_C5_flexion_extension_1Nm_statics.h5", "r") as f:
+    with h5py.File(tmp_path / "segments" / "C4_C5_flexion_extension_1Nm.h5", "r") as f:
         t = f["time"][:]
         c4 = f["channels"]["C4_RY"][:]
     at_peak = np.interp(segments.RAMP, t, c4) - c4[0]
