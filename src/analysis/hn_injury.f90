@@ -17,7 +17,7 @@ module hn_injury
     implicit none
     private
 
-    public :: hic, nij, nic, nij_intercepts_t, occupant_t, occupants, occupant_index
+    public :: hic, nij, nic, nij_intercepts_t, occupant_t, occupants, occupant_index, mode_sums
 
     !> Critical intercepts of Nij [N, N m]; defaults: Hybrid III 50th male.
     type :: nij_intercepts_t
@@ -105,19 +105,37 @@ contains
         real(wp), intent(out), dimension(size(fz)) :: ntf   !! tension-flexion Nij
         real(wp), intent(out), dimension(size(fz)) :: nce   !! compression-extension Nij
         real(wp), intent(out), dimension(size(fz)) :: ncf   !! compression-flexion Nij
-        real(wp) :: ft, fc, mf, me
-        integer :: i
-        do i = 1, size(fz)
-            ft = max(fz(i), zero)/crit%fz_tension
-            fc = max(-fz(i), zero)/crit%fz_compression
-            mf = max(my(i), zero)/crit%my_flexion
-            me = max(-my(i), zero)/crit%my_extension
-            nte(i) = merge(ft + me, zero, fz(i) >= zero .and. my(i) <= zero)
-            ntf(i) = merge(ft + mf, zero, fz(i) >= zero .and. my(i) >= zero)
-            nce(i) = merge(fc + me, zero, fz(i) < zero .and. my(i) <= zero)
-            ncf(i) = merge(fc + mf, zero, fz(i) < zero .and. my(i) >= zero)
-        end do
+        call mode_sums(fz, my, crit%fz_tension, crit%fz_compression, crit%my_flexion, crit%my_extension, &
+                       ntf, nte, ncf, nce)
     end subroutine nij
+
+    !> The four normalized sums |x|/cx + |y|/cy of two signed loads, each in
+    !! its quadrant of (x, y) and zero outside it: x >= 0 or x < 0, y >= 0 or
+    !! y <= 0 (Nij's modes, hn_whiplash's Nkm).
+    pure subroutine mode_sums(x, y, cx_pos, cx_neg, cy_pos, cy_neg, pp, pn, np, nn)
+        real(wp), intent(in) :: x(:)                       !! first load
+        real(wp), intent(in) :: y(:)                       !! second load
+        real(wp), intent(in) :: cx_pos                     !! intercept of x >= 0 (positive)
+        real(wp), intent(in) :: cx_neg                     !! intercept of x < 0 (positive)
+        real(wp), intent(in) :: cy_pos                     !! intercept of y >= 0 (positive)
+        real(wp), intent(in) :: cy_neg                     !! intercept of y <= 0 (positive)
+        real(wp), intent(out), dimension(size(x)) :: pp    !! x >= 0, y >= 0
+        real(wp), intent(out), dimension(size(x)) :: pn    !! x >= 0, y <= 0
+        real(wp), intent(out), dimension(size(x)) :: np    !! x < 0, y >= 0
+        real(wp), intent(out), dimension(size(x)) :: nn    !! x < 0, y <= 0
+        real(wp) :: xp, xn, yp, yn
+        integer :: i
+        do i = 1, size(x)
+            xp = max(x(i), zero)/cx_pos
+            xn = max(-x(i), zero)/cx_neg
+            yp = max(y(i), zero)/cy_pos
+            yn = max(-y(i), zero)/cy_neg
+            pp(i) = merge(xp + yp, zero, x(i) >= zero .and. y(i) >= zero)
+            pn(i) = merge(xp + yn, zero, x(i) >= zero .and. y(i) <= zero)
+            np(i) = merge(xn + yp, zero, x(i) < zero .and. y(i) >= zero)
+            nn(i) = merge(xn + yn, zero, x(i) < zero .and. y(i) <= zero)
+        end do
+    end subroutine mode_sums
 
     !> NIC(t) = 0.2 a_rel + v_rel^2 from the x-accelerations of T1 and the
     !! head [m/s^2], v_rel the trapezoidal integral of a_rel from the first sample.

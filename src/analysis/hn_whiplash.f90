@@ -13,6 +13,7 @@
 !! not available to check them; docs/output-format.md lists them).
 module hn_whiplash
     use hn_kinds, only: wp, zero
+    use hn_injury, only: mode_sums
     implicit none
     private
 
@@ -44,7 +45,8 @@ module hn_whiplash
 contains
 
     !> The four Nkm modes at every sample, zero where a mode does not apply:
-    !! fx > 0 anterior, my > 0 flexion (the signs of OC_FX and OC_MY).
+    !! fx > 0 anterior, my > 0 flexion (the signs of OC_FX and OC_MY); fx = 0
+    !! counts as anterior.
     pure subroutine nkm(fx, my, crit, nfa, nfp, nea, nep)
         real(wp), intent(in) :: fx(:)                       !! shear force at the OC, anterior positive [N]
         real(wp), intent(in) :: my(:)                       !! moment at the OC, flexion positive [N m]
@@ -53,18 +55,8 @@ contains
         real(wp), intent(out), dimension(size(fx)) :: nfp   !! flexion, posterior shear
         real(wp), intent(out), dimension(size(fx)) :: nea   !! extension, anterior shear
         real(wp), intent(out), dimension(size(fx)) :: nep   !! extension, posterior shear
-        real(wp) :: fa, fp, mf, me
-        integer :: i
-        do i = 1, size(fx)
-            fa = max(fx(i), zero)/crit%fx_anterior
-            fp = max(-fx(i), zero)/crit%fx_posterior
-            mf = max(my(i), zero)/crit%my_flexion
-            me = max(-my(i), zero)/crit%my_extension
-            nfa(i) = merge(fa + mf, zero, fx(i) >= zero .and. my(i) >= zero)
-            nfp(i) = merge(fp + mf, zero, fx(i) <= zero .and. my(i) >= zero)
-            nea(i) = merge(fa + me, zero, fx(i) >= zero .and. my(i) <= zero)
-            nep(i) = merge(fp + me, zero, fx(i) <= zero .and. my(i) <= zero)
-        end do
+        call mode_sums(fx, my, crit%fx_anterior, crit%fx_posterior, crit%my_flexion, crit%my_extension, &
+                       nfa, nea, nfp, nep)
     end subroutine nkm
 
     !> LNL(t) = sqrt(Mx^2 + My^2)/C_moment + sqrt(Fx^2 + Fy^2)/C_shear
