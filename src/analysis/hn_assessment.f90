@@ -5,10 +5,16 @@
 !! (CFC 600). Reference values (of the chosen occupant's dummy, not limits
 !! of this human model) from hn_injury's `occupants`. NIC from the
 !! x-accelerations in inertial axes (default) or along the head's x axis.
+!! The rear-impact and lateral criteria of hn_whiplash where the run has
+!! what they need: the NDC points, the peak lateral upper-neck moment and
+!! shear and the head's lateral bending relative to T1, the peak T1 and
+!! head x-accelerations; and the run's loading direction (scene_direction),
+!! which decides which criteria the listing shows.
 module hn_assessment
     use hn_kinds, only: wp, zero, g_std
     use hn_filters, only: cfc_filter
     use hn_injury, only: hic, nij, nic, nij_intercepts_t, occupants, occupant_index
+    use hn_whiplash, only: ndc_points_t, ndc_points, scene_direction
     implicit none
     private
 
@@ -17,8 +23,9 @@ module hn_assessment
 
     !> The channels of a run the assessment reads, by name: the first columns
     !! of criteria_input_from, in this order (the only list of them).
-    character(len=8), parameter :: criteria_channels(7) = [character(len=8) :: 'HEAD_AX', 'HEAD_AY', 'HEAD_AZ', &
-                                                           'T1_AX', 'OC_FX', 'OC_FZ', 'OC_MY']
+    character(len=8), parameter :: criteria_channels(13) = [character(len=8) :: 'HEAD_AX', 'HEAD_AY', 'HEAD_AZ', &
+                                                            'T1_AX', 'OC_FX', 'OC_FZ', 'OC_MY', 'OC_FY', 'OC_MX', &
+                                                            'HT1_RX', 'HT1_RY', 'HT1_DX', 'HT1_DZ']
     !> Columns of criteria_input_from: the criteria_channels, then the head's
     !! and T1's x-accelerations along the head's x axis.
     integer, parameter :: ncriteria_columns = size(criteria_channels) + 2
@@ -32,6 +39,12 @@ module hn_assessment
         real(wp), allocatable :: oc_fx(:)     !! occipital-condyle shear force [N] (OC_FX)
         real(wp), allocatable :: oc_fz(:)     !! occipital-condyle axial force, tension positive [N] (OC_FZ)
         real(wp), allocatable :: oc_my(:)     !! occipital-condyle moment, flexion positive [N m] (OC_MY)
+        real(wp), allocatable :: oc_fy(:)     !! occipital-condyle lateral shear force [N] (OC_FY)
+        real(wp), allocatable :: oc_mx(:)     !! occipital-condyle lateral bending moment [N m] (OC_MX)
+        real(wp), allocatable :: ht1_rx(:)    !! head lateral bending relative to T1 [deg] (HT1_RX)
+        real(wp), allocatable :: ht1_ry(:)    !! head flexion relative to T1, flexion positive [deg] (HT1_RY)
+        real(wp), allocatable :: ht1_dx(:)    !! head x relative to T1 in T1's axes, from the start [mm] (HT1_DX)
+        real(wp), allocatable :: ht1_dz(:)    !! head z relative to T1 in T1's axes, from the start [mm] (HT1_DZ)
         real(wp), allocatable :: head_axh(:)  !! head mass-centre acceleration along the head's x axis [g] (HEAD_AXL)
         real(wp), allocatable :: t1_axh(:)    !! T1 mass-centre acceleration along the head's x axis [g]
     end type criteria_input_t
@@ -47,10 +60,18 @@ module hn_assessment
         real(wp) :: tension = zero, tension_t = zero, compression = zero, compression_t = zero
         real(wp) :: shear = zero, shear_t = zero, flexion = zero, flexion_t = zero
         real(wp) :: extension = zero, extension_t = zero
+        character(len=8) :: direction = 'FRONTAL'                  !! FRONTAL, REAR or LATERAL (hn_whiplash's scene_direction)
+        real(wp) :: lat_moment = zero, lat_moment_t = zero         !! largest |OC_MX|, CFC 600 [N m]
+        real(wp) :: lat_shear = zero, lat_shear_t = zero           !! largest |OC_FY|, CFC 600 [N]
+        real(wp) :: lat_bend = zero, lat_bend_t = zero             !! HT1_RX of largest magnitude [deg], signed
+        real(wp) :: t1_ax_max = zero, t1_ax_max_t = zero           !! highest T1 x-acceleration, CFC 60 [g] (NIC's frame)
+        real(wp) :: head_ax_max = zero, head_ax_max_t = zero       !! highest head x-acceleration, CFC 60 [g] (NIC's frame)
+        type(ndc_points_t) :: ndc                                  !! NDC points (head relative to T1)
         real(wp), allocatable :: head_ar(:)                        !! CFC 1000 resultant [g]
         real(wp), allocatable :: nij_t(:, :)                       !! (nt, 4) Nij modes
         real(wp), allocatable :: nic_t(:)                          !! NIC [m^2/s^2]
         real(wp), allocatable :: fx(:), fz(:), my(:)               !! CFC 600 OC loads
+        real(wp), allocatable :: fy(:), mx(:)                      !! CFC 600 OC lateral loads
         real(wp), allocatable :: nic_head(:), nic_t1(:)            !! CFC 60 x-accelerations NIC is computed from [m/s^2]
         integer :: occupant = 1                                    !! index in hn_injury's occupants (Nij, neck loads)
         character(len=8) :: nic_frame = 'INERTIAL'                 !! INERTIAL (global x) or HEAD (head x axis)
@@ -63,9 +84,12 @@ contains
         type(criteria_input_t), intent(out) :: hist   !! the columns
         integer, intent(in) :: n                      !! number of samples
         allocate (hist%head_ax(n), hist%head_ay(n), hist%head_az(n), hist%t1_ax(n), hist%oc_fx(n), &
-                  hist%oc_fz(n), hist%oc_my(n), hist%head_axh(n), hist%t1_axh(n))
+                  hist%oc_fz(n), hist%oc_my(n), hist%oc_fy(n), hist%oc_mx(n), hist%ht1_rx(n), hist%ht1_ry(n), &
+                  hist%ht1_dx(n), hist%ht1_dz(n), hist%head_axh(n), hist%t1_axh(n))
         hist%head_ax = zero; hist%head_ay = zero; hist%head_az = zero; hist%t1_ax = zero
         hist%oc_fx = zero; hist%oc_fz = zero; hist%oc_my = zero; hist%head_axh = zero; hist%t1_axh = zero
+        hist%oc_fy = zero; hist%oc_mx = zero; hist%ht1_rx = zero; hist%ht1_ry = zero; hist%ht1_dx = zero
+        hist%ht1_dz = zero
     end subroutine criteria_input_allocate
 
     !> The input columns from one array of samples: cols(:, k) is the k-th of
@@ -76,7 +100,9 @@ contains
         type(criteria_input_t) :: hist
         hist%head_ax = cols(:, 1); hist%head_ay = cols(:, 2); hist%head_az = cols(:, 3)
         hist%t1_ax = cols(:, 4); hist%oc_fx = cols(:, 5); hist%oc_fz = cols(:, 6); hist%oc_my = cols(:, 7)
-        hist%head_axh = cols(:, 8); hist%t1_axh = cols(:, 9)
+        hist%oc_fy = cols(:, 8); hist%oc_mx = cols(:, 9); hist%ht1_rx = cols(:, 10); hist%ht1_ry = cols(:, 11)
+        hist%ht1_dx = cols(:, 12); hist%ht1_dz = cols(:, 13)
+        hist%head_axh = cols(:, 14); hist%t1_axh = cols(:, 15)
     end function criteria_input_from
 
     !> Assess from the first n samples of hist, every dt [s] from t0.
@@ -117,7 +143,7 @@ contains
         end if
         a%computed = .true.
         allocate (ax(n), ay(n), az(n), a%head_ar(n), a%nij_t(n, 4), a%nic_t(n), a%fx(n), a%fz(n), a%my(n), &
-                  a%nic_head(n), a%nic_t1(n))
+                  a%nic_head(n), a%nic_t1(n), a%fy(n), a%mx(n))
         call cfc_filter(hist%head_ax(1:n), dt, 1000.0_wp, ax)
         call cfc_filter(hist%head_ay(1:n), dt, 1000.0_wp, ay)
         call cfc_filter(hist%head_az(1:n), dt, 1000.0_wp, az)
@@ -153,6 +179,18 @@ contains
         m = maxloc(a%nic_t, dim=1)
         a%nic_max = a%nic_t(m)
         a%nic_time = t0 + (m - 1)*dt
+        call peak(a%nic_t1/g_std, .true., a%t1_ax_max, a%t1_ax_max_t)
+        call peak(a%nic_head/g_std, .true., a%head_ax_max, a%head_ax_max_t)
+
+        call cfc_filter(hist%oc_fy(1:n), dt, 600.0_wp, a%fy)
+        call cfc_filter(hist%oc_mx(1:n), dt, 600.0_wp, a%mx)
+        call peak(abs(a%mx), .true., a%lat_moment, a%lat_moment_t)
+        call peak(abs(a%fy), .true., a%lat_shear, a%lat_shear_t)
+        m = maxloc(abs(hist%ht1_rx(1:n)), dim=1)
+        a%lat_bend = hist%ht1_rx(m)
+        a%lat_bend_t = t0 + (m - 1)*dt
+        a%ndc = ndc_points(hist%ht1_ry(1:n), hist%ht1_dx(1:n), hist%ht1_dz(1:n), t0, dt)
+        a%direction = scene_direction(hist%ht1_rx(1:n), hist%ht1_ry(1:n))
     contains
         subroutine peak(x, highest, v, t)
             real(wp), intent(in) :: x(:)

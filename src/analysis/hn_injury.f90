@@ -17,7 +17,7 @@ module hn_injury
     implicit none
     private
 
-    public :: hic, nij, nic, nij_intercepts_t, occupant_t, occupants, occupant_index
+    public :: hic, nij, nic, nij_intercepts_t, occupant_t, occupants, occupant_index, mode_sums
 
     !> Critical intercepts of Nij [N, N m]; defaults: Hybrid III 50th male.
     type :: nij_intercepts_t
@@ -40,22 +40,19 @@ module hn_injury
     end type occupant_t
 
     !> The occupants selectable on the CRITERIA card; the first is the default.
-    !! H50M and the H05F intercepts are those of reference-data.md and the
-    !! issue; the others were not checked against the CFR text here
-    !! (`verified` false; docs/output-format.md says so).
-    type(occupant_t), parameter :: occupants(6) = [ &
+    !! Nij intercepts (in position), 49 CFR 571.208: H50M S6.6 (Fzc 6806 N
+    !! tension, 6160 N compression; Myc 310 N m flexion, 135 N m extension;
+    !! as in reference-data.md); H05F S15.3.6 (4287 N, 3880 N; 155 N m,
+    !! 67 N m), the same values as the open-source pyisomme
+    !! (calculate/neck_nij.py, in-position Hybrid III 5th female). The H05F
+    !! peak tension and compression were not checked (`verified` false).
+    !! The 95th male, 6- and 3-year-old and CRABI sets entered earlier were
+    !! removed: no source for them could be checked.
+    type(occupant_t), parameter :: occupants(2) = [ &
         occupant_t('H50M', 'HYBRID III 50TH MALE', nij_intercepts_t(6806.0_wp, 6160.0_wp, 310.0_wp, 135.0_wp), &
                    4170.0_wp, 4000.0_wp, '49 CFR 571.208 S6.6', .true.), &
         occupant_t('H05F', 'HYBRID III 5TH FEMALE', nij_intercepts_t(4287.0_wp, 3880.0_wp, 155.0_wp, 67.0_wp), &
-                   2620.0_wp, 2520.0_wp, '49 CFR 571.208 S15.3.6', .false.), &
-        occupant_t('H95M', 'HYBRID III 95TH MALE', nij_intercepts_t(8216.0_wp, 7440.0_wp, 415.0_wp, 179.0_wp), &
-                   5440.0_wp, 5200.0_wp, 'NHTSA 1999 (Eppinger et al.), not in FMVSS 208', .false.), &
-        occupant_t('H6YO', 'HYBRID III 6-YEAR-OLD', nij_intercepts_t(2800.0_wp, 2800.0_wp, 93.0_wp, 37.0_wp), &
-                   1490.0_wp, 1820.0_wp, '49 CFR 571.208 S23.5.5', .false.), &
-        occupant_t('H3YO', 'HYBRID III 3-YEAR-OLD', nij_intercepts_t(2120.0_wp, 2120.0_wp, 68.0_wp, 27.0_wp), &
-                   1130.0_wp, 1380.0_wp, '49 CFR 571.208 S21.5.5', .false.), &
-        occupant_t('C12M', 'CRABI 12-MONTH-OLD', nij_intercepts_t(1460.0_wp, 1460.0_wp, 43.0_wp, 17.0_wp), &
-                   780.0_wp, 960.0_wp, '49 CFR 571.208 S19.4.4', .false.)]
+                   2620.0_wp, 2520.0_wp, '49 CFR 571.208 S15.3.6', .false.)]
 
 contains
 
@@ -108,19 +105,37 @@ contains
         real(wp), intent(out), dimension(size(fz)) :: ntf   !! tension-flexion Nij
         real(wp), intent(out), dimension(size(fz)) :: nce   !! compression-extension Nij
         real(wp), intent(out), dimension(size(fz)) :: ncf   !! compression-flexion Nij
-        real(wp) :: ft, fc, mf, me
-        integer :: i
-        do i = 1, size(fz)
-            ft = max(fz(i), zero)/crit%fz_tension
-            fc = max(-fz(i), zero)/crit%fz_compression
-            mf = max(my(i), zero)/crit%my_flexion
-            me = max(-my(i), zero)/crit%my_extension
-            nte(i) = merge(ft + me, zero, fz(i) >= zero .and. my(i) <= zero)
-            ntf(i) = merge(ft + mf, zero, fz(i) >= zero .and. my(i) >= zero)
-            nce(i) = merge(fc + me, zero, fz(i) < zero .and. my(i) <= zero)
-            ncf(i) = merge(fc + mf, zero, fz(i) < zero .and. my(i) >= zero)
-        end do
+        call mode_sums(fz, my, crit%fz_tension, crit%fz_compression, crit%my_flexion, crit%my_extension, &
+                       ntf, nte, ncf, nce)
     end subroutine nij
+
+    !> The four normalized sums |x|/cx + |y|/cy of two signed loads, each in
+    !! its quadrant of (x, y) and zero outside it: x >= 0 or x < 0, y >= 0 or
+    !! y <= 0 (Nij's modes, hn_whiplash's Nkm).
+    pure subroutine mode_sums(x, y, cx_pos, cx_neg, cy_pos, cy_neg, pp, pn, np, nn)
+        real(wp), intent(in) :: x(:)                       !! first load
+        real(wp), intent(in) :: y(:)                       !! second load
+        real(wp), intent(in) :: cx_pos                     !! intercept of x >= 0 (positive)
+        real(wp), intent(in) :: cx_neg                     !! intercept of x < 0 (positive)
+        real(wp), intent(in) :: cy_pos                     !! intercept of y >= 0 (positive)
+        real(wp), intent(in) :: cy_neg                     !! intercept of y <= 0 (positive)
+        real(wp), intent(out), dimension(size(x)) :: pp    !! x >= 0, y >= 0
+        real(wp), intent(out), dimension(size(x)) :: pn    !! x >= 0, y <= 0
+        real(wp), intent(out), dimension(size(x)) :: np    !! x < 0, y >= 0
+        real(wp), intent(out), dimension(size(x)) :: nn    !! x < 0, y <= 0
+        real(wp) :: xp, xn, yp, yn
+        integer :: i
+        do i = 1, size(x)
+            xp = max(x(i), zero)/cx_pos
+            xn = max(-x(i), zero)/cx_neg
+            yp = max(y(i), zero)/cy_pos
+            yn = max(-y(i), zero)/cy_neg
+            pp(i) = merge(xp + yp, zero, x(i) >= zero .and. y(i) >= zero)
+            pn(i) = merge(xp + yn, zero, x(i) >= zero .and. y(i) <= zero)
+            np(i) = merge(xn + yp, zero, x(i) < zero .and. y(i) >= zero)
+            nn(i) = merge(xn + yn, zero, x(i) < zero .and. y(i) <= zero)
+        end do
+    end subroutine mode_sums
 
     !> NIC(t) = 0.2 a_rel + v_rel^2 from the x-accelerations of T1 and the
     !! head [m/s^2], v_rel the trapezoidal integral of a_rel from the first sample.

@@ -2,7 +2,7 @@
 !! values the injury criteria are compared with, and the frame of NIC's
 !! x-accelerations.
 !!
-!!   CRITERIA  F1 occupant   H50M (default), H05F, H95M, H6YO, H3YO, C12M
+!!   CRITERIA  F1 occupant   H50M (default), H05F
 !!             F2 NIC frame  INERTIAL (default: global x) or HEAD (head x axis)
 !!
 !! Blank fields keep the defaults; without the card the criteria are those

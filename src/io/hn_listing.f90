@@ -473,14 +473,19 @@ contains
 
     !> Injury criteria with the reference values of the chosen occupant's
     !! dummy (hn_injury's occupants) and, under the table, each criterion's
-    !! source and where it applies.
+    !! source and where it applies. The run's loading direction (hn_whiplash's
+    !! scene_direction) picks the rows: a frontal or rear run shows the
+    !! sagittal criteria, a lateral run the lateral ones; the others are named
+    !! as not applicable (the result file holds them all).
     subroutine listing_criteria(me, a)
         class(listing_t), intent(inout) :: me
         type(assessment_t), intent(in) :: a   !! the run's injury assessment
         character(len=120) :: s
         character(len=3), parameter :: modes(4) = ['NTE', 'NTF', 'NCE', 'NCF']
+        character(len=*), parameter :: ms = ' MS'
+        logical :: lateral
         integer :: k
-        call me%need(32)
+        call me%need(44)
         call me%put('')
         call me%put(' INJURY CRITERIA (HEAD ACCELERATION CFC 1000, UPPER-NECK LOADS CFC 600, NIC CFC 60)')
         call me%put('')
@@ -488,6 +493,8 @@ contains
             call me%put('   '//trim(a%note))
             return
         end if
+        lateral = a%direction == 'LATERAL'
+        call me%put('   LOADING DIRECTION      '//trim(a%direction)//'  [5]')
         associate (occ => occupants(a%occupant))
             write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC15                  ', a%hic15, '   FROM', 1000*a%hic15_t1, &
                 ' TO', 1000*a%hic15_t2, ' MS          REF     700  [1]'
@@ -495,48 +502,88 @@ contains
             write (s, '(a,f10.1,a,f8.2,a,f8.2,a)') '   HIC36                  ', a%hic36, '   FROM', 1000*a%hic36_t1, &
                 ' TO', 1000*a%hic36_t2, ' MS          REF    1000  [1]'
             call me%put(s)
-            do k = 1, 4
-                write (s, '(a,a,a,f10.3,a,f8.2,a)') '   NIJ ', modes(k), '                ', a%nij_max(k), '   AT ', &
-                    1000*a%nij_time(k), ' MS                          REF     1.0  [2]'
+            if (.not. lateral) then
+                do k = 1, 4
+                    write (s, '(a,a,a,f10.3,a,f8.2,a)') '   NIJ ', modes(k), '                ', a%nij_max(k), &
+                        '   AT ', 1000*a%nij_time(k), ' MS                          REF     1.0  [2]'
+                    call me%put(s)
+                end do
+                write (s, '(a,f10.2,a,f8.2,a)') '   NIC (M2/S2)            ', a%nic_max, '   AT ', 1000*a%nic_time, &
+                    ' MS                          REF      15  [3] (REAR-IMPACT CRITERION)'
                 call me%put(s)
-            end do
-            write (s, '(a,f10.2,a,f8.2,a)') '   NIC (M2/S2)            ', a%nic_max, '   AT ', 1000*a%nic_time, &
-                ' MS                          REF      15  [3] (REAR-IMPACT CRITERION)'
-            call me%put(s)
+            end if
             write (s, '(a,f10.1,a,f8.2,a,i7,a)') '   UPPER NECK TENSION (N) ', a%tension, '   AT ', &
                 1000*a%tension_t, ' MS                          REF ', nint(occ%tension), '  [4]'
             call me%put(s)
             write (s, '(a,f10.1,a,f8.2,a,i7,a)') '   COMPRESSION (N)        ', a%compression, '   AT ', &
                 1000*a%compression_t, ' MS                          REF ', -nint(occ%compression), '  [4]'
             call me%put(s)
-            write (s, '(a,f10.1,a,f8.2,a)') '   SHEAR |FX| (N)         ', a%shear, '   AT ', 1000*a%shear_t, ' MS'
-            call me%put(s)
-            write (s, '(a,f10.1,a,f8.2,a)') '   FLEXION MOMENT (N M)   ', a%flexion, '   AT ', 1000*a%flexion_t, ' MS'
-            call me%put(s)
-            write (s, '(a,f10.1,a,f8.2,a)') '   EXTENSION MOMENT (N M) ', a%extension, '   AT ', 1000*a%extension_t, &
-                ' MS'
-            call me%put(s)
+            if (lateral) then
+                call row('   LAT. MOMENT |MX| (N M)', a%lat_moment, a%lat_moment_t, '')
+                call row('   LAT. SHEAR |FY| (N)', a%lat_shear, a%lat_shear_t, '')
+                call row('   HEAD LAT. BENDING (DEG)', a%lat_bend, a%lat_bend_t, '  [7]')
+                call me%put('   NOT APPLICABLE TO A LATERAL RUN (IN THE RESULT FILE): NIJ, NIC, NDC, SAGITTAL SHEAR '// &
+                            'AND MOMENTS')
+            else
+                call row('   SHEAR |FX| (N)', a%shear, a%shear_t, '')
+                call row('   FLEXION MOMENT (N M)', a%flexion, a%flexion_t, '')
+                call row('   EXTENSION MOMENT (N M)', a%extension, a%extension_t, '')
+                call row('   T1 X ACCELERATION (G)', a%t1_ax_max, a%t1_ax_max_t, '  [3]')
+                call row('   HEAD X ACCELERATION (G)', a%head_ax_max, a%head_ax_max_t, '  [3]')
+                write (s, '(a,f10.1,a,f8.2,a,f8.1,a)') '   NDC EXTENSION (DEG)    ', a%ndc%ext_angle, '   AT ', &
+                    1000*a%ndc%ext_time, ' MS   HEAD X', a%ndc%ext_dx, ' MM  [6]'
+                call me%put(s)
+                write (s, '(a,f10.1,a,f8.2,a,f8.1,a)') '   NDC RETRACTION (MM)    ', a%ndc%ret_dx, '   AT ', &
+                    1000*a%ndc%ret_time, ' MS   ANGLE ', a%ndc%ret_angle, ' DEG  [6]'
+                call me%put(s)
+                call me%put('   NKM, LNL                NOT COMPUTED: INTERCEPTS NOT SOURCED  [6]')
+                call me%put('   IV-NIC                  NOT COMPUTED: JOINT ROTATIONS NOT PASSED TO THE ASSESSMENT  [6]')
+                call me%put('   NOT APPLICABLE TO A '//trim(a%direction)//' RUN (IN THE RESULT FILE): LATERAL MOMENT, '// &
+                            'LATERAL SHEAR, HEAD LATERAL BENDING')
+            end if
             call me%put('')
             call me%put('   REF: INJURY ASSESSMENT REFERENCE VALUE OF A CRASH-TEST DUMMY IN A STANDARD, NOT A LIMIT OF '// &
                         'THIS HUMAN MODEL')
             call me%put('   [1] 49 CFR 571.208 S6.2 (FMVSS 208): HEAD MASS-CENTRE RESULTANT ACCELERATION, CFC 1000')
-            call me%put('   [2] '//trim(upper(occ%source))//': UPPER NECK (OCCIPITAL CONDYLE), CFC 600; '// &
-                        'INTERCEPTS OF THE '//trim(occ%label))
-            write (s, '(a,i0,a,i0,a,i0,a,i0,a)') '       FZC ', nint(occ%crit%fz_tension), ' N TENSION, ', &
-                nint(occ%crit%fz_compression), ' N COMPRESSION; MYC ', nint(occ%crit%my_flexion), ' N M FLEXION, ', &
-                nint(occ%crit%my_extension), ' N M EXTENSION'
-            call me%put(s)
-            call me%put('   [3] BOSTROM ET AL. 1996: REAR IMPACT ONLY, NOT A CRITERION FOR FRONTAL OR LATERAL LOADING; '// &
-                        'CFC 60')
-            if (a%nic_frame == 'HEAD') then
-                call me%put('       X-ACCELERATIONS OF T1 AND THE HEAD ALONG THE HEAD''S X AXIS')
-            else
-                call me%put('       X-ACCELERATIONS OF T1 AND THE HEAD ALONG THE INERTIAL X AXIS')
+            if (.not. lateral) then
+                call me%put('   [2] '//trim(upper(occ%source))//': UPPER NECK (OCCIPITAL CONDYLE), CFC 600; '// &
+                            'INTERCEPTS OF THE '//trim(occ%label))
+                write (s, '(a,i0,a,i0,a,i0,a,i0,a)') '       FZC ', nint(occ%crit%fz_tension), ' N TENSION, ', &
+                    nint(occ%crit%fz_compression), ' N COMPRESSION; MYC ', nint(occ%crit%my_flexion), &
+                    ' N M FLEXION, ', nint(occ%crit%my_extension), ' N M EXTENSION'
+                call me%put(s)
+                call me%put('   [3] BOSTROM ET AL. 1996: REAR IMPACT ONLY, NOT A CRITERION FOR FRONTAL OR LATERAL '// &
+                            'LOADING; CFC 60')
+                if (a%nic_frame == 'HEAD') then
+                    call me%put('       X-ACCELERATIONS OF T1 AND THE HEAD ALONG THE HEAD''S X AXIS')
+                else
+                    call me%put('       X-ACCELERATIONS OF T1 AND THE HEAD ALONG THE INERTIAL X AXIS')
+                end if
             end if
             call me%put('   [4] '//trim(upper(occ%source))//': UPPER NECK, CFC 600; '//trim(occ%label))
             if (.not. occ%verified) &
-                call me%put('       ('//trim(occ%code)//' VALUES NOT VERIFIED AGAINST THE REGULATION TEXT)')
+                call me%put('       ('//trim(occ%code)//' PEAK VALUES NOT VERIFIED AGAINST THE REGULATION TEXT)')
+            call me%put('   [5] LATERAL IF THE LARGEST |HT1_RX| EXCEEDS THE LARGEST |HT1_RY|; ELSE REAR IF THE '// &
+                        'LARGEST HT1_RY IS AN EXTENSION, FRONTAL IF A FLEXION')
+            if (lateral) then
+                call me%put('   [7] HT1_RX: THE HEAD''S LATERAL BENDING RELATIVE TO T1 (> 0 TOP OF THE HEAD TO THE '// &
+                            'RIGHT); NO REFERENCE VALUE')
+            else
+                call me%put('   [6] NDC (MUSER ET AL. 2000): HEAD RELATIVE TO T1 (HT1_RY, HT1_DX); CORRIDORS NOT '// &
+                            'SOURCED, NOT COMPARED')
+                call me%put('       NKM (SCHMITT ET AL. 2002), LNL (HEITPLATZ ET AL. 2003), IV-NIC (PANJABI ET AL. '// &
+                            '1999): DOCS/OUTPUT-FORMAT.MD')
+            end if
         end associate
+    contains
+        subroutine row(label, v, t, tail)
+            character(len=*), intent(in) :: label, tail
+            real(wp), intent(in) :: v, t
+            character(len=26) :: l
+            l = label
+            write (s, '(a,f10.1,a,f8.2,a)') l, v, '   AT ', 1000*t, ms//tail
+            call me%put(s)
+        end subroutine row
     end subroutine listing_criteria
 
 end module hn_listing

@@ -444,6 +444,46 @@ contains
                       'N m')
             call peak(h, 'extension_moment', 'lowest OC_MY (extension negative), CFC 600', a%extension, &
                       a%extension_t, 'N m')
+            call h%attr_string('/injury', 'direction', trim(a%direction))
+            call h%attr_string('/injury', 'direction_rule', 'LATERAL if the largest |HT1_RX| exceeds the largest '// &
+                               '|HT1_RY|; else REAR if the largest |HT1_RY| is an extension, FRONTAL if a flexion')
+            call peak(h, 'lateral_moment', 'highest |OC_MX| (lateral bending moment at the occipital condyle), '// &
+                      'CFC 600', a%lat_moment, a%lat_moment_t, 'N m')
+            call frame(h, 'lateral_moment', 'head axes at the occipital condyle (OC_MX)', 'lateral')
+            call peak(h, 'lateral_shear', 'highest |OC_FY| (lateral shear at the occipital condyle), CFC 600', &
+                      a%lat_shear, a%lat_shear_t, 'N')
+            call frame(h, 'lateral_shear', 'head axes at the occipital condyle (OC_FY)', 'lateral')
+            call peak(h, 'lateral_bending', 'HT1_RX of the largest magnitude: the head''s lateral bending '// &
+                      'relative to T1 (> 0 the top of the head to the right), unfiltered', a%lat_bend, &
+                      a%lat_bend_t, 'deg')
+            call frame(h, 'lateral_bending', 'T1 axes, Bryant x-y-z (HT1_RX)', 'lateral')
+            call peak(h, 't1_ax', 'highest T1 x-acceleration, CFC 60, in NIC''s frame', a%t1_ax_max, &
+                      a%t1_ax_max_t, 'g')
+            call frame(h, 't1_ax', trim(a%nic_frame)//' (the frame of /injury/nic)', 'rear')
+            call peak(h, 'head_ax', 'highest head x-acceleration, CFC 60, in NIC''s frame', a%head_ax_max, &
+                      a%head_ax_max_t, 'g')
+            call frame(h, 'head_ax', trim(a%nic_frame)//' (the frame of /injury/nic)', 'rear')
+            call h%group('/injury/ndc')
+            call h%attr_string('/injury/ndc', 'description', 'NDC points: the head relative to T1 where its '// &
+                               'extension (lowest HT1_RY) and its retraction (lowest HT1_DX) peak; corridors not '// &
+                               'sourced, not compared')
+            call h%attr_string('/injury/ndc', 'source', 'Muser et al. 2000 (neck displacement criterion)')
+            call frame(h, 'ndc', 'T1 axes: HT1_RY flexion positive, HT1_DX < 0 retraction', 'rear')
+            call scalar(h, '/injury/ndc/extension', [a%ndc%ext_angle, a%ndc%ext_dx, a%ndc%ext_dz], &
+                        'deg, mm, mm', 'angle, x, z at the extension peak')
+            call scalar(h, '/injury/ndc/extension_time', [a%ndc%ext_time], 's', 'time of the extension peak')
+            call scalar(h, '/injury/ndc/retraction', [a%ndc%ret_angle, a%ndc%ret_dx, a%ndc%ret_dz], &
+                        'deg, mm, mm', 'angle, x, z at the retraction peak')
+            call scalar(h, '/injury/ndc/retraction_time', [a%ndc%ret_time], 's', 'time of the retraction peak')
+            call scalar(h, '/injury/ndc/flexion', [a%ndc%flex_angle, a%ndc%flex_dx], 'deg, mm', &
+                        'angle, x at the flexion peak')
+            call scalar(h, '/injury/ndc/flexion_time', [a%ndc%flex_time], 's', 'time of the flexion peak')
+            call missing(h, 'nkm', 'Schmitt et al. 2002', 'not computed: the intercepts could not be checked '// &
+                         'against a source')
+            call missing(h, 'lnl', 'Heitplatz et al. 2003', 'not computed: the intercepts could not be checked '// &
+                         'against a source')
+            call missing(h, 'iv_nic', 'Panjabi et al. 1999', 'not computed: the joint rotations and ranges are '// &
+                         'not passed to the assessment')
             n = size(a%head_ar)
             call h%group('/injury/history')
             call h%attr_string('/injury/history', 'description', 'filtered time histories at the times of /time')
@@ -454,6 +494,8 @@ contains
             call series(h, 'oc_fx_cfc600', a%fx, [n], 'N', 'OC_FX, CFC 600')
             call series(h, 'oc_fz_cfc600', a%fz, [n], 'N', 'OC_FZ, CFC 600')
             call series(h, 'oc_my_cfc600', a%my, [n], 'N m', 'OC_MY, CFC 600')
+            call series(h, 'oc_fy_cfc600', a%fy, [n], 'N', 'OC_FY, CFC 600')
+            call series(h, 'oc_mx_cfc600', a%mx, [n], 'N m', 'OC_MX, CFC 600')
             call series(h, 'nic_head_ax_cfc60', a%nic_head, [n], 'm/s^2', 'head mass-centre x-acceleration '// &
                         'NIC is computed from, CFC 60, along the '// &
                         trim(merge('head''s x axis  ', 'inertial x axis', a%nic_frame == 'HEAD')))
@@ -504,6 +546,19 @@ contains
             call scalar(h, '/injury/'//name//'/value', [v], units, description)
             call scalar(h, '/injury/'//name//'/time', [t], 's', 'time of the peak')
         end subroutine peak
+        subroutine frame(h, name, axes, direction)
+            type(h5_file_t), intent(inout) :: h
+            character(len=*), intent(in) :: name, axes, direction
+            call h%attr_string('/injury/'//name, 'frame', axes)
+            call h%attr_string('/injury/'//name, 'direction', direction)
+        end subroutine frame
+        subroutine missing(h, name, source, note)
+            type(h5_file_t), intent(inout) :: h
+            character(len=*), intent(in) :: name, source, note
+            call h%group('/injury/'//name)
+            call h%attr_string('/injury/'//name, 'source', source)
+            call h%attr_string('/injury/'//name, 'note', note)
+        end subroutine missing
         subroutine series(h, name, v, dims, units, description)
             type(h5_file_t), intent(inout) :: h
             character(len=*), intent(in) :: name, units, description
