@@ -171,6 +171,8 @@ contains
         type(case_t), intent(in) :: cs   !! the run case (model tables, run control)
         character(len=160) :: s
         character(len=12) :: pname, status, num
+        character(len=40) :: item
+        character(len=:), allocatable :: line
         integer :: k, j, f, n, nfree, npres
         associate (tr => cs%model%tree, md => cs%model)
             n = tr%ndof
@@ -213,9 +215,19 @@ contains
             end do
             call me%put('')
             call me%put('   ELEMENTS')
-            write (s, '(a,*(3x,a,1x,i3,1x,a))') '  ', &
-                (trim(family_name(f)), family_count(md, f), merge('(ON) ', '(OFF)', md%family_on(f)), f=1, nfamilies)
-            call me%put(s)
+            ! the families side by side, a new line before one that would pass column 132
+            line = '  '
+            do f = 1, nfamilies
+                write (item, '(3x,a,1x,i3,1x,a)') trim(family_name(f)), family_count(md, f), &
+                    merge('(ON) ', '(OFF)', md%family_on(f))
+                k = len_trim(item) + merge(1, 0, md%family_on(f))
+                if (len(line) + k > 132) then
+                    call me%put(line)
+                    line = '  '
+                end if
+                line = line//item(1:k)
+            end do
+            call me%put(line)
             write (s, '(a,i3)') '   APPLIED FORCE/COUPLE TABLES', size(md%applied)
             call me%put(s)
             call me%put('')
