@@ -3,8 +3,8 @@
 !! hn_contact_geometry behind the element-family interface. The force acts
 !! at the contact point (the ellipsoid's support point), normal force and
 !! friction on the ellipsoid's body, the reaction on the plane's. Outputs
-!! per contact: normal force [N], friction force [N], penetration [m]
-!! (negative: the gap), contact point in R [m]. The family reads its
+!! per contact: normal force [N], friction force [N], penetration [mm,
+!! as the channels' lengths] (negative: the gap), contact point in R [m]. The family reads its
 !! CONTACT cards; a surface that starts inside its plane in the neutral
 !! configuration is refused unless the card asks to offset the plane.
 module hn_contact_family
@@ -93,7 +93,7 @@ contains
         do e = 1, size(this%items)
             associate (c => this%items(e))
                 call contact_geometry(kin, c, g)
-                out(:, e) = [zero, zero, g%depth, g%point]
+                out(:, e) = [zero, zero, 1000*g%depth, g%point]
                 if (g%depth <= zero) cycle
                 call normal_force(c, this%tables, g%depth, g%rate, fn, fl)
                 ft = friction_force(c, fn, g%vt)
@@ -214,7 +214,7 @@ contains
         end do
     end subroutine contact_switching
 
-    !> NAME_N normal force, NAME_F friction force [N], NAME_D penetration [m].
+    !> NAME_N normal force, NAME_F friction force [N], NAME_D penetration [mm].
     pure function contact_channels(this, tree) result(c)
         class(contact_family_t), intent(in) :: this   !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
@@ -226,7 +226,7 @@ contains
             associate (nm => this%items(e)%name)
                 c(e) = family_channel_t(trim(nm)//'_N', 'N', 'CONTACT NORMAL', e, 1)
                 c(n + e) = family_channel_t(trim(nm)//'_F', 'N', 'CONTACT FRICTION', e, 2)
-                c(2*n + e) = family_channel_t(trim(nm)//'_D', 'm', 'CONTACT DEPTH', e, 3)
+                c(2*n + e) = family_channel_t(trim(nm)//'_D', 'mm', 'CONTACT DEPTH', e, 3)
             end associate
         end do
     end function contact_channels
