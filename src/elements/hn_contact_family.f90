@@ -18,7 +18,7 @@ module hn_contact_family
     use hn_rotation, only: cross
     use hn_contact_geometry, only: contact_t, contact_state_t, contact_geometry, normal_force, friction_force, &
                                    table_integral
-    use hn_element_family, only: element_family_t, item_channels, family_work_t, family_channel_t, element_table_t, table_data_t, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
                                  max_family_items, item_len, warning_len, check_point, add_line_tangent, path_columns, &
                                  fd_rel, fd_abs_length
     implicit none
@@ -219,8 +219,16 @@ contains
         class(contact_family_t), intent(in) :: this   !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
         type(family_channel_t), allocatable :: c(:)
-        c = item_channels(this%items%name, [character(len=2) :: '_N', '_F', '_D'], [character(len=2) :: 'N', 'N', 'mm'], &
-                          [character(len=16) :: 'CONTACT NORMAL', 'CONTACT FRICTION', 'CONTACT DEPTH'], [1, 2, 3])
+        integer :: e, n
+        n = size(this%items)
+        allocate (c(3*n))
+        do e = 1, n
+            associate (nm => this%items(e)%name)
+                c(e) = family_channel_t(trim(nm)//'_N', 'N', 'CONTACT NORMAL', e, 1)
+                c(n + e) = family_channel_t(trim(nm)//'_F', 'N', 'CONTACT FRICTION', e, 2)
+                c(2*n + e) = family_channel_t(trim(nm)//'_D', 'mm', 'CONTACT DEPTH', e, 3)
+            end associate
+        end do
     end function contact_channels
 
     !> /model/elements/contacts: body a the plane's, b the ellipsoid's;

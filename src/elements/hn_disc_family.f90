@@ -11,7 +11,7 @@ module hn_disc_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_discs, only: disc_t, apply_disc, disc_set_reference, disc_deformation, disc_resultants, inv_left_jacobian
-    use hn_element_family, only: element_family_t, item_channels, family_work_t, family_channel_t, element_table_t, table_data_t, &
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
                                  max_family_items, &
                                  item_len, warning_len, fd_rel, fd_abs_length, fd_abs_rate, path_columns, check_point, &
                                  check_range
@@ -186,8 +186,16 @@ contains
         class(disc_family_t), intent(in) :: this      !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
         type(family_channel_t), allocatable :: c(:)
-        c = item_channels(this%items%name, [character(len=3) :: '_P', '_VX', '_MY'], [character(len=3) :: 'N', 'N', 'N m'], &
-                          [character(len=13) :: 'DISC AXIAL', 'DISC SHEAR X', 'DISC MOMENT Y'], [3, 1, 5])
+        integer :: e, n
+        n = size(this%items)
+        allocate (c(3*n))
+        do e = 1, n
+            associate (nm => this%items(e)%name)
+                c(e) = family_channel_t(trim(nm)//'_P', 'N', 'DISC AXIAL', e, 3)
+                c(n + e) = family_channel_t(trim(nm)//'_VX', 'N', 'DISC SHEAR X', e, 1)
+                c(2*n + e) = family_channel_t(trim(nm)//'_MY', 'N m', 'DISC MOMENT Y', e, 5)
+            end associate
+        end do
     end function disc_channels
 
     !> /model/elements/discs: plate centres, plate frames, area and thickness.

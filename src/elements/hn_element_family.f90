@@ -41,7 +41,6 @@ module hn_element_family
     private
 
     public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
-    public :: item_channels
     public :: path_columns, add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
 
     integer, parameter, public :: max_family_items = 10  !! most properties a family has to scale
@@ -515,27 +514,5 @@ contains
             end if
         end do
     end subroutine path_columns
-
-    !> The channels of a family whose elements have the same outputs: for
-    !! each output k in turn, every element's channel, named after the
-    !! element with suffix(k), in units(k) and listing group(k), its value
-    !! the element's row(k) of the family's output array.
-    pure function item_channels(names, suffix, units, group, row) result(c)
-        character(len=*), intent(in) :: names(:)   !! (elements) the elements' names
-        character(len=*), intent(in) :: suffix(:)  !! (outputs) appended to an element's name
-        character(len=*), intent(in) :: units(:)   !! (outputs) units of each output
-        character(len=*), intent(in) :: group(:)   !! (outputs) listing group of each output
-        integer, intent(in) :: row(:)              !! (outputs) row of the family's output array
-        type(family_channel_t), allocatable :: c(:)
-        integer :: k, e, n
-        n = size(names)
-        allocate (c(n*size(row)))
-        do k = 1, size(row)
-            do e = 1, n
-                c((k - 1)*n + e) = family_channel_t(trim(names(e))//trim(suffix(k)), trim(units(k)), trim(group(k)), &
-                                                    e, row(k))
-            end do
-        end do
-    end function item_channels
 
 end module hn_element_family
