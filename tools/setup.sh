@@ -18,10 +18,12 @@
 #   checkout points at it, and it points at nothing of another checkout:
 #   two checkouts on one machine each use their own package. tools/test.sh
 #   uses it; in a shell, `. .venv/bin/activate` puts it first on PATH.
+#   FORD (PyPI, one version) into .venv, to build the API pages from the
+#   !! comments (test/scripts/api_docs.sh); not with --python.
 #   Then the release build of the program, so that its build progress goes
 #   to stderr and the first run's standard output is the listing alone.
 #   tools/setup.sh --python   the Python part alone (no Debian packages, no
-#                             build): the machine's packages and .venv/
+#                             FORD, no build): the machine's packages and .venv/
 set -eu
 
 python_only=no
@@ -115,6 +117,16 @@ sys.exit(v < (64, 0))" >/dev/null 2>&1; then
 fi
 
 [ "$python_only" = yes ] && exit 0
+# FORD, the API documentation generator (test/scripts/api_docs.sh builds
+# the pages from the !! comments): into this checkout's environment (its
+# dependencies pin versions the machine's packages need not have), one
+# version so that its warnings are the same on every machine
+ford_version=7.0.13
+[ "$("$venv/bin/ford" --version 2>/dev/null)" = "ford version $ford_version" ] || {
+    echo "setup: installing FORD $ford_version from PyPI into .venv" >&2
+    "$py" -m pip install -q "ford==$ford_version" >&2
+}
+
 # fpm's progress to stderr as it comes, but for its line when nothing was
 # to build (a second run says nothing)
 status=$( { { fpm build --profile release 2>&1 && echo 0 >&3 || echo $? >&3; } |

@@ -1,4 +1,4 @@
-!> Sorting: the permutation that orders small real arrays (the
+!> Sorting by permutation: the permutation that orders small real arrays (the
 !! Nelder-Mead simplex of the calibration, medians of the benchmarks) and
 !! texts of any number (the deck's names, to find repeats in n log n).
 module hn_sorting

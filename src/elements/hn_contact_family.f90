@@ -26,7 +26,7 @@ module hn_contact_family
 
     public :: contact_family_t, contact_t
 
-    integer, parameter :: ncomp_contact = 6   !! outputs: N, friction, penetration, contact point (3)
+    integer, parameter :: ncomp_contact = 6   !! its outputs: N, friction, penetration, contact point (3)
 
     !> The contacts of a model and their force-penetration tables.
     type, extends(element_family_t) :: contact_family_t

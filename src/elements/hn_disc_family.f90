@@ -71,7 +71,7 @@ contains
         end do
     end subroutine disc_neutral
 
-    !> Pre-strain: every disc's references (plate frames, neutral offset)
+    !> The pre-strain: every disc's references (plate frames, neutral offset)
     !! measured in the displaced neutral configuration of kin, so that the
     !! discs are unstrained there and strained in the true neutral.
     pure subroutine disc_prestrain(this, kin, dx)
@@ -125,7 +125,7 @@ contains
         end do
     end subroutine disc_tangent
 
-    !> Disc: qd = B xdot with column B_i = +-G sj_i, G mapping a motion
+    !> A disc: qd = B xdot with column B_i = +-G sj_i, G mapping a motion
     !! vector (w; v) to (L^T (v + w x (P_u - origin)); J^-1 L^T w) (P_u the
     !! upper plate centre where the loads act; + for the upper body's
     !! coordinates, - for the lower's); ds/dq and ds/dqd by central

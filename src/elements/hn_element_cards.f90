@@ -221,7 +221,7 @@ contains
         end if
     end function table_ref
 
-    !> Error: card i addresses coordinate m of deck body kold, which a LOCK
+    !> An error: card i addresses coordinate m of deck body kold, which a LOCK
     !! or SCENE card locked (named with its location).
     subroutine locked_error(rd, i, bnames, bmap, kold, m)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error

@@ -103,7 +103,7 @@ contains
         end do
     end subroutine limit_loads
 
-    !> Dampers: -dQ/dx and -dQ/dxdot of their laws on their coordinates;
+    !> The dampers: -dQ/dx and -dQ/dxdot of their laws on their coordinates;
     !! ranges (elastic beyond the range): K_jj -= dQ/dx.
     pure subroutine limit_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
         class(limit_family_t), intent(in) :: this     !! the family

@@ -156,7 +156,7 @@ contains
         type(kinematics_t), intent(in) :: kin       !! kinematics of the neutral configuration (unused)
     end subroutine nz_neutral
 
-    !> Pre-strain: every spring's neutral value x_n moved by its
+    !> The pre-strain: every spring's neutral value x_n moved by its
     !! coordinate's displacement dx (the springs act on coordinates, so
     !! kin is not needed).
     pure subroutine nz_prestrain(this, kin, dx)

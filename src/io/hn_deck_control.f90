@@ -198,7 +198,7 @@ contains
         end do
     end subroutine control_cards
 
-    !> H5FILE: the result file. One card per file of the deck; the deck's
+    !> The H5FILE card: the result file. One card per file of the deck; the deck's
     !! own card wins over an INCLUDEd deck's (a variant names its own file),
     !! and an INCLUDEd deck's only is marked h5file_included: a variant's
     !! run is then named after the variant's deck file (hhneck's main).
@@ -268,7 +268,7 @@ contains
         end if
     end subroutine hold_card
 
-    !> HEADNECK: the bodies reported as head and T1 (their merged bodies
+    !> The HEADNECK card: the bodies reported as head and T1 (their merged bodies
     !! when MERGE absorbed them); CRITERIA; the LOADCELL and PRINT cards; STATICS.
     subroutine report_cards(rd, cards, cs, bnames, bmap)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error

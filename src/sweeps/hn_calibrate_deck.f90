@@ -98,7 +98,7 @@ contains
         cal%weight = [cal%weight, w]
     end subroutine read_case_card
 
-    !> DATA: the last case's volunteer directory or reference CSV (a name
+    !> The DATA card: the last case's volunteer directory or reference CSV (a name
     !! ending in .csv), found as an INCLUDE file is: next to the calibration
     !! deck, in the working directory, then on the include path (-I,
     !! HHNECK_PATH); one DATA card after each CASE card.
@@ -126,7 +126,7 @@ contains
         if (st%is_pub(size(st%is_pub))) st%is_ref(size(st%is_ref)) = .false.
     end subroutine read_data_card
 
-    !> RATED: a card of the last case, whose DATA card names a reference
+    !> The RATED card: a card of the last case, whose DATA card names a reference
     !! CSV; its fields are read with the CSV (rated_columns).
     subroutine read_rated_card(st, cal, i)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
@@ -294,7 +294,7 @@ contains
         st%params = [st%params, st%rd%lines(i)]
     end subroutine read_param_card
 
-    !> OPTIONAL: up to 7 PARAM names (F1-F7), each bound in the cases whose
+    !> The OPTIONAL card: up to 7 PARAM names (F1-F7), each bound in the cases whose
     !! deck has its target (family, body or card) and left out of the
     !! others, e.g. the muscles' parameters beside segment cases that have
     !! no muscles; every one must be bound in some case (bind_cases).
@@ -359,7 +359,7 @@ contains
         call st%rd%real(i, 2, 'range margin', '-', cal%range_inside, zero, 0.9_wp, default=zero)
     end subroutine read_ranges_card
 
-    !> VALUES: up to 7 parameter values, in PARAM order (their count:
+    !> The VALUES card: up to 7 parameter values, in PARAM order (their count:
     !! check_calibration_cards).
     subroutine read_values_card(st, cal, i)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
