@@ -33,7 +33,7 @@ import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 from hhneck import run, segments, specimen_data, specimens  # noqa: E402
-from hhneck.compare_nbdl import s3  # noqa: E402
+from hhneck.nbdl import s3  # noqa: E402
 
 TIMES_MS = (10, 20, 25, 30, 35, 40)
 UPPER_DISCS = ("C2C1", "C1HD")

@@ -44,7 +44,7 @@ import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 from hhneck import segments, specimen_data, specimens  # noqa: E402
-from hhneck.compare_nbdl import s3  # noqa: E402
+from hhneck.nbdl import s3  # noqa: E402
 from hhneck.newton_balance import (PAIRS, PLANE, accelerometer_reading, balance, kang_channels,  # noqa: E402
                                    kang_data, kang_pulse, lab_acceleration)
 

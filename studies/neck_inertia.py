@@ -38,7 +38,7 @@ import numpy as np
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 import h5py  # noqa: E402
 from hhneck import run, segments, specimen_data, specimens  # noqa: E402
-from hhneck.compare_nbdl import compare, s3  # noqa: E402
+from hhneck.nbdl import compare, s3  # noqa: E402
 from hhneck.export import kinematic_to_j211  # noqa: E402
 
 NECK = ("C7", "C6", "C5", "C4", "C3", "C2", "C1")

@@ -30,7 +30,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.compare_nbdl import cfc, peak, run_deck, s3, stop  # noqa: E402
+from hhneck.compare_nbdl import run_deck  # noqa: E402
+from hhneck.nbdl import cfc, peak, s3, stop  # noqa: E402
 from hhneck.deck_fields import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
 
 SEVERITIES = ("8g", "12g", "15g")
@@ -60,7 +61,7 @@ def volunteer_peaks(path="reference/reference-data.md"):
 
 
 def model_peaks(h5):
-    """The model's six peaks, each channel CFC 60 (compare_nbdl.model_channels)."""
+    """The model's six peaks, each channel CFC 60 (hhneck.nbdl.model_channels)."""
     import h5py
     f = h5py.File(h5, "r")
     tm = f["time"][:] * 1e3

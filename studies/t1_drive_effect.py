@@ -18,7 +18,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.compare_nbdl import compare, s3, stop  # noqa: E402
+from hhneck.nbdl import compare, s3, stop  # noqa: E402
 from hhneck.nbdl_tables import t1_tables  # noqa: E402
 from hhneck.deck_fields import CardError, hold, is_card, write_decks  # noqa: E402
 

@@ -59,6 +59,7 @@ import numpy as np
 
 from . import segments, specimens
 from .deck_fields import field, is_card, number_field, set_field, write_deck
+from .paths import project_path, project_root
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
 
@@ -261,7 +262,7 @@ def run_calibration(deck, workdir, exe=None):
     """`hhneck --calibrate DECK` in workdir (shipped decks through -I
     ROOT); the listing's numbers (parse_listing) and its text."""
     exe = exe or segments.default_executable()
-    r = subprocess.run([exe, "-I", segments.ROOT, "--calibrate", os.path.basename(deck)], cwd=workdir,
+    r = subprocess.run([exe, "-I", project_root(), "--calibrate", os.path.basename(deck)], cwd=workdir,
                        capture_output=True, text=True)
     with open(deck[:-4] + ".txt", "w") as f:
         f.write(r.stdout)
@@ -279,7 +280,7 @@ def group_weights(groups):
 
 
 #: the NBDL calibration deck whose cases the volunteer scores rate (CORA-style, its RATING card)
-NBDL_DECK = os.path.join(segments.ROOT, "input", "calibrate_nbdl.inp")
+NBDL_DECK = project_path("input", "calibrate_nbdl.inp")
 
 
 def param_card(lines, p, model):
@@ -405,7 +406,7 @@ def table(rows, params):
 
 
 #: the NBDL 12 g calibration deck (the shipped fit's) and its muscles' parameters
-NBDL12_DECK = os.path.join(segments.ROOT, "input", "calibrate_nbdl12g.inp")
+NBDL12_DECK = project_path("input", "calibrate_nbdl12g.inp")
 MUSCLE_PARAMS = ("SIGMA", "BRACEF", "REFLEXF", "DELAYF", "BRACEE", "REFLEXE", "DELAYE")
 
 

@@ -78,8 +78,9 @@ import numpy as np
 
 from . import segments, upper_cervical
 from .deck_fields import write_deck
+from .paths import project_path, project_root
 
-CSV_PATH = os.path.join(segments.ROOT, "reference", "nz_springs.csv")
+CSV_PATH = project_path("reference", "nz_springs.csv")
 #: (body, segment of the data) per joint; C7 on T1 takes C6-C7 (ASSUMED)
 JOINTS = (("HEAD", "C0_C1"), ("C1", "C1_C2"), ("C2", "C2_C3"), ("C3", "C3_C4"), ("C4", "C4_C5"),
           ("C5", "C5_C6"), ("C6", "C6_C7"), ("C7", "C6_C7"))
@@ -478,7 +479,7 @@ def main(argv=None):
     if a.check:
         if not _has_nzspring(a.model):
             print("hhneck-fit-joints: %s has no NZSPRING card (write it with python3 -m hhneck.model_deck "
-                  "--nz-springs %s)" % (a.model, os.path.relpath(a.csv, segments.ROOT)), file=sys.stderr)
+                  "--nz-springs %s)" % (a.model, os.path.relpath(a.csv, project_root())), file=sys.stderr)
             return 1
         res = check(a.exe, a.model, a.data, a.work, a.jobs)
         print("%-5s %-18s %-16s %9s %9s %9s %9s" % ("seg", "motion", "source", "M [N m]", "data", "model",

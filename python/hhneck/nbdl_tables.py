@@ -50,9 +50,9 @@ import sys
 
 import numpy as np
 
-from . import compare_nbdl
-from .compare_nbdl import cfc, has_channel, peak, runs
 from .deck_fields import CardError, check_cards, comment_cards, hold, write_decks
+from .nbdl import cfc, channel_file, has_channel, peak, runs, stop
+from .paths import project_path
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
@@ -122,10 +122,12 @@ def t1_tables_8g():
     return lines
 
 
-def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
+def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60, data=None, case=None):
     """The lines of input/nbdlSEV_t1.inp, the z-acceleration filtered CFC
-    z_cfc, the x-acceleration CFC x_cfc (the shipped tables: 60)."""
-    c = CASES[sev]
+    z_cfc, the x-acceleration CFC x_cfc (the shipped tables: 60); the runs
+    in directory `data` (default: the shipped case's), described by `case`
+    (a dict as CASES[sev], the default)."""
+    c = case or CASES[sev]
     lines = comment_cards("T1 drive of the NBDL %s frontal sled, runs %s: x- and" % (label(sev), c["runs"])) + [
         "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
         "* (the z-acceleration CFC %d: its runs are out of phase above about" % z_cfc,
@@ -137,52 +139,58 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60):
     for name, chan, scale, cls in (("T1XACC", "T1_XAccel", "9.80665", x_cfc),
                                    ("T1ZACC", "T1_ZAccel", "9.80665", z_cfc),
                                    ("T1RY", "T1_YrotDisp", c["rot_scale"], 60)):
-        if chan != "T1_XAccel" and not has_channel(chan, sev):
+        if chan != "T1_XAccel" and not has_channel(chan, sev, data):
             lines.append("* No %s.csv in the runs: no %s table; the deck holds that coordinate." % (chan, name))
             continue
-        t, data, _ = runs(chan, sev)
+        t, values, _ = runs(chan, sev, data)
         dt = (t[1] - t[0]) * 1e-3
-        mean = np.mean([cfc(r, cls, dt) for r in data], axis=0)
+        mean = np.mean([cfc(r, cls, dt) for r in values], axis=0)
         lines += table(name, t, mean, scale)
     return check_cards(lines, "the T1 tables of %s" % label(sev))
 
 
-def new_case(folder, name, rot_unit=None, into="input"):
-    """INTO/NAME_t1.inp and INTO/NAME.inp for the runs in `folder`."""
-    compare_nbdl.DATA_DIRS[name] = folder
-    t, ax, cols = runs("T1_XAccel", name)
+def new_case(folder, name, rot_unit=None, into=None):
+    """INTO/NAME_t1.inp and INTO/NAME.inp for the runs in `folder` (INTO:
+    default the project's input/, named input/ in the decks' cards)."""
+    t, ax, cols = runs("T1_XAccel", name, folder)
     onset = pulse_onset(t, ax)
     if onset is None:
-        compare_nbdl.stop("%s: the runs' mean T1 x-acceleration never passes -1 g: no frontal sled pulse to "
-                          "drive the model with" % compare_nbdl.channel_file("T1_XAccel", name))
+        stop("%s: the runs' mean T1 x-acceleration never passes -1 g: no frontal sled pulse to "
+             "drive the model with" % channel_file("T1_XAccel", name, folder))
     if abs(onset - SHIPPED_ONSET) > 10.0:
         print("T1 x-acceleration first passes -1 g at %.1f ms, against about %.0f ms in the shipped runs (the "
               "source's time origin): the deck starts from rest at 0 ms (HOLD POSTURE sets its holding forces "
               "there) and hhneck-compare-nbdl rates 30-250 ms with the z dip before 125 ms; shift the runs' "
               "time_ms by %+.0f ms to match" % (onset, SHIPPED_ONSET, SHIPPED_ONSET - onset), file=sys.stderr)
-    held = {coord: chan for coord, chan in (("TZ", "T1_ZAccel"), ("RY", "T1_YrotDisp")) if not has_channel(chan, name)}
+    held = {coord: chan for coord, chan in (("TZ", "T1_ZAccel"), ("RY", "T1_YrotDisp"))
+            if not has_channel(chan, name, folder)}
     for coord, chan in held.items():
         print("%s.csv not in %s: T1 %s is held at its initial value (PRESCRIB ... CONSTANT)" % (chan, folder, coord),
               file=sys.stderr)
     if "RY" not in held:
-        t, rot, _ = runs("T1_YrotDisp", name)
+        t, rot, _ = runs("T1_YrotDisp", name, folder)
         dt = (t[1] - t[0]) * 1e-3
         big = float(np.max(np.abs(np.mean([cfc(r, 60, dt) for r in rot], axis=0))))
         if rot_unit is None:
             rot_unit = "rad" if big < 1.5 else "deg"
             print("T1 rotation: largest |mean| %.3g, read as %s (--rot-unit to choose)" % (big, rot_unit),
                   file=sys.stderr)
-    CASES[name] = dict(runs="of %s (n = %d)" % (os.path.basename(os.path.normpath(folder)), len(cols)),
-                       rot_scale="57.2958" if rot_unit == "rad" else "1.0",
-                       rot_unit="rad, scaled to deg" if rot_unit == "rad" else "deg")
-    tables = os.path.join(into, name + "_t1.inp")
-    deck = open(os.path.join("input", "nbdl12g.inp")).read().splitlines()
+    case = dict(runs="of %s (n = %d)" % (os.path.basename(os.path.normpath(folder)), len(cols)),
+                rot_scale="57.2958" if rot_unit == "rad" else "1.0",
+                rot_unit="rad, scaled to deg" if rot_unit == "rad" else "deg")
+    # the cards name INTO as given (input/ by default, found through the
+    # include path), the files go there (the project's input/ by default)
+    named = into or "input"
+    folder_of = into or project_path("input")
+    tables = os.path.join(named, name + "_t1.inp")
+    with open(project_path("input", "nbdl12g.inp")) as f:
+        deck = f.read().splitlines()
     out = (comment_cards("%s: the 54-DOF head/neck model with T1 driven by the mean of the %d runs"
                          % (name, len(cols)))
            + comment_cards("in %s (T1 tables by hhneck-nbdl-tables --data)." % folder)
            + ["* Compare: hhneck-compare-nbdl --case X --out OUT"]
            + comment_cards("  --data X=%s" % folder)
-           + comment_cards("  --deck X=%s" % os.path.join(into, name + ".inp")))
+           + comment_cards("  --deck X=%s" % os.path.join(named, name + ".inp")))
     for line in deck:
         if line.startswith("*") and not any(l.startswith("TITLE") for l in out):
             continue                      # the 12 g deck's own header
@@ -195,10 +203,11 @@ def new_case(folder, name, rot_unit=None, into="input"):
         # both checked before either is written: a card beyond column 80 (the
         # INCLUDE card of a long --into path, the H5FILE card of a long name)
         # leaves no file behind
-        write_decks({tables: t1_tables(name), os.path.join(into, name + ".inp"): hold(out, "T1", held)})
+        write_decks({os.path.join(folder_of, name + "_t1.inp"): t1_tables(name, data=folder, case=case),
+                     os.path.join(folder_of, name + ".inp"): hold(out, "T1", held)})
     except CardError as e:
-        compare_nbdl.stop("%s; not written (a shorter --into directory or --name fits)" % e)
-    return tables
+        stop("%s; not written (a shorter --into directory or --name fits)" % e)
+    return os.path.join(folder_of, name + "_t1.inp")
 
 
 def main(argv=None):
@@ -207,17 +216,17 @@ def main(argv=None):
     p.add_argument("--data", metavar="DIR", help="a directory of other runs (CHANNEL.csv files)")
     p.add_argument("--name", help="the new case's name (with --data)")
     p.add_argument("--rot-unit", choices=("deg", "rad"), help="unit of the runs' T1 rotation (with --data)")
-    p.add_argument("--into", default="input", metavar="DIR2", help="where the decks go (with --data; default input)")
+    p.add_argument("--into", metavar="DIR2", help="where the decks go (with --data; default: the project's input/)")
     args = p.parse_args(argv)
     if args.data or args.name:
         if not (args.data and args.name):
             p.error("--data and --name go together")
         new_case(args.data, args.name, args.rot_unit, args.into)
         return 0
-    if args.rot_unit or args.into != "input":
+    if args.rot_unit or args.into:
         p.error("--rot-unit and --into go with --data and --name")
-    decks = {os.path.join("input", "nbdl%s_t1.inp" % sev): t1_tables(sev) for sev in CASES}
-    decks[os.path.join("input", "nbdl8g_t1.inp")] = t1_tables_8g()
+    decks = {project_path("input", "nbdl%s_t1.inp" % sev): t1_tables(sev) for sev in CASES}
+    decks[project_path("input", "nbdl8g_t1.inp")] = t1_tables_8g()
     write_decks(decks)
     return 0
 

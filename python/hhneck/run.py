@@ -1,6 +1,7 @@
 """Run a deck through the hhneck executable, with changes, from Python.
 
-    run = run_deck("input/nbdl15g.inp", changes=[change_card("E12", "FAMILY", "DISCS", "E", "SCALE", 1.2)])
+    run = run_deck(project_path("input", "nbdl15g.inp"),      # hhneck.paths
+                   changes=[change_card("E12", "FAMILY", "DISCS", "E", "SCALE", 1.2)])
     run.h5          # the result file written
     run.listing     # the listing (standard output) as text
     run.channels()  # the channels as a pandas DataFrame with units (hhneck.results.read_channels)
@@ -11,9 +12,12 @@ card image, or the fields F1 ... F7 as a tuple that change_card() lays out
 in their columns; run_deck() hands them to the executable as `--change`
 options, after the deck's own cards. The deck is a file name, or the text
 of a deck (standard input of the run; INCLUDE files are then looked for in
-the working directory `cwd`). The executable is `executable`, else
-$HHNECK, else fpm's build of the project in the working directory (release
-profile; built when needed), else `hhneck` on PATH.
+the working directory `cwd`). The package's project (hhneck.paths) is the
+last directory of the include path: the shipped decks' INCLUDE files are
+found from any working directory. The executable is `executable`, else
+$HHNECK, else fpm's build of the project in the working directory, or
+else of the package's own project (release profile; built when needed),
+else `hhneck` on PATH.
 
 Command line:
 
@@ -28,6 +32,7 @@ import tempfile
 from dataclasses import dataclass
 
 from .deck_fields import CardError, field_text
+from .paths import find_project, project_root
 from .results import read_channels, read_results
 
 
@@ -73,21 +78,13 @@ def change_card(name, kind, target, item="", op="SET", value="", f7=""):
                                          for n, v in enumerate(fields, start=1))).rstrip()
 
 
-def project_root(start=None):
-    """The hhneck project that holds directory `start` (default: the
-    working directory): the nearest directory upward with an fpm.toml
-    whose name is hhneck; None outside one."""
-    d = os.path.abspath(start or os.getcwd())
-    while True:
-        toml = os.path.join(d, "fpm.toml")
-        if os.path.isfile(toml):
-            with open(toml) as f:
-                if any(line.replace(" ", "").startswith('name="hhneck"') for line in f):
-                    return d
-        parent = os.path.dirname(d)
-        if parent == d:
-            return None
-        d = parent
+def package_project():
+    """The project of the package (hhneck.paths.project_root); None when
+    the package is installed outside one and HHNECK_ROOT is not set."""
+    try:
+        return project_root()
+    except FileNotFoundError:
+        return None
 
 
 def find_executable(executable=None, cwd=None, profile="release"):
@@ -95,7 +92,7 @@ def find_executable(executable=None, cwd=None, profile="release"):
     FileNotFoundError when there is none."""
     exe = executable or os.environ.get("HHNECK")
     if not exe:
-        root = project_root(cwd)
+        root = find_project(cwd or os.getcwd()) or package_project()
         if root is not None and shutil.which("fpm"):
             out = subprocess.run(["fpm", "run", "hhneck", "--profile", profile, "--runner", "echo"], cwd=root,
                                  capture_output=True, text=True)
@@ -116,7 +113,9 @@ def run_deck(deck, changes=(), executable=None, h5=None, cwd=None, include=(), o
     change_card) and return a Run. h5: the result file to write (default:
     DECK's stem .h5 in a new temporary directory; False: none, --no-h5);
     cwd: working directory of the run; include: directories for INCLUDE
-    files (-I); options: further command-line options; check: raise
+    files (-I), then the package's project (hhneck.paths: the shipped
+    decks' INCLUDE files, such as input/head_neck_54dof.inp, found from
+    any working directory); options: further command-line options; check: raise
     RunError on a non-zero exit code (exit 3, an incomplete run, included)."""
     exe = find_executable(executable, cwd, profile)
     cards = [c if isinstance(c, str) else change_card(*c) for c in changes]
@@ -125,7 +124,7 @@ def run_deck(deck, changes=(), executable=None, h5=None, cwd=None, include=(), o
         stem = "deck" if text_deck else os.path.splitext(os.path.basename(deck))[0]
         h5 = os.path.join(tempfile.mkdtemp(prefix="hhneck-run-"), stem + ".h5")
     cmd = [exe, "--no-progress"] + (["--no-h5"] if h5 is False else ["--h5", os.path.abspath(h5)])
-    for d in include:
+    for d in list(include) + [d for d in [package_project()] if d and d not in include]:
         cmd += ["-I", d]
     for c in cards:
         cmd += ["--change", c]

@@ -52,8 +52,9 @@ import tempfile
 
 from . import segments
 from .deck_fields import number_text, scale_fields, write_deck
+from .paths import project_path
 
-CSV_PATH = os.path.join(segments.ROOT, "reference", "upper_cervical.csv")
+CSV_PATH = project_path("reference", "upper_cervical.csv")
 #: (lower, upper) body pairs of the atlanto-axial and atlanto-occipital joints
 JOINT_PAIRS = (("C2", "C1"), ("C1", "HEAD"))
 #: factor -> (segment, motion) of the data it is fitted to

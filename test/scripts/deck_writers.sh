@@ -87,9 +87,13 @@ check "the long directory path has ${#long} characters (at least 120)" [ ${#long
 
 # The input/ writers run in a project directory under the long path: the
 # shipped decks again, each valid with the others it includes.
+# (HHNECK_ROOT: that directory is the project the package writes into,
+# hhneck.paths)
 ln -s "$root/reference" "$long/proj/reference"
+ln -s "$root/fpm.toml" "$long/proj/fpm.toml"
 cp input/nbdl15g.inp input/nbdl12g.inp input/nbdl8g.inp "$long/proj/input/"
-(cd "$long/proj" && python3 -m hhneck.model_deck --output input/head_neck_54dof.inp &&
+(cd "$long/proj" && export HHNECK_ROOT="$long/proj" &&
+     python3 -m hhneck.model_deck --output input/head_neck_54dof.inp &&
      python3 -m hhneck.case_decks && python3 -m hhneck.nbdl_tables)
 check "hhneck.model_deck, hhneck.case_decks and hhneck.nbdl_tables run (exit $?)" [ $? -eq 0 ]
 for f in head_neck_54dof case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g_t1 nbdl12g_t1 nbdl8g_t1; do
