@@ -1,8 +1,8 @@
 """The tools of the hhneck head/neck model (docs/architecture.md, "Python package").
 
-The project's files are found from the package's own place, whatever the
-working directory (paths.project_root(); $HHNECK_ROOT for a copy
-installed elsewhere).
+The public surface, with examples: docs/api.md. The project's files are
+found from the package's own place, whatever the working directory
+(paths.project_root(); $HHNECK_ROOT for a copy installed elsewhere).
 
 Modules: paths (the project's files), run (run a deck with changes),
 results (read a result file into pandas with units), export (CSV,
