@@ -7,8 +7,8 @@ Without --h5 it runs input/nbdlSEVg.inp for each case (hhneck.run.run_deck:
 $HHNECK, else the project's release build). Volunteer data: reference/nbdl_15g
 (runs 1635-1644) and reference/nbdl_12g (runs 1607-1617), raw, every 0.5 ms.
 The project's input/, reference/ and docs/ are meant (hhneck.paths), from
-any working directory. The computations are hhneck.nbdl's. Every volunteer run
-and the model are filtered CFC 60 (SAE J211/1, as the library does).
+any working directory; the computations are hhneck.nbdl's. Every volunteer
+run and the model are filtered CFC 60 (SAE J211/1, as the library does).
 
 Rated channels (the head's kinematics): x- and z-acceleration, angular
 acceleration, angular velocity, rotation; each gets a CORA-style rating
@@ -19,8 +19,8 @@ in the overall rating (their frames and points are not documented).
 Peaks: x-acceleration, z-acceleration dip and rebound, angular acceleration,
 angular velocity, rotation, each against the mean +- SD of the runs' peaks
 (value and time). Writes a table on stdout, DIR/validation_table.md and
-DIR/validation_nbdlSEV.png (default DIR: the project's docs/). Every number has three
-significant digits.
+DIR/validation_nbdlSEV.png (default DIR: the project's docs/). Every
+number has three significant digits.
 
 Other runs of the same kind (a directory with the same CHANNEL.csv files,
 columns time_ms,run_...): `--data NAME=DIR --case NAME` compares the deck
@@ -38,9 +38,9 @@ import tempfile
 import numpy as np
 
 from . import run
-from .nbdl import REPORTED, RATED, SEVERITIES, s3
-# the names other modules and studies/ import from here (hhneck.nbdl is their library)
-from .nbdl import cfc, compare, runs, stop  # noqa: F401
+from .nbdl import RATED, REPORTED, SEVERITIES, compare, s3
+# imported from here by catalogue.py and specimens.py (cfc): hhneck.nbdl is their library
+from .nbdl import cfc  # noqa: F401
 from .paths import project_path
 
 # read by nothing: catalogue.py sets the shipped cases' directories here,
