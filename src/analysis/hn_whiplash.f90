@@ -19,7 +19,8 @@ module hn_whiplash
     implicit none
     private
 
-    public :: nkm_intercepts_t, nkm, lnl_intercepts_t, lnl, ndc_points_t, ndc_points, iv_nic, scene_direction, contact_onset
+    public :: nkm_intercepts_t, nkm, lnl_intercepts_t, lnl, ndc_points_t, ndc_points, iv_nic, scene_direction, &
+              contact_onset
 
     !> Intercepts of Nkm [N, N m], all positive.
     type :: nkm_intercepts_t

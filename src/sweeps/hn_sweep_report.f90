@@ -168,8 +168,8 @@ contains
                           'Fx, Fz, My)', shown_sagittal)
         call output_table(lst, o, ' MEMBER RUNS: 3-D AND OUT-OF-PLANE OUTPUTS (Bryant angles x, z and total angle; '// &
                           'resultants; Fy, Mx, Mz)', shown_3d)
-        call output_table(lst, o, ' MEMBER RUNS: REAR-IMPACT OUTPUTS (head extension relative to T1, NIC, upper-neck '// &
-                          'My and Fx, first contact)', shown_rear)
+        call output_table(lst, o, ' MEMBER RUNS: REAR-IMPACT OUTPUTS (head extension relative to T1, NIC, '// &
+                          'upper-neck My and Fx, first contact)', shown_rear)
         ! the sensitivity tables
         call sensitivity_table(lst, sw, o, ' SAGITTAL OUTPUTS', shown_sagittal)
         call sensitivity_table(lst, sw, o, ' 3-D AND OUT-OF-PLANE OUTPUTS', shown_3d)
