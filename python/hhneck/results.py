@@ -26,7 +26,7 @@
     read_sweep(path) -> DataFrame
         a sweep result file (hhneck --sweep, docs/sweeps.md): one row per
         member run, indexed by run number (1-based, index name "run"): the
-        parameter values (one column per parameter, its name), the 28
+        parameter values (one column per parameter, its name), the 31
         summary outputs (one column each), then status, message, rank,
         wall [s], evaluations, t_reached [s]. Units of every column in
         df.attrs["units"]; df.attrs["parameters"] and ["outputs"] list the

@@ -8,7 +8,9 @@
 !!      relative to T1 in the sagittal plane, as the points (angle, x) where
 !!      extension and retraction peak;
 !!  IV-NIC (Panjabi et al. 1999): each joint's rotation over its
-!!      physiological range of motion in the same direction.
+!!      physiological range of motion in the same direction;
+!!  head-restraint contact time: when the head first touches the
+!!      restraint, from the contact's penetration channel.
 !! The intercepts are arguments: none of them is set here (the sources were
 !! not available to check them; docs/output-format.md lists them).
 module hn_whiplash
@@ -17,7 +19,8 @@ module hn_whiplash
     implicit none
     private
 
-    public :: nkm_intercepts_t, nkm, lnl_intercepts_t, lnl, ndc_points_t, ndc_points, iv_nic, scene_direction
+    public :: nkm_intercepts_t, nkm, lnl_intercepts_t, lnl, ndc_points_t, ndc_points, iv_nic, scene_direction, &
+              contact_onset
 
     !> Intercepts of Nkm [N, N m], all positive.
     type :: nkm_intercepts_t
@@ -125,5 +128,34 @@ contains
             d = 'FRONTAL'
         end if
     end function scene_direction
+
+    !> The time of first contact from a contact's sampled penetration d
+    !! (negative: the gap): where d first rises from <= 0 to > 0, the zero
+    !! crossing interpolated linearly between the two samples; t0 when the
+    !! first sample is already in contact; found false (and -1) when d
+    !! never becomes positive.
+    pure subroutine contact_onset(depth, t0, dt, t, found)
+        real(wp), intent(in) :: depth(:)   !! penetration at every sample, > 0 in contact [any length unit]
+        real(wp), intent(in) :: t0         !! time of the first sample [s]
+        real(wp), intent(in) :: dt         !! sampling interval [s]
+        real(wp), intent(out) :: t         !! time of first contact [s] (-1 without contact)
+        logical, intent(out) :: found      !! the penetration became positive
+        integer :: i
+        t = -1.0_wp
+        found = .false.
+        if (size(depth) == 0) return
+        if (depth(1) > zero) then
+            t = t0
+            found = .true.
+            return
+        end if
+        do i = 2, size(depth)
+            if (depth(i) > zero) then
+                t = t0 + (i - 2 + depth(i - 1)/(depth(i - 1) - depth(i)))*dt
+                found = .true.
+                return
+            end if
+        end do
+    end subroutine contact_onset
 
 end module hn_whiplash

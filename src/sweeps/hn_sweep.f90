@@ -19,6 +19,7 @@ module hn_sweep
     use hn_filters, only: cfc_filter
     use hn_optimize, only: latin_hypercube
     use hn_head_angles, only: bryant_angles, bryant_angles_near, rotation_angle, signed_extreme, extreme_index
+    use hn_whiplash, only: contact_onset
     implicit none
     private
 
@@ -34,28 +35,31 @@ module hn_sweep
     character(len=1), parameter :: xyz(3) = ['X', 'Y', 'Z']
 
     !> The summary outputs of a member run: the sagittal set (1-13, in the
-    !! order of the first sweeps) and the 3-D set (14-28); docs/sweeps.md.
-    integer, parameter :: nout = 28
+    !! order of the first sweeps), the 3-D set (14-28) and the rear-impact
+    !! set (29-31); docs/sweeps.md.
+    integer, parameter :: nout = 31
     integer, parameter :: name_len = 12   !! longest output name
     character(len=name_len), parameter :: output_names(nout) = [character(len=name_len) :: 'THETA_PEAK', &
         'THETA_TIME', 'OMEGA_PEAK', 'ALPHA_PEAK', 'HEAD_AR', 'OC_TENSION', 'OC_COMPR', 'OC_SHEAR', 'OC_FLEX', &
         'OC_EXT', 'HIC15', 'NIJ', 'NIC', &
         'HEAD_RX_PEAK', 'HEAD_RY_PEAK', 'HEAD_RZ_PEAK', 'HEAD_ANGLE', 'HEAD_ANGLE_T', 'OMEGA_X_PEAK', &
         'OMEGA_Z_PEAK', 'OMEGA_RES', 'ALPHA_RES', 'OC_FX_PEAK', 'OC_FY_PEAK', 'OC_SHEAR_RES', 'OC_MX_PEAK', &
-        'OC_MZ_PEAK', 'OC_M_RES']
+        'OC_MZ_PEAK', 'OC_M_RES', 'HT1_EXT', 'HT1_EXT_T', 'CONTACT_T']
     character(len=8), parameter :: output_units(nout) = [character(len=8) :: 'deg', 'ms', 'rad/s', 'rad/s^2', &
         'g', 'N', 'N', 'N', 'N m', 'N m', '-', '-', 'm^2/s^2', &
-        'deg', 'deg', 'deg', 'deg', 'ms', 'rad/s', 'rad/s', 'rad/s', 'rad/s^2', 'N', 'N', 'N', 'N m', 'N m', 'N m']
+        'deg', 'deg', 'deg', 'deg', 'ms', 'rad/s', 'rad/s', 'rad/s', 'rad/s^2', 'N', 'N', 'N', 'N m', 'N m', 'N m', &
+        'deg', 'ms', 'ms']
     !> The output whose magnitude tells whether output k is only roundoff:
     !! itself, or for a time the extreme it is the time of.
     integer, parameter :: output_ref(nout) = [1, 1, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, &
-        14, 15, 16, 17, 17, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28]
+        14, 15, 16, 17, 17, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 29, 31]
     !> Outputs of one quantity and unit share a group; an output is roundoff
     !! when it is far below the largest output of its group (angles,
     !! angular velocities, angular accelerations, head acceleration, neck
-    !! forces, neck moments, HIC15, Nij, NIC; times take their extreme's).
+    !! forces, neck moments, HIC15, Nij, NIC; times take their extreme's;
+    !! the contact time is its own).
     integer, parameter :: output_group(nout) = [1, 0, 2, 3, 4, 5, 5, 5, 6, 6, 7, 8, 9, &
-        1, 1, 1, 1, 0, 2, 2, 2, 3, 5, 5, 5, 6, 6, 6]
+        1, 1, 1, 1, 0, 2, 2, 2, 3, 5, 5, 5, 6, 6, 6, 1, 0, 0]
 
     !> One parameter of the sweep.
     type :: sweep_param_t
@@ -620,14 +624,19 @@ contains
     !! total rotation angle), head angular velocity (R axes) and angular
     !! acceleration (CFC 60), peak head resultant acceleration (CFC 1000),
     !! upper-neck loads in head axes (CFC 600), HIC15, the largest Nij mode
-    !! and NIC. Extremes are signed values of largest magnitude.
+    !! and NIC; the head's largest extension relative to T1 (HT1_RY's
+    !! lowest value) and when, and the first touch of the deck's contacts
+    !! (hn_whiplash's contact_onset on every CONTACT DEPTH channel, the
+    !! earliest; -1 ms without contact). Extremes are signed values of
+    !! largest magnitude.
     function member_summary(cs, res) result(y)
         type(case_t), intent(in) :: cs           !! the member's case (its channels, sampling interval)
         type(run_result_t), intent(in) :: res    !! the complete run, samples and head matrices kept
         real(wp) :: y(nout)
         type(channel_set_t) :: ch
         real(wp), allocatable :: a(:, :), f(:, :), m(:, :), q(:, :), ang(:)
-        real(wp) :: prev(3)
+        real(wp) :: prev(3), t_touch
+        logical :: touched
         integer :: k, n, i, at
         call channels_define(cs, ch)
         n = size(res%samples_t)
@@ -687,6 +696,16 @@ contains
             y(27) = signed_extreme(m(:, 3))
             y(28) = maxval(norm2(m, dim=2))
         end if
+        k = channel(ch, 'HT1_RY')
+        at = minloc(res%samples(k, :), dim=1)
+        y(29) = res%samples(k, at)
+        y(30) = 1000.0_wp*res%samples_t(at)
+        y(31) = -1.0_wp
+        do k = 1, ch%n
+            if (ch%group(k) /= 'CONTACT DEPTH') cycle
+            call contact_onset(res%samples(k, :), res%samples_t(1), cs%sample_dt, t_touch, touched)
+            if (touched .and. (y(31) < zero .or. 1000.0_wp*t_touch < y(31))) y(31) = 1000.0_wp*t_touch
+        end do
     end function member_summary
 
     pure integer function channel(ch, name) result(k)

@@ -20,10 +20,13 @@ module hn_sweep_report
     integer, parameter :: sweep_schema_version = 2
 
     !> Outputs shown in the listing's run and sensitivity tables: the
-    !! sagittal ones, then the 3-D and out-of-plane ones (eight each, so that
-    !! a table fits the 118 columns of the listing page).
+    !! sagittal ones, the 3-D and out-of-plane ones (eight each, so that
+    !! a table fits the 118 columns of the listing page), then the
+    !! rear-impact ones (head extension relative to T1 and when, NIC, the
+    !! upper-neck extension moment and fore-aft shear, first contact).
     integer, parameter :: shown_sagittal(8) = [1, 2, 4, 6, 8, 9, 10, 12]
     integer, parameter :: shown_3d(8) = [14, 16, 17, 21, 22, 24, 26, 27]
+    integer, parameter :: shown_rear(6) = [29, 30, 13, 10, 23, 31]
     integer, parameter :: max_shown_params = 9   !! parameter columns of the member table
     integer, parameter :: col = 13               !! width of an output column
 
@@ -165,9 +168,12 @@ contains
                           'Fx, Fz, My)', shown_sagittal)
         call output_table(lst, o, ' MEMBER RUNS: 3-D AND OUT-OF-PLANE OUTPUTS (Bryant angles x, z and total angle; '// &
                           'resultants; Fy, Mx, Mz)', shown_3d)
+        call output_table(lst, o, ' MEMBER RUNS: REAR-IMPACT OUTPUTS (head extension relative to T1, NIC, '// &
+                          'upper-neck My and Fx, first contact)', shown_rear)
         ! the sensitivity tables
         call sensitivity_table(lst, sw, o, ' SAGITTAL OUTPUTS', shown_sagittal)
         call sensitivity_table(lst, sw, o, ' 3-D AND OUT-OF-PLANE OUTPUTS', shown_3d)
+        call sensitivity_table(lst, sw, o, ' REAR-IMPACT OUTPUTS', shown_rear)
         call influence_table(lst, sw, o)
         if (nfail > 0) call lst%message(trim(int_str(nfail))//' OF '//trim(int_str(nrun))// &
                                         ' MEMBER RUNS FAILED; SEE THE LIST ABOVE')

@@ -61,7 +61,7 @@ def test_read_sweep_members_and_units(sweeps):
     h5, listing = sweeps["nbdl15g"]
     df = hr.read_sweep(h5)
     assert list(df.index) == [1, 2, 3, 4] and df.index.name == "run"
-    assert df.attrs["parameters"] == ["TEND", "HEAD_M"] and len(df.attrs["outputs"]) == 28
+    assert df.attrs["parameters"] == ["TEND", "HEAD_M"] and len(df.attrs["outputs"]) == 31
     assert df.attrs["design"] == "FACTORIAL" and df.attrs["what"]["HEAD_M"] == "BODY HEAD MASS"
     # the four corners of the 2 x 2 factorial
     assert sorted(zip(df["TEND"], df["HEAD_M"])) == [(0.12, 0.9), (0.12, 1.1), (0.15, 0.9), (0.15, 1.1)]
@@ -93,7 +93,7 @@ def test_read_sensitivity_against_the_file(sweeps):
     s = hr.read_sensitivity(h5)
     with h5py.File(h5, "r") as f:
         coef, valid = f["sensitivity/coefficient"][()], f["sensitivity/valid"][()] == 1
-    assert list(s.index) == ["TEND", "HEAD_M"] and s.shape == (2, 28)
+    assert list(s.index) == ["TEND", "HEAD_M"] and s.shape == (2, 31)
     assert np.array_equal(np.isnan(s.to_numpy()), ~valid.T)
     assert np.array_equal(s.to_numpy()[valid.T], coef.T[valid.T])
     assert "regression" in s.attrs["method"] and set(s.attrs["r2"]) == set(s.columns)

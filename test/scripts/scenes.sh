@@ -1,0 +1,104 @@
+#!/bin/sh
+# The scene decks (docs/scenes.md): each runs without a warning (no joint
+# past its physiological range, energy balance closed) and its listing
+# shows the criteria of its loading direction; the 16 km/h rear scene with
+# the head restraint against the same run without it (head extension
+# relative to T1 and NIC lower with it, each number within a margin far
+# above roundoff); the restraint's starting gap is the 20 mm backset the
+# deck's geometry gives by hand; the backset sweep runs, its summary has
+# the rear-impact outputs, its member at the base deck's values repeats the
+# single run's criteria and its first-contact time the one computed here
+# from the single run's penetration channel. Run from the project root;
+# the executable in $HHNECK.
+# builds: release
+. test/scripts/lib/checks.sh
+
+# row VALUE-FIELD LABEL LISTING: the number after a criteria row's label
+row() {
+    awk -v lab="   $2 " -v f="$1" 'index($0, lab) == 1 {split(substr($0, length(lab) + 1), a, " "); print a[f]; exit}' "$3"
+}
+# within X LO HI: LO <= X <= HI
+within() { awk -v x="$1" -v lo="$2" -v hi="$3" 'BEGIN {exit !(x != "" && x + 0 >= lo && x + 0 <= hi)}'; }
+
+for deck in scene_rear16:REAR scene_rear16_nohr:REAR scene_rear24:REAR scene_lateral7g:LATERAL \
+    scene_frontal:FRONTAL; do
+    d=${deck%%:*}
+    dir=${deck#*:}
+    "$HHNECK" --h5 "$tmp/$d.h5" < "input/$d.inp" > "$tmp/$d.lis" 2> "$tmp/$d.err"
+    rc=$?
+    check "$d runs (exit 0, got $rc)" [ "$rc" -eq 0 ]
+    check "$d: no warning in the listing or on stderr" \
+        sh -c '! grep -qi "warning" "$1" "$2"' sh "$tmp/$d.lis" "$tmp/$d.err"
+    check "$d: loading direction $dir" grep -q "^   LOADING DIRECTION      $dir  \[5\]$" "$tmp/$d.lis"
+    case $dir in
+        REAR) rows='NIC (M2/S2);NDC EXTENSION (DEG);NDC RETRACTION (MM);T1 X ACCELERATION (G)' ;;
+        LATERAL) rows='LAT. MOMENT |MX| (N M);LAT. SHEAR |FY| (N);HEAD LAT. BENDING (DEG)' ;;
+        FRONTAL) rows='NIJ NTE;NIJ NCF;SHEAR |FX| (N);FLEXION MOMENT (N M)' ;;
+    esac
+    check "$d: the $dir criteria rows ($rows)" \
+        sh -c 'IFS=";"; for r in $2; do grep -qF "   $r " "$1" || exit 1; done' \
+        sh "$tmp/$d.lis" "$rows"
+done
+
+# the restraint against no restraint (16 km/h): numbers of this build, margins
+# of a few percent; the restraint lowers extension by 50 deg and NIC by 0.96 m^2/s^2
+ext_hr=$(row 1 'NDC EXTENSION (DEG)' "$tmp/scene_rear16.lis")
+ext_no=$(row 1 'NDC EXTENSION (DEG)' "$tmp/scene_rear16_nohr.lis")
+nic_hr=$(row 1 'NIC (M2/S2)' "$tmp/scene_rear16.lis")
+nic_no=$(row 1 'NIC (M2/S2)' "$tmp/scene_rear16_nohr.lis")
+check "head extension relative to T1 with the restraint -9.6 deg (-11 to -8; got $ext_hr)" within "$ext_hr" -11 -8
+check "... without it -61.3 deg (-64 to -58; got $ext_no)" within "$ext_no" -64 -58
+check "NIC with the restraint 10.3 m^2/s^2 (10.0 to 10.6; got $nic_hr)" within "$nic_hr" 10.0 10.6
+check "... without it 11.26 m^2/s^2 (11.0 to 11.5; got $nic_no)" within "$nic_no" 11.0 11.5
+gap=$(grep '^   HEADREST_D ' "$tmp/scene_rear16.lis" | awk '{print $5}')
+check "the restraint starts 20 mm behind the head (the backset; penetration minimum $gap mm)" within "$gap" -20.1 -19.9
+
+# the backset sweep
+"$HHNECK" --sweep --h5 "$tmp/bs.h5" < input/sweep_backset.inp > "$tmp/bs.lis" 2> "$tmp/bs.err"
+rc=$?
+check "the backset sweep runs, all 9 members complete (exit 0, got $rc)" [ "$rc" -eq 0 ]
+check "its listing has the rear-impact member table" \
+    grep -q '^   RUN ST      HT1_EXT    HT1_EXT_T          NIC       OC_EXT   OC_FX_PEAK    CONTACT_T$' "$tmp/bs.lis"
+check "... and their sensitivities" grep -q '^ SENSITIVITIES, REAR-IMPACT OUTPUTS' "$tmp/bs.lis"
+cat > "$tmp/sweep.py" <<'PY'
+import sys
+import h5py
+import numpy as np
+import hhneck.results as hr
+
+tmp, ext_hr, nic_hr = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
+ok = True
+
+
+def check(what, cond):
+    global ok
+    print(("PASS  " if cond else "FAIL  ") + what)
+    ok = ok and cond
+
+
+with h5py.File(f"{tmp}/bs.h5") as f:
+    names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["runs/output_names"][()]]
+    y = f["runs/outputs"][()]
+check("the sweep file has the outputs HT1_EXT, HT1_EXT_T, NIC, CONTACT_T",
+      all(n in names for n in ("HT1_EXT", "HT1_EXT_T", "NIC", "CONTACT_T")))
+k = {n: names.index(n) for n in names}
+if y.shape[0] != 9 and y.shape[1] == 9:
+    y = y.T
+base = y[8]   # backset 20 mm, cushion centre at the head's height: the base deck
+check(f"member 9 (the base deck's values) repeats the single run's extension {ext_hr} deg "
+      f"(got {base[k['HT1_EXT']]:.2f})", abs(base[k["HT1_EXT"]] - ext_hr) < 0.06)
+check(f"... and its NIC {nic_hr} (got {base[k['NIC']]:.3f})", abs(base[k["NIC"]] - nic_hr) < 0.006)
+# first contact from the single run's penetration channel, interpolated here
+d = hr.read_channels(f"{tmp}/scene_rear16.h5", ["HEADREST_D"])
+t, x = d.index.to_numpy(), d["HEADREST_D"].to_numpy()
+i = int(np.argmax(x > 0))
+t_touch = 1000 * (t[i - 1] + (t[i] - t[i - 1]) * (-x[i - 1]) / (x[i] - x[i - 1]))
+check(f"member 9's first contact {base[k['CONTACT_T']]:.3f} ms is the single run's {t_touch:.3f} ms",
+      abs(base[k["CONTACT_T"]] - t_touch) < 0.01)
+ct = y[:, k["CONTACT_T"]]
+check(f"the restraint is touched later the larger the backset, at every height (ms: {np.round(ct, 1)})",
+      all(ct[3 * h] > ct[3 * h + 1] > ct[3 * h + 2] > 0 for h in range(3)))
+sys.exit(0 if ok else 1)
+PY
+py_checks "$tmp/sweep.py" "$tmp" "$ext_hr" "$nic_hr"
+finish
