@@ -221,7 +221,8 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
     {title: {(support, muscles): rated}})."""
     lines = ["## Specimen sled tests", "",
              "**Prediction**: nothing of the model was fitted to these data; set-ups in "
-             "`python/hhneck/specimens.py` (its docstring names each decision of the data's README).", ""]
+             "the case files of `reference/cases` (docs/case-files.md), built by `python/hhneck/specimens.py` "
+             "(its docstring names each decision of the data's README).", ""]
     for title, (rated, not_rated) in cases.items():
         lines += ["### %s" % title, "", SPECIMEN_NOTES.get(title) or "(no set-up note in its case file)", "",
                   "| channel | corridor | phase | magnitude | slope | ISO 18571 | model peak (at ms) | "

@@ -40,21 +40,15 @@ def _front_with(**changes):
     return text
 
 
-def test_bad_keys_are_named(tmp_path):
-    p = _write(tmp_path / "bad.toml", _front_with(**{'kind = "HOLD"': 'kind = "CABLES"'}))
-    with pytest.raises(specimens.CaseError, match=r"bad.toml \[support\]: kind 'CABLES'"):
-        specimens.load_case(p)
-    p = _write(tmp_path / "bad.toml", _front_with(**{"direction = [-1.0, 0.0, 0.0]": "direction = [-1.0, 0.0]"}))
-    with pytest.raises(specimens.CaseError, match=r"\[pulse\]: key 'direction' .* expected 3 numbers"):
-        specimens.load_case(p)
-    p = _write(tmp_path / "bad.toml", _front_with(**{"cfc = 60": "cfc = 50"}))
-    with pytest.raises(specimens.CaseError, match=r"\[\[channel\]\] 1: cfc 50"):
-        specimens.load_case(p)
-    p = _write(tmp_path / "bad.toml", _front_with(**{'definition = "integrated"': 'definition = "euler"'}))
-    with pytest.raises(specimens.CaseError, match=r"\[\[channel\]\] 3: definition 'euler'"):
-        specimens.load_case(p)
-    p = _write(tmp_path / "bad.toml", _front_with(**{'title = "Kang 2018 front 14 km/h"\n': ""}))
-    with pytest.raises(specimens.CaseError, match=r"bad.toml: missing key 'title'"):
+@pytest.mark.parametrize("old, new, message", [
+    ('kind = "HOLD"', 'kind = "CABLES"', r"bad.toml \[support\]: kind 'CABLES'"),
+    ("direction = [-1.0, 0.0, 0.0]", "direction = [-1.0, 0.0]", r"\[pulse\]: key 'direction' .* expected 3 numbers"),
+    ("cfc = 60", "cfc = 50", r"\[\[channel\]\] 1: cfc 50"),
+    ('definition = "integrated"', 'definition = "euler"', r"\[\[channel\]\] 3: definition 'euler'"),
+    ('title = "Kang 2018 front 14 km/h"\n', "", r"bad.toml: missing key 'title'")])
+def test_bad_keys_are_named(tmp_path, old, new, message):
+    p = _write(tmp_path / "bad.toml", _front_with(**{old: new}))
+    with pytest.raises(specimens.CaseError, match=message):
         specimens.load_case(p)
 
 
