@@ -162,8 +162,7 @@ def register_case(case):
     STOPS[case["title"]] = tuple(case["stops"])
 
 
-for _case in specimens.CASES.values():
-    register_case(_case)
+list(map(register_case, specimens.CASES.values()))
 
 
 CASE_GOAL = 0.75        # the specimen goal: the mean over a case's channels at least this ...

@@ -388,8 +388,7 @@ def _run(deck, workdir, exe):
 def run_name(case, support="HOLD", muscles="PASSIVE"):
     """The file name (no extension) of a case's deck, listing, stderr and
     result file: the case's name, support and muscles state."""
-    return "%s_%s_%s" % (_case(case)["name"] if not isinstance(case, str) else case, support.lower(),
-                         muscles.lower())
+    return "%s_%s_%s" % (case if isinstance(case, str) else case["name"], support.lower(), muscles.lower())
 
 
 def model_t1_slope(model_deck=os.path.join(segments.ROOT, "input", "head_neck_54dof.inp")):
