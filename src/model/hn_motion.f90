@@ -142,14 +142,11 @@ contains
             end if
         case (motion_kind_rate)
             n = size(m%acc%t)
-            if (n == 1 .or. t <= m%acc%t(1)) then
+            if (n == 1 .or. t <= m%acc%t(1) .or. t >= m%acc%t(n)) then
+                i = merge(n, 1, t >= m%acc%t(n))      ! the end rate holds outside the table
                 xdd = zero
-                xd = m%acc%y(1)
-                x = m%xk(1) + xd*(t - m%acc%t(1))
-            else if (t >= m%acc%t(n)) then
-                xdd = zero
-                xd = m%acc%y(n)
-                x = m%xk(n) + xd*(t - m%acc%t(n))
+                xd = m%acc%y(i)
+                x = m%xk(i) + xd*(t - m%acc%t(i))
             else
                 i = table_segment(m%acc%t, t)
                 tau = t - m%acc%t(i)
