@@ -191,7 +191,8 @@ def load_case(path):
          "end_time": _need(d, "end_time", float, w), "note": _need(d, "note", str, w, ""),
          "stops": _need(d, "stops", list, w, []), "safer": _need(d, "safer", str, w, ""),
          "newton_balance": _need(d, "newton_balance", str, w, ""),
-         "rated": _need(d, "rated", bool, w, True), "order": _need(d, "order", int, w, 100), "model": _need(d, "model", str, w, "input/head_neck_54dof.inp")}
+         "rated": _need(d, "rated", bool, w, True), "order": _need(d, "order", int, w, 100),
+         "rtol": _need(d, "rtol", float, w, 1.0e-3), "atol": _need(d, "atol", float, w, 1.0e-5), "model": _need(d, "model", str, w, "input/head_neck_54dof.inp")}
     c["variants"] = [tuple(v) for v in _need(d, "variants", list, w, [])]
     p = d.get("pulse")
     c["pulse"] = None if p is None else {
@@ -445,6 +446,12 @@ def _pulse_tables(c, workdir, data_dir):
     return out
 
 
+def _e(v):
+    """A tolerance as a CONTROL card's field: 1.0E-3."""
+    m, e = ("%.1e" % v).split("e")
+    return "%sE%d" % (m, int(e))
+
+
 def case_deck(case, workdir, support=None, muscles=None, data_dir=segments.DATA_DIR, t1_slope=None, model=None):
     """Write a case's deck and its pulse tables into workdir; returns the
     deck's path. case: a case dict (load_case) or a given case's name;
@@ -459,7 +466,7 @@ def case_deck(case, workdir, support=None, muscles=None, data_dir=segments.DATA_
     name = run_name(c["name"], support, muscles)
     lines = ["TITLE     %s (%s, MUSCLES %s)" % (c["deck_title"], support, muscles),
              "*         end (s)   step (s)  print (s) method    rtol      atol",
-             "CONTROL   %-10g1.0E-4    0.005     ROS34PW2  1.0E-3    1.0E-5" % c["end_time"],
+             "CONTROL   %-10g1.0E-4    0.005     ROS34PW2  %-10s%s" % (c["end_time"], _e(c["rtol"]), _e(c["atol"])),
              "SOLVER    ABA       STRUCT",
              "OUTPUT    1.0E-4",
              "H5FILE    %s.h5" % name]
