@@ -7,7 +7,9 @@ curves) and Nightingale et al. 2007 (3), set up by hhneck.segments; the
 specimen sled tests of Stemper 2004 (rear, 7 channels, with three variants
 of its set-up) and Kang 2018 (front and side, the head's 3 kinematic channels
 and the T1 load cell's 3 each, with the settled start as a variant), set up
-by hhneck.specimens. The NBDL volunteer sleds (15 g, 12 g) are run and rated
+by hhneck.specimens from their case files (reference/cases, or the folder
+--cases names; docs/case-files.md): every rated case file of the folder is
+built, run and rated, so a new direction or severity is a new file. The NBDL volunteer sleds (15 g, 12 g) are run and rated
 as hhneck-compare-nbdl rates them (docs/validation.md has their tables).
 Under each Kang case, the Newton balance of its head and load cell
 (hhneck.newton_balance), the data's and the model's. Under each case or
@@ -19,7 +21,7 @@ warnings the runs printed on their stderr (joints past their range, the
 energy balance).
 
 Command: hhneck-catalogue [--quick] [--exe HHNECK] [--jobs N] [--out DIR]
-[--report FILE | --update-docs]. The report goes to catalogue/catalogue.md
+[--cases DIR] [--report FILE | --update-docs]. The report goes to catalogue/catalogue.md
 in the current directory (its figures beside it), to FILE with --report,
 and to the project's docs/catalogue.md only with --update-docs (or
 --report docs/catalogue.md); the default never writes into the project's
@@ -139,40 +141,30 @@ def figure(src, rows, figdir):
     return out
 
 
-SPECIMEN_NOTES = {
-    "Stemper 2004 rear 1.8 m/s": "the source's T1 pulse, gravity down, muscles passive (activation zero), T1 tilted to the source's "
-    "25 deg slope, the start posture held by HOLD POSTURE through the test: generalized forces on each joint's relative "
-    "coordinates, a pre-stress of the joints (a load pair between its two bodies, no external support), the preload "
-    "the specimens stood in when the labs cut their positioning cables (released at the pulse instead, the model's "
-    "unstressed neutral starts in free fall: a variant below). "
-    "Angles as the source measured them, in the sagittal plane: the segments' planar angles and the head's planar "
-    "angle relative to T1 (from the result file's rotation matrices). Reference: the midline of each corridor "
-    "outline's two boundaries (the outline's closing edges cut out); ISO/TS 18571 over the 0.3–126 ms the corridors "
-    "cover.",
-    "Kang 2018 front 14 km/h": "T1 potted and driven rearward by the source's pulse, muscles passive, posture "
-    "held as for Stemper, T1 tilted to 24 deg, SAE J211 axes; the head's accelerations as its accelerometer reads them "
-    "(the specific force a - g in the head's axes, from its value at t = 0: HEAD_AXS ...; in the lab's axes they score "
-    "lower, studies/kang_head_frame.py); the load cell a LOADCELL card cutting the potted T1 from C7 (the load on "
-    "the neck and head, in T1's axes) about the potting centre as the set-up placed it (81 mm behind, 229 mm below "
-    "the head's mass centre), from its value at t = 0 (the data are tared); every model channel then filtered by the "
-    "class the source's notebook gives the SAFER HBM's (head x-acceleration and cell forces CFC 60, the rest CFC 180), "
-    "as its rating beside ours was made. The head's rotation the time integral of its angular velocity about the "
-    "sled's axes, as the source's notebook reads its model (LS-DYNA nodal rotations). Reference: the corridor's "
-    "midline; window 0 to 1.2 × the time of its largest magnitude in 0–99.9 ms (the source notebook's).",
-    "Kang 2018 side 14 km/h": "T1 driven toward the specimen's right (the direction the data's signs fit), "
-    "otherwise (load cell included) as the front case. Reference: the mean of PMHS1 and PMHS2; window as the front case.",
-}
-#: the SAFER HBM v11's published ISO/TS 18571 on a case (mean of its channels), where there is one
-SAFER = {"Kang 2018 side 14 km/h": "0.684 (6 channels: kinematics 0.75, loads 0.62)"}
-#: the sections of docs/validation.md that say, per case or source, what stops it and what was tried
-#: for it with what each experiment changed (the report links them under each case that misses its goal)
-KANG_SECTION = "The Kang cases: the head's accelerometer, and the neck's own inertia in the load cell"
+#: each specimen case's set-up as the report states it, the SAFER HBM v11's
+#: published ISO/TS 18571 on it (mean of its channels) where there is one, and
+#: the sections of docs/validation.md that say what stops it and what was tried
+#: for it with what each experiment changed (the report links them under each
+#: case that misses its goal): from the case files (register_case)
+SPECIMEN_NOTES, SAFER = {}, {}
 SUBAXIAL_SECTION = "The subaxial discs' flexion–extension"
 SEGMENT_SECTIONS = ("Neutral-zone springs, and which fit predicts better", SUBAXIAL_SECTION,
                     "The upper cervical joints")
-STOPS = {"Stemper 2004 rear 1.8 m/s": ("What is not validated, and what limits the fit", SUBAXIAL_SECTION),
-         "Kang 2018 front 14 km/h": (KANG_SECTION,), "Kang 2018 side 14 km/h": (KANG_SECTION,),
-         "Panjabi 2001": SEGMENT_SECTIONS, "Nightingale 2007": SEGMENT_SECTIONS}
+STOPS = {"Panjabi 2001": SEGMENT_SECTIONS, "Nightingale 2007": SEGMENT_SECTIONS}
+
+
+def register_case(case):
+    """Take a case file's report texts (its note, SAFER score and sections
+    of what stops it; hhneck.specimens.load_case) into the report's tables."""
+    SPECIMEN_NOTES[case["title"]] = case["note"]
+    if case["safer"]:
+        SAFER[case["title"]] = case["safer"]
+    STOPS[case["title"]] = tuple(case["stops"])
+
+
+list(map(register_case, specimens.CASES.values()))
+
+
 CASE_GOAL = 0.75        # the specimen goal: the mean over a case's channels at least this ...
 CHANNEL_FLOOR = 0.50    # ... and no channel below it; the curves listed under a source below it
 GOAL_SPECIMEN = "≥ %.2f, no channel below %.2f" % (CASE_GOAL, CHANNEL_FLOOR)
@@ -195,8 +187,11 @@ def anchor(heading):
 def stops_line(title, misses):
     """The report's line under a case that misses its goal: what misses
     (computed from this run's ratings) and the link to what was tried."""
+    tried = STOPS.get(title)
+    if not tried:
+        return "**What stops it**: %s." % "; ".join(misses)
     return "**What stops it**: %s. What was tried, and what each experiment changed: docs/validation.md, %s." % (
-        "; ".join(misses), ", ".join("[\"%s\"](validation.md%s)" % (h, anchor(h)) for h in STOPS[title]))
+        "; ".join(misses), ", ".join("[\"%s\"](validation.md%s)" % (h, anchor(h)) for h in tried))
 
 
 def newton_lines(rows):
@@ -225,9 +220,10 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
     {title: {(support, muscles): rated}})."""
     lines = ["## Specimen sled tests", "",
              "**Prediction**: nothing of the model was fitted to these data; set-ups in "
-             "`python/hhneck/specimens.py` (its docstring names each decision of the data's README).", ""]
+             "the case files of `reference/cases` (docs/case-files.md), built by `python/hhneck/specimens.py` "
+             "(its docstring names each decision of the data's README).", ""]
     for title, (rated, not_rated) in cases.items():
-        lines += ["### %s" % title, "", SPECIMEN_NOTES[title], "",
+        lines += ["### %s" % title, "", SPECIMEN_NOTES.get(title) or "(no set-up note in its case file)", "",
                   "| channel | corridor | phase | magnitude | slope | ISO 18571 | model peak (at ms) | "
                   "reference peak (at ms) | time inside the corridor or specimens |", "|---|---|---|---|---|---|---|---|---|"]
         for ch, sc in rated.items():
@@ -478,22 +474,20 @@ def catalogue_steps(a, work):
         order = segments.catalogue(a.exe, a.quick, a.data, os.path.join(work, "segments"), a.jobs, on_case=one)
         pr.results[:] = order
 
-    def specimen(case, title, support="HOLD", muscles="PASSIVE"):
+    def specimen(case, support=None, muscles=None):
         def step(pr):
-            if case == "stemper":
-                rated = specimens.rate_stemper(specimens.run_stemper(work, a.exe, support, muscles), a.data)
-            else:
-                model = specimens.run_kang(case[5:], work, a.exe, support)
-                rated = specimens.rate_kang(case[5:], model, a.data)
-            variant = (support, muscles) != ("HOLD", "PASSIVE")
-            if variant:
-                pr.variants.setdefault(title, {})[support, muscles] = rated
+            support_, muscles_ = support or case["support"], muscles or case["muscles"]
+            title = case["title"]
+            model = specimens.run_case(case, work, a.exe, support_, muscles_)
+            rated = specimens.rate_case(case, model, a.data)
+            if support is not None:
+                pr.variants.setdefault(title, {})[support_, muscles_] = rated
             else:
                 pr.cases[title] = (rated, [])
-                if case != "stemper":
-                    pr.newton[title] = newton_balance.kang_rows(case[5:], model, a.data)
-            label = title + (" (%s, muscles %s)" % (support, muscles) if variant else "")
-            with open(os.path.join(work, specimens.run_name(case, support, muscles) + ".err")) as f:
+                if case["newton_balance"]:
+                    pr.newton[title] = newton_balance.kang_rows(case["newton_balance"], model, a.data)
+            label = title + (" (%s, muscles %s)" % (support_, muscles_) if support is not None else "")
+            with open(os.path.join(work, specimens.run_name(case["name"], support_, muscles_) + ".err")) as f:
                 pr.warn(label, segments.warning_lines(f.read()))
             pr.line("%s: mean ISO 18571 %.3f over %d channels" % (
                 label, np.mean([v["overall"] for v in rated.values()]), len(rated)))
@@ -506,15 +500,13 @@ def catalogue_steps(a, work):
             pr.line("NBDL %s g: CORA-style %.3f, ISO 18571 %.3f" % (sev[:-1], v["cora"], v["iso"]))
         return step
 
-    stemper = "Stemper 2004 rear 1.8 m/s"
-    steps = [("the segment tests", segment_cases), (stemper, specimen("stemper", stemper))]
-    steps += [("Kang 2018 %s 14 km/h" % d, specimen("kang_" + d, "Kang 2018 %s 14 km/h" % d))
-              for d in ("front", "side")]
+    cases = [c for c in specimens.load_cases(a.cases) if c["rated"]]
+    for c in cases:
+        register_case(c)
+    steps = [("the segment tests", segment_cases)] + [(c["title"], specimen(c)) for c in cases]
     if not a.quick:
-        steps += [("%s, %s %s" % (stemper, sup, mus), specimen("stemper", stemper, sup, mus))
-                  for sup, mus in (("RELEASE", "PASSIVE"), ("HOLD", "REFLEX"), ("PRESTRAIN", "PASSIVE"))]
-        steps += [("Kang 2018 %s 14 km/h, PRESTRAIN" % d, specimen("kang_" + d, "Kang 2018 %s 14 km/h" % d,
-                                                                    "PRESTRAIN")) for d in ("front", "side")]
+        steps += [("%s, %s %s" % ((c["title"],) + v), specimen(c, *v))
+                  for c in cases for v in c["variants"]]
     return steps + [("NBDL %s g" % sev[:-1], nbdl(sev)) for sev in ("15g", "12g")]
 
 
@@ -525,6 +517,8 @@ def main(argv=None):
                    "(the test suite's form)")
     p.add_argument("--exe", help="the hhneck executable (default $HHNECK, else fpm's release build)")
     p.add_argument("--data", default=segments.DATA_DIR, help="the pmhs_neck data folder")
+    p.add_argument("--cases", default=specimens.CASES_DIR, help="the folder of the specimen case files "
+                   "(docs/case-files.md; default reference/cases)")
     p.add_argument("--out", help="working directory for the decks, listings, stderr and result files "
                    "(default: a temporary folder, removed after a complete run)")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="runs at a time (default: the cores)")
@@ -540,6 +534,9 @@ def main(argv=None):
             writable_folder(a.out, "work")
         if not os.path.isdir(a.data):
             raise ValueError("no data folder %s (--data)" % a.data)
+        if not os.path.isdir(a.cases):
+            raise ValueError("no case folder %s (--cases)" % a.cases)
+        specimens.load_cases(a.cases)
         a.exe = a.exe or segments.default_executable()
     except (ValueError, RuntimeError) as e:
         print("hhneck-catalogue: %s" % e, file=sys.stderr)

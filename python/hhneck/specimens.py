@@ -116,51 +116,209 @@ Kang 2018 front and side, the same set-up but for (README "Ambiguities"):
   z-accelerations, its rotations and the cell's moments CFC 180. The
   Stemper channels are unfiltered, as its notebook plots them.
 
-API: CHANNELS (the rated channels: the data's and the run's), ANGLES, REFERENCE;
+Each case is a case file of reference/cases/ (docs/case-files.md): its
+pulse and direction, potted body and slope, support, muscles, load cell,
+reference, window and rated channels with their definitions and filters.
+The text above gives the reasons for the given cases' choices; a new
+direction or severity is a new case file, read by load_case and built,
+run and rated by case_deck, run_case and rate_case, as the catalogue does
+for every file of the folder.
+
+API: CASES_DIR, CASES (the given case files by name), load_case, case_files,
+case_deck, run_case, rate_case; CHANNELS (the rated channels: the data's and
+the run's, from the case files), ANGLES, REFERENCE, DATA_FILE;
 model_channels, filtered, planar_angle, integrated_rotation;
 stemper_deck, run_stemper (-> {channel: (t_ms, model)}), rate_stemper;
 kang_deck, run_kang, rate_kang, kang_reference, kang_window; rated_reference, rate_channel.
 """
 import os
 import tempfile
+import tomllib
 
 import numpy as np
 
 from . import iso18571, segments, specimen_data
 from .compare_nbdl import cfc
 
+#: the folder of the catalogue's case files
+CASES_DIR = os.path.join(segments.ROOT, "reference", "cases")
+SUPPORTS = ("HOLD", "RELEASE", "PRESTRAIN", "NONE", "CLAMP")
+MUSCLES = ("PASSIVE", "REFLEX")
+#: what a rated rotation is, as its source defined it: planar (a body's
+#: angle in its parent's plane: from the rotation matrices when the channel
+#: names body, parent and axis, else the model channel, a BODY_P* channel),
+#: integrated (the time integral of the angular velocity channel `omega`),
+#: bryant or rotation_vector (the model channel: HEADL_R* or HEADL_V*)
+DEFINITIONS = ("planar", "integrated", "bryant", "rotation_vector")
+
+
+class CaseError(ValueError):
+    """A case file that cannot be read: the message names the file and the key."""
+
+
+def _need(d, key, kind, where, default=None):
+    """d[key] checked to be of type kind (default when absent and not None)."""
+    if key not in d:
+        if default is not None:
+            return default
+        raise CaseError("%s: missing key %r" % (where, key))
+    v = d[key]
+    if kind is float and isinstance(v, int) and not isinstance(v, bool):
+        v = float(v)
+    if not isinstance(v, kind):
+        raise CaseError("%s: key %r is %r; expected %s" % (where, key, v, getattr(kind, "__name__", kind)))
+    return v
+
+
+def _vector(d, key, where, n=3):
+    v = _need(d, key, list, where)
+    if len(v) != n or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+        raise CaseError("%s: key %r is %r; expected %d numbers" % (where, key, v, n))
+    return [float(x) for x in v]
+
+
+def load_case(path):
+    """A case file (TOML, docs/case-files.md) as a dict, every key checked
+    and the defaults filled; CaseError naming the file and the key."""
+    try:
+        with open(path, "rb") as f:
+            d = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise CaseError("%s: %s" % (path, e))
+    w = os.path.basename(path)
+    c = {"path": os.path.abspath(path), "name": _need(d, "name", str, w), "title": _need(d, "title", str, w),
+         "source": _need(d, "source", str, w), "deck_title": _need(d, "deck_title", str, w),
+         "end_time": _need(d, "end_time", float, w), "note": _need(d, "note", str, w, ""),
+         "stops": _need(d, "stops", list, w, []), "safer": _need(d, "safer", str, w, ""),
+         "newton_balance": _need(d, "newton_balance", str, w, ""),
+         "rated": _need(d, "rated", bool, w, True), "order": _need(d, "order", int, w, 100),
+         "rtol": _need(d, "rtol", float, w, 1.0e-3), "atol": _need(d, "atol", float, w, 1.0e-5), "model": _need(d, "model", str, w, "input/head_neck_54dof.inp")}
+    c["variants"] = [tuple(v) for v in _need(d, "variants", list, w, [])]
+    p = d.get("pulse")
+    c["pulse"] = None if p is None else {
+        "file": _need(p, "file", str, w + " [pulse]"), "table": _need(p, "table", str, w + " [pulse]", "PULSE").upper(),
+        "direction": _vector(p, "direction", w + " [pulse]"), "scale": _need(p, "scale", float, w + " [pulse]", 1.0)}
+    if p is not None and not any(c["pulse"]["direction"]):
+        raise CaseError("%s [pulse]: direction is the zero vector" % w)
+    pot = _need(d, "potting", dict, w)
+    c["potting"] = {"body": _need(pot, "body", str, w + " [potting]").upper(),
+                    "slope": _need(pot, "slope", float, w + " [potting]")}
+    s = _need(d, "support", dict, w)
+    c["support"] = _need(s, "kind", str, w + " [support]").upper()
+    c["clamp"] = [str(x) for x in _need(s, "cards", list, w + " [support]", [])]
+    if c["support"] not in SUPPORTS:
+        raise CaseError("%s [support]: kind %r; expected one of %s" % (w, c["support"], ", ".join(SUPPORTS)))
+    if c["support"] == "CLAMP" and not c["clamp"]:
+        raise CaseError("%s [support]: kind CLAMP needs its deck cards (cards = [...])" % w)
+    c["muscles"] = _need(_need(d, "muscles", dict, w), "state", str, w + " [muscles]").upper()
+    for sup, mus in [(c["support"], c["muscles"])] + c["variants"]:
+        if sup not in SUPPORTS or mus not in MUSCLES:
+            raise CaseError("%s: support %r / muscles %r; expected %s / %s" % (
+                w, sup, mus, ", ".join(SUPPORTS), ", ".join(MUSCLES)))
+    cell = d.get("loadcell")
+    c["loadcell"] = None if cell is None else {
+        "name": _need(cell, "name", str, w + " [loadcell]"), "body": _need(cell, "body", str, w + " [loadcell]"),
+        "point": _vector(cell, "point", w + " [loadcell]"), "axes": _need(cell, "axes", str, w + " [loadcell]")}
+    ref = d.get("reference", {})
+    c["reference"] = None
+    if c["rated"]:
+        curve = ref.get("curve")
+        if curve is None:
+            curve = tuple(_need(ref, "specimens", list, w + " [reference]"))
+        c["reference"] = {"file": _need(ref, "file", str, w + " [reference]"), "curve": curve}
+    win = d.get("window", {"kind": "reference"})
+    c["window"] = {"kind": _need(win, "kind", str, w + " [window]")}
+    if c["window"]["kind"] == "peak":
+        c["window"]["search"] = tuple(_vector(win, "search", w + " [window]", 2))
+        c["window"]["factor"] = _need(win, "factor", float, w + " [window]")
+    elif c["window"]["kind"] != "reference":
+        raise CaseError("%s [window]: kind %r; expected reference or peak" % (w, c["window"]["kind"]))
+    c["channels"] = []
+    for k, ch in enumerate(_need(d, "channel", list, w, [])):
+        where = "%s [[channel]] %d" % (w, k + 1)
+        e = {"name": _need(ch, "name", str, where), "model": _need(ch, "model", str, where),
+             "scale": _need(ch, "scale", float, where, 1.0), "tare": _need(ch, "tare", bool, where, False),
+             "cfc": _need(ch, "cfc", int, where, 0), "definition": _need(ch, "definition", str, where, "")}
+        if e["definition"] and e["definition"] not in DEFINITIONS:
+            raise CaseError("%s: definition %r; expected one of %s" % (where, e["definition"], ", ".join(DEFINITIONS)))
+        if e["cfc"] not in (0, 60, 180, 600, 1000):
+            raise CaseError("%s: cfc %r; expected 0 (none), 60, 180, 600 or 1000" % (where, e["cfc"]))
+        e["angle"] = None
+        if e["definition"] == "integrated":
+            e["angle"] = ("integrated", _need(ch, "omega", str, where))
+        elif e["definition"] == "planar" and "body" in ch:
+            e["angle"] = ("planar", _need(ch, "body", str, where), _need(ch, "parent", str, where),
+                          _need(ch, "axis", str, where))
+        c["channels"].append(e)
+    if c["rated"] and not c["channels"]:
+        raise CaseError("%s: a rated case needs at least one [[channel]]" % w)
+    return c
+
+
+def case_files(folder=CASES_DIR):
+    """The case files (*.toml) of a folder, sorted by name."""
+    return sorted(os.path.join(folder, n) for n in os.listdir(folder) if n.endswith(".toml"))
+
+
+def load_cases(folder=CASES_DIR):
+    """The cases of every case file of a folder, in their order (the key
+    order, then the file name); CaseError on a file that cannot be read or
+    two files of one name or title."""
+    cases = sorted(map(load_case, case_files(folder)), key=lambda c: c["order"])
+    for key in ("name", "title"):
+        seen = {}
+        for c in cases:
+            if c[key] in seen:
+                raise CaseError("%s and %s: both have the %s %r" % (seen[c[key]], c["path"], key, c[key]))
+            seen[c[key]] = c["path"]
+    return cases
+
+
+#: the given cases (the case files of reference/cases) by name
+CASES = {c["name"]: c for c in load_cases()}
+
+
+def _case(case):
+    """A case dict from a case dict or the name of a given case."""
+    return CASES[case] if isinstance(case, str) else case
+
+
 #: every rated channel of each case: (the data's channel, the run's
 #: channel, the scale to the data's sign, whether taken from its value at
-#: the start, the CFC class [Hz] the model curve is filtered by, 0 none);
-#: the module docstring says why each is what it is. The catalogue's runs
-#: and the calibration's RATED cards (hhneck.calibration) both read this
-#: table.
-CHANNELS = {
-    "stemper": [("seg_angle_C%d_C%d" % (k, k + 1), "C%d_PY" % k, -1.0, True, 0) for k in range(2, 7)]
-    + [("head_T1_angle", "HT1_RY", -1.0, True, 0), ("head_T1_retraction", "HT1_DX", 1.0, False, 0)],
-    "kang_front": [("head_acc_x", "HEAD_AXS", 1.0, True, 60), ("head_acc_z", "HEAD_AZS", -1.0, True, 180),
-                   ("head_rot_y", "HEADL_RY", -1.0, True, 180), ("loadcell_force_x", "T1CELL_JFX", 1.0, True, 60),
-                   ("loadcell_force_z", "T1CELL_JFZ", 1.0, True, 60),
-                   ("loadcell_moment_y", "T1CELL_JMY", 1.0, True, 180)],
-    "kang_side": [("head_acc_y", "HEAD_AYS", -1.0, True, 180), ("head_acc_z", "HEAD_AZS", -1.0, True, 180),
-                  ("head_rot_x", "HEADL_RX", 1.0, True, 180), ("loadcell_moment_x", "T1CELL_JMX", 1.0, True, 180),
-                  ("loadcell_force_y", "T1CELL_JFY", 1.0, True, 60), ("loadcell_force_z", "T1CELL_JFZ", 1.0, True, 60)],
-}
+#: the start, the CFC class [Hz] the model curve is filtered by, 0 none),
+#: from the case files; the module docstring says why each is what it is.
+#: The catalogue's runs and the calibration's RATED cards (hhneck.calibration)
+#: both read this table.
+CHANNELS = {n: [(e["name"], e["model"], e["scale"], e["tare"], e["cfc"]) for e in c["channels"]]
+            for n, c in CASES.items()}
 STEMPER_CHANNELS = [c[0] for c in CHANNELS["stemper"]]
-
-
 #: the angle each rated rotation is, as its source defined it (module
-#: docstring, "Head angles"): (case, data channel) -> ("planar", body,
-#: parent, axis): the body's rotation relative to its parent seen in the
-#: parent's plane normal to axis (planar_angle, from the result file's
-#: rotation matrices); ("integrated", channel): the time integral of an
-#: angular velocity channel [rad/s] (integrated_rotation). The channel of
-#: CHANNELS beside it is the result file's nearest (what the calibration's
-#: RATED cards rate: a Fortran channel): HT1_RY equals the planar angle in
-#: a sagittal motion; HEADL_RX and HEADL_RY are Bryant angles.
-ANGLES = {("stemper", "head_T1_angle"): ("planar", "HEAD", "T1", "y"),
-          ("kang_front", "head_rot_y"): ("integrated", "HEAD_OMEGY"),
-          ("kang_side", "head_rot_x"): ("integrated", "HEAD_OMEGX")}
+#: docstring, "Head angles"; a case file's definition): (case, data channel)
+#: -> ("planar", body, parent, axis): the body's rotation relative to its
+#: parent seen in the parent's plane normal to axis (planar_angle, from the
+#: result file's rotation matrices); ("integrated", channel): the time
+#: integral of an angular velocity channel [rad/s] (integrated_rotation).
+#: The channel of CHANNELS beside it is the result file's nearest (what the
+#: calibration's RATED cards rate: a Fortran channel): HT1_RY equals the
+#: planar angle in a sagittal motion; HEADL_RX and HEADL_RY are Bryant angles.
+ANGLES = {(n, e["name"]): e["angle"] for n, c in CASES.items() for e in c["channels"] if e["angle"]}
+#: the reference curve of each case's channels (hhneck.specimen_data.reference's
+#: curve): the corridor outline named in the data file, or the specimens whose mean is taken
+REFERENCE = {n: c["reference"]["curve"] for n, c in CASES.items() if c["reference"]}
+#: each case's experiment file in the data folder
+DATA_FILE = {n: c["reference"]["file"] for n, c in CASES.items() if c["reference"]}
+#: the T1 slope [deg] of each source's potting (the case files)
+T1_SLOPE = {"stemper": CASES["stemper"]["potting"]["slope"], "kang": CASES["kang_front"]["potting"]["slope"]}
+#: [ms] the times the Kang rating searches for the reference's largest
+#: magnitude (its window ends at 1.2 x that time): the source's, 0-99.9 ms
+KANG_PEAK_SEARCH = CASES["kang_front"]["window"]["search"]
+KANG_CHANNELS = {d: [c[0] for c in CHANNELS["kang_" + d]] for d in ("front", "side")}
+#: the Kang load cell's point in T1's axes from T1's mass centre [m]: the
+#: potting centre 81 mm behind and 229 mm below the head's mass centre
+#: (README "Initial position"), the head's mass centre being 54.0 mm ahead of
+#: and 175.3 mm above T1's in the model deck at the start (the case files;
+#: test_specimens checks it against the run)
+KANG_CELL_POINT = tuple(CASES["kang_front"]["loadcell"]["point"])
 
 
 def planar_angle(s_parent, s_body, axis):
@@ -200,19 +358,18 @@ def angle_channel(f, definition):
 
 
 def model_channels(case, h5):
-    """The rated channels of `case` from its result file:
-    {data channel: (t [ms], model value in the data's signs)} (CHANNELS,
-    the rotations as ANGLES defines them): scaled, less its start value
-    where the table says so, then filtered by its CFC class (the order of
-    the calibration's RATED cards)."""
+    """The rated channels of `case` (a case dict or a given case's name)
+    from its result file: {data channel: (t [ms], model value in the data's
+    signs)} (its channels, the rotations as their definitions say): scaled,
+    less its start value where the case says so, then filtered by its CFC
+    class (the order of the calibration's RATED cards)."""
     import h5py
     with h5py.File(h5, "r") as f:
         t = f["time"][:] * 1e3
         out = {}
-        for name, run, scale, start, cls in CHANNELS[case]:
-            v = angle_channel(f, ANGLES[case, name]) if (case, name) in ANGLES \
-                else np.asarray(f["channels"][run][:], dtype=float)
-            out[name] = (t, filtered(t, scale * (v - v[0] if start else v), cls))
+        for e in _case(case)["channels"]:
+            v = angle_channel(f, e["angle"]) if e["angle"] else np.asarray(f["channels"][e["model"]][:], dtype=float)
+            out[e["name"]] = (t, filtered(t, e["scale"] * (v - v[0] if e["tare"] else v), e["cfc"]))
     return out
 
 
@@ -231,14 +388,8 @@ def _run(deck, workdir, exe):
 
 def run_name(case, support="HOLD", muscles="PASSIVE"):
     """The file name (no extension) of a case's deck, listing, stderr and
-    result file: case stemper, kang_front or kang_side."""
-    if case == "stemper":
-        return "stemper_%s_%s" % (support.lower(), muscles.lower())
-    return "%s_%s" % (case, support.lower())
-
-
-#: the T1 slope [deg] of each source's potting (module docstring)
-T1_SLOPE = {"stemper": 25.0, "kang": 24.0}
+    result file: the case's name, support and muscles state."""
+    return "%s_%s_%s" % (case if isinstance(case, str) else case["name"], support.lower(), muscles.lower())
 
 
 def model_t1_slope(model_deck=os.path.join(segments.ROOT, "input", "head_neck_54dof.inp")):
@@ -249,12 +400,12 @@ def model_t1_slope(model_deck=os.path.join(segments.ROOT, "input", "head_neck_54
     raise ValueError("%s: no NEUTRAL card of C7 RY (the T1 slope)" % model_deck)
 
 
-def _held_t1(driven, t1_slope):
-    """PRESCRIB CONSTANT cards of the potted T1's coordinates but `driven`:
-    its pitch RY the tilt that gives the T1 slope t1_slope [deg]."""
+def _held_t1(driven, t1_slope, body="T1"):
+    """PRESCRIB CONSTANT cards of the potted body's coordinates but those
+    `driven`: its pitch RY the tilt that gives the T1 slope t1_slope [deg]."""
     tilt = t1_slope - model_t1_slope()
-    return ["PRESCRIB  T1        %s        CONSTANT  %s" % (c, "%-10.4f" % tilt if c == "RY" else "")
-            for c in ("TX", "TY", "TZ", "RX", "RY", "RZ") if c != driven]
+    return ["PRESCRIB  %-10s%s        CONSTANT  %s" % (body, c, "%-10.4f" % tilt if c == "RY" else "")
+            for c in ("TX", "TY", "TZ", "RX", "RY", "RZ") if c not in driven]
 
 
 def _support_cards(support):
@@ -272,89 +423,143 @@ def _support_cards(support):
     return cards[support]
 
 
-def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.DATA_DIR,
-                 t1_slope=T1_SLOPE["stemper"]):
-    """Write the Stemper 1.8 m/s deck and its two-column pulse table into
-    workdir; returns the deck's path. support: RELEASE, HOLD, PRESTRAIN or NONE
-    (_support_cards); muscles:
-    PASSIVE (activation zero) or REFLEX (the model deck's volunteer
-    activation histories); t1_slope: the potted T1's slope [deg]."""
-    t, a = specimen_data.read_pulse(os.path.join(data_dir, "stemper2004_1p8ms_pulse.csv"))
-    pulse = os.path.join(workdir, "stemper_pulse.csv")
-    with open(pulse, "w") as f:
-        f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % p for p in zip(t, a)))
-    name = run_name("stemper", support, muscles)
-    lines = [
-        "TITLE     STEMPER 2004 REAR 1.8 M/S, T1 POTTED (%s, MUSCLES %s)" % (support, muscles),
-        "*         end (s)   step (s)  print (s) method    rtol      atol",
-        "CONTROL   0.13      1.0E-4    0.005     ROS34PW2  1.0E-3    1.0E-5",
-        "SOLVER    ABA       STRUCT",
-        "OUTPUT    1.0E-4",
-        "H5FILE    %s.h5" % name,
-    ]
-    lines += _support_cards(support)
-    lines += ["INCLUDE   input/head_neck_54dof.inp",
-              "TABLE     STEMPER   %-10d1.0       1.0       CSV" % len(t),
-              "          %s" % os.path.basename(pulse),
-              "PRESCRIB  T1        TX        ACCEL     STEMPER   0.0       0.0"]
-    lines += [c.rstrip() for c in _held_t1("TX", t1_slope)]
+def _pulse_tables(c, workdir, data_dir):
+    """Write the pulse's component tables along the case's direction into
+    workdir: [(coordinate, table name, file name, points)]. One table named
+    as the case's pulse table per nonzero component (a suffix X, Y, Z when
+    more than one), the pulse times made a function (its repeated times
+    merged into their mean value). None without a pulse (the potted body held)."""
+    if c["pulse"] is None:
+        return []
+    t, a = specimen_data.read_pulse(os.path.join(data_dir, c["pulse"]["file"]))
+    t, a = specimen_data._as_function(t, a)
+    comps = [(k, d) for k, d in enumerate(c["pulse"]["direction"]) if d != 0.0]
+    out = []
+    for k, d in comps:
+        suffix = "XYZ"[k] if len(comps) > 1 else ""
+        name = c["pulse"]["table"][:8 - len(suffix)] + suffix
+        fname = "%s_pulse%s.csv" % (c["name"], suffix.lower() and "_" + suffix.lower())
+        with open(os.path.join(workdir, fname), "w") as f:
+            f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % (tt, d * c["pulse"]["scale"] * aa)
+                                                for tt, aa in zip(t, a)))
+        out.append(("T" + "XYZ"[k], name, fname, len(t)))
+    return out
+
+
+def _e(v):
+    """A tolerance as a CONTROL card's field: 1.0E-3."""
+    m, e = ("%.1e" % v).split("e")
+    return "%sE%d" % (m, int(e))
+
+
+def case_deck(case, workdir, support=None, muscles=None, data_dir=segments.DATA_DIR, t1_slope=None, model=None):
+    """Write a case's deck and its pulse tables into workdir; returns the
+    deck's path. case: a case dict (load_case) or a given case's name;
+    support, muscles: a variant's (default the case's); t1_slope: the potted
+    body's slope [deg] (default the case's); model: the model deck it
+    includes (default the case's, the shipped one)."""
+    c = _case(case)
+    support, muscles = (support or c["support"]).upper(), (muscles or c["muscles"]).upper()
+    if muscles not in MUSCLES:
+        raise ValueError("muscles: PASSIVE or REFLEX, not %r" % muscles)
+    body = c["potting"]["body"]
+    name = run_name(c["name"], support, muscles)
+    lines = ["TITLE     %s (%s, MUSCLES %s)" % (c["deck_title"], support, muscles),
+             "*         end (s)   step (s)  print (s) method    rtol      atol",
+             "CONTROL   %-10g1.0E-4    0.005     ROS34PW2  %-10s%s" % (c["end_time"], _e(c["rtol"]), _e(c["atol"])),
+             "SOLVER    ABA       STRUCT",
+             "OUTPUT    1.0E-4",
+             "H5FILE    %s.h5" % name]
+    lines += [] if support == "CLAMP" else _support_cards(support)
+    lines += ["INCLUDE   %s" % (model or c["model"])] + (c["clamp"] if support == "CLAMP" else [])
+    tables = _pulse_tables(c, workdir, data_dir)
+    for _, table, fname, n in tables:
+        lines += ["TABLE     %-10s%-10d1.0       1.0       CSV" % (table, n), "          %s" % fname]
+    lines += ["PRESCRIB  %-10s%s        ACCEL     %-10s0.0       0.0" % (body, q, table) for q, table, _, _ in tables]
+    if c["loadcell"]:
+        lc = c["loadcell"]
+        lines.append("LOADCELL  %-10s%-10s%-10.4f%-10.4f%-10.4f%s" % ((lc["name"], lc["body"]) + tuple(lc["point"])
+                                                                   + (lc["axes"],)))
+    lines += [h.rstrip() for h in _held_t1([q for q, _, _, _ in tables], c["potting"]["slope"]
+                                           if t1_slope is None else t1_slope, body)]
     if muscles == "PASSIVE":
         for act in ("FLEX", "EXT"):
             for k, field in ((2, "U0"), (3, "U1")):
                 lines.append("CHANGE    %-10sFIELD%d    ACTIVATE  %-10sSET       0.0" % (act[:4] + field, k, act))
-    elif muscles != "REFLEX":
-        raise ValueError("muscles: PASSIVE or REFLEX, not %r" % muscles)
     deck = os.path.join(workdir, name + ".inp")
     with open(deck, "w") as f:
         f.write("\n".join(lines) + "\n")
     return deck
 
 
-def run_stemper(workdir=None, exe=None, support="HOLD", muscles="PASSIVE"):
-    """Run the Stemper deck; {channel: (t [ms], model value)} in the data's signs."""
-    work = workdir or tempfile.mkdtemp(prefix="hhneck-stemper-")
+def run_case(case, workdir=None, exe=None, support=None, muscles=None):
+    """Run a case's deck (a variant's with support, muscles); {channel: (t
+    [ms], model value in the data's signs)}."""
+    work = workdir or tempfile.mkdtemp(prefix="hhneck-case-")
     os.makedirs(work, exist_ok=True)
-    return model_channels("stemper", _run(stemper_deck(work, support, muscles), work, exe))
-
-
-#: the reference curve of each case's channels (hhneck.specimen_data.reference's
-#: curve): the corridor outline named in the data file, or the specimens whose mean is taken
-REFERENCE = {"stemper": "stemper2004_corridor_outline", "kang_front": "corridor_outline",
-             "kang_side": ("pmhs1", "pmhs2")}
-#: each case's experiment file in the data folder
-DATA_FILE = {"stemper": "stemper2004_1p8ms_experiment.csv", "kang_front": "kang2018_front_experiment.csv",
-             "kang_side": "kang2018_side_experiment.csv"}
-#: [ms] the times the Kang rating searches for the reference's largest
-#: magnitude (its window ends at 1.2 x that time): the source's, 0-99.9 ms
-KANG_PEAK_SEARCH = (0.0, 99.9)
+    return model_channels(case, _run(case_deck(case, work, support, muscles), work, exe))
 
 
 def rated_reference(case, channel, data_dir=segments.DATA_DIR, shift=0.0):
     """(grid [ms], reference, lower, upper) of a channel of `case` on its
-    rated window: the named reference (REFERENCE) over the times it covers;
-    Kang from 0 to 1.2 x the time of the reference's largest magnitude in
-    KANG_PEAK_SEARCH (kang_window), the times moved by shift [ms] first."""
-    g, ref, lo, hi = specimen_data.reference(os.path.join(data_dir, DATA_FILE[case]), channel, REFERENCE[case])
-    if case.startswith("kang"):
-        return kang_window(g + shift, ref, lo, hi)
+    rated window: the case's named reference over the times it covers; a
+    peak window from 0 to factor x the time of the reference's largest
+    magnitude in the case's search times (peak_window), the times moved by
+    shift [ms] first."""
+    c = _case(case)
+    g, ref, lo, hi = specimen_data.reference(os.path.join(data_dir, c["reference"]["file"]), channel,
+                                             c["reference"]["curve"])
+    if c["window"]["kind"] == "peak":
+        return peak_window(g + shift, ref, lo, hi, c["window"]["search"], c["window"]["factor"])
     return g + shift, ref, lo, hi
+
+
+def peak_window(g, ref, lo, hi, search=KANG_PEAK_SEARCH, factor=1.2):
+    """A peak window of a reference (grid [ms], reference, lower, upper):
+    from 0 to factor x the time of the reference's largest magnitude
+    between the search times."""
+    keep = g >= 0.0
+    g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
+    found = np.flatnonzero((g >= search[0] - 1e-9) & (g <= search[1] + 1e-9))
+    keep = g <= factor * g[found[int(np.argmax(np.abs(ref[found])))]]
+    return g[keep], ref[keep], lo[keep], hi[keep]
 
 
 def kang_window(g, ref, lo, hi):
     """The Kang rating's window of a reference (grid [ms], reference, lower,
     upper): from 0 to 1.2 x the time of the reference's largest magnitude
     between KANG_PEAK_SEARCH's times."""
-    keep = g >= 0.0
-    g, ref, lo, hi = g[keep], ref[keep], lo[keep], hi[keep]
-    search = np.flatnonzero((g >= KANG_PEAK_SEARCH[0] - 1e-9) & (g <= KANG_PEAK_SEARCH[1] + 1e-9))
-    keep = g <= 1.2 * g[search[int(np.argmax(np.abs(ref[search])))]]
-    return g[keep], ref[keep], lo[keep], hi[keep]
+    return peak_window(g, ref, lo, hi)
+
+
+def rate_case(case, model, data_dir=segments.DATA_DIR, shifts=None):
+    """ISO/TS 18571 of every rated channel of a case on its window:
+    {channel: dict(scores..., grid, reference, lower, upper, model,
+    peak_model, peak_ref)}. shifts: {channel: ms} moves those references'
+    times (a study of a source's comparison; the catalogue moves none)."""
+    return {e["name"]: rate_channel(*rated_reference(case, e["name"], data_dir, (shifts or {}).get(e["name"], 0.0)),
+                                    *model[e["name"]]) for e in _case(case)["channels"]}
+
+
+def stemper_deck(workdir, support="HOLD", muscles="PASSIVE", data_dir=segments.DATA_DIR,
+                 t1_slope=T1_SLOPE["stemper"]):
+    """Write the Stemper 1.8 m/s deck (its case file) and its pulse table
+    into workdir; returns the deck's path. support: RELEASE, HOLD,
+    PRESTRAIN or NONE (_support_cards); muscles: PASSIVE (activation zero)
+    or REFLEX (the model deck's volunteer activation histories); t1_slope:
+    the potted T1's slope [deg]."""
+    return case_deck("stemper", workdir, support, muscles, data_dir, t1_slope)
+
+
+def run_stemper(workdir=None, exe=None, support="HOLD", muscles="PASSIVE"):
+    """Run the Stemper deck; {channel: (t [ms], model value)} in the data's signs."""
+    return run_case("stemper", workdir, exe, support, muscles)
 
 
 def rate_stemper(model, data_dir=segments.DATA_DIR):
     """ISO/TS 18571 of every Stemper channel: {channel: dict(scores...,
     grid, reference, lower, upper, model, peak_model, peak_ref)}."""
-    return {ch: rate_channel(*rated_reference("stemper", ch, data_dir), *model[ch]) for ch in STEMPER_CHANNELS}
+    return rate_case("stemper", model, data_dir)
 
 
 def rate_channel(g, ref, lo, hi, t, m):
@@ -381,67 +586,26 @@ def rate_channel(g, ref, lo, hi, t, m):
     return sc
 
 
-KANG_CHANNELS = {d: [c[0] for c in CHANNELS["kang_" + d]] for d in ("front", "side")}
-#: the Kang load cell's point in T1's axes from T1's mass centre [m]: the
-#: potting centre 81 mm behind and 229 mm below the head's mass centre
-#: (README "Initial position"), the head's mass centre being 54.0 mm ahead of
-#: and 175.3 mm above T1's in the model deck at the start
-#: (test_specimens checks it against the run)
-KANG_CELL_POINT = (0.054 - 0.081, 0.0, 0.1753 - 0.229)
-
-
-
 def kang_deck(workdir, direction, support="HOLD", data_dir=segments.DATA_DIR, t1_slope=T1_SLOPE["kang"],
               model="input/head_neck_54dof.inp"):
-    """Write the Kang 2018 deck of `direction` (front or side) and its pulse
-    table into workdir; returns the deck's path. t1_slope: the potted T1's
-    slope [deg]; model: the model deck it includes (a study's variant in
-    workdir; the shipped one by default)."""
-    t, a = specimen_data.read_pulse(os.path.join(data_dir, "kang2018_sled_pulse.csv"))
-    # a TABLE's times increase strictly: the digitised pulse repeats 2.752 ms
-    # (30.65 and 35.27 m/s^2), merged into their mean
-    t, a = specimen_data._as_function(t, a)
-    sign = -1.0                            # front: rearward (-x); side: toward the model's -y
-    with open(os.path.join(workdir, "kang_pulse.csv"), "w") as f:
-        f.write("time_s,a_m_s2\n" + "".join("%.9g,%.9g\n" % (tt, sign * aa) for tt, aa in zip(t, a)))
-    driven = {"front": "TX", "side": "TY"}[direction]
-    name = run_name("kang_" + direction, support)
-    lines = ["TITLE     KANG 2018 %s SLED 14 KM/H, T1 POTTED (%s, MUSCLES PASSIVE)" % (
-                 direction.upper(), support),
-             "CONTROL   0.2       1.0E-4    0.005     ROS34PW2  1.0E-3    1.0E-5",
-             "SOLVER    ABA       STRUCT",
-             "OUTPUT    1.0E-4",
-             "H5FILE    %s.h5" % name]
-    lines += _support_cards(support)
-    lines += ["INCLUDE   %s" % model,
-              "TABLE     KANG      %-10d1.0       1.0       CSV" % len(t),
-              "          kang_pulse.csv",
-              "PRESCRIB  T1        %s        ACCEL     KANG      0.0       0.0" % driven,
-              "LOADCELL  T1CELL    C7        %-10.4f%-10.4f%-10.4fT1" % KANG_CELL_POINT]
-    lines += [c.rstrip() for c in _held_t1(driven, t1_slope)]
-    for act in ("FLEX", "EXT"):
-        for k, field in ((2, "U0"), (3, "U1")):
-            lines.append("CHANGE    %-10sFIELD%d    ACTIVATE  %-10sSET       0.0" % (act[:4] + field, k, act))
-    deck = os.path.join(workdir, name + ".inp")
-    with open(deck, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return deck
+    """Write the Kang 2018 deck of `direction` (front or side, its case
+    file) and its pulse table into workdir; returns the deck's path.
+    t1_slope: the potted T1's slope [deg]; model: the model deck it
+    includes (a study's variant in workdir; the shipped one by default)."""
+    return case_deck("kang_" + direction, workdir, support, "PASSIVE", data_dir, t1_slope, model)
 
 
 def run_kang(direction, workdir=None, exe=None, support="HOLD"):
     """Run a Kang deck; {channel: (t [ms], model in SAE J211 axes)}."""
-    work = workdir or tempfile.mkdtemp(prefix="hhneck-kang-")
-    os.makedirs(work, exist_ok=True)
-    return model_channels("kang_" + direction, _run(kang_deck(work, direction, support), work, exe))
+    return run_case("kang_" + direction, workdir, exe, support)
 
 
 def rate_kang(direction, model, data_dir=segments.DATA_DIR, shifts=None):
     """ISO/TS 18571 of the rated Kang channels (window 0 to 1.2 x the time
-    of the reference's largest magnitude in KANG_PEAK_SEARCH). shifts: {channel: ms} moves
-    those references' times (a study of the source notebook's comparison;
-    the catalogue moves none)."""
-    return {ch: rate_channel(*kang_reference(direction, ch, data_dir, (shifts or {}).get(ch, 0.0)), *model[ch])
-            for ch in KANG_CHANNELS[direction]}
+    of the reference's largest magnitude in KANG_PEAK_SEARCH). shifts:
+    {channel: ms} moves those references' times (a study of the source
+    notebook's comparison; the catalogue moves none)."""
+    return rate_case("kang_" + direction, model, data_dir, shifts)
 
 
 def kang_reference(direction, channel, data_dir=segments.DATA_DIR, shift=0.0):

@@ -9,8 +9,10 @@
 !!
 !! over the bodies k of the subtree, where F_applied and M_applied,P are the
 !! applied force and couple tables on those bodies (external loads, not
-!! loads through the section). The occipital-condyle loads are the section
-!! of the head at its joint point (hn_channels), a LOADCELL card any other.
+!! loads through the section), and the loads of the clamps (the CLAMPS
+!! family: a fixture's support, not a load through the specimen). The
+!! occipital-condyle loads are the section of the head at its joint point
+!! (hn_channels), a LOADCELL card any other.
 module hn_sections
     use hn_kinds, only: wp, zero
     use hn_model, only: model_t
@@ -18,6 +20,7 @@ module hn_sections
     use hn_kinematics, only: kinematics_t
     use hn_applied, only: applied_vector, applied_couple
     use hn_rotation, only: cross
+    use hn_clamp_family, only: clamp_family_t, clamp_load
     implicit none
     private
 
@@ -80,7 +83,7 @@ contains
         real(wp), intent(out) :: moment(3)        !! moment on the subtree about `point` in R [N m]
         logical :: inside(model%tree%nbody)
         real(wp) :: f(3), v(3), iw(3)
-        integer :: k, e
+        integer :: k, e, fam
         inside = subtree_of(model%tree, body)
         force = zero
         moment = zero
@@ -104,6 +107,38 @@ contains
                 moment = moment - cross(kin%r(:, k) + matmul(kin%s(:, :, k), model%applied(e)%point) - point, v)
             end if
         end do
+        do fam = 1, size(model%family)
+            if (.not. model%family_on(fam)) cycle
+            select type (clamps => model%family(fam)%f)
+            type is (clamp_family_t)
+                call less_clamps(clamps, kin, t, inside, point, force, moment)
+            end select
+        end do
     end subroutine section_load
+
+    !> A section's load less the clamps' loads on the subtree: each clamp's
+    !! load on its body when the body is inside, its reaction on the rig when
+    !! the rig is (nothing when both or neither are).
+    pure subroutine less_clamps(clamps, kin, t, inside, point, force, moment)
+        type(clamp_family_t), intent(in) :: clamps   !! the clamps
+        type(kinematics_t), intent(in) :: kin        !! kinematics at t
+        real(wp), intent(in) :: t                    !! time [s]
+        logical, intent(in) :: inside(:)             !! the subtree's bodies
+        real(wp), intent(in) :: point(3)             !! the moment's point in R [m]
+        real(wp), intent(inout) :: force(3)          !! the section's force in R [N]
+        real(wp), intent(inout) :: moment(3)         !! the section's moment about point in R [N m]
+        real(wp) :: p(3), fc(3), mc(3), d(3), phi(3), angle, rel(6), p_rig, sgn
+        integer :: e
+        do e = 1, size(clamps%items)
+            associate (c => clamps%items(e))
+                sgn = merge(1.0_wp, zero, inside(c%body))
+                if (c%rig > 0) sgn = sgn - merge(1.0_wp, zero, inside(c%rig))
+                if (sgn == zero) cycle
+                call clamp_load(kin, c, t, p, fc, mc, d, phi, angle, rel, p_rig)
+                force = force - sgn*fc
+                moment = moment - sgn*(mc + cross(p - point, fc))
+            end associate
+        end do
+    end subroutine less_clamps
 
 end module hn_sections

@@ -5,7 +5,7 @@
 !! (`new_family`). A family's number `fam_*` is its place in this list; the
 !! model holds one slot per family in this order, and every evaluation
 !! visits them in this order (discs, ligaments, muscles, limits, springs,
-!! neutral-zone springs, contacts).
+!! neutral-zone springs, contacts, clamps).
 !!
 !! The numbers `fam_*` are for src/elements/ alone: elsewhere a family is
 !! found by name (`family_index`) or asked through its bindings, and what
@@ -33,6 +33,7 @@ module hn_families
     use hn_spring_family, only: spring_family_t
     use hn_nz_family, only: nz_family_t, nz_spring_t
     use hn_contact_family, only: contact_family_t, contact_t
+    use hn_clamp_family, only: clamp_family_t, clamp_t
     implicit none
     private
 
@@ -42,11 +43,11 @@ module hn_families
     !> The families, in evaluation order.
     integer, parameter, public :: fam_discs = 1, fam_ligaments = 2, fam_muscles = 3, &
                                   fam_limits = 4, fam_springs = 5, fam_nz = 6, fam_contacts = 7, &
-                                  nfamilies = 7
+                                  fam_clamps = 8, nfamilies = 8
     integer, parameter, public :: family_name_len = 9
     !> Their names on FAMILY, SCALE, STIFFEN and CHANGE cards and in the listing.
     character(len=family_name_len), parameter, public :: family_name(nfamilies) = &
-        [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS', 'NZSPRINGS', 'CONTACTS']
+        [character(len=family_name_len) :: 'DISCS', 'LIGAMENTS', 'MUSCLES', 'LIMITS', 'SPRINGS', 'NZSPRINGS', 'CONTACTS', 'CLAMPS']
 
     !> Every card of every family (VIA and ACTIVATE complete the muscles):
     !! key, family, continuation cards, and when it is read (the default
@@ -65,13 +66,14 @@ module hn_families
         family_card_t('ROM', fam_limits, 0, unique=unique_coordinate, coordinate=.true.), &
         family_card_t('SPRING', fam_springs, 1, unique=unique_element), &
         family_card_t('NZSPRING', fam_nz, 0, unique=unique_coordinate, coordinate=.true.), &
-        family_card_t('CONTACT', fam_contacts, 2, unique=unique_element)]
+        family_card_t('CONTACT', fam_contacts, 2, unique=unique_element), &
+        family_card_t('CLAMP', fam_clamps, 1, unique=unique_element)]
 
 contains
 
     !> A family of kind f with no elements.
     pure subroutine new_family(f, slot)
-        integer, intent(in) :: f                    !! family (fam_discs ... fam_contacts)
+        integer, intent(in) :: f                    !! family (fam_discs ... fam_clamps)
         type(family_slot_t), intent(out) :: slot    !! the slot, holding an empty family of that kind
         ! the empty arrays are allocated with size 0 (not taken from a
         ! zero-size array constructor, whose result gfortran copies into an
@@ -87,6 +89,7 @@ contains
         type(spring_t), allocatable :: sp(:)
         type(nz_spring_t), allocatable :: nz(:)
         type(contact_t), allocatable :: ct(:)
+        type(clamp_t), allocatable :: cl(:)
         select case (f)
         case (fam_discs)
             allocate (d(0)); allocate (slot%f, source=disc_family_t(items=d))
@@ -103,6 +106,8 @@ contains
             allocate (nz(0)); allocate (slot%f, source=nz_family_t(items=nz))
         case (fam_contacts)
             allocate (ct(0), tb(0)); allocate (slot%f, source=contact_family_t(items=ct, tables=tb))
+        case (fam_clamps)
+            allocate (cl(0), tb(0)); allocate (slot%f, source=clamp_family_t(items=cl, tables=tb))
         end select
     end subroutine new_family
 

@@ -6,7 +6,8 @@ module hn_deck_coordinates
     use hn_case, only: case_t
     use hn_deck_reader, only: deck_reader_t
     use hn_model, only: neutral_coordinates
-    use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic
+    use hn_motion, only: motion_constant, motion_accel_table, motion_position_table, motion_harmonic, &
+                         motion_rate_table
     use hn_deck_state, only: deck_state_t, add_scene_note, k_old, locked_error, active_coordinate, body_ref, coord_ref, &
                              table_ref, unit_of, unit_factor, unit_limit
     implicit none
@@ -125,10 +126,15 @@ contains
                     call rd%real(i, 4, 'value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
                                  default=cs%model%tree%q_ref(m, kb)/fac)
                     cs%model%motion(j) = motion_constant(v*fac)
-                case ('ACCEL', 'POSITION')
+                case ('ACCEL', 'POSITION', 'RATE')
                     it = table_ref(rd, i, 4, st%tabs)
                     if (rd%failed()) return
-                    if (s == 'ACCEL') then
+                    if (s == 'RATE') then
+                        call rd%real(i, 5, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
+                                     default=cs%model%tree%q_ref(m, kb)/fac)
+                        call motion_rate_table(cs%model%motion(j), st%tabs(it)%tab%t, st%tabs(it)%tab%y*fac, &
+                                               v*fac, stat)
+                    else if (s == 'ACCEL') then
                         call rd%real(i, 5, 'initial value', unit_of(m), v, -unit_limit(m), unit_limit(m), &
                                      default=cs%model%tree%q_ref(m, kb)/fac)
                         call rd%real(i, 6, 'initial rate', unit_of(m)//'/s', vd, -1.0e5_wp, 1.0e5_wp, default=zero)
@@ -145,7 +151,7 @@ contains
                                                          2*acos(-one)*freq, phase*deg)
                 case default
                     call rd%fail(rd%context(i, 3, 'kind')//': found "'// &
-                                 trim(s)//'"; expected CONSTANT, ACCEL, POSITION or HARMONIC')
+                                 trim(s)//'"; expected CONSTANT, ACCEL, RATE, POSITION or HARMONIC')
                     return
                 end select
                 if (rd%failed()) return

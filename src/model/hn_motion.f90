@@ -1,6 +1,8 @@
 !> Prescribed motion of a coordinate: x(t), xdot(t), xddot(t) from a
 !! constant, an acceleration table (piecewise linear, integrated exactly),
-!! a position table (natural cubic spline) or a harmonic function.
+!! a rate table (a velocity or angular velocity, piecewise linear,
+!! integrated exactly to the position or angle), a position table (natural
+!! cubic spline) or a harmonic function.
 module hn_motion
     use hn_kinds, only: wp, zero, half
     use hn_tables, only: table_t, table_set, table_segment, spline_t, spline_set, spline_eval
@@ -8,10 +10,11 @@ module hn_motion
     private
 
     public :: motion_t, motion_constant, motion_accel_table, motion_position_table
-    public :: motion_harmonic, motion_eval
+    public :: motion_harmonic, motion_rate_table, motion_eval
 
     integer, parameter, public :: motion_kind_constant = 1, motion_kind_accel = 2, &
-                                  motion_kind_position = 3, motion_kind_harmonic = 4
+                                  motion_kind_position = 3, motion_kind_harmonic = 4, &
+                                  motion_kind_rate = 5
 
     !> The time history of one prescribed coordinate.
     type :: motion_t
@@ -19,7 +22,7 @@ module hn_motion
         real(wp) :: x0 = zero      !! constant value, or position at the first table time
         real(wp) :: v0 = zero      !! velocity at the first table time (acceleration table)
         real(wp) :: amp = zero, freq = zero, phase = zero  !! harmonic: x0 + amp sin(freq t + phase)
-        type(table_t) :: acc       !! acceleration table
+        type(table_t) :: acc       !! acceleration table (a rate table: the rates)
         real(wp), allocatable :: xk(:), vk(:)  !! position and velocity at the table knots
         type(spline_t) :: pos      !! position spline
     end type motion_t
@@ -60,6 +63,31 @@ contains
             m%xk(i + 1) = m%xk(i) + m%vk(i)*h + half*a(i)*h**2 + s*h**3/6.0_wp
         end do
     end subroutine motion_accel_table
+
+    !> Piecewise-linear rate table w(t) (a velocity, or an angular velocity
+    !! about the coordinate's axis) with position x0 at t(1), integrated
+    !! exactly: x(t) = x0 + int w, xdot = w(t), xddot = the segment's slope.
+    !! Before the table the first rate holds, after it the last (the
+    !! position keeps growing at that rate). stat = stat_bad_table when the
+    !! times do not increase.
+    pure subroutine motion_rate_table(m, t, w, x0, stat)
+        type(motion_t), intent(out) :: m   !! the motion (knot positions filled)
+        real(wp), intent(in) :: t(:)       !! table times, strictly increasing [s]
+        real(wp), intent(in) :: w(:)       !! rates at t [m/s or rad/s]
+        real(wp), intent(in) :: x0         !! position at t(1) [m or rad]
+        integer, intent(out) :: stat       !! stat_ok, or stat_bad_table (from table_set)
+        integer :: i, n
+        m%kind = motion_kind_rate
+        m%x0 = x0
+        call table_set(m%acc, t, w, stat)
+        if (stat /= 0) return
+        n = size(t)
+        allocate (m%xk(n))
+        m%xk(1) = x0
+        do i = 1, n - 1
+            m%xk(i + 1) = m%xk(i) + half*(w(i) + w(i + 1))*(t(i + 1) - t(i))
+        end do
+    end subroutine motion_rate_table
 
     !> Position table x(t) through a natural cubic spline.
     pure subroutine motion_position_table(m, t, x, stat)
@@ -111,6 +139,20 @@ contains
                 xdd = m%acc%y(i) + s*tau
                 xd = m%vk(i) + m%acc%y(i)*tau + half*s*tau**2
                 x = m%xk(i) + m%vk(i)*tau + half*m%acc%y(i)*tau**2 + s*tau**3/6.0_wp
+            end if
+        case (motion_kind_rate)
+            n = size(m%acc%t)
+            if (n == 1 .or. t <= m%acc%t(1) .or. t >= m%acc%t(n)) then
+                i = merge(n, 1, t >= m%acc%t(n))      ! the end rate holds outside the table
+                xdd = zero
+                xd = m%acc%y(i)
+                x = m%xk(i) + xd*(t - m%acc%t(i))
+            else
+                i = table_segment(m%acc%t, t)
+                tau = t - m%acc%t(i)
+                xdd = (m%acc%y(i + 1) - m%acc%y(i))/(m%acc%t(i + 1) - m%acc%t(i))
+                xd = m%acc%y(i) + xdd*tau
+                x = m%xk(i) + m%acc%y(i)*tau + half*xdd*tau**2
             end if
         case (motion_kind_position)
             call spline_eval(m%pos, t, x, xd, xdd)

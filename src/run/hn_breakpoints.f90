@@ -18,7 +18,7 @@
 module hn_breakpoints
     use hn_kinds, only: wp, zero
     use hn_case, only: case_t
-    use hn_motion, only: motion_kind_accel
+    use hn_motion, only: motion_kind_accel, motion_kind_rate
     use hn_sorting, only: sort_index
     use hn_tables, only: table_t
     implicit none
@@ -47,7 +47,7 @@ contains
         allocate (all(0))
         do j = 1, size(cs%model%prescribed)
             if (.not. cs%model%prescribed(j)) cycle
-            if (cs%model%motion(j)%kind == motion_kind_accel) &
+            if (any(cs%model%motion(j)%kind == [motion_kind_accel, motion_kind_rate])) &
                 all = [all, table_corners(cs%model%motion(j)%acc%t, cs%model%motion(j)%acc%y)]
         end do
         do e = 1, size(cs%model%applied)

@@ -97,7 +97,7 @@ def test_kang_drive_and_signs(tmp_path, direction):
     load cell's point and its start value by hand; the rated curves tared and
     filtered by the source notebook's CFC classes."""
     model = specimens.run_kang(direction, str(tmp_path), hhneck_executable())
-    with h5py.File(tmp_path / ("kang_%s_hold.h5" % direction), "r") as f:
+    with h5py.File(tmp_path / ("kang_%s_hold_passive.h5" % direction), "r") as f:
         t = f["time"][:]
         p = f["bodies/position"][:, 0, :]
         ays = f["channels"]["HEAD_AYS"][:]
@@ -127,7 +127,7 @@ def test_kang_drive_and_signs(tmp_path, direction):
     assert any(ch.startswith("loadcell_") for ch in rated)
     for sc in rated.values():
         assert sc["grid"][0] >= 0.0 and 0.0 <= sc["overall"] <= 1.0
-    with h5py.File(tmp_path / ("kang_%s_hold.h5" % direction), "r") as f:
+    with h5py.File(tmp_path / ("kang_%s_hold_passive.h5" % direction), "r") as f:
         names = [str(n) for n in f["model"].attrs["bodies"]]
         rot = f["bodies/rotation"][:, names.index("HEAD")]       # [t, j, i] = S_ij
         st1 = f["bodies/rotation"][0, names.index("T1")].T       # T1's S_ij at the start
