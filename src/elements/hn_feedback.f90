@@ -18,8 +18,8 @@
 !! u_k is held until t_{k+1} (zero before the first sample). The loop
 !! gives an excitation only: it is added to its history's, and the
 !! history's activation, a state of the equations of motion, follows the
-!! sum (hn_activation, hn_muscle_family), so the excitation falls back to
-!! the history's own as soon as the sensor is back.
+!! sum (hn_muscle_family), so the excitation falls back to the history's
+!! own as soon as the sensor is back.
 !!
 !! A stretch loop (SPINDLE card) is the same controller on one muscle, its
 !! sensor the muscle's own stretch (the muscle-spindle feedback of
@@ -27,7 +27,8 @@
 !! reference/parameters.md):
 !! theta = (L(t) - L(t0))/lopt and omega = dL/dt / lopt, L the muscle's
 !! path length, lopt its optimal fibre length; its excitation drives an
-!! activation state of that muscle alone (`state`), added to its history's. Its gains may rise with the muscle's activation
+!! activation state of that muscle alone (`state`), added to its
+!! history's. Its gains may rise with the muscle's activation
 !! (alpha-gamma co-activation, the automatic gain compensation of the
 !! stretch reflex): at t_k both are multiplied by 1 + g a_b(t_k), a_b the
 !! muscle's activation then without the loop's own (its history's and the

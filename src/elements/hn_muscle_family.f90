@@ -4,7 +4,7 @@
 !! holds the activation tables (eq 11) and the activation histories (ACTIVATE
 !! cards) its muscles refer to. Output per muscle: tension [N], length [m]
 !! and activation. The family reads its MUSCLE, HILL, ACTIVATE, VIA,
-!! FEEDBACK and SPINDLE cards; a FEEDBACK card adds postural feedback
+!! FEEDBACK, SPINDLE and GROUP cards; a FEEDBACK card adds postural feedback
 !! (hn_feedback) to an activation history, a SPINDLE card a stretch loop to
 !! each of its muscles, sampled by the run (control_times, control_update);
 !! a GROUP card moves a Hill muscle to another history.
