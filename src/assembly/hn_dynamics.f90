@@ -1,10 +1,15 @@
 !> One dynamics evaluation: prescribed motions, kinematics, loads, a_ij and
 !! f_i, the partition into free and prescribed coordinates, and the solve
 !! a_FF xddot_F = f_F - a_FP xddot_P. Also the model as an ODE system
-!! y = (x_F, xdot_F, E) for the integrators, where the four quadratures E
-!! are the energy-audit integrals: energy dissipated (discs, springs, joint
-!! dampers), energy absorbed by the muscles, work of the applied tables and
-!! work done by the prescribed motions.
+!! y = (x_F, xdot_F, s, E) for the integrators: s the element families'
+!! states (each family's `state_count` of them, in the registry's order:
+!! the muscles' activations), and the four quadratures E the energy-audit
+!! integrals: energy dissipated (discs, springs, joint dampers), energy
+!! absorbed by the muscles, work of the applied tables and work done by the
+!! prescribed motions. E stays last, so the quadratures trail the state as
+!! the integrators expect (hn_ode); a model without states has y = (x_F,
+!! xdot_F, E) as before. Every evaluation at a state gives the families
+!! their states first (set_element_states).
 !!
 !! Posture holding released (HOLD POSTURE with a release time): the holding
 !! forces s(t) q_hold have the potential e_hold = -s(t) q_hold . x, whose
@@ -38,6 +43,7 @@ module hn_dynamics
     public :: dyn_workspace_t, dynamics_setup, dynamics_evaluate, dynamics_outputs, inertia_forces_free
     public :: model_ode_t, model_ode_init
     public :: state_to_coordinates, coordinates_to_state, nenergy, state_size, energy_terms, energy_t
+    public :: set_element_states, energy_integrals
 
     integer, parameter :: nenergy = 4   !! energy-audit quadratures appended to the state
     real(wp), parameter :: cos_singular = 0.01_wp   !! |cos(beta)| below which the Bryant axes are called singular
@@ -57,6 +63,9 @@ module hn_dynamics
         real(wp), allocatable :: lambda(:)           !! constraint forces of the prescribed coordinates
         real(wp) :: p_prescribed = zero              !! power of the prescribed motions [W]
         integer, allocatable :: gimbal_bodies(:)     !! bodies whose first and third Bryant angles are both free
+        integer :: nstate = 0                        !! element families' states in the ODE state
+        integer, allocatable :: state_first(:)       !! (nfamily) each family's first state - 1 within s
+        real(wp), allocatable :: s0(:)               !! (nstate) the states' start values
     end type dyn_workspace_t
 
     !> The terms of the energy balance at one instant [J]:
@@ -108,6 +117,18 @@ contains
         allocate (ws%x(n), ws%xd(n), ws%xdd(n), ws%a(n, n), ws%f(n))
         allocate (ws%aff(ws%nfree, ws%nfree), ws%bf(ws%nfree), ws%lambda(n))
         ws%x = zero; ws%xd = zero; ws%xdd = zero; ws%a = zero; ws%f = zero; ws%lambda = zero
+        allocate (ws%state_first(size(model%family)))
+        ws%nstate = 0
+        do j = 1, size(model%family)
+            ws%state_first(j) = ws%nstate
+            ws%nstate = ws%nstate + model%family(j)%f%state_count()
+        end do
+        allocate (ws%s0(ws%nstate))
+        do j = 1, size(model%family)
+            associate (fam => model%family(j)%f, i0 => ws%state_first(j))
+                call fam%state_start(ws%s0(i0 + 1:i0 + fam%state_count()))
+            end associate
+        end do
         ws%gimbal_bodies = pack([(j, j=1, model%tree%nbody)], [(free_rotation(j, 4) .and. free_rotation(j, 6), &
                                                                  j=1, model%tree%nbody)])
     contains
@@ -139,16 +160,40 @@ contains
     end subroutine state_to_coordinates
 
     !> Pack the free coordinates and rates of full arrays into a state
-    !! vector, energy-audit integrals zero.
+    !! vector, the element states at their start values, energy-audit
+    !! integrals zero.
     pure subroutine coordinates_to_state(ws, x, xd, y)
-        type(dyn_workspace_t), intent(in) :: ws   !! the free coordinate numbers
+        type(dyn_workspace_t), intent(in) :: ws   !! the free coordinate numbers, the states' start values
         real(wp), intent(in) :: x(:)              !! all active coordinates [m, rad]
         real(wp), intent(in) :: xd(:)             !! their rates [m/s, rad/s]
-        real(wp), intent(out) :: y(:)             !! state (x_F, xdot_F, E) with E = 0
+        real(wp), intent(out) :: y(:)             !! state (x_F, xdot_F, s0, E) with E = 0
         y = zero
         y(1:ws%nfree) = x(ws%ifree)
         y(ws%nfree + 1:2*ws%nfree) = xd(ws%ifree)
+        y(2*ws%nfree + 1:2*ws%nfree + ws%nstate) = ws%s0
     end subroutine coordinates_to_state
+
+    !> Give every element family its states from the state vector y.
+    pure subroutine set_element_states(model, ws, y)
+        type(model_t), intent(inout) :: model     !! the model; out: each family's states set
+        type(dyn_workspace_t), intent(in) :: ws   !! the states' places
+        real(wp), intent(in) :: y(:)              !! state (x_F, xdot_F, s, E)
+        integer :: f, i0, n
+        if (ws%nstate == 0) return
+        do f = 1, size(model%family)
+            n = model%family(f)%f%state_count()
+            if (n == 0) cycle
+            i0 = 2*ws%nfree + ws%state_first(f)
+            call model%family(f)%f%set_state(y(i0 + 1:i0 + n))
+        end do
+    end subroutine set_element_states
+
+    !> The energy-audit integrals E of a state vector (its last nenergy components).
+    pure function energy_integrals(y) result(e)
+        real(wp), intent(in) :: y(:)   !! state (x_F, xdot_F, s, E)
+        real(wp) :: e(nenergy)
+        e = y(size(y) - nenergy + 1:)
+    end function energy_integrals
 
     !> Accelerations of the free coordinates at (t, xf, xdf); the
     !! kinematics, loads, element outputs and xddot stay in ws for output.
@@ -361,32 +406,40 @@ contains
         e%total = e%kinetic + e%gravity + e%elastic + e%hold + e%dissipated + e%muscle - e%applied - e%prescribed
     end function energy_terms
 
-    !> Length of the state vector y = (x_F, xdot_F, E) of a model system.
+    !> Length of the state vector y = (x_F, xdot_F, s, E) of a model system.
     pure integer function state_size(sys) result(n)
         type(model_ode_t), intent(in) :: sys   !! a system from model_ode_init
-        n = 2*sys%ws%nfree + nenergy
+        n = 2*sys%ws%nfree + sys%ws%nstate + nenergy
     end function state_size
 
-    !> Wrap a model as an ODE system: y = (x_F, xdot_F, E), second-order
+    !> Wrap a model as an ODE system: y = (x_F, xdot_F, s, E), second-order
     !! structure of size nfree; the structured tangent (model_tangent) is
-    !! offered unless model%jacobian is 'FD'.
+    !! offered unless model%jacobian is 'FD'. The families hold their
+    !! states' start values.
     subroutine model_ode_init(sys, model)
         type(model_ode_t), intent(out) :: sys   !! the system (a copy of the model, its workspace)
         type(model_t), intent(in) :: model      !! the model to wrap
+        real(wp), allocatable :: y(:)
         sys%model = model
         sys%nquad = nenergy
         call dynamics_setup(sys%model, sys%ws)
         sys%nsecond = sys%ws%nfree
         sys%has_tangent = model%jacobian /= 'FD'
+        allocate (y(state_size(sys)))
+        y = zero
+        y(2*sys%ws%nfree + 1:2*sys%ws%nfree + sys%ws%nstate) = sys%ws%s0
+        call set_element_states(sys%model, sys%ws, y)
     end subroutine model_ode_init
 
     !> Mass a_FF, stiffness K_FF and damping C_FF of the free coordinates at
     !! (t, y): a_ij by the composite-rigid-body recursion, K and C of the
-    !! elements (hn_jacobian). The structured Jacobian of the stiff methods.
+    !! elements (hn_jacobian), the elements' states those of y. The
+    !! structured Jacobian of the stiff methods (the states' own block is
+    !! the iteration matrix's, hn_iteration_matrix).
     subroutine model_tangent(me, t, y, mass, stiffness, damping, stat, errmsg)
         class(model_ode_t), intent(inout) :: me
         real(wp), intent(in) :: t                      !! time [s]
-        real(wp), intent(in) :: y(:)                   !! state (x_F, xdot_F, E)
+        real(wp), intent(in) :: y(:)                   !! state (x_F, xdot_F, s, E)
         real(wp), intent(out) :: mass(:, :)            !! (nfree, nfree) a_FF [kg, kg m, kg m^2]
         real(wp), intent(out) :: stiffness(:, :)       !! (nfree, nfree) K_FF of the elements
         real(wp), intent(out) :: damping(:, :)         !! (nfree, nfree) C_FF of the elements
@@ -397,6 +450,7 @@ contains
         nf = me%ws%nfree
         stat = stat_ok
         errmsg = ''
+        call set_element_states(me%model, me%ws, y)
         associate (model => me%model, ws => me%ws)
             call state_to_coordinates(model, ws, t, y(1:nf), y(nf + 1:2*nf))
             call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
@@ -408,21 +462,33 @@ contains
         end associate
     end subroutine model_tangent
 
-    !> y = (x_F, xdot_F, E) -> y' = (xdot_F, xddot_F, energy-audit powers).
+    !> y = (x_F, xdot_F, s, E) -> y' = (xdot_F, xddot_F, sdot, energy-audit
+    !! powers); sdot of a family switched off is zero.
     subroutine model_rhs(me, t, y, dydt, stat, errmsg)
         class(model_ode_t), intent(inout) :: me
         real(wp), intent(in) :: t                      !! time [s]
-        real(wp), intent(in) :: y(:)                   !! state (x_F, xdot_F, E)
-        real(wp), intent(out) :: dydt(:)               !! (xdot_F, xddot_F, energy-audit powers [W])
+        real(wp), intent(in) :: y(:)                   !! state (x_F, xdot_F, s, E)
+        real(wp), intent(out) :: dydt(:)               !! (xdot_F, xddot_F, sdot, energy-audit powers [W])
         integer, intent(out) :: stat                   !! stat_ok, or the failure of dynamics_evaluate
         character(len=msglen), intent(out) :: errmsg   !! what failed, at what time ('' when stat_ok)
-        integer :: nf
+        integer :: nf, ns, f, i0, n
         nf = me%ws%nfree
+        ns = me%ws%nstate
         me%nevals = me%nevals + 1
+        call set_element_states(me%model, me%ws, y)
         dydt(1:nf) = y(nf + 1:2*nf)
         call dynamics_evaluate(me%model, me%ws, t, y(1:nf), y(nf + 1:2*nf), dydt(nf + 1:2*nf), stat, errmsg)
-        dydt(2*nf + 1:2*nf + nenergy) = [me%ws%eo%p_diss, me%ws%eo%p_muscle, me%ws%eo%p_applied, &
-                                         me%ws%p_prescribed]
+        if (ns > 0) then
+            dydt(2*nf + 1:2*nf + ns) = zero
+            do f = 1, size(me%model%family)
+                n = me%model%family(f)%f%state_count()
+                if (n == 0 .or. .not. me%model%family_on(f)) cycle
+                i0 = 2*nf + me%ws%state_first(f)
+                call me%model%family(f)%f%state_rates(t, me%ws%kin, y(i0 + 1:i0 + n), dydt(i0 + 1:i0 + n))
+            end do
+        end if
+        dydt(2*nf + ns + 1:2*nf + ns + nenergy) = [me%ws%eo%p_diss, me%ws%eo%p_muscle, me%ws%eo%p_applied, &
+                                                   me%ws%p_prescribed]
     end subroutine model_rhs
 
 end module hn_dynamics

@@ -27,6 +27,16 @@
 !! `monitor`: their excess beyond what the family allows), the listing
 !! lines and the run's warning from their peaks (`monitor_report`), and a
 !! warning on a settled start (`neutral_warning`).
+!!
+!! States of a family in the equations of motion, with defaults (none):
+!! `state_count` of them, their values at the start (`state_start`) and
+!! their rates (`state_rates`); the dynamics (hn_dynamics) carries them in
+!! the state vector after the coordinates and rates, and gives a family
+!! their current values (`set_state`, into the component `state`) before
+!! its loads, tangent, switching functions or controllers are evaluated.
+!! `state` is unallocated where no state vector exists (the statics, a
+!! model outside a run): a family then uses its states' start values or
+!! an equivalent closed form.
 module hn_element_family
     use hn_kinds, only: wp, zero
     use hn_kinematics, only: kinematics_t
@@ -92,6 +102,7 @@ module hn_element_family
 
     !> An element family: its elements (in the extending type) and what it does.
     type, abstract :: element_family_t
+        real(wp), allocatable :: state(:)   !! (state_count) the family's states now (unallocated: none given)
     contains
         procedure(count_fn), deferred :: count
         procedure(count_fn), deferred :: ncomp
@@ -118,6 +129,10 @@ module hn_element_family
         procedure :: monitor => no_monitor
         procedure :: monitor_report => no_monitor_report
         procedure :: neutral_warning => no_neutral_warning
+        procedure :: state_count => no_state_count
+        procedure :: state_start => no_state_start
+        procedure :: state_rates => no_state_rates
+        procedure, non_overridable :: set_state => family_set_state
     end type element_family_t
 
     !> One slot of the model: a family of any kind.
@@ -338,6 +353,46 @@ contains
         character(len=:), allocatable :: w
         w = ''
     end function no_neutral_warning
+
+    !> Number of the family's states in the equations of motion; the default: none.
+    pure integer function no_state_count(this) result(n)
+        class(element_family_t), intent(in) :: this   !! the family
+        n = 0
+    end function no_state_count
+
+    !> The family's states at the start of a run; the default: none.
+    pure subroutine no_state_start(this, s)
+        class(element_family_t), intent(in) :: this   !! the family
+        real(wp), intent(out) :: s(:)                 !! (state_count) their start values
+        s = zero
+    end subroutine no_state_start
+
+    !> The rates of the family's states s at time t and kinematics kin;
+    !! the default: none.
+    pure subroutine no_state_rates(this, t, kin, s, sdot)
+        class(element_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t                     !! time [s]
+        type(kinematics_t), intent(in) :: kin         !! kinematics of the state (unused here)
+        real(wp), intent(in) :: s(:)                  !! (state_count) the states
+        real(wp), intent(out) :: sdot(:)              !! (state_count) their rates
+        sdot = zero
+    end subroutine no_state_rates
+
+    !> Give the family the current values of its states (what its loads,
+    !! tangent, switching functions and controllers see).
+    pure subroutine family_set_state(this, s)
+        class(element_family_t), intent(inout) :: this   !! the family; out: state = s
+        real(wp), intent(in) :: s(:)                     !! (state_count) the states
+        if (allocated(this%state)) then
+            if (size(this%state) == size(s)) then
+                this%state(:) = s
+                return
+            end if
+            deallocate (this%state)
+        end if
+        allocate (this%state(size(s)))
+        this%state(:) = s
+    end subroutine family_set_state
 
     !> The cards of a family the registry (hn_families, family_cards) does
     !! not list, one added to a model in code (model_add_family) or brought

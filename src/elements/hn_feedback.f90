@@ -1,6 +1,6 @@
 !> Postural feedback of muscle activation (beyond the 1978 paper): a
 !! sampled-data controller that adds to an activation history (ACTIVATE
-!! card) the activation its sensor asks for, the way the closed-loop neck
+!! card) the excitation its sensor asks for, the way the closed-loop neck
 !! muscles of active human body models act on the head's rotation relative
 !! to the lab (vestibular feedback; Östh et al. 2012, Putra et al. 2021:
 !! PID control of the head's angle; docs/deck-format.md, FEEDBACK).
@@ -15,22 +15,20 @@
 !!   u_k = min(1, max(0, kp theta(t_k - tau) + kd omega(t_k - tau))),
 !! theta and omega between samples linear in time, before t0 their start
 !! values (a delay that is not a multiple of dt interpolates the samples);
-!! u_k is held until t_{k+1}. The feedback activation follows
-!!   da/dt = (u_k - a)/T,  T = T_act when u_k >= a(t_k), else T_deact,
-!! solved in closed form over the hold:
-!!   a(t) = u_k + (a(t_k) - u_k) exp(-(t - t_k)/T),  a(t0) = 0,
-!! so the feedback adds no state to the mechanical ODE: within a hold the
-!! activation is a function of time alone, continuous at the samples (its
-!! slope jumps there). The muscles of the history have the activation
-!! min(1, a_history(t) + a(t)).
+!! u_k is held until t_{k+1} (zero before the first sample). The loop
+!! gives an excitation only: it is added to its history's, and the
+!! history's activation, a state of the equations of motion, follows the
+!! sum (hn_muscle_family), so the excitation falls back to the history's
+!! own as soon as the sensor is back.
 !!
 !! A stretch loop (SPINDLE card) is the same controller on one muscle, its
 !! sensor the muscle's own stretch (the muscle-spindle feedback of
 !! multisegment neuromuscular neck models, Happee et al. 2017, S18 of
 !! reference/parameters.md):
 !! theta = (L(t) - L(t0))/lopt and omega = dL/dt / lopt, L the muscle's
-!! path length, lopt its optimal fibre length; its activation is that
-!! muscle's alone. Its gains may rise with the muscle's activation
+!! path length, lopt its optimal fibre length; its excitation drives an
+!! activation state of that muscle alone (`state`), added to its
+!! history's. Its gains may rise with the muscle's activation
 !! (alpha-gamma co-activation, the automatic gain compensation of the
 !! stretch reflex): at t_k both are multiplied by 1 + g a_b(t_k), a_b the
 !! muscle's activation then without the loop's own (its history's and the
@@ -42,7 +40,7 @@ module hn_feedback
     implicit none
     private
 
-    public :: feedback_t, feedback_activation, feedback_excitation, feedback_sample, stretch_sample, feedback_due, &
+    public :: feedback_t, feedback_excitation, feedback_sample, stretch_sample, feedback_due, &
               feedback_times, sensor_angle
 
     !> One feedback loop: sensor, gains, delay, sampling, and its held state.
@@ -59,6 +57,7 @@ module hn_feedback
         real(wp) :: dt = 1.0e-3_wp       !! sample interval [s]
         real(wp) :: tau_act = 0.015_wp   !! activation time constant [s] (its history's)
         real(wp) :: tau_deact = 0.05_wp  !! deactivation time constant [s] (its history's)
+        integer :: state = 0             !! a stretch loop's activation state (its family's numbering)
         ! the state of a run: samples and the hold
         integer :: n = 0                          !! samples so far (0: the run has not started it)
         real(wp) :: t0 = zero                     !! time of the first sample [s]
@@ -67,23 +66,10 @@ module hn_feedback
         real(wp), allocatable :: theta(:)         !! (n) sampled rotation [rad]
         real(wp), allocatable :: omega(:)         !! (n) sampled angular velocity [rad/s]
         real(wp) :: tk = zero                     !! the last sample time [s]
-        real(wp) :: ak = zero                     !! the feedback activation then
         real(wp) :: uk = zero                     !! the excitation held since
     end type feedback_t
 
 contains
-
-    !> The feedback activation a(t) over the hold that began at the last
-    !! sample (zero before the first).
-    elemental real(wp) function feedback_activation(fb, t) result(a)
-        type(feedback_t), intent(in) :: fb   !! the loop
-        real(wp), intent(in) :: t            !! time [s], not before the last sample
-        real(wp) :: tau
-        a = zero
-        if (fb%n == 0) return
-        tau = merge(fb%tau_act, fb%tau_deact, fb%uk >= fb%ak)
-        a = fb%uk + (fb%ak - fb%uk)*exp(-(t - fb%tk)/tau)
-    end function feedback_activation
 
     !> The excitation kp theta + kd omega at t - tau, times the gains'
     !! scale (default 1), clipped to [0, 1], from the samples so far.
@@ -130,9 +116,9 @@ contains
     end function feedback_due
 
     !> Take a sample at t of a rotation loop: the sensor body's orientation
-    !! s and angular velocity w (lab frame); the activation reached is the
-    !! start of a new hold with the excitation of feedback_excitation. The
-    !! first sample starts the run's state (the start orientation, a = 0).
+    !! s and angular velocity w (lab frame); a new hold starts with the
+    !! excitation of feedback_excitation. The first sample starts the run's
+    !! state (the start orientation).
     pure subroutine feedback_sample(fb, t, s, w)
         type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
         real(wp), intent(in) :: t               !! the sample time [s]
@@ -158,7 +144,7 @@ contains
 
     !> Append the sensor's value theta and rate omega at t and start the
     !! hold there, the gains times scale (the first sample starts the
-    !! run's state, a = 0).
+    !! run's state).
     pure subroutine record_sample(fb, t, theta, omega, scale)
         type(feedback_t), intent(inout) :: fb   !! the loop; out: the sample and the new hold
         real(wp), intent(in) :: t               !! the sample time [s]
@@ -168,12 +154,9 @@ contains
         real(wp), allocatable :: grown(:)
         if (fb%n == 0) then
             fb%t0 = t
-            fb%ak = zero
             if (allocated(fb%theta)) deallocate (fb%theta)
             if (allocated(fb%omega)) deallocate (fb%omega)
             allocate (fb%theta(64), fb%omega(64))
-        else
-            fb%ak = feedback_activation(fb, t)
         end if
         if (fb%n == size(fb%theta)) then      ! room doubled: appending one by one is quadratic
             allocate (grown(2*fb%n)); grown(1:fb%n) = fb%theta; call move_alloc(grown, fb%theta)

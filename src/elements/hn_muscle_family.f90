@@ -4,9 +4,24 @@
 !! holds the activation tables (eq 11) and the activation histories (ACTIVATE
 !! cards) its muscles refer to. Output per muscle: tension [N], length [m]
 !! and activation. The family reads its MUSCLE, HILL, ACTIVATE, VIA,
-!! FEEDBACK and SPINDLE cards; a FEEDBACK card adds postural feedback
+!! FEEDBACK, SPINDLE and GROUP cards; a FEEDBACK card adds postural feedback
 !! (hn_feedback) to an activation history, a SPINDLE card a stretch loop to
-!! each of its muscles, sampled by the run (control_times, control_update).
+!! each of its muscles, sampled by the run (control_times, control_update);
+!! a GROUP card moves a Hill muscle to another history.
+!!
+!! Activation dynamics as states of the equations of motion (the family's
+!! `state_count`): one activation a_h per activation history h and one per
+!! stretch loop, each following the first-order law with separate
+!! activation and deactivation time constants (Zajac 1989; the constants
+!! 15 and 50 ms of Thelen 2003, S5 of reference/parameters.md),
+!!   da/dt = (u - a)/T,  T = tau_act when u >= a, tau_deact otherwise,
+!! the history's excitation u_h(t) = min(1, u_ACTIVATE(t) + sum of the
+!! excitations u_k held by its FEEDBACK loops), a stretch loop's its own
+!! held u_k; a_h(t0) = u0, a stretch loop's 0. A muscle of history h has
+!! the activation min(1, a_h + a of its own stretch loop). For a history
+!! without loops the state equals activation_value (the ACTIVATE card's
+!! closed form), which the family uses where no state vector exists (the
+!! statics, the start of a run).
 module hn_muscle_family
     use hn_kinds, only: wp, zero, one
     use hn_deck_reader, only: deck_reader_t, int_str
@@ -16,8 +31,8 @@ module hn_muscle_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_tables, only: table_t, table_value
-    use hn_muscle, only: activation_t, activation_value
-    use hn_feedback, only: feedback_t, feedback_activation, feedback_due, feedback_sample, stretch_sample, feedback_times
+    use hn_muscle, only: activation_t, activation_value, excitation_value
+    use hn_feedback, only: feedback_t, feedback_due, feedback_sample, stretch_sample, feedback_times
     use hn_sorting, only: merge_times
     use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
                                 apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
@@ -27,7 +42,7 @@ module hn_muscle_family
     implicit none
     private
 
-    public :: muscle_family_t, muscles_of, activation_histories
+    public :: muscle_family_t, muscles_of, activation_histories, activation_rate
 
     real(wp), parameter :: ref_muscle_m1 = 3000.0_wp      !! N/m (reference/parameters.md)
     real(wp), parameter :: ref_muscle_m2 = 400.0_wp       !! N s/m
@@ -60,6 +75,9 @@ module hn_muscle_family
         procedure :: control_update => muscle_control_update
         procedure :: input_tables => muscle_input_tables
         procedure :: active_muscle => muscle_active
+        procedure :: state_count => muscle_state_count
+        procedure :: state_start => muscle_state_start
+        procedure :: state_rates => muscle_state_rates
     end type muscle_family_t
 
 contains
@@ -77,10 +95,11 @@ contains
         n = 3
     end function muscle_ncomp
 
-    !> Activation a(t) of muscle e: its activation history (Hill-type law),
-    !! plus the feedback activation of the rotation loops on that history
-    !! and of its own stretch loop, at most 1; or its table (eq 11); zero
-    !! without either. Without loop `skip`, when given.
+    !> Activation a(t) of muscle e: its activation history's state (Hill-type
+    !! law) plus the state of its own stretch loop, at most 1 (the
+    !! ACTIVATE card's closed form where the family has no states set);
+    !! or its table (eq 11); zero without either. Without the stretch loop
+    !! `skip`, when given.
     pure real(wp) function muscle_activation(this, e, t, skip) result(act)
         class(muscle_family_t), intent(in) :: this   !! the family
         integer, intent(in) :: e                     !! muscle number
@@ -93,11 +112,14 @@ contains
         associate (m => this%items(e))
             if (m%law == muscle_hill) then
                 if (m%history > 0) then
-                    act = activation_value(this%activations(m%history), t)
+                    if (.not. allocated(this%state)) then
+                        act = activation_value(this%activations(m%history), t)
+                        return
+                    end if
+                    act = this%state(m%history)
                     do k = 1, size(this%feedbacks)
-                        if (k /= k_skip .and. this%feedbacks(k)%history == m%history .and. &
-                            (this%feedbacks(k)%muscle == 0 .or. this%feedbacks(k)%muscle == e)) &
-                            act = min(one, act + feedback_activation(this%feedbacks(k), t))
+                        if (k /= k_skip .and. this%feedbacks(k)%muscle == e) &
+                            act = min(one, act + this%state(this%feedbacks(k)%state))
                     end do
                 end if
             else if (m%activation > 0) then
@@ -306,11 +328,24 @@ contains
         end select
     end function muscles_of
 
-    !> The activation tables (eq 11): the run lands its steps on their corners.
+    !> The activation tables (eq 11) and the excitation ramps of the
+    !! activation histories (u0 to u1 from onset + delay over the rise time,
+    !! a step over 1 microsecond): the run lands its steps on their corners,
+    !! where the activation states' rates change slope.
     pure function muscle_input_tables(this) result(tabs)
         class(muscle_family_t), intent(in) :: this   !! the family
         type(table_t), allocatable :: tabs(:)
+        real(wp), parameter :: shortest_rise = 1.0e-6_wp
+        real(wp) :: t1
+        integer :: h
         tabs = this%tables
+        do h = 1, size(this%activations)
+            associate (ah => this%activations(h))
+                if (ah%u1 == ah%u0) cycle
+                t1 = ah%t_onset + ah%delay
+                tabs = [tabs, table_t([t1, t1 + max(ah%rise, shortest_rise)], [ah%u0, ah%u1])]
+            end associate
+        end do
     end function muscle_input_tables
 
     !> The muscles are active muscle (a passive state switches them off).
@@ -401,6 +436,9 @@ contains
         case ('SPINDLE')
             call spindle_card(rd, i, this%activations, this%items(1:this%nread), this%feedbacks)
             return
+        case ('GROUP')
+            call group_card(rd, i, this%activations, this%items(1:this%nread))
+            return
         end select
         ! room for every MUSCLE and HILL card, trimmed by end_cards (appending one by one is quadratic)
         n = ctx%ncards('MUSCLE') + ctx%ncards('HILL')
@@ -438,13 +476,82 @@ contains
         this%items(this%nread) = mu
     end subroutine muscle_read_card
 
-    !> The muscles read: no room left over.
+    !> The muscles read: no room left over; each stretch loop's activation
+    !! state numbered after the histories'.
     subroutine muscle_end_cards(this, rd, ctx)
-        class(muscle_family_t), intent(inout) :: this   !! the family; out: items trimmed to the muscles read
+        class(muscle_family_t), intent(inout) :: this   !! the family; out: items trimmed, loops' states numbered
         type(deck_reader_t), intent(inout) :: rd        !! the deck (unused)
         type(card_context_t), intent(inout) :: ctx      !! the deck's cards (unused)
+        integer :: k, n
         this%items = this%items(1:this%nread)
+        n = size(this%activations)
+        do k = 1, size(this%feedbacks)
+            if (this%feedbacks(k)%muscle == 0) cycle
+            n = n + 1
+            this%feedbacks(k)%state = n
+        end do
     end subroutine muscle_end_cards
+
+    !> Activation states: one per activation history, one per stretch loop.
+    pure integer function muscle_state_count(this) result(n)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        n = size(this%activations) + count(this%feedbacks%muscle > 0)
+    end function muscle_state_count
+
+    !> The activations at the start: each history's bracing level u0, the
+    !! stretch loops' zero.
+    pure subroutine muscle_state_start(this, s)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        real(wp), intent(out) :: s(:)                !! (state_count) the start activations
+        s = zero
+        s(1:size(this%activations)) = this%activations%u0
+    end subroutine muscle_state_start
+
+    !> The excitation u_h(t) of activation history h: its ACTIVATE card's
+    !! (bracing, then the reflex ramp) plus the excitations its FEEDBACK
+    !! loops hold, at most 1.
+    pure real(wp) function history_excitation(this, h, t) result(u)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: h                     !! the history
+        real(wp), intent(in) :: t                    !! time [s]
+        integer :: k
+        u = excitation_value(this%activations(h), t)
+        do k = 1, size(this%feedbacks)
+            if (this%feedbacks(k)%history == h .and. this%feedbacks(k)%muscle == 0) u = u + this%feedbacks(k)%uk
+        end do
+        u = min(one, u)
+    end function history_excitation
+
+    !> da/dt = (u - a)/T of every activation state: T = tau_act when u >= a,
+    !! else tau_deact.
+    pure subroutine muscle_state_rates(this, t, kin, s, sdot)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t                    !! time [s]
+        type(kinematics_t), intent(in) :: kin        !! kinematics (unused: the loops sample it)
+        real(wp), intent(in) :: s(:)                 !! (state_count) the activations
+        real(wp), intent(out) :: sdot(:)             !! (state_count) their rates [1/s]
+        integer :: h, k
+        do h = 1, size(this%activations)
+            associate (ah => this%activations(h))
+                sdot(h) = activation_rate(history_excitation(this, h, t), s(h), ah%tau_act, ah%tau_deact)
+            end associate
+        end do
+        do k = 1, size(this%feedbacks)
+            associate (fb => this%feedbacks(k))
+                if (fb%state > 0) sdot(fb%state) = activation_rate(fb%uk, s(fb%state), fb%tau_act, fb%tau_deact)
+            end associate
+        end do
+    end subroutine muscle_state_rates
+
+    !> First-order activation dynamics: (u - a)/T with T = tau_act when the
+    !! excitation u is at least the activation a, tau_deact otherwise.
+    elemental real(wp) function activation_rate(u, a, tau_act, tau_deact) result(r)
+        real(wp), intent(in) :: u           !! excitation
+        real(wp), intent(in) :: a           !! activation
+        real(wp), intent(in) :: tau_act     !! activation time constant [s]
+        real(wp), intent(in) :: tau_deact   !! deactivation time constant [s]
+        r = (u - a)/merge(tau_act, tau_deact, u >= a)
+    end function activation_rate
 
     !> An ACTIVATE card: the activation history of Hill-type muscles. A
     !! blank onset is the sled pulse onset: the first time the prescribed
@@ -560,6 +667,34 @@ contains
             feedbacks = [feedbacks, fb]
         end do
     end subroutine spindle_card
+
+    !> A GROUP card: muscle history, the Hill muscle driven by another
+    !! activation history (with that history's short-range stiffness), as
+    !! if its HILL card named it: a deck that includes a model deck gives
+    !! its muscles other groups (left and right, for one).
+    subroutine group_card(rd, i, activations, muscles)
+        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        integer, intent(in) :: i  !! the card's deck line
+        type(activation_t), intent(in) :: activations(:)  !! the histories read
+        type(muscle_t), intent(inout) :: muscles(:)  !! the muscles read; out: the card's moved to the history
+        character(len=10) :: nm
+        integer :: e, h
+        call rd%name(i, 1, 'muscle name', nm)
+        if (rd%failed()) return
+        h = history_ref(rd, i, 2, activations)
+        if (rd%failed()) return
+        do e = size(muscles), 1, -1       ! (a loop: no temporary of the name component)
+            if (muscles(e)%name == nm .and. muscles(e)%law == muscle_hill) exit
+        end do
+        if (e == 0) then
+            call rd%fail(rd%context(i, 1, 'muscle name')//': found "'//trim(nm)// &
+                         '"; expected the name of a HILL card before it')
+            return
+        end if
+        muscles(e)%history = h
+        muscles(e)%hill%srs_q = activations(h)%srs_q
+        muscles(e)%hill%srs_range = activations(h)%srs_range
+    end subroutine group_card
 
     !> Activation history named in field f (an ACTIVATE card).
     integer function history_ref(rd, i, f, hist) result(ih)

@@ -10,8 +10,17 @@
 !!                  symmetric m x m matrix M + hg C + hg^2 K is factored
 !!                  (Cholesky; LU when it is not positive definite).
 !! In the second-order forms u_x = r_x + hg u_v, the quadrature rows of J
-!! are taken as zero (W = I there). J and the factorization are kept until
-!! the method asks for new ones.
+!! are taken as zero (W = I there). Components between the rates and the
+!! quadratures (first-order states of the system, such as the muscles'
+!! activations: y = (x, xdot, s, quadratures)) get the diagonal of their
+!! own block, d = d(sdot_i)/ds_i by one forward difference with every s
+!! moved at once (exact when each rate depends on its own state alone),
+!! and the blocks coupling them with x and xdot are dropped: W = 1 - hg d
+!! there. ROS34PW2 is a W-method: it keeps its order with any
+!! approximation of J, and the stiffness of an activation (1/T, up to
+!! 1/tau_act) is treated implicitly. The dense form (ROS2's Jacobian, FD)
+!! differentiates every column but the quadratures, the states included. J and the factorization are
+!! kept until the method asks for new ones.
 module hn_iteration_matrix
     use hn_kinds, only: wp, zero, one, msglen
     use hn_status, only: stat_ok, stat_singular
@@ -38,6 +47,7 @@ module hn_iteration_matrix
         integer :: n = 0, m = 0
         real(wp), allocatable :: jac(:, :)      !! dense: J (n,n); second order: [J21 J22] (m,2m)
         real(wp), allocatable :: mass(:, :), stiff(:, :), damp(:, :)  !! tangent form (m,m)
+        real(wp), allocatable :: sdiag(:)       !! second-order forms: d(sdot)/ds of the first-order states
         real(wp), allocatable :: fac(:, :)      !! the factored matrix
         integer, allocatable :: ipiv(:)
         logical :: cholesky = .false.           !! fac holds a Cholesky factor (else LU)
@@ -96,10 +106,38 @@ contains
             me%jac = full(m + 1:2*m, 1:2*m)
         end if
         if (stat /= stat_ok) return
+        if (me%form /= form_dense) call state_diagonal(sys, t, y, f, 2*m, me%sdiag, stat, errmsg)
+        if (stat /= stat_ok) return
         me%have_jac = .true.
         me%hg = -one
         me%njac = me%njac + 1
     end subroutine im_form_jacobian
+
+    !> d(sdot_i)/ds_i of the first-order states s = y(i0 + 1:n - nquad) by
+    !! one forward difference, every state moved at once.
+    subroutine state_diagonal(sys, t, y, f, i0, d, stat, errmsg)
+        class(ode_system_t), intent(inout) :: sys          !! the system
+        real(wp), intent(in) :: t                          !! time [s]
+        real(wp), intent(in) :: y(:)                       !! state
+        real(wp), intent(in) :: f(:)                       !! g(t, y)
+        integer, intent(in) :: i0                          !! components before the states (2 nsecond)
+        real(wp), allocatable, intent(out) :: d(:)         !! the diagonal (empty without states)
+        integer, intent(out) :: stat                       !! stat_ok, or the system's failure
+        character(len=msglen), intent(out) :: errmsg      !! the system's message
+        real(wp) :: yp(size(y)), fp(size(y)), h(size(y))
+        integer :: ns
+        stat = stat_ok
+        errmsg = ''
+        ns = size(y) - sys%nquad - i0
+        allocate (d(max(ns, 0)))
+        if (ns <= 0) return
+        h = zero
+        h(i0 + 1:i0 + ns) = fd_step_rel*max(abs(y(i0 + 1:i0 + ns)), one)
+        yp = y + h
+        call sys%rhs(t, yp, fp, stat, errmsg)
+        if (stat /= stat_ok) return
+        d = (fp(i0 + 1:i0 + ns) - f(i0 + 1:i0 + ns))/h(i0 + 1:i0 + ns)
+    end subroutine state_diagonal
 
     !> Factor W for the given hg.
     subroutine im_factor(me, hg, stat, errmsg)
@@ -169,6 +207,7 @@ contains
         end if
         r(1:m) = r(1:m) + me%hg*v
         r(m + 1:2*m) = v
+        if (size(me%sdiag) > 0) r(2*m + 1:2*m + size(me%sdiag)) = r(2*m + 1:2*m + size(me%sdiag))/(one - me%hg*me%sdiag)
     end subroutine im_solve
 
     !> A Jacobian has been formed.

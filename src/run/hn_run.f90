@@ -12,7 +12,8 @@ module hn_run
     use hn_status, only: stat_ok, stat_not_finite, stat_energy_lost
     use hn_case, only: case_t
     use hn_dynamics, only: model_ode_t, model_ode_init, coordinates_to_state, state_size, energy_terms, &
-                           energy_t, dynamics_outputs, inertia_forces_free, state_to_coordinates
+                           energy_t, dynamics_outputs, inertia_forces_free, state_to_coordinates, &
+                           set_element_states, energy_integrals
     use hn_forces, only: switch_count, switching_functions
     use hn_integrators, only: integrator_t, new_integrator, spectral_radius, interpolate_hermite
     use hn_channels, only: channel_set_t, channels_define, channels_compute, channels_start, channel_index
@@ -177,7 +178,7 @@ contains
         logical, intent(in), optional :: keep_samples !! keep every channel at every sample
         character(len=*), intent(in), optional :: only(:) !! compute only these channels (no listing tables, criteria)
         real(wp), allocatable :: y(:)
-        integer :: stat, nf
+        integer :: stat
         character(len=msglen) :: msg
         integer(i8) :: rate
         me%cs = cs
@@ -192,7 +193,6 @@ contains
         call me%lst%echo_deck(me%cs%deck)
         call channels_define(me%cs, me%ch, only)
         call model_ode_init(me%sys, me%cs%model)
-        nf = me%sys%ws%nfree
         allocate (y(state_size(me%sys)))
         call coordinates_to_state(me%sys%ws, me%cs%x0, me%cs%xd0, y)
         me%res%warning = ''
@@ -223,7 +223,7 @@ contains
             call me%fail(exit_diverged, trim(msg))
             return
         end if
-        me%en0 = energy_terms(me%sys%model, me%sys%ws, y(2*nf + 1:))
+        me%en0 = energy_terms(me%sys%model, me%sys%ws, energy_integrals(y))
         me%ch%e0 = me%en0%total
         call channels_start(me%cs, me%sys%ws, me%ch)
         if (len_trim(h5name) > 0) then
@@ -319,6 +319,8 @@ contains
             me%ic = 1
             me%pending_control = .false.
             if (size(me%tc) > 0) call me%control_sample(cs%t_start, me%integ%current_state())
+            ! the sample changes the excitations that drive the element states: their rates jump
+            if (size(me%tc) > 0 .and. me%sys%ws%nstate > 0) me%pending_restart = .true.
         end associate
         allocate (me%mon(size(me%cs%model%family)))
         do k = 1, size(me%mon)
@@ -338,6 +340,7 @@ contains
         integer :: nf
         nf = me%sys%ws%nfree
         associate (model => me%sys%model, ws => me%sys%ws)
+            call set_element_states(model, ws, y)
             call state_to_coordinates(model, ws, t, y(1:nf), y(nf + 1:2*nf))
             call body_kinematics(model%tree, ws%x, ws%xd, ws%kin)
             call control_pass(model, t, ws%kin, me%tol)
@@ -438,8 +441,10 @@ contains
             end if
             if (me%ic <= size(me%tc)) then
                 if (abs(me%integ%current_time() - me%tc(me%ic)) <= me%tol) then
-                    ! a controller's sample time: the activations stay continuous, no restart
+                    ! a controller's sample time: the activations stay continuous;
+                    ! as states of the equations their rates jump there: a restart
                     me%pending_control = .true.
+                    if (me%sys%ws%nstate > 0) me%pending_restart = .true.
                     me%ic = me%ic + 1
                 end if
             end if
@@ -471,6 +476,7 @@ contains
             ! or by the articulated-body solve there (SOLVE); a dump needs a
             ! full evaluation
             call me%integ%interpolate(t, y)
+            call set_element_states(me%sys%model, ws, y)
             if (cs%output_xdd == 'SOLVE') then
                 call dynamics_outputs(me%sys%model, ws, t, y(1:nf), y(nf + 1:2*nf), stat)
             else
@@ -491,7 +497,7 @@ contains
                     end if
                 end if
             end if
-            en = energy_terms(me%sys%model, ws, y(2*nf + 1:))
+            en = energy_terms(me%sys%model, ws, energy_integrals(y))
             call channels_compute(cs, ws, t, en, me%ch)
             call me%track_peaks(t)
             if (abs(t - (cs%t_start + me%ks*cs%sample_dt)) <= me%tol) call me%record_sample(t)
@@ -606,9 +612,7 @@ contains
         type(energy_t) :: e
         real(wp) :: scale, resid
         real(wp), allocatable :: y(:)
-        integer :: nf
         stat = stat_ok; msg = ''
-        nf = me%sys%ws%nfree
         y = me%integ%current_state()
         associate (en0 => me%en0, res => me%res)
             if (.not. all(abs(y) <= huge(1.0_wp))) then
@@ -616,7 +620,7 @@ contains
                 write (msg, '(a,es12.5,a)') 'the state became NaN or infinite at t = ', me%integ%current_time(), ' s'
                 return
             end if
-            e = energy_terms(me%sys%model, me%sys%ws, y(2*nf + 1:))
+            e = energy_terms(me%sys%model, me%sys%ws, energy_integrals(y))
             ! the scale is the energy of the deformation-level motion: the kinetic
             ! energy relative to the root's translation and the element, gravity
             ! and applied energies (not the work of driving the whole model along)

@@ -1,0 +1,70 @@
+#!/bin/sh
+# The volunteer state's controller (input/volunteer_controller.inp: bracing,
+# stretch loops and vestibular loops about the lab's x, y and z axes driving
+# activation states of four muscle groups, flexors and extensors of each
+# side): the head's rotation from its start, the angle of S(t) S(0)^T from
+# the result file's body rotations, against the bounds of constraint 3.
+# - 10 s at rest (T1 held, gravity, the start posture held, C3 and C4 pushed
+#   at 5 deg/s): within 2 deg of its start throughout;
+# - a rear 5 g, 80 ms half-sine and a lateral 7 g, 80 ms half-sine: within
+#   10 deg of its start at 600 ms, the largest rotation well before the end;
+# - the loops do the returning: the same pulses on the model deck alone (its
+#   reflex held for ever) and on the controller with every loop gain zero
+#   (bracing alone) leave the head more than 10 deg from its start at 600 ms.
+# builds: release
+. test/scripts/lib/checks.sh
+
+cp -r input "$tmp/input"
+cd "$tmp" || exit 1
+# the controller with every loop gain zero; the return decks without it
+python3 - <<'PY'
+src = open("input/volunteer_controller.inp").read().splitlines()
+out = []
+for l in src:
+    if l.startswith("FEEDBACK"):
+        l = l[:40] + "%-10s%-10s" % ("0.0", "0.0") + l[60:]
+    elif l.startswith("SPINDLE"):
+        l = l[:20] + "%-10s%-10s" % ("0.0", "0.0") + l[40:]
+    out.append(l)
+open("input/controller_zero.inp", "w").write("\n".join(out) + "\n")
+for d in ("rear5g_return", "lateral7g_return"):
+    deck = open("input/%s.inp" % d).read()
+    open("input/%s_zero.inp" % d, "w").write(deck.replace("volunteer_controller.inp", "controller_zero.inp"))
+    open("input/%s_model.inp" % d, "w").write(deck.replace("INCLUDE   input/volunteer_controller.inp\n", ""))
+PY
+for d in volunteer_rest rear5g_return lateral7g_return rear5g_return_zero lateral7g_return_zero \
+         rear5g_return_model lateral7g_return_model; do
+    if "$HHNECK" --h5 "$d.h5" < "input/$d.inp" > "$d.lst" 2> "$d.err"; then pass "$d runs"; else fail "$d runs"; fi
+done
+
+py_checks - <<'PY'
+import h5py
+import numpy as np
+
+def head_angle(name):
+    """time [s] and the head's rotation from its start [deg]"""
+    f = h5py.File(name + ".h5", "r")
+    k = list(f["model"].attrs["bodies"]).index("HEAD")
+    r = f["bodies/rotation"][:, k]          # [t, j, i] is S_ij
+    tr = np.sum(r*r[0], axis=(1, 2))        # trace of S(t) S(0)^T
+    return f["time"][:], np.degrees(np.arccos(np.clip((tr - 1)/2, -1, 1)))
+
+def check(ok, what):
+    print(("PASS  " if ok else "FAIL  ") + what)
+
+t, a = head_angle("volunteer_rest")
+check(t[-1] > 9.99 and a.max() < 2.0, "at rest for %.3g s the head stays within 2 deg of its start (largest %.3g deg)"
+      % (t[-1], a.max()))
+check(a.max() > 0.1, "the push moves it (by %.3g deg)" % a.max())
+for d in ("rear5g_return", "lateral7g_return"):
+    t, a = head_angle(d)
+    i = np.argmax(a)
+    check(t[-1] > 0.599 and a[-1] < 10.0, "%s: %.3g deg from its start at %.3g s (peak %.3g deg at %.3g s)"
+          % (d, a[-1], t[-1], a[i], t[i]))
+    check(a[i] > 15.0 and t[i] < 0.3, "%s: the pulse moves the head (peak %.3g deg at %.3g s), well before the end"
+          % (d, a[i], t[i]))
+    for v, what in (("zero", "every loop gain zero"), ("model", "the model deck's held reflex")):
+        t, a = head_angle(d + "_" + v)
+        check(a[-1] > 10.0, "%s with %s: %.3g deg at %.3g s, not back" % (d, what, a[-1], t[-1]))
+PY
+finish
