@@ -85,6 +85,12 @@ def head(title):
 total, incl, calls = parse(sys.argv[1])
 evals = int(sys.argv[3]) if sys.argv[3] else 0
 c = lambda p, f: calls.get((p, f), (0, 0))
+
+def evaluation_parts(caller, solve, unit):
+    """The rows of an evaluation's kinematics, element loads and articulated-body recursion under caller."""
+    for lab, f in [('kinematics', 'body_kinematics'), ('element loads', 'compute_loads'), (solve, 'articulated_body_solve')]:
+        ir, n = c(caller, f)
+        row('&nbsp;&nbsp;&nbsp;&nbsp;' + lab, ir, total, n, unit)
 head(f'NBDL 15 g, input/nbdl15g.inp ({evals:,} evaluations; HDF5 every 0.1 ms)')
 row('whole program', total, total)
 row('start (deck read, model built, HDF5 file opened)', incl.get('run_start', 0), total)
@@ -93,10 +99,7 @@ adv = incl.get('run_advance_to', 0)
 row('**integration**', adv, total)
 rhs, nrhs = integrator_rhs(calls)
 row('&nbsp;&nbsp;evaluations', rhs, total, nrhs, 'evaluation')
-for lab, f in [('kinematics', 'body_kinematics'), ('element loads', 'compute_loads'),
-               ('a_ij, f_i and solve (articulated-body recursion)', 'articulated_body_solve')]:
-    ir, n = c('dynamics_evaluate', f)
-    row('&nbsp;&nbsp;&nbsp;&nbsp;' + lab, ir, total, n, 'evaluation')
+evaluation_parts('dynamics_evaluate', 'a_ij, f_i and solve (articulated-body recursion)', 'evaluation')
 jac, nj = c('rosw_step', 'rosw_jacobian')
 fac, nf = c('rosw_stages', 'im_factor')
 sol, ns = c('rosw_stages', 'im_solve')
@@ -108,10 +111,7 @@ out, nout = c('run_execute', 'run_output')
 row('**output samples**', out, total, nout, 'sample')
 dyn, _ = c('run_output', 'dynamics_outputs')
 row('&nbsp;&nbsp;evaluation at the sample (kinematics, loads, solve)', dyn, total, nout, 'sample')
-for lab, f in [('kinematics', 'body_kinematics'), ('element loads', 'compute_loads'),
-               ('articulated-body solve', 'articulated_body_solve')]:
-    ir, n = c('dynamics_outputs', f)
-    row('&nbsp;&nbsp;&nbsp;&nbsp;' + lab, ir, total, n, 'sample')
+evaluation_parts('dynamics_outputs', 'articulated-body solve', 'sample')
 ch, _ = c('run_output', 'channels_compute')
 h5w, _ = c('run_output', 'results_flush')
 row('&nbsp;&nbsp;channel values', ch, total, nout, 'sample')
