@@ -8,6 +8,11 @@
 !! while a restart gains more than 1e-4, in the unit cube of the parameter
 !! ranges (LOG ranges in logarithms), points clamped to the bounds.
 !! Deterministic: the same deck gives the same fit on every machine.
+!! Built with OpenMP (fpm.toml), the starting points, and within each
+!! evaluation the cases' runs, their analyses at rest and their channels'
+!! ISO 18571 ratings, run on every core (OMP_NUM_THREADS); the results are
+!! combined in the serial order, so the listing is the same on any number
+!! of threads.
 module hn_calibrate
     use hn_kinds, only: wp, zero, one, deg
     use hn_sweep, only: sweep_param_t, sweep_design, spread_value, field_text, par_field
@@ -38,7 +43,7 @@ contains
         real(wp), intent(out) :: vbest(:)            !! fitted parameter values
         real(wp), intent(out) :: jbest               !! objective there
         integer, intent(out) :: nevals               !! model evaluations (each runs every case)
-        real(wp), allocatable :: design(:, :)
+        real(wp), allocatable :: design(:, :), jdesign(:)
         real(wp) :: u0(size(cal%par)), ubest(size(u0)), j, jstart, lmax, lp, stx(size(cal%stand))
         type(score_t) :: sc(size(cal%sw))
         type(range_score_t) :: rg(size(cal%sw))
@@ -88,12 +93,18 @@ contains
                                                                 [size(par), size(design, 2) + 1])
             jstart = huge(one)
             nevals = 0
+            allocate (jdesign(size(design, 2)))
+            ! the starting points are independent: on every core (OpenMP), reported in order below
+            !$omp parallel do schedule(dynamic, 1) private(sc, ok)
             do r = 1, size(design, 2)
-                call evaluate(cal, design(:, r), j, sc, ok)
+                call evaluate(cal, design(:, r), jdesign(r), sc, ok)
+            end do
+            !$omp end parallel do
+            do r = 1, size(design, 2)
                 nevals = nevals + 1
-                call report('start', nevals, j, design(:, r))
-                if (j < jstart) then
-                    jstart = j
+                call report('start', nevals, jdesign(r), design(:, r))
+                if (jdesign(r) < jstart) then
+                    jstart = jdesign(r)
                     u0 = [(unit_of(par(k), design(k, r)), k=1, size(par))]
                 end if
             end do

@@ -109,9 +109,10 @@ contains
         real(wp) :: rsum, psum, tsum, gsum, wsum, lmax, lp, r, exc(size(cal%stand))
         type(range_score_t) :: rg
         integer :: c, k
-        type(case_t) :: cs
-        type(run_result_t) :: res
-        type(channel_set_t) :: ch
+        type(case_t), allocatable :: css(:)
+        type(run_result_t), allocatable :: ress(:)
+        type(channel_set_t), allocatable :: chs(:)
+        logical :: oks(size(cal%sw))
         call rest_growth(cal, v, lmax, lp)
         if (present(growth)) growth = lmax
         if (present(passive_growth)) passive_growth = huge(one)
@@ -139,27 +140,36 @@ contains
         end if
         j = failed_objective
         rsum = zero; psum = zero; tsum = zero; gsum = zero; wsum = zero
+        allocate (css(size(cal%sw)), chs(size(cal%sw)), ress(size(cal%sw)))
+        ! the member runs are independent: on every core (OpenMP), scored in order below
+        !$omp parallel do schedule(dynamic, 1) if (size(cal%sw) > 1)
         do c = 1, size(cal%sw)
-            call run_member(cal, c, v, cs, ch, res, ok)
+            call run_member(cal, c, v, css(c), chs(c), ress(c), oks(c))
+        end do
+        !$omp end parallel do
+        do c = 1, size(cal%sw)
+            ok = oks(c)
             if (.not. ok) return
-            rg = range_score(res%range_peak, cal%range_inside)
-            if (present(ranges)) ranges(c) = rg
-            gsum = gsum + cal%weight(c)*rg%term
-            if (cal%ref(c)%on) then
-                call score_reference(cal%ref(c), ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c), c, curves)
-            else if (cal%pub(c)%on) then
-                call score_published(cal, c, ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c))
-                call add_peak_terms(cal, c, sc(c), cal%pub(c)%time_mean, cal%pub(c)%has, cal%pub(c)%has_time, &
-                                    psum, tsum)
-            else
-                allocate (y(size(cal%vol(c)%t), size(cal%channels)))
-                y = rated_histories(cal, cal%vol(c)%t, ch%name, cs%t_start, cs%sample_dt, res%samples)
-                call score_curves(cal%vol(c), y, cal%window, cal%peaks, sc(c))
-                call score_iso_volunteers(cal, c, y, sc(c), curves)
-                deallocate (y)
-                call add_peak_terms(cal, c, sc(c), cal%vol(c)%time_mean, [(.true., k=1, size(cal%peaks))], &
-                                    [(.true., k=1, size(cal%peaks))], psum, tsum)
-            end if
+            associate (cs => css(c), ch => chs(c), res => ress(c))
+                rg = range_score(res%range_peak, cal%range_inside)
+                if (present(ranges)) ranges(c) = rg
+                gsum = gsum + cal%weight(c)*rg%term
+                if (cal%ref(c)%on) then
+                    call score_reference(cal%ref(c), ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c), c, curves)
+                else if (cal%pub(c)%on) then
+                    call score_published(cal, c, ch%name, cs%t_start, cs%sample_dt, res%samples, sc(c))
+                    call add_peak_terms(cal, c, sc(c), cal%pub(c)%time_mean, cal%pub(c)%has, cal%pub(c)%has_time, &
+                                        psum, tsum)
+                else
+                    allocate (y(size(cal%vol(c)%t), size(cal%channels)))
+                    y = rated_histories(cal, cal%vol(c)%t, ch%name, cs%t_start, cs%sample_dt, res%samples)
+                    call score_curves(cal%vol(c), y, cal%window, cal%peaks, sc(c))
+                    call score_iso_volunteers(cal, c, y, sc(c), curves)
+                    deallocate (y)
+                    call add_peak_terms(cal, c, sc(c), cal%vol(c)%time_mean, [(.true., k=1, size(cal%peaks))], &
+                                        [(.true., k=1, size(cal%peaks))], psum, tsum)
+                end if
+            end associate
             rsum = rsum + cal%weight(c)*case_rating(cal, sc(c))
             wsum = wsum + cal%weight(c)
         end do
@@ -170,40 +180,69 @@ contains
     !! start state of every volunteer case, posture held as the case holds
     !! it; a living subject's braced neck stands) over the volunteer cases
     !! at parameter values v [1/s] (-huge without one), with the muscles (lmax) and,
-    !! for a PASSIVE card, without them (lp; huge without the card); each
-    !! case is built once for both. Huge when a case cannot be built or
-    !! analysed.
+    !! for a PASSIVE card, without them (lp; huge without the card). Huge
+    !! when a case cannot be built or analysed. The analyses run on every
+    !! core (OpenMP) and are combined in the cases' order.
     subroutine rest_growth(cal, v, lmax, lp)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
         real(wp), intent(out) :: lmax                !! with the muscles [1/s]
         real(wp), intent(out) :: lp                  !! without them [1/s]
-        type(case_t) :: cs
-        type(rest_mode_t), allocatable :: modes(:)
-        integer :: c, stat, f
-        character(len=msglen) :: msg
+        real(wp) :: growth(2, size(cal%sw))
+        logical :: done(2, size(cal%sw))
+        integer :: c, t
+        ! every analysis on its own core (OpenMP): each case with (1) and without (2) its muscles
+        done = .false.
+        !$omp parallel do schedule(dynamic, 1)
+        do t = 1, 2*size(cal%sw)
+            if (cal%ref((t + 1)/2)%on) cycle            ! a reference case is held as its deck holds it
+            if (mod(t, 2) == 0 .and. .not. cal%passive) cycle
+            call case_growth(cal, (t + 1)/2, v, mod(t, 2) == 0, growth(2 - mod(t, 2), (t + 1)/2), &
+                             done(2 - mod(t, 2), (t + 1)/2))
+        end do
+        !$omp end parallel do
         lmax = -huge(one)
         lp = merge(-huge(one), huge(one), cal%passive)
-        do c = 1, size(cal%sw)
-            if (cal%ref(c)%on) cycle            ! a reference case is held as its deck holds it
-            call sweep_member_case(cal%sw(c), v, cs, stat, msg)
-            if (stat == stat_ok) call case_rest_modes(cs, modes, stat, msg)
-            if (stat /= stat_ok) then
+        do c = 1, size(cal%sw)                          ! in order, as one core would
+            if (cal%ref(c)%on) cycle
+            if (.not. done(1, c)) then
                 lmax = huge(one); return
             end if
-            if (size(modes) > 0) lmax = max(lmax, modes(1)%re)
+            lmax = max(lmax, growth(1, c))
             if (.not. cal%passive) cycle
-            do f = 1, size(cs%model%family)
-                if (cs%model%family(f)%f%active_muscle()) cs%model%family_on(f) = .false.
-            end do
-            call case_rest_modes(cs, modes, stat, msg)
-            if (stat /= stat_ok) then
+            if (.not. done(2, c)) then
                 lp = huge(one)
-            else if (size(modes) > 0 .and. lp < huge(one)) then
-                lp = max(lp, modes(1)%re)
+            else if (lp < huge(one)) then
+                lp = max(lp, growth(2, c))
             end if
         end do
     end subroutine rest_growth
+
+    !> The largest real part at rest of case c at parameter values v [1/s]
+    !! (-huge without a mode), with its muscles or without them (passive);
+    !! done false when the case cannot be built or analysed.
+    subroutine case_growth(cal, c, v, passive, growth, done)
+        type(calibration_t), intent(in) :: cal       !! the calibration
+        integer, intent(in) :: c                     !! the case
+        real(wp), intent(in) :: v(:)                 !! one value per parameter
+        logical, intent(in) :: passive               !! its active muscles switched off
+        real(wp), intent(out) :: growth              !! the largest real part [1/s]
+        logical, intent(out) :: done                 !! the analysis was made
+        type(case_t) :: cs
+        type(rest_mode_t), allocatable :: modes(:)
+        integer :: stat, f
+        character(len=msglen) :: msg
+        growth = -huge(one)
+        call sweep_member_case(cal%sw(c), v, cs, stat, msg)
+        if (stat == stat_ok .and. passive) then
+            do f = 1, size(cs%model%family)
+                if (cs%model%family(f)%f%active_muscle()) cs%model%family_on(f) = .false.
+            end do
+        end if
+        if (stat == stat_ok) call case_rest_modes(cs, modes, stat, msg)
+        done = stat == stat_ok
+        if (done .and. size(modes) > 0) growth = modes(1)%re
+    end subroutine case_growth
 
     !> The largest excursion of any joint rotation from its start [deg] in
     !! the run of each STANDING deck at parameter values v (its joint
@@ -220,6 +259,7 @@ contains
         character(len=msglen) :: msg
         integer :: k, stat, lu, n
         exc = huge(one)
+        !$omp parallel do schedule(dynamic, 1) private(cs, chs, res, joints, msg, stat, lu, n)
         do k = 1, size(cal%stand)
             call sweep_member_case(cal%stand(k)%sw, v, cs, stat, msg, deck_sampling=.true.)
             if (stat /= stat_ok) cycle
@@ -236,6 +276,7 @@ contains
             n = size(res%samples, 2)
             exc(k) = maxval(abs(res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n)))
         end do
+        !$omp end parallel do
     end function standing_excursions
 
     !> The rest modes of a case at its start, held or settled as its run

@@ -103,12 +103,18 @@ contains
         associate (vol => cal%vol(c))
             call window_rows(vol%t, cal%window, i1, i2)
             allocate (sc%iso(size(cal%channels)))
+            ! the channels' ratings on every core (OpenMP)
+            !$omp parallel do schedule(dynamic, 1) private(stat, msg)
             do k = 1, size(cal%channels)
                 call iso18571_rating(vol%mean(i1:i2, k), y(i1:i2, k), (vol%t(2) - vol%t(1))*1.0e-3_wp, sc%iso(k), &
                                      stat, msg)
-                if (present(curves)) call write_curves(curves, c, cal%channels(k)%name, vol%t(i1:i2), &
-                                                       vol%mean(i1:i2, k), y(i1:i2, k))
             end do
+            !$omp end parallel do
+            if (present(curves)) then
+                do k = 1, size(cal%channels)
+                    call write_curves(curves, c, cal%channels(k)%name, vol%t(i1:i2), vol%mean(i1:i2, k), y(i1:i2, k))
+                end do
+            end if
         end associate
     end subroutine score_iso_volunteers
 

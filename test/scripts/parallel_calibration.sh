@@ -1,0 +1,29 @@
+#!/bin/sh
+# A calibration on every core gives the listing of one thread: its starting
+# points, its cases' runs, their analyses at rest and their ratings run in
+# parallel (OpenMP) and are combined in the serial order. A short fit of
+# the 12 g deck (the VALUES point and 4 starting points, then Nelder-Mead's
+# least, 17 evaluations) and the two-case deck (15 g and 12 g) scored once
+# at its nominal values, each on one thread and on two (OMP_NUM_THREADS;
+# two threads also on one core), are compared line by line.
+. test/scripts/lib/checks.sh
+cut_fit() {   # cut_fit DECK EVALS STARTS: the deck's FIT card cut to EVALS evaluations from STARTS starting points
+    sed -e "s/^\(FIT       NELDER    \)2500      300 /\1$(printf '%-10s%-4s' "$2" "$3")/" "$1"
+}
+cut_fit input/calibrate_nbdl12g.inp 5 4 > "$tmp/one_case.inp"
+cut_fit input/calibrate_nbdl.inp 0 4 | sed -e '/^VALUES/d' > "$tmp/two_cases.inp"
+for deck in one_case two_cases; do
+    check "the $deck deck is cut short" grep -q '^FIT       NELDER    [0-9] ' "$tmp/$deck.inp"
+    OMP_NUM_THREADS=1 "$HHNECK" --calibrate "$tmp/$deck.inp" > "$tmp/$deck.1" 2> "$tmp/$deck.1.err"
+    rc1=$?
+    OMP_NUM_THREADS=2 "$HHNECK" --calibrate "$tmp/$deck.inp" > "$tmp/$deck.2" 2> "$tmp/$deck.2.err"
+    rc2=$?
+    check "$deck: both complete (exit $rc1 and $rc2)" sh -c '[ "$1" -eq 0 ] && [ "$2" -eq 0 ]' sh "$rc1" "$rc2"
+    check "$deck: the listing on two threads is the listing on one" cmp "$tmp/$deck.1" "$tmp/$deck.2"
+done
+n=$(grep -c '^ *\(start\|nelder\) ' "$tmp/one_case.1")
+check "one_case: the fit lists its 22 evaluations (found $n)" [ "$n" -eq 22 ]
+check "two_cases: both cases are rated" sh -c '[ "$(grep -c "^CASE .*: MEAN RATING" "$1")" -eq 2 ]' sh "$tmp/two_cases.1"
+check "two_cases: the nominal values stand at rest and are run (an objective below 2)" \
+    awk '/^OBJECTIVE J =/ {found = 1; exit !($4 < 2)} END {if (!found) exit 1}' "$tmp/two_cases.1"
+finish
