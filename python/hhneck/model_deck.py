@@ -498,9 +498,12 @@ def _muscles(w, p, geo, muscles):
     else:
         w("* %d groups per side (beyond the first six: segmental MU, IT; suboccipital" % len(muscles))
         w("* S15), origins and insertions A (simplified anatomy).")
-    w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (FITTED scale); PCSA, optimal fibre" % (sigma_max / 1e6))
-    w("* length A; damping %.2f s/m x F0 (A). The paper's passive muscle (eq 11) stays" % damping)
-    w("* available as the MUSCLE card. Muscles along the column (%s)" % ", ".join(VIA_MUSCLES))
+    w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (FITTED scale); PCSA A; optimal" % (sigma_max / 1e6))
+    w("* fibre length lopt and, on the FIBRE cards, the fibre length over lopt in the")
+    w("* neutral posture S22 (the mapping in reference/model_parameters.csv; a muscle")
+    w("* without a FIBRE card: lopt A, its fibres at lopt); damping %.2f s/m x F0 (A)." % damping)
+    w("* The paper's passive muscle (eq 11) stays available as the MUSCLE card.")
+    w("* Muscles along the column (%s)" % ", ".join(VIA_MUSCLES))
     w("* follow it through a via point on each vertebra they pass, on their neutral")
     w("* line (A).")
     w("*         name      body a    body b    F0 (N)    lopt (m)  history   damping")
@@ -520,6 +523,11 @@ def _muscles(w, p, geo, muscles):
                     f = (geo.centre[vb][2] - pa[2]) / (pb[2] - pa[2])
                     pv = tuple(pa[i] + f * (pb[i] - pa[i]) for i in range(3))
                     w(card("VIA", mname + side, vb, *_rounded(geo.rel(pv, vb))))
+    w("*         muscle    lf/lopt in the neutral posture")
+    for (mname, a, b, key) in muscles:
+        if "muscle.%s.ln" % key in p:
+            for side in "LR":
+                w(card("FIBRE", mname + side, p["muscle.%s.ln" % key]))
     w("* Activation histories: FLEX of the flexors (%s), EXT of the" % ", ".join(FLEXORS))
     w("* extensors (the others); each its bracing level u0, reflex level u1 and delay")
     w("* FITTED; onset blank = sled pulse onset (prescribed T1 acceleration first")

@@ -52,7 +52,7 @@ module hn_families
     !> Every card of every family (VIA and ACTIVATE complete the muscles):
     !! key, family, continuation cards, and when it is read (the default
     !! card_in_order: in deck order; ACTIVATE first, the histories HILL cards
-    !! name; VIA, FEEDBACK, SPINDLE and GROUP last, on the muscles and histories read before).
+    !! name; VIA, FEEDBACK, SPINDLE, GROUP and FIBRE last, on the muscles and histories read before).
     type(family_card_t), parameter :: family_cards(*) = [ &
         family_card_t('DISC', fam_discs, 2, unique=unique_element), &
         family_card_t('LIGAMENT', fam_ligaments, 1, unique=unique_element), &
@@ -63,6 +63,7 @@ module hn_families
         family_card_t('FEEDBACK', fam_muscles, 0, card_last), &
         family_card_t('SPINDLE', fam_muscles, 0, card_last), &
         family_card_t('GROUP', fam_muscles, 0, card_last), &
+        family_card_t('FIBRE', fam_muscles, 0, card_last, unique_name, what='muscle name'), &
         family_card_t('LIMIT', fam_limits, 0, unique=unique_coordinate, coordinate=.true.), &
         family_card_t('ROM', fam_limits, 0, unique=unique_coordinate, coordinate=.true.), &
         family_card_t('SPRING', fam_springs, 1, unique=unique_element), &

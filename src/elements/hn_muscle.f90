@@ -3,16 +3,27 @@
 !!
 !! Force along the muscle line (tension positive, never pushing):
 !!   F = max(0, F0 [a fL(l) fV(v) + fPE(l)] + c L')
-!! with the normalised fibre length l = 1 + (L - L0)/lopt (fibres at their
-!! optimal length lopt in the neutral posture, rigid tendon, no pennation)
-!! and the normalised lengthening rate v = L'/(vmax lopt):
+!! with the normalised fibre length l = ln + (L - L0)/lopt, ln the fibres'
+!! length over their optimal length lopt in the neutral posture (L = L0;
+!! default 1: at lopt), rigid tendon, no pennation, and the normalised
+!! lengthening rate v = L'/(vmax lopt):
 !!   fL(l)  = exp(-(l - 1)^2/gamma)                       (Thelen 2003)
 !!   fPE(l) = (exp(kpe (l - 1)/eps0) - 1)/(exp(kpe) - 1), l > 1; 0 otherwise
 !!   fV(v)  = (1 + v)/(1 - v/af) for -1 <= v <= 0 (Hill's hyperbola),
 !!            0 for v < -1, and flen - (flen - 1) b/(b + v) for v > 0
 !!            with b = (flen - 1)/(2 (1 + 1/af)): the eccentric branch starts
 !!            with twice the concentric slope and saturates at flen.
-!! c L' is the damping element acting along the line.
+!! c L' is the damping element acting along the line. The parallel elastic
+!! element fPE acts from its slack length, the optimal fibre length (l = 1,
+!! Thelen 2003; OpenSim's Millard2012 muscle: passive-fibre strain 0 at zero
+!! force): a muscle whose neutral posture stretches its fibres past lopt
+!! (ln > 1) carries a passive tension there.
+!!
+!! Around the neutral posture the active force changes with the length as
+!! F0 a fL'(ln)/lopt, fL'(l) = -2 (l - 1)/gamma fL(l): positive (a stretched
+!! active muscle gains force) on the ascending limb, ln < 1, where most neck
+!! muscles sit in the neutral posture (Vasavada et al. 1998's model lineage:
+!! reference/model_parameters.csv), zero at ln = 1, negative past the plateau.
 !!
 !! Short-range (intrinsic) stiffness of the active fibres, beyond Hill's
 !! law: the attached cross-bridges make an active muscle resist a small
@@ -23,9 +34,9 @@
 !! force-length and force-velocity relations take over:
 !!   F_srs = k r lopt tanh(d/(r lopt)),   d = L - L0
 !! (slope k at the rest length, bounded by k r lopt). It adds the stiffness
-!! the force-length curve lacks at lopt (its slope is zero there), which
-!! an activated neck needs to stand: without it the compression of the
-!! bracing muscles buckles the column.
+!! the force-length curve lacks at lopt (its slope is zero there, negative
+!! beyond), which an activated neck needs to stand: without it the
+!! compression of the bracing muscles buckles the column.
 !!
 !! Activation: excitation u(t) = u0 until t1 = onset + delay, then a ramp to
 !! u1 over the rise time, then u1; da/dt = (u - a)/tau with a(t <= t1) = u0.
@@ -53,6 +64,7 @@ module hn_muscle
         real(wp) :: srs_q = zero     !! short-range stiffness k = q F / L0 (0: none)
         real(wp) :: srs_range = 0.01_wp   !! stretch over which it holds [lopt]
         real(wp) :: l0 = zero        !! rest length L0 of the muscle [m] (set with the neutral lengths)
+        real(wp) :: ln = one         !! fibre length / lopt at the rest length L0 (the neutral posture)
     end type hill_t
 
     !> An activation history: bracing level, reflex onset, rise, time constant.
@@ -113,7 +125,7 @@ contains
         real(wp), intent(in) :: rate       !! lengthening rate [m/s]
         real(wp), intent(in) :: act        !! activation in [0, 1]
         real(wp) :: l, fa, r
-        l = one + d/h%lopt
+        l = h%ln + d/h%lopt
         fa = h%f0*act*hill_fl(h, l)
         f = fa*hill_fv(h, rate/(h%vmax*h%lopt)) + h%f0*hill_fpe(h, l) + h%damping*rate
         if (h%srs_q > zero .and. h%l0 > zero) then

@@ -4,7 +4,8 @@
 !! holds the activation tables (eq 11) and the activation histories (ACTIVATE
 !! cards) its muscles refer to. Output per muscle: tension [N], length [m]
 !! and activation. The family reads its MUSCLE, HILL, ACTIVATE, VIA,
-!! FEEDBACK, SPINDLE and GROUP cards; a FEEDBACK card adds postural feedback
+!! FEEDBACK, SPINDLE, GROUP and FIBRE cards (FIBRE: a Hill muscle's fibre length
+!! in the neutral posture); a FEEDBACK card adds postural feedback
 !! (hn_feedback) to an activation history, a SPINDLE card a stretch loop to
 !! each of its muscles, sampled by the run (control_times, control_update);
 !! a GROUP card moves a Hill muscle to another history.
@@ -410,9 +411,9 @@ contains
         end do
     end subroutine muscle_control_update
 
-    !> An ACTIVATE, MUSCLE, HILL, VIA, FEEDBACK or SPINDLE card (the
-    !! registry reads ACTIVATE cards before, VIA, FEEDBACK and SPINDLE cards
-    !! after the others). A
+    !> An ACTIVATE, MUSCLE, HILL, VIA, FEEDBACK, SPINDLE or FIBRE card (the
+    !! registry reads ACTIVATE cards before, VIA, FEEDBACK, SPINDLE and FIBRE
+    !! cards after the others). A
     !! muscle is kept unless both ends are on one merged body.
     subroutine muscle_read_card(this, rd, ctx, i, key)
         class(muscle_family_t), intent(inout) :: this   !! the family; out: the card's muscle, history or via point added
@@ -429,6 +430,9 @@ contains
             return
         case ('VIA')
             call via_card(rd, ctx%cards, i, this%items(1:this%nread), ctx%bnames, ctx%bmap)
+            return
+        case ('FIBRE')
+            call fibre_card(rd, ctx%cards, i, this%items(1:this%nread))
             return
         case ('FEEDBACK')
             call feedback_card(rd, ctx, i, this%activations, this%feedbacks)
@@ -763,5 +767,40 @@ contains
             m%via_point(:, m%nvia) = p
         end associate
     end subroutine via_card
+
+    !> FIBRE muscle ln: the normalised fibre length lf/lopt of a Hill-type
+    !! muscle in the neutral posture (hn_muscle; default 1, the fibres at
+    !! their optimal length). A FIBRE card of a muscle the scene dropped is
+    !! dropped with it.
+    subroutine fibre_card(rd, cards, i, muscles)
+        type(deck_reader_t), intent(inout) :: rd
+        type(card_t), intent(in) :: cards(:)
+        integer, intent(in) :: i
+        type(muscle_t), intent(inout) :: muscles(:)
+        character(len=10) :: nm, other
+        real(wp) :: ln
+        integer :: e, k
+        logical :: hill
+        call rd%name(i, 1, 'muscle name', nm)
+        call rd%real(i, 2, 'normalised fibre length at neutral', 'lopt', ln, 0.3_wp, 2.0_wp)
+        if (rd%failed()) return
+        do e = size(muscles), 1, -1       ! (a loop: no temporary of the name component)
+            if (muscles(e)%name == nm) exit
+        end do
+        if (e > 0) then
+            if (muscles(e)%law == muscle_hill) then
+                muscles(e)%hill%ln = ln
+                return
+            end if
+        end if
+        hill = .false.
+        do k = 1, size(cards)
+            if (cards(k)%key /= 'HILL') cycle
+            call rd%name(cards(k)%first, 1, 'muscle name', other)
+            hill = hill .or. other == nm
+        end do
+        if (.not. hill) call rd%fail(rd%context(i, 1, 'muscle name')//': found "'//trim(nm)// &
+                                     '"; expected the name of a HILL card')
+    end subroutine fibre_card
 
 end module hn_muscle_family
