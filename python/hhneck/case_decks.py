@@ -3,13 +3,14 @@
       cadaver, force pulses RECONSTRUCTED (the paper's records are not public);
   hybrid3_flexion.inp  the Hybrid III neck pendulum flexion input (49 CFR
       572.33) applied to the human model.
-See reference/cases.md.   hhneck-case-decks (run in the project root)
+See reference/cases.md.   hhneck-case-decks (writes into the project, hhneck.paths)
 """
 import argparse
 import math
 import sys
 
 from .deck_fields import CardError, held, number_text, write_decks
+from .paths import project_path
 
 def table(name, pts, tscale="0.001", vscale="1.0"):
     out = ["%-8s  %-10s%-10d%-10s%-10s" % ("TABLE", name, len(pts), tscale, vscale)]
@@ -106,7 +107,9 @@ def main(argv=None):
     argparse.ArgumentParser(prog="hhneck-case-decks", description=__doc__.split("   hhneck")[0].strip(),
                             formatter_class=argparse.RawDescriptionHelpFormatter).parse_args(argv)
     try:
-        write_decks(case_decks())   # none written if a card passes column 80
+        # the project's input/ (hhneck.paths), whatever the working directory;
+        # none written if a card passes column 80
+        write_decks({project_path(k): v for k, v in case_decks().items()})
     except CardError as e:
         sys.exit("hhneck-case-decks: %s" % e)
     return 0

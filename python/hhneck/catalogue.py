@@ -44,8 +44,8 @@ import time
 
 import numpy as np
 
-from . import compare_nbdl, newton_balance, run, segments, specimens
-from .compare_nbdl import s3
+from . import nbdl, newton_balance, run, segments, specimens
+from .nbdl import s3
 
 REPORT = os.path.join(segments.ROOT, "docs", "catalogue.md")
 NBDL_GOAL = 0.85        # CORA-style, at both severities (the goal of the catalogue)
@@ -300,13 +300,11 @@ def nbdl_score(sev, exe=None, workdir=None):
     its stderr kept in workdir as nbdlSEV.err))."""
     work = workdir or tempfile.mkdtemp(prefix="hhneck-catalogue-nbdl-")
     os.makedirs(work, exist_ok=True)
-    # the volunteers' runs of the project (compare_nbdl reads reference/ relative to the current directory)
-    compare_nbdl.DATA_DIRS.setdefault(sev, os.path.join(segments.ROOT, "reference", "nbdl_" + sev))
     r = run.run_deck(os.path.join(segments.ROOT, "input", "nbdl%s.inp" % sev), executable=exe,
                      h5=os.path.join(work, "nbdl%s.h5" % sev), cwd=segments.ROOT)
     with open(os.path.join(work, "nbdl%s.err" % sev), "w") as f:
         f.write(r.stderr)
-    chans, peaks, overall = compare_nbdl.compare(sev, r.h5)[:3]
+    chans, peaks, overall = nbdl.compare(sev, r.h5)[:3]
     return dict(cora=float(overall), iso=float(np.mean([c["iso"] for c in chans if c["rated"]])),
                 peaks=sum(bool(p["ok_peak"]) for p in peaks), npeaks=len(peaks),
                 warnings=segments.warning_lines(r.stderr))

@@ -39,14 +39,7 @@ import numpy as np
 
 from . import run
 from .nbdl import RATED, REPORTED, SEVERITIES, compare, s3
-# imported from here by catalogue.py and specimens.py (cfc): hhneck.nbdl is their library
-from .nbdl import cfc  # noqa: F401
 from .paths import project_path
-
-# read by nothing: catalogue.py sets the shipped cases' directories here,
-# which nbdl.compare takes by default (nbdl.data_dir)
-DATA_DIRS = {}
-
 
 def tables(sev, chans, peaks, overall, nrun):
     sevt = sev.replace("g", " g")

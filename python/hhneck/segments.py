@@ -67,8 +67,9 @@ import tempfile
 import numpy as np
 
 from . import iso18571
+from .paths import project_root
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = project_root()
 MODEL_DECK = os.path.join(ROOT, "input", "head_neck_54dof.inp")
 DATA_DIR = os.path.join(os.path.dirname(ROOT), "shared", "data", "pmhs_neck")
 

@@ -138,7 +138,7 @@ import tomllib
 import numpy as np
 
 from . import iso18571, segments, specimen_data
-from .compare_nbdl import cfc
+from .nbdl import cfc
 
 #: the folder of the catalogue's case files
 CASES_DIR = os.path.join(segments.ROOT, "reference", "cases")

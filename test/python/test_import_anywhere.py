@@ -5,10 +5,8 @@ find the project's decks and volunteer runs (a short deck run with its
 INCLUDE of the shipped model deck, the NBDL 12 g T1 tables written again
 from the shipped runs, equal to the shipped ones); a copy of the package
 outside the project finds it through HHNECK_ROOT, and says so when
-HHNECK_ROOT is not set.
-
-Modules of another helper's rewrite still use paths relative to the working
-directory: their real commands are marked xfail, naming the module."""
+HHNECK_ROOT is not set; hhneck-case-decks writes the decks into the
+project it is given."""
 import json
 import os
 import shutil
@@ -194,8 +192,6 @@ def test_copy_with_a_wrong_hhneck_root(copied, tmp_path):
     assert r.returncode != 0 and "HHNECK_ROOT=%s: no hhneck fpm.toml there" % tmp_path in r.stderr
 
 
-@pytest.mark.xfail(strict=True, reason="hhneck.case_decks writes input/caseN.inp relative to the working "
-                   "directory (another helper rewrites case_decks; remove this mark with that rewrite)")
 def test_case_decks_elsewhere(tmp_path):
     """hhneck-case-decks from elsewhere writes the decks of a project (HHNECK_ROOT: one made here, so that
     the tree's own decks are not rewritten) equal to the shipped ones."""
