@@ -1,6 +1,6 @@
 #!/bin/sh
 # The card registries (src/io/hn_cards.f90 and, for the element families'
-# cards, src/elements/hn_families.f90) and the deck format
+# cards, the families' registry entries in src/elements/) and the deck format
 # (docs/deck-format.md) list the same cards: every registry card has a
 # `### NAME` section (a section may name several, "### FORCE, COUPLE"),
 # and every section names registry cards (INCLUDE, read by hn_deck_reader
@@ -11,10 +11,12 @@ HHNECK=${HHNECK:-none}
 . test/scripts/lib/checks.sh
 
 compare() {   # compare REGISTRY DOC: one line per card missing on either side, exit 1 on any
-    python3 - "$1" "$2" src/elements/hn_families.f90 <<'PY'
-import re, sys
+    python3 - "$1" "$2" src/elements <<'PY'
+import glob, os, re, sys
 reg = set(re.findall(r"card_info_t\('([A-Z0-9]+)'", open(sys.argv[1], encoding='utf-8').read()))
-families = set(re.findall(r"family_card_t\('([A-Z0-9]+)'", open(sys.argv[3], encoding='utf-8').read()))
+families = set()
+for path in sorted(glob.glob(os.path.join(sys.argv[3], '*.f90'))):
+    families |= set(re.findall(r"family_card_t\('([A-Z0-9]+)'", open(path, encoding='utf-8').read()))
 if not families:
     print('no family_card_t lines in ' + sys.argv[3]); sys.exit(1)
 reg |= families
