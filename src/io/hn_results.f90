@@ -17,7 +17,8 @@ module hn_results
     use hn_channels, only: channel_set_t
     use hn_dynamics, only: dyn_workspace_t
     use hn_tree, only: dof_label
-    use hn_h5, only: h5_file_t, h5_read_string_attr
+    use hn_h5, only: h5_file_t
+    use hn_h5_read, only: h5_read_string_attr
     use hn_dump, only: dump_open
     use hn_assessment, only: assessment_t
     use hn_injury, only: occupants
