@@ -8,7 +8,7 @@
 !! located references of one card to a body, a coordinate or a table, the
 !! coordinate units, and the attachment of a point-to-point element
 !! (`line_card`) are here too, so a family module can read its cards with
-!! the field access of hn_deck_reader and no module of src/io/.
+!! the field access of hn_deck_reader and no module of src/deck/.
 !!
 !! `family_card_t` is one card of a family as its registry entry
 !! (hn_family_registration) lists it: key, family, continuation cards, when in the reading it is

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The card registries (src/io/hn_cards.f90 and, for the element families'
+# The card registries (src/deck/hn_cards.f90 and, for the element families'
 # cards, the families' registry entries in src/elements/) and the deck format
 # (docs/deck-format.md) list the same cards: every registry card has a
 # `### NAME` section (a section may name several, "### FORCE, COUPLE"),
@@ -37,7 +37,7 @@ sys.exit(1 if bad else 0)
 PY
 }
 
-if compare src/io/hn_cards.f90 docs/deck-format.md > "$tmp/report" 2>&1; then
+if compare src/deck/hn_cards.f90 docs/deck-format.md > "$tmp/report" 2>&1; then
     pass "every card of the registry has a section of docs/deck-format.md, and every section a card"
 else
     cat "$tmp/report"
@@ -46,7 +46,7 @@ fi
 
 # a format without the ROM section, with a section of a card the registry lacks
 sed -e 's/^### ROM —/#### ROM —/' -e 's/^### TITLE —/### TITLE, NOSUCH —/' docs/deck-format.md > "$tmp/format.md"
-if compare src/io/hn_cards.f90 "$tmp/format.md" > "$tmp/report2" 2>&1; then
+if compare src/deck/hn_cards.f90 "$tmp/format.md" > "$tmp/report2" 2>&1; then
     fail "the check accepts a format without ROM and with NOSUCH"
 elif grep -q 'card ROM of the registry' "$tmp/report2" && grep -q 'section ### NOSUCH' "$tmp/report2"; then
     pass "the check names a missing section (ROM) and a section of no card (NOSUCH)"
