@@ -15,7 +15,7 @@ program test_regression
     use hn_deck, only: read_case
     use hn_run, only: run_state_t, run_result_t
     use hn_channels, only: channel_set_t, channels_define
-    use hn_h5, only: h5_dims, h5_read_real, h5_read_string_list_attr
+    use hn_h5_read, only: h5_dims, h5_read_real, h5_read_string_list_attr
     use hn_testing, only: test_suite_t
     implicit none
 

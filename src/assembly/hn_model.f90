@@ -60,9 +60,9 @@ contains
         allocate (model%prescribed(tree%ndof), model%motion(tree%ndof), model%q_hold(tree%ndof))
         model%prescribed = .false.
         model%q_hold = zero
-        allocate (model%family(nfamilies), model%family_on(nfamilies))
+        allocate (model%family(nfamilies()), model%family_on(nfamilies()))
         model%family_on = .true.
-        do f = 1, nfamilies
+        do f = 1, nfamilies()
             call new_family(f, model%family(f))
         end do
         allocate (model%applied(0))
@@ -226,7 +226,7 @@ contains
         character(len=item_len) :: items(max_family_items)
         type(family_slot_t) :: slot
         items = ''
-        if (f < 1 .or. f > nfamilies) return
+        if (f < 1 .or. f > nfamilies()) return
         call new_family(f, slot)
         call slot%f%scale_items(items)
     end function family_items

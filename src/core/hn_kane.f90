@@ -1,4 +1,4 @@
-!> Kane's equations in the paper's form a_ij xddot_j = f_i:
+!> Kane's equations in the paper's form a_ij xddot_j = f_i (eq 14):
 !! a_ij (eq 17), the generalized active forces F_i (eq 19) and f_i (eq 18).
 module hn_kane
     use hn_kinds, only: wp, zero
@@ -18,7 +18,8 @@ module hn_kane
 
 contains
 
-    !> Generalized mass matrix (eq 17):
+    !> Generalized mass matrix (eq 17), the coefficients of the equations of
+    !! motion a_ij xddot_j = f_i (eq 14):
     !! a_ij = sum_p m_p v_pik v_pjk + omega_pik I_pkn omega_pjn.
     !! Only pairs within one body's chain contribute. With I_p = (S L)(S L)^T
     !! (L the Cholesky factor of the body-frame inertia) each body adds

@@ -22,6 +22,9 @@ module hn_clamp_family
     use hn_loads, only: body_loads_t, add_force_pair
     use hn_tree, only: body_tree_t
     use hn_tables, only: table_t
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, unique_element
+    use hn_element_family, only: family_slot_t
     use hn_motion, only: motion_t, motion_rate_table, motion_constant, motion_eval
     use hn_rotation, only: cross, rotation_vector, axis_angle_matrix, unit_matrix
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
@@ -30,6 +33,7 @@ module hn_clamp_family
     private
 
     public :: clamp_family_t, clamp_t, clamp_load
+    public :: clamp_registration
 
     integer, parameter :: ncomp_clamp = 9   !! outputs: force (3), moment (3), deflection, rotation, rig angle
 
@@ -423,5 +427,22 @@ contains
         type(card_context_t), intent(inout) :: ctx     !! the deck's cards (unused)
         this%items = this%items(1:this%nread)
     end subroutine clamp_end_cards
+
+    !> The registry's entry of the clamps: name CLAMPS, its card CLAMP (one
+    !! continuation card), and the family with no elements.
+    pure function clamp_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('CLAMPS', [family_card_t('CLAMP', 0, 1, unique=unique_element)], clamp_empty)
+    end function clamp_registration
+
+    !> A family of clamps with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine clamp_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(clamp_t), allocatable :: cl(:)
+        type(table_t), allocatable :: tb(:)
+        allocate (cl(0), tb(0)); allocate (slot%f, source=clamp_family_t(items=cl, tables=tb))
+    end subroutine clamp_empty
 
 end module hn_clamp_family

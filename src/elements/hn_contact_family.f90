@@ -21,10 +21,14 @@ module hn_contact_family
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
                                  max_family_items, item_len, warning_len, check_point, add_line_tangent, path_columns, &
                                  fd_rel, fd_abs_length
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, unique_element
+    use hn_element_family, only: family_slot_t
     implicit none
     private
 
     public :: contact_family_t, contact_t
+    public :: contact_registration
 
     integer, parameter :: ncomp_contact = 6   !! its outputs: N, friction, penetration, contact point (3)
 
@@ -427,5 +431,22 @@ contains
         type(card_context_t), intent(inout) :: ctx       !! the deck's cards (unused)
         this%items = this%items(1:this%nread)
     end subroutine contact_end_cards
+
+    !> The registry's entry of the contacts: name CONTACTS, its card CONTACT (two
+    !! continuation cards), and the family with no elements.
+    pure function contact_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('CONTACTS', [family_card_t('CONTACT', 0, 2, unique=unique_element)], contact_empty)
+    end function contact_registration
+
+    !> A family of contacts with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine contact_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(contact_t), allocatable :: ct(:)
+        type(table_t), allocatable :: tb(:)
+        allocate (ct(0), tb(0)); allocate (slot%f, source=contact_family_t(items=ct, tables=tb))
+    end subroutine contact_empty
 
 end module hn_contact_family

@@ -15,10 +15,14 @@ module hn_disc_family
                                  max_family_items, &
                                  item_len, warning_len, fd_rel, fd_abs_length, fd_abs_rate, path_columns, check_point, &
                                  check_range
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, unique_element
+    use hn_element_family, only: family_slot_t
     implicit none
     private
 
     public :: disc_family_t, discs_of, disc_card
+    public :: disc_registration
 
     real(wp), parameter :: ref_disc_axial = 5.0e5_wp      !! N/m (reference/parameters.md)
     real(wp), parameter :: ref_disc_bending = 20.0_wp     !! N m/rad
@@ -368,5 +372,21 @@ contains
         call map_ends(bmap, d%body_a, d%pa, d%body_b, d%pb, ninternal)
         keep = d%body_a /= d%body_b
     end subroutine disc_card
+
+    !> The registry's entry of the discs: name DISCS, its card DISC (two continuation
+    !! cards), and the family with no elements.
+    pure function disc_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('DISCS', [family_card_t('DISC', 0, 2, unique=unique_element)], disc_empty)
+    end function disc_registration
+
+    !> A family of discs with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine disc_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(disc_t), allocatable :: d(:)
+        allocate (d(0)); allocate (slot%f, source=disc_family_t(items=d))
+    end subroutine disc_empty
 
 end module hn_disc_family

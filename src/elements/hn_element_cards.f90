@@ -8,10 +8,10 @@
 !! located references of one card to a body, a coordinate or a table, the
 !! coordinate units, and the attachment of a point-to-point element
 !! (`line_card`) are here too, so a family module can read its cards with
-!! the field access of hn_deck_reader and no module of src/io/.
+!! the field access of hn_deck_reader and no module of src/deck/.
 !!
-!! `family_card_t` is one card of a family as the registry (hn_families)
-!! lists it: key, family, continuation cards, when in the reading it is
+!! `family_card_t` is one card of a family as its registry entry
+!! (hn_family_registration) lists it: key, family, continuation cards, when in the reading it is
 !! read (`card_first`, `card_in_order`, `card_last`), which repeats of it
 !! the deck refuses (`unique_element`, `unique_name`, `unique_coordinate`)
 !! and whether its fields F1, F2 name a body and one of its coordinates.
@@ -48,6 +48,20 @@ module hn_element_cards
     !! of the same name for the body and coordinate in F1, F2.
     integer, parameter, public :: unique_none = 0, unique_element = 1, unique_name = 2, unique_coordinate = 3
 
+    !> A deck card that belongs to a family: its key, its family (its
+    !! place in the registry; 0 in the family's own entry), its continuation
+    !! cards, when it is read (card_first, card_in_order, card_last), which
+    !! repeats are refused, and its coordinate fields.
+    type :: family_card_t
+        character(len=8) :: key = ''
+        integer :: family = 0
+        integer :: ncont = 0
+        integer :: order = card_in_order
+        integer :: unique = unique_none       !! which repeats the deck refuses (unique_none ... unique_coordinate)
+        logical :: coordinate = .false.       !! F1 names a body, F2 one of its coordinates (CHANGE ... F7 names F2)
+        character(len=16) :: what = 'name'    !! what F1 holds, in a unique_name message
+    end type family_card_t
+
     !> One card with its continuation cards: deck lines first .. first+ncont.
     type :: card_t
         character(len=8) :: key = ''
@@ -74,12 +88,17 @@ module hn_element_cards
     end type named_table_t
 
     !> What the card groups pass along: the deck's cards, the names of its
-    !! bodies and where each went, its named tables.
+    !! bodies and where each went, its named tables, its families' cards.
     type :: deck_state_t
         type(card_t), allocatable :: cards(:)
         character(len=10), allocatable :: bnames(:)   !! the deck's bodies, in deck order
         type(body_map_t) :: bmap
         type(named_table_t), allocatable :: tabs(:)
+        !> the cards of the deck's element families, each with its family's
+        !! number: the registry's and those of families brought to the deck
+        !! (read_case's `families`); unallocated: the registry's, and the
+        !! `deck_cards` of families added to the model in code
+        type(family_card_t), allocatable :: fcards(:)
     end type deck_state_t
 
     !> What an element family reads its cards against: the deck's state,
@@ -99,18 +118,6 @@ module hn_element_cards
         procedure :: pulse_onset => context_pulse_onset
     end type card_context_t
 
-    !> A deck card that belongs to a family: its key, its family, its
-    !! continuation cards, when it is read (card_first, card_in_order,
-    !! card_last), which repeats are refused, and its coordinate fields.
-    type :: family_card_t
-        character(len=8) :: key = ''
-        integer :: family = 0
-        integer :: ncont = 0
-        integer :: order = card_in_order
-        integer :: unique = unique_none       !! which repeats the deck refuses (unique_none ... unique_coordinate)
-        logical :: coordinate = .false.       !! F1 names a body, F2 one of its coordinates (CHANGE ... F7 names F2)
-        character(len=16) :: what = 'name'    !! what F1 holds, in a unique_name message
-    end type family_card_t
 
 contains
 

@@ -12,10 +12,14 @@ module hn_ligament_family
                                 apply_line_tensions, set_neutral_lengths
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, check_point, check_range, attach_columns, add_line_tangent
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, unique_element
+    use hn_element_family, only: family_slot_t
     implicit none
     private
 
     public :: ligament_family_t, ligaments_of
+    public :: ligament_registration
 
     real(wp), parameter :: ref_ligament_2mm = 30.0_wp     !! N at 2 mm stretch (reference/parameters.md)
 
@@ -253,5 +257,21 @@ contains
         type(card_context_t), intent(inout) :: ctx        !! the deck's cards (unused)
         this%items = this%items(1:this%nread)
     end subroutine ligament_end_cards
+
+    !> The registry's entry of the ligaments: name LIGAMENTS, its card LIGAMENT, and
+    !! the family with no elements.
+    pure function ligament_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('LIGAMENTS', [family_card_t('LIGAMENT', 0, 1, unique=unique_element)], ligament_empty)
+    end function ligament_registration
+
+    !> A family of ligaments with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine ligament_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(ligament_t), allocatable :: l(:)
+        allocate (l(0)); allocate (slot%f, source=ligament_family_t(items=l))
+    end subroutine ligament_empty
 
 end module hn_ligament_family

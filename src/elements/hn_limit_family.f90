@@ -18,10 +18,14 @@ module hn_limit_family
                                range_warnings, range_margin
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_range
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, unique_coordinate
+    use hn_element_family, only: family_slot_t
     implicit none
     private
 
     public :: limit_family_t, limits_of, ranges_of
+    public :: limit_registration
 
     real(wp), parameter :: ref_limit_c1 = 100.0_wp        !! N m s/rad per rad (reference/parameters.md)
 
@@ -409,5 +413,24 @@ contains
         r%xmin = r%xmin*deg; r%xmax = r%xmax*deg; r%t0 = r%t0*deg
         jf%nread(2) = jf%nread(2) + 1; jf%ranges(jf%nread(2)) = r
     end subroutine joint_card
+
+    !> The registry's entry of the limits: name LIMITS, its cards LIMIT and ROM (one
+    !! per body and coordinate), and the family with no elements.
+    pure function limit_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('LIMITS', [ &
+            family_card_t('LIMIT', 0, 0, unique=unique_coordinate, coordinate=.true.), &
+            family_card_t('ROM', 0, 0, unique=unique_coordinate, coordinate=.true.)], limit_empty)
+    end function limit_registration
+
+    !> A family of limits with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine limit_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(joint_limit_t), allocatable :: jl(:)
+        type(joint_range_t), allocatable :: jr(:)
+        allocate (jl(0), jr(0)); allocate (slot%f, source=limit_family_t(items=jl, ranges=jr))
+    end subroutine limit_empty
 
 end module hn_limit_family

@@ -40,10 +40,14 @@ module hn_muscle_family
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, check_range, &
                                  line_columns, add_line_tangent
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, card_first, card_last, unique_element, unique_name
+    use hn_element_family, only: family_slot_t
     implicit none
     private
 
     public :: muscle_family_t, muscles_of, activation_histories, activation_rate
+    public :: muscle_registration
 
     real(wp), parameter :: ref_muscle_m1 = 3000.0_wp      !! N/m (reference/parameters.md)
     real(wp), parameter :: ref_muscle_m2 = 400.0_wp       !! N s/m
@@ -802,5 +806,35 @@ contains
         if (.not. hill) call rd%fail(rd%context(i, 1, 'muscle name')//': found "'//trim(nm)// &
                                      '"; expected the name of a HILL card')
     end subroutine fibre_card
+
+    !> The registry's entry of the muscles: name MUSCLES, its cards (MUSCLE
+    !! and HILL in deck order; ACTIVATE first, the histories HILL cards name;
+    !! VIA, FEEDBACK, SPINDLE, GROUP and FIBRE last, on the muscles and
+    !! histories read before), and the family with no elements.
+    pure function muscle_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('MUSCLES', [ &
+            family_card_t('MUSCLE', 0, 1, unique=unique_element), &
+            family_card_t('HILL', 0, 1, unique=unique_element), &
+            family_card_t('VIA', 0, 0, card_last), &
+            family_card_t('ACTIVATE', 0, 1, card_first, unique_name, what='history name'), &
+            family_card_t('FEEDBACK', 0, 0, card_last), &
+            family_card_t('SPINDLE', 0, 0, card_last), &
+            family_card_t('GROUP', 0, 0, card_last), &
+            family_card_t('FIBRE', 0, 0, card_last, unique_name, what='muscle name')], muscle_empty)
+    end function muscle_registration
+
+    !> A family of muscles with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine muscle_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(muscle_t), allocatable :: m(:)
+        type(table_t), allocatable :: tb(:)
+        type(activation_t), allocatable :: a(:)
+        type(feedback_t), allocatable :: fb(:)
+        allocate (m(0), tb(0), a(0), fb(0))
+        allocate (slot%f, source=muscle_family_t(items=m, tables=tb, activations=a, feedbacks=fb))
+    end subroutine muscle_empty
 
 end module hn_muscle_family

@@ -23,10 +23,14 @@ module hn_nz_family
     use hn_tree, only: body_tree_t
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, add_warning
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, unique_coordinate
+    use hn_element_family, only: family_slot_t
     implicit none
     private
 
     public :: nz_spring_t, nz_family_t, nz_moment, nz_slope, nz_energy, nz_springs_of
+    public :: nz_registration
 
     real(wp), parameter :: ref_nz_stiffness = 10.0_wp   !! N m/rad: the order of a neutral zone's slope (segment data)
     real(wp), parameter :: default_mlin = 100.0_wp      !! N m: where the law turns linear unless the card says
@@ -383,5 +387,22 @@ contains
             call ctx%add_note(note)
         end if
     end subroutine nz_end_cards
+
+    !> The registry's entry of the neutral-zone springs: name NZSPRINGS, its card
+    !! NZSPRING (one per body and coordinate), and the family with no elements.
+    pure function nz_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('NZSPRINGS', [ &
+            family_card_t('NZSPRING', 0, 0, unique=unique_coordinate, coordinate=.true.)], nz_empty)
+    end function nz_registration
+
+    !> A family of nzsprings with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine nz_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(nz_spring_t), allocatable :: nz(:)
+        allocate (nz(0)); allocate (slot%f, source=nz_family_t(items=nz))
+    end subroutine nz_empty
 
 end module hn_nz_family

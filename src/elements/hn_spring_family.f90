@@ -12,10 +12,14 @@ module hn_spring_family
                                 apply_line_tensions, set_neutral_lengths
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, check_point, attach_columns, add_line_tangent
+    use hn_family_registration, only: family_registration_t
+    use hn_element_cards, only: family_card_t, unique_element
+    use hn_element_family, only: family_slot_t
     implicit none
     private
 
     public :: spring_family_t, springs_of
+    public :: spring_registration
 
     !> The springs of a model.
     type, extends(element_family_t) :: spring_family_t
@@ -235,5 +239,21 @@ contains
         type(card_context_t), intent(inout) :: ctx      !! the deck's cards (unused)
         this%items = this%items(1:this%nread)
     end subroutine spring_end_cards
+
+    !> The registry's entry of the springs: name SPRINGS, its card SPRING, and the
+    !! family with no elements.
+    pure function spring_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('SPRINGS', [family_card_t('SPRING', 0, 1, unique=unique_element)], spring_empty)
+    end function spring_registration
+
+    !> A family of springs with no elements (its arrays allocated with size 0, not
+    !! taken from a zero-size array constructor, which gfortran copies into
+    !! an unallocated component when the model is copied).
+    pure subroutine spring_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(spring_t), allocatable :: sp(:)
+        allocate (sp(0)); allocate (slot%f, source=spring_family_t(items=sp))
+    end subroutine spring_empty
 
 end module hn_spring_family

@@ -1,6 +1,6 @@
 #!/bin/sh
-# The card registries (src/io/hn_cards.f90 and, for the element families'
-# cards, src/elements/hn_families.f90) and the deck format
+# The card registries (src/deck/hn_cards.f90 and, for the element families'
+# cards, the families' registry entries in src/elements/) and the deck format
 # (docs/deck-format.md) list the same cards: every registry card has a
 # `### NAME` section (a section may name several, "### FORCE, COUPLE"),
 # and every section names registry cards (INCLUDE, read by hn_deck_reader
@@ -11,10 +11,12 @@ HHNECK=${HHNECK:-none}
 . test/scripts/lib/checks.sh
 
 compare() {   # compare REGISTRY DOC: one line per card missing on either side, exit 1 on any
-    python3 - "$1" "$2" src/elements/hn_families.f90 <<'PY'
-import re, sys
+    python3 - "$1" "$2" src/elements <<'PY'
+import glob, os, re, sys
 reg = set(re.findall(r"card_info_t\('([A-Z0-9]+)'", open(sys.argv[1], encoding='utf-8').read()))
-families = set(re.findall(r"family_card_t\('([A-Z0-9]+)'", open(sys.argv[3], encoding='utf-8').read()))
+families = set()
+for path in sorted(glob.glob(os.path.join(sys.argv[3], '*.f90'))):
+    families |= set(re.findall(r"family_card_t\('([A-Z0-9]+)'", open(path, encoding='utf-8').read()))
 if not families:
     print('no family_card_t lines in ' + sys.argv[3]); sys.exit(1)
 reg |= families
@@ -35,7 +37,7 @@ sys.exit(1 if bad else 0)
 PY
 }
 
-if compare src/io/hn_cards.f90 docs/deck-format.md > "$tmp/report" 2>&1; then
+if compare src/deck/hn_cards.f90 docs/deck-format.md > "$tmp/report" 2>&1; then
     pass "every card of the registry has a section of docs/deck-format.md, and every section a card"
 else
     cat "$tmp/report"
@@ -44,7 +46,7 @@ fi
 
 # a format without the ROM section, with a section of a card the registry lacks
 sed -e 's/^### ROM —/#### ROM —/' -e 's/^### TITLE —/### TITLE, NOSUCH —/' docs/deck-format.md > "$tmp/format.md"
-if compare src/io/hn_cards.f90 "$tmp/format.md" > "$tmp/report2" 2>&1; then
+if compare src/deck/hn_cards.f90 "$tmp/format.md" > "$tmp/report2" 2>&1; then
     fail "the check accepts a format without ROM and with NOSUCH"
 elif grep -q 'card ROM of the registry' "$tmp/report2" && grep -q 'section ### NOSUCH' "$tmp/report2"; then
     pass "the check names a missing section (ROM) and a section of no card (NOSUCH)"

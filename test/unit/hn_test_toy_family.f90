@@ -9,8 +9,11 @@
 !! springs' stretch) to use it. Output per spring: its generalized force
 !! [N or N m].
 !!
-!! It reads its own deck card (`read_card`), which it names itself
-!! (`deck_cards`, as a family outside the registry does):
+!! Its registry line is `toy_registration()` (name CSPRINGS, its card, the
+!! family with no springs), the entry a registry family's module exports;
+!! a test brings it to a deck as read_case's `families`. It reads its own
+!! deck card (`read_card`), which it also names through `deck_cards` for a
+!! model built in code (model_add_family):
 !!
 !!   CSPRING   body      coord     k         c         x0        name      table
 !!
@@ -29,12 +32,14 @@ module hn_test_toy_family
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
+    use hn_family_registration, only: family_registration_t
+    use hn_element_family, only: family_slot_t
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, check_range
     implicit none
     private
 
-    public :: coord_spring_t, coord_spring_family_t
+    public :: coord_spring_t, coord_spring_family_t, toy_registration
 
     !> One spring-damper on one active coordinate.
     type :: coord_spring_t
@@ -223,12 +228,31 @@ contains
         this%items%k = factor*this%items%k
     end subroutine toy_stiffen
 
-    !> Its one card, CSPRING, with no continuation card, read in deck order,
-    !! one per body and coordinate (F1, F2).
+    !> The toy's registry line: name CSPRINGS; its one card, CSPRING, with no
+    !! continuation card, read in deck order, one per body and coordinate
+    !! (F1, F2); the family with no springs.
+    pure function toy_registration() result(r)
+        type(family_registration_t) :: r
+        r = family_registration_t('CSPRINGS', [family_card_t('CSPRING', 0, 0, unique=unique_coordinate, &
+                                                             coordinate=.true.)], toy_empty)
+    end function toy_registration
+
+    !> A toy family with no springs and no tables.
+    pure subroutine toy_empty(slot)
+        type(family_slot_t), intent(out) :: slot   !! the slot, holding the empty family
+        type(coord_spring_t), allocatable :: sp(:)
+        type(table_t), allocatable :: tb(:)
+        allocate (sp(0), tb(0))
+        allocate (slot%f, source=coord_spring_family_t(items=sp, tables=tb))
+    end subroutine toy_empty
+
+    !> The cards of its registry line (for a model built in code).
     pure function toy_deck_cards(this) result(c)
         class(coord_spring_family_t), intent(in) :: this   !! the family
         type(family_card_t), allocatable :: c(:)
-        c = [family_card_t('CSPRING', 0, 0, unique=unique_coordinate, coordinate=.true.)]
+        type(family_registration_t) :: r
+        r = toy_registration()
+        c = r%cards
     end function toy_deck_cards
 
     !> The damping tables: the run lands its steps on their corners.

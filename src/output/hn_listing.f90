@@ -217,7 +217,7 @@ contains
             call me%put('   ELEMENTS')
             ! the families side by side, a new line before one that would pass column 132
             line = '  '
-            do f = 1, nfamilies
+            do f = 1, nfamilies()
                 write (item, '(3x,a,1x,i3,1x,a)') trim(family_name(f)), family_count(md, f), &
                     merge('(ON) ', '(OFF)', md%family_on(f))
                 k = len_trim(item) + merge(1, 0, md%family_on(f))

@@ -8,7 +8,7 @@ module hn_deck_elements
     use hn_case, only: case_t
     use hn_deck_reader, only: deck_reader_t
     use hn_model, only: model_t, family_items, family_items_text, scale_family, max_family_items
-    use hn_families, only: family_name, family_index, family_cards, family_card_index
+    use hn_families, only: family_name, family_names, family_index, family_cards
     use hn_element_cards, only: card_context_t, family_card_t, card_first, card_in_order, card_last
     use hn_deck_state, only: deck_state_t, add_scene_note, family_ref, join
     implicit none
@@ -41,7 +41,7 @@ contains
         do pass = card_first, card_last
             do k = 1, size(st%cards)
                 i = st%cards(k)%first
-                call card_family(cs%model, st%cards(k)%key, f, order)
+                call card_family(cs%model, st, st%cards(k)%key, f, order)
                 if (f > 0 .and. order == pass) then
                     call cs%model%family(f)%f%read_card(rd, ctx, i, st%cards(k)%key)
                 else if (f == 0 .and. pass == card_in_order .and. st%cards(k)%key == 'FAMILY') then
@@ -68,21 +68,30 @@ contains
     end subroutine element_cards
 
     !> The family that reads card `key` and when (card_first, card_in_order,
-    !! card_last): the registry's, else a family of the model whose
-    !! deck_cards list it; f = 0 when no family reads it.
-    subroutine card_family(model, key, f, order)
+    !! card_last): the deck's family cards (`fcards`) when it has them, else
+    !! the registry's, else a family of the model whose deck_cards list it;
+    !! f = 0 when no family reads it.
+    subroutine card_family(model, st, key, f, order)
         type(model_t), intent(in) :: model
+        type(deck_state_t), intent(in) :: st
         character(len=*), intent(in) :: key
         integer, intent(out) :: f, order
         type(family_card_t), allocatable :: own(:)
         integer :: k
         order = 0
-        k = family_card_index(key)
-        if (k > 0) then
-            f = family_cards(k)%family
-            order = family_cards(k)%order
-            return
+        if (allocated(st%fcards)) then
+            own = st%fcards
+        else
+            own = family_cards()
         end if
+        do k = 1, size(own)
+            if (own(k)%key /= key) cycle
+            f = own(k)%family
+            order = own(k)%order
+            return
+        end do
+        f = 0
+        if (allocated(st%fcards)) return
         do f = 1, size(model%family)
             own = model%family(f)%f%deck_cards()
             do k = 1, size(own)
@@ -132,7 +141,7 @@ contains
         fam = family_index(s)
         if (fam == 0) then
             call rd%fail(rd%context(i, 1, 'element family')//': found "'// &
-                         trim(s)//'"; expected one of '//join(family_name))
+                         trim(s)//'"; expected one of '//join(family_names()))
             return
         end if
         call rd%name(i, 2, 'ON or OFF', s)

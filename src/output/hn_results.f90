@@ -17,7 +17,8 @@ module hn_results
     use hn_channels, only: channel_set_t
     use hn_dynamics, only: dyn_workspace_t
     use hn_tree, only: dof_label
-    use hn_h5, only: h5_file_t, h5_read_string_attr
+    use hn_h5, only: h5_file_t
+    use hn_h5_read, only: h5_read_string_attr
     use hn_dump, only: dump_open
     use hn_assessment, only: assessment_t
     use hn_injury, only: occupants
@@ -503,71 +504,72 @@ contains
                         'NIC is computed from, CFC 60, along the '// &
                         trim(merge('head''s x axis  ', 'inertial x axis', a%nic_frame == 'HEAD')))
         end associate
-    contains
-        subroutine scalar(h, path, v, units, description)
-            type(h5_file_t), intent(inout) :: h
-            character(len=*), intent(in) :: path, units, description
-            real(wp), intent(in) :: v(:)
-            if (size(v) == 1) then
-                call h%write_real(path, v, [integer ::])
-            else
-                call h%write_real(path, v, [size(v)])
-            end if
-            call h%attr_string(path, 'units', units)
-            call h%attr_string(path, 'description', description)
-        end subroutine scalar
-        subroutine label(h, name, source, applicability, ref, units)
-            type(h5_file_t), intent(inout) :: h
-            character(len=*), intent(in) :: name, source, applicability, units
-            real(wp), intent(in) :: ref(:)
-            call h%attr_string('/injury/'//name, 'source', source)
-            call h%attr_string('/injury/'//name, 'applicability', applicability)
-            call h%write_real('/injury/'//name//'/reference_value', ref, [integer ::])
-            call h%attr_string('/injury/'//name//'/reference_value', 'units', units)
-            call h%attr_string('/injury/'//name//'/reference_value', 'description', 'injury assessment '// &
-                               'reference value of the dummy in the standard, not a limit of this model')
-        end subroutine label
-        subroutine window(h, name, description, v, t1, t2)
-            type(h5_file_t), intent(inout) :: h
-            character(len=*), intent(in) :: name, description
-            real(wp), intent(in) :: v, t1, t2
-            call h%group('/injury/'//name)
-            call h%attr_string('/injury/'//name, 'description', description)
-            call scalar(h, '/injury/'//name//'/value', [v], '1', description)
-            call scalar(h, '/injury/'//name//'/t_start', [t1], 's', 'start of the window')
-            call scalar(h, '/injury/'//name//'/t_end', [t2], 's', 'end of the window')
-        end subroutine window
-        subroutine peak(h, name, description, v, t, units)
-            type(h5_file_t), intent(inout) :: h
-            character(len=*), intent(in) :: name, description, units
-            real(wp), intent(in) :: v, t
-            call h%group('/injury/'//name)
-            call h%attr_string('/injury/'//name, 'description', description)
-            call scalar(h, '/injury/'//name//'/value', [v], units, description)
-            call scalar(h, '/injury/'//name//'/time', [t], 's', 'time of the peak')
-        end subroutine peak
-        subroutine frame(h, name, axes, direction)
-            type(h5_file_t), intent(inout) :: h
-            character(len=*), intent(in) :: name, axes, direction
-            call h%attr_string('/injury/'//name, 'frame', axes)
-            call h%attr_string('/injury/'//name, 'direction', direction)
-        end subroutine frame
-        subroutine missing(h, name, source, note)
-            type(h5_file_t), intent(inout) :: h
-            character(len=*), intent(in) :: name, source, note
-            call h%group('/injury/'//name)
-            call h%attr_string('/injury/'//name, 'source', source)
-            call h%attr_string('/injury/'//name, 'note', note)
-        end subroutine missing
-        subroutine series(h, name, v, dims, units, description)
-            type(h5_file_t), intent(inout) :: h
-            character(len=*), intent(in) :: name, units, description
-            real(wp), intent(in) :: v(*)
-            integer, intent(in) :: dims(:)
-            call h%write_real('/injury/history/'//name, v, dims)
-            call h%attr_string('/injury/history/'//name, 'units', units)
-            call h%attr_string('/injury/history/'//name, 'description', description)
-        end subroutine series
     end subroutine results_criteria
+
+    ! the writers of /injury's groups (results_criteria)
+    subroutine scalar(h, path, v, units, description)
+        type(h5_file_t), intent(inout) :: h
+        character(len=*), intent(in) :: path, units, description
+        real(wp), intent(in) :: v(:)
+        if (size(v) == 1) then
+            call h%write_real(path, v, [integer ::])
+        else
+            call h%write_real(path, v, [size(v)])
+        end if
+        call h%attr_string(path, 'units', units)
+        call h%attr_string(path, 'description', description)
+    end subroutine scalar
+    subroutine label(h, name, source, applicability, ref, units)
+        type(h5_file_t), intent(inout) :: h
+        character(len=*), intent(in) :: name, source, applicability, units
+        real(wp), intent(in) :: ref(:)
+        call h%attr_string('/injury/'//name, 'source', source)
+        call h%attr_string('/injury/'//name, 'applicability', applicability)
+        call h%write_real('/injury/'//name//'/reference_value', ref, [integer ::])
+        call h%attr_string('/injury/'//name//'/reference_value', 'units', units)
+        call h%attr_string('/injury/'//name//'/reference_value', 'description', 'injury assessment '// &
+                           'reference value of the dummy in the standard, not a limit of this model')
+    end subroutine label
+    subroutine window(h, name, description, v, t1, t2)
+        type(h5_file_t), intent(inout) :: h
+        character(len=*), intent(in) :: name, description
+        real(wp), intent(in) :: v, t1, t2
+        call h%group('/injury/'//name)
+        call h%attr_string('/injury/'//name, 'description', description)
+        call scalar(h, '/injury/'//name//'/value', [v], '1', description)
+        call scalar(h, '/injury/'//name//'/t_start', [t1], 's', 'start of the window')
+        call scalar(h, '/injury/'//name//'/t_end', [t2], 's', 'end of the window')
+    end subroutine window
+    subroutine peak(h, name, description, v, t, units)
+        type(h5_file_t), intent(inout) :: h
+        character(len=*), intent(in) :: name, description, units
+        real(wp), intent(in) :: v, t
+        call h%group('/injury/'//name)
+        call h%attr_string('/injury/'//name, 'description', description)
+        call scalar(h, '/injury/'//name//'/value', [v], units, description)
+        call scalar(h, '/injury/'//name//'/time', [t], 's', 'time of the peak')
+    end subroutine peak
+    subroutine frame(h, name, axes, direction)
+        type(h5_file_t), intent(inout) :: h
+        character(len=*), intent(in) :: name, axes, direction
+        call h%attr_string('/injury/'//name, 'frame', axes)
+        call h%attr_string('/injury/'//name, 'direction', direction)
+    end subroutine frame
+    subroutine missing(h, name, source, note)
+        type(h5_file_t), intent(inout) :: h
+        character(len=*), intent(in) :: name, source, note
+        call h%group('/injury/'//name)
+        call h%attr_string('/injury/'//name, 'source', source)
+        call h%attr_string('/injury/'//name, 'note', note)
+    end subroutine missing
+    subroutine series(h, name, v, dims, units, description)
+        type(h5_file_t), intent(inout) :: h
+        character(len=*), intent(in) :: name, units, description
+        real(wp), intent(in) :: v(*)
+        integer, intent(in) :: dims(:)
+        call h%write_real('/injury/history/'//name, v, dims)
+        call h%attr_string('/injury/history/'//name, 'units', units)
+        call h%attr_string('/injury/history/'//name, 'description', description)
+    end subroutine series
 
 end module hn_results

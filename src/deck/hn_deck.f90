@@ -16,7 +16,7 @@ module hn_deck
     use hn_model, only: model_set_neutral, model_add_family
     use hn_element_family, only: family_slot_t
     use hn_element_cards, only: family_card_t, unique_element, unique_name, unique_coordinate
-    use hn_families, only: cards_with
+    use hn_families, only: cards_with, family_registration_t
     use hn_integrators, only: integrator_names
     use hn_plausibility, only: plausibility_warnings
     use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
@@ -41,9 +41,9 @@ contains
     !! the including file, in the working directory, then in `include_path`.
     !! `change_cards` (the command line's --change options) are CHANGE card
     !! images put after the deck's own cards, located as "--change N".
-    !! `families` are element families the registry does not list, put into
-    !! the model after the registry's (model_add_family), which read their
-    !! own cards (`deck_cards`) in the deck like the registry's families.
+    !! `families` are the entries of element families the registry does not
+    !! list (a registry line each), put into the model after the registry's
+    !! (model_add_family), whose cards the deck reads like the registry's.
     subroutine read_case(path, source, cs, stat, errmsg, include_path, change_cards, families)
         character(len=*), intent(in) :: path                       !! file to read
         character(len=*), intent(in) :: source                     !! its name in messages
@@ -52,7 +52,7 @@ contains
         character(len=msglen), intent(out) :: errmsg               !! the first error, located in the deck
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE files
         character(len=*), intent(in), optional :: change_cards(:)  !! CHANGE card images added after the deck's cards
-        type(family_slot_t), intent(in), optional :: families(:)   !! families outside the registry, each empty
+        type(family_registration_t), intent(in), optional :: families(:)   !! entries of families outside the registry
         type(deck_reader_t) :: rd
         rd%top = source
         if (present(include_path)) rd%search = include_path
@@ -63,7 +63,7 @@ contains
         if (present(families)) then
             call interpret(rd, cs, families)
         else
-            call interpret(rd, cs, [family_slot_t ::])
+            call interpret(rd, cs, [family_registration_t ::])
         end if
         stat = rd%stat
         errmsg = rd%errmsg
@@ -131,7 +131,7 @@ contains
         rd%lines = lines
         rd%nlines = size(lines)
         if (rd%nlines == 0) call rd%fail(source//': the deck is empty (no cards); expected a TITLE card first')
-        call interpret(rd, cs, [family_slot_t ::])
+        call interpret(rd, cs, [family_registration_t ::])
         stat = rd%stat
         errmsg = rd%errmsg
     end subroutine read_case_lines
@@ -142,14 +142,16 @@ contains
     subroutine interpret(rd, cs, families)
         type(deck_reader_t), intent(inout) :: rd
         type(case_t), intent(out) :: cs
-        type(family_slot_t), intent(in) :: families(:)
+        type(family_registration_t), intent(in) :: families(:)
         type(deck_state_t) :: st
+        type(family_slot_t) :: slot
         type(change_t), allocatable :: changes(:)
         type(family_card_t), allocatable :: fc(:)
         logical, allocatable :: coordinate(:)
         integer, allocatable :: first(:)
         integer :: k, p, f
         fc = cards_with(families)
+        st%fcards = fc
         coordinate = fc%coordinate   ! the family cards whose F1, F2 name a body and coordinate
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
@@ -178,7 +180,8 @@ contains
                 call body_cards(rd, st%cards, cs, st%bnames, st%bmap)
                 if (rd%failed()) exit
                 do k = 1, size(families)
-                    call model_add_family(cs%model, families(k)%f, f)
+                    call families(k)%empty(slot)
+                    call model_add_family(cs%model, slot%f, f)
                 end do
             case ('control_cards'); call control_cards(rd, st%cards, cs)
             case ('table_cards'); call table_cards(rd, st%cards, st%tabs, cs)

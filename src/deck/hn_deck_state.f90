@@ -12,7 +12,7 @@ module hn_deck_state
     use hn_case, only: case_t
     use hn_deck_reader, only: deck_reader_t, int_str, upper
     use hn_cards, only: card_known, card_ncont, card_repeats
-    use hn_families, only: family_name, family_index
+    use hn_families, only: family_names, family_index
     use hn_element_cards, only: deck_state_t, card_t, body_map_t, named_table_t, family_card_t, coord_names, big_length, &
                                 big_modulus, body_ref, coord_ref, table_ref, active_coordinate, locked_error, unit_of, &
                                 unit_factor, unit_limit
@@ -160,7 +160,7 @@ contains
         if (rd%failed()) return
         fam = family_index(s)
         if (fam == 0) call rd%fail(rd%context(i, 2, 'element family')//': found "'//trim(s)//'"; expected one of '// &
-                                   join(family_name))
+                                   join(family_names()))
     end function family_ref
 
     pure function join(list) result(s)
