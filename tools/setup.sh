@@ -127,6 +127,21 @@ ford_version=7.0.13
     "$py" -m pip install -q "ford==$ford_version" >&2
 }
 
+# a build made before a source file moved to another folder keeps the old
+# file's object, and fpm can link a program from stale objects: when
+# build/ holds an object of a source that no longer exists, build afresh
+if [ -d build ]; then
+    expected=$(for f in src/*/*.f90; do echo "src_$(echo "${f#src/}" | tr / _).o"; done)
+    for o in build/gfortran_*/hhneck/src_*.f90.o; do
+        [ -e "$o" ] || continue
+        if ! echo "$expected" | grep -qx "$(basename "$o")"; then
+            echo "setup: build/ holds objects of sources that moved ($(basename "$o")); building afresh" >&2
+            rm -rf build
+            break
+        fi
+    done
+fi
+
 # fpm's progress to stderr as it comes, but for its line when nothing was
 # to build (a second run says nothing)
 status=$( { { fpm build --profile release 2>&1 && echo 0 >&3 || echo $? >&3; } |

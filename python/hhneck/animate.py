@@ -427,11 +427,11 @@ class Scene:
         a["bodies"] = collection(colors="k", linewidths=1.0, zorder=4)
         a["cm"] = line(marker="o", ms=2.5, color="k", ls="none", zorder=5)
         self.index = {}
-        for fam_name, fam in self.res.families.items():
-            lw = {"muscles": 1.8, "ligaments": 0.9}.get(fam_name, 1.2)
-            ls = "--" if fam_name == "springs" else "-"
-            a["lines"][fam_name] = collection(linewidths=lw, linestyles=ls, colors=SLACK_COLOUR)
-            self.index.update((n, (fam_name, k)) for k, n in enumerate(fam.name))
+        for family_name, fam in self.res.families.items():
+            lw = {"muscles": 1.8, "ligaments": 0.9}.get(family_name, 1.2)
+            ls = "--" if family_name == "springs" else "-"
+            a["lines"][family_name] = collection(linewidths=lw, linestyles=ls, colors=SLACK_COLOUR)
+            self.index.update((n, (family_name, k)) for k, n in enumerate(fam.name))
         a["discs"] = None
         if self.res.discs is not None:
             a["discs"] = collection(linewidths=3.5, colors="0.5", capstyle="butt", zorder=3)

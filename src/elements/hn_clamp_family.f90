@@ -28,7 +28,7 @@ module hn_clamp_family
     use hn_motion, only: motion_t, motion_rate_table, motion_constant, motion_eval
     use hn_rotation, only: cross, rotation_vector, axis_angle_matrix, unit_matrix
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
-                                 max_family_items, item_len, warning_len, check_point, add_line_tangent, path_columns
+                                 max_family_items, item_len, warning_len, check_point, add_line_tangent, spatial_row
     implicit none
     private
 
@@ -229,18 +229,11 @@ contains
         integer, intent(out) :: cols(:)              !! scratch
         integer, intent(out) :: sgn(:)               !! scratch
         real(wp), intent(out) :: b(:)                !! (n) the row
-        real(wp) :: phi(6)
-        integer :: i, ncol
-        b = zero
         if (rotational) then
-            phi = [u, zero, zero, zero]
+            call spatial_row(tree, kin, ka, kb, [u, zero, zero, zero], cols, sgn, b)
         else
-            phi = [cross(p - kin%origin, u), u]
+            call spatial_row(tree, kin, ka, kb, [cross(p - kin%origin, u), u], cols, sgn, b)
         end if
-        call path_columns(tree, ka, kb, cols, sgn, ncol)
-        do i = 1, ncol
-            b(cols(i)) = sgn(i)*dot_product(kin%sj(:, cols(i)), phi)
-        end do
     end subroutine clamp_row
 
     !> K += kt b b^T, C += ct b b^T along R's three axes for the point's

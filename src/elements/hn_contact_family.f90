@@ -19,7 +19,7 @@ module hn_contact_family
     use hn_contact_geometry, only: contact_t, contact_state_t, contact_geometry, normal_force, friction_force, &
                                    table_integral
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
-                                 max_family_items, item_len, warning_len, check_point, add_line_tangent, path_columns, &
+                                 max_family_items, item_len, warning_len, check_point, add_line_tangent, spatial_row, &
                                  fd_rel, fd_abs_length
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
@@ -126,14 +126,7 @@ contains
         integer, intent(out) :: cols(:)              !! scratch
         integer, intent(out) :: sgn(:)               !! scratch
         real(wp), intent(out) :: b(:)                !! (n) the row
-        real(wp) :: phi(6)
-        integer :: i, ncol
-        b = zero
-        phi = [cross(p - kin%origin, u), u]
-        call path_columns(tree, ka, kb, cols, sgn, ncol)
-        do i = 1, ncol
-            b(cols(i)) = sgn(i)*dot_product(kin%sj(:, cols(i)), phi)
-        end do
+        call spatial_row(tree, kin, ka, kb, [cross(p - kin%origin, u), u], cols, sgn, b)
     end subroutine contact_row
 
     !> K += (dN/dd) b b^T and C += (dN/dd') b b^T with b = dd'/dxdot (the

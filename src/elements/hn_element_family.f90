@@ -51,7 +51,7 @@ module hn_element_family
     private
 
     public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
-    public :: path_columns, add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
+    public :: path_columns, spatial_row, add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
 
     integer, parameter, public :: max_family_items = 10  !! most properties a family has to scale
     integer, parameter, public :: item_len = 10           !! length of a property name
@@ -569,5 +569,26 @@ contains
             end if
         end do
     end subroutine path_columns
+
+    !> The row b_j = d(phi . v_rel)/dxdot_j of body kb's motion relative to
+    !! body ka's (0 = R) against a spatial force phi = (moment about the
+    !! kinematics' origin; force): b_j = +-sj_j . phi, + on kb's chain, - on
+    !! ka's (a contact's or a clamp's rate along a direction).
+    pure subroutine spatial_row(tree, kin, ka, kb, phi, cols, sgn, b)
+        type(body_tree_t), intent(in) :: tree        !! the body tree
+        type(kinematics_t), intent(in) :: kin        !! kinematics: joint columns filled
+        integer, intent(in) :: ka                    !! the first body (0 = R)
+        integer, intent(in) :: kb                    !! the second body
+        real(wp), intent(in) :: phi(6)               !! the spatial force [m, -]
+        integer, intent(out) :: cols(:)              !! scratch
+        integer, intent(out) :: sgn(:)               !! scratch
+        real(wp), intent(out) :: b(:)                !! (n) the row
+        integer :: i, ncol
+        b = zero
+        call path_columns(tree, ka, kb, cols, sgn, ncol)
+        do i = 1, ncol
+            b(cols(i)) = sgn(i)*dot_product(kin%sj(:, cols(i)), phi)
+        end do
+    end subroutine spatial_row
 
 end module hn_element_family
