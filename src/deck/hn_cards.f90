@@ -111,34 +111,44 @@ contains
     !> Whether `key` names a card (of this table or of an element family).
     pure logical function card_known(key) result(yes)
         character(len=*), intent(in) :: key     !! card name (upper case)
-        yes = card_index(key) > 0 .or. card_continuations(key) >= 0
+        yes = card_index(key) > 0
+        if (.not. yes) yes = card_continuations(key) >= 0
     end function card_known
 
     !> Continuation cards card `key` takes (ncont_computed: TABLE; 0 when it is no card).
     pure integer function card_ncont(key) result(n)
         character(len=*), intent(in) :: key     !! card name (upper case)
         integer :: k
-        n = max(0, card_continuations(key))
         k = card_index(key)
-        if (k > 0) n = cards(k)%ncont
+        if (k > 0) then
+            n = cards(k)%ncont
+        else
+            n = max(0, card_continuations(key))
+        end if
     end function card_ncont
 
     !> Group of card `key` (grp_control ... grp_changes; 0 when it is no card).
     pure integer function card_group(key) result(g)
         character(len=*), intent(in) :: key     !! card name (upper case)
         integer :: k
-        g = merge(grp_elements, 0, card_continuations(key) >= 0)
         k = card_index(key)
-        if (k > 0) g = cards(k)%group
+        if (k > 0) then
+            g = cards(k)%group
+        else
+            g = merge(grp_elements, 0, card_continuations(key) >= 0)
+        end if
     end function card_group
 
     !> Whether a deck may hold more than one card `key`.
     pure logical function card_repeats(key) result(yes)
         character(len=*), intent(in) :: key     !! card name (upper case)
         integer :: k
-        yes = card_continuations(key) >= 0
         k = card_index(key)
-        if (k > 0) yes = cards(k)%repeats
+        if (k > 0) then
+            yes = cards(k)%repeats
+        else
+            yes = card_continuations(key) >= 0
+        end if
     end function card_repeats
 
 end module hn_cards

@@ -35,7 +35,7 @@ module hn_clamp_family
     public :: clamp_family_t, clamp_t, clamp_load
     public :: clamp_registration
 
-    integer, parameter :: ncomp_clamp = 9   !! outputs: force (3), moment (3), deflection, rotation, rig angle
+    integer, parameter :: ncomp_clamp = 9   !! output rows: force (3), moment (3), deflection, rotation, rig angle
 
     !> One clamp: the body held, the rig, the joint's stiffness and damping,
     !! the clamp's point and the references of the neutral configuration.
@@ -369,7 +369,7 @@ contains
         character(len=10) :: nm
         real(wp) :: rig_point(3)
         integer :: f, it, stat
-        if (this%nread == 0 .and. size(this%items) < ctx%ncards(key)) then
+        if (ctx%needs_room(key, this%nread, size(this%items))) then
             deallocate (this%items)
             allocate (this%items(ctx%ncards(key)))
         end if

@@ -306,7 +306,7 @@ contains
         character(len=10) :: nm, opt
         real(wp) :: depth
         integer :: f, tl, tu
-        if (this%nread == 0 .and. size(this%items) < ctx%ncards(key)) then
+        if (ctx%needs_room(key, this%nread, size(this%items))) then
             deallocate (this%items)
             allocate (this%items(ctx%ncards(key)))
         end if

@@ -313,7 +313,7 @@ contains
         type(disc_t) :: d
         logical :: keep
         ! room for every DISC card, trimmed by end_cards (appending one by one is quadratic)
-        if (this%nread == 0 .and. size(this%items) < ctx%ncards(key)) then
+        if (ctx%needs_room(key, this%nread, size(this%items))) then
             deallocate (this%items)
             allocate (this%items(ctx%ncards(key)))
         end if

@@ -114,6 +114,7 @@ module hn_element_cards
         character(len=100), allocatable :: notes(:)   !! notes for the listing's scene section
     contains
         procedure :: ncards => context_ncards
+        procedure :: needs_room => context_needs_room
         procedure :: add_note => context_add_note
         procedure :: pulse_onset => context_pulse_onset
     end type card_context_t
@@ -128,6 +129,19 @@ contains
         n = 0
         if (allocated(ctx%cards)) n = count(ctx%cards%key == key)
     end function context_ncards
+
+    !> Whether a family about to read its first card `key` (none read yet)
+    !! has less room than the deck's cards `key` need: the room is made once,
+    !! and the deck's cards are counted only then (counting at every card
+    !! makes reading a deck quadratic in its cards).
+    pure logical function context_needs_room(ctx, key, nread, nitems) result(yes)
+        class(card_context_t), intent(in) :: ctx   !! the context (its cards)
+        character(len=*), intent(in) :: key        !! card name
+        integer, intent(in) :: nread               !! the family's cards read so far
+        integer, intent(in) :: nitems              !! the room it has
+        yes = .false.
+        if (nread == 0) yes = nitems < ctx%ncards(key)
+    end function context_needs_room
 
     !> Append a line to the notes for the listing's scene section.
     pure subroutine context_add_note(ctx, text)

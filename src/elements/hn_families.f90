@@ -124,12 +124,17 @@ contains
     !> Continuation cards of an element card (-1: not a family's card).
     pure integer function card_continuations(key) result(n)
         character(len=*), intent(in) :: key     !! card name
-        type(family_card_t), allocatable :: c(:)
-        integer :: k
+        type(family_registration_t), allocatable :: r(:)
+        integer :: f, k
         n = -1
-        c = family_cards()
-        k = family_card_index(key)
-        if (k > 0) n = c(k)%ncont
+        r = registered_families()
+        do f = 1, size(r)
+            do k = 1, size(r(f)%cards)
+                if (r(f)%cards(k)%key /= key) cycle
+                n = r(f)%cards(k)%ncont
+                return
+            end do
+        end do
     end function card_continuations
 
     !> The cards of every family of a deck, each with its family's number:

@@ -74,7 +74,8 @@ contains
     end function case_breakpoints
 
     !> The corners of a piecewise-linear table y(t) held constant outside
-    !! its times (slope zero before the first and after the last knot).
+    !! its times (slope zero before the first and after the last knot); a
+    !! step (two knots at one time) is a corner.
     pure function table_corners(t, y) result(tc)
         real(wp), intent(in) :: t(:)   !! knot times, increasing [s]
         real(wp), intent(in) :: y(:)   !! values at the knots
@@ -88,6 +89,9 @@ contains
         if (n > 0) range = maxval(y) - minval(y)
         if (n > 1 .and. range > zero) then
             do i = 1, n
+                if (i > 1) corner(i) = t(i) <= t(i - 1)
+                if (i < n) corner(i) = corner(i) .or. t(i + 1) <= t(i)
+                if (corner(i)) cycle      ! a step
                 sl = zero; sr = zero; tau = huge(1.0_wp)
                 if (i > 1) then
                     sl = (y(i) - y(i - 1))/(t(i) - t(i - 1))

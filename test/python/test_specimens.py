@@ -13,7 +13,7 @@ import pytest
 
 from conftest import hhneck_executable
 from hhneck import segments, specimen_data, specimens
-from hhneck.compare_nbdl import cfc
+from hhneck.nbdl import cfc
 
 
 @pytest.fixture(scope="module")

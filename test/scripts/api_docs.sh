@@ -55,8 +55,8 @@ doc_page() {
     fi
 }
 doc_page cfc_filter src/analysis/hn_filters.f90 "Zero-phase CFC filtering of x sampled at dt into y"
-doc_page runlimit_card src/io/hn_deck_control.f90 "the deck: card images, located field access"
-doc_page read_case src/io/hn_deck.f90 "Read the deck in file"
+doc_page runlimit_card src/deck/hn_deck_control.f90 "the deck: card images, located field access"
+doc_page read_case src/deck/hn_deck.f90 "Read the deck in file"
 doc_page body_kinematics src/core/hn_kinematics.f90 "Body-level kinematics of the whole tree, parents first"
 doc_page body_kinematics src/core/hn_kinematics.f90 "active coordinates [m, rad]"
 check "the private h5file_card (hn_deck_control) has no page (the public ones have)" \

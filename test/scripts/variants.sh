@@ -73,7 +73,7 @@ check "both --change cards are noted, in their order" \
 rc=$?
 check "an ambiguous --change card is a deck error (exit 2, got $rc)" [ "$rc" -eq 2 ]
 check "located at --change 2, with the candidates and what tells them apart" \
-    grep -q '^hhneck: deck error: --change 2 (CHANGE C7LIM): found 3 LIMIT cards named C7 (.*line 290 .* RX, line 291 RY, line 292 RZ); expected the coordinate too, in F7' \
+    grep -q '^hhneck: deck error: --change 2 (CHANGE C7LIM): found 3 LIMIT cards named C7 (.*line 306 .* RX, line 307 RY, line 308 RZ); expected the coordinate too, in F7' \
     "$tmp/bad.err"
 "$HHNECK" --sweep --change "$tend" input/sweep_nbdl_oat.inp > /dev/null 2> "$tmp/sweep.err"
 rc=$?
