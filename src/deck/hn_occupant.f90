@@ -15,7 +15,7 @@
 !!
 !!   OCCUPANT  F1 size   H05F, H50M, H95M or SCALED
 !!             F2 lambda_L, F3 lambda_m, F4 lambda_E (blank: the size's;
-!!             SCALED needs F2 and F3, F4 blank: 1)
+!!             SCALED needs F2, F3 blank: lambda_L^3, F4 blank: 1)
 !!
 !! The size's Nij intercepts become the criteria's occupant where
 !! hn_injury has a sourced set for it (a CRITERIA card still chooses).
@@ -183,7 +183,8 @@ contains
             call rd%real(line, 4, 'modulus factor lambda_E', '-', le, 0.1_wp, 10.0_wp, default=sizes(k)%lambda_e)
         else
             call rd%real(line, 2, 'length factor lambda_L', '-', ll, 0.3_wp, 3.0_wp)
-            call rd%real(line, 3, 'mass factor lambda_m', '-', lm, 0.03_wp, 30.0_wp)
+            if (rd%failed()) return
+            call rd%real(line, 3, 'mass factor lambda_m', '-', lm, 0.03_wp, 30.0_wp, default=ll**3)
             call rd%real(line, 4, 'modulus factor lambda_E', '-', le, 0.1_wp, 10.0_wp, default=one)
         end if
         if (rd%failed()) return

@@ -133,7 +133,7 @@ $2" "$tmp/nbdl.inp" > "$tmp/bad.inp"
         "$tmp/bad.err" "$tmp/bad.lis"
 }
 bad 'an unknown size' 'OCCUPANT  H10F' 'line 15, columns 11-20 (OCCUPANT card.*H10F.*H50M, H05F, H95M or SCALED'
-bad 'SCALED without lambda_m' 'OCCUPANT  SCALED    0.9' 'line 15, columns 31-40 (OCCUPANT card.*mass factor lambda_m.*blank'
+bad 'SCALED without lambda_L' 'OCCUPANT  SCALED' 'line 15, columns 21-30 (OCCUPANT card.*length factor lambda_L.*blank'
 bad 'a length factor out of range' 'OCCUPANT  H05F      5.0' 'line 15, columns 21-30 (OCCUPANT card.*length factor lambda_L.*5.0'
 
 echo "$npass passed, $nfail failed"
