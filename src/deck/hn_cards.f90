@@ -57,6 +57,7 @@ module hn_cards
         card_info_t('BODY', 0, grp_bodies, .true.), &
         card_info_t('BODYPI', 0, grp_bodies, .true.), &
         card_info_t('JOINT', 0, grp_bodies, .true.), &
+        card_info_t('OCCUPANT', 0, grp_bodies, .false.), &
         card_info_t('SCENE', 0, grp_scene, .false.), &
         card_info_t('MERGE', 0, grp_scene, .true.), &
         card_info_t('LOCK', 0, grp_coordinates, .true.), &

@@ -22,6 +22,7 @@ module hn_deck
     use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
     use hn_sorting, only: sort_index_text
     use hn_cards, only: deck_passes
+    use hn_occupant, only: occupant_bodies, occupant_elements
     use hn_deck_state, only: card_t, deck_state_t, group_cards
     use hn_deck_control, only: runlimit_card, control_cards, report_cards
     use hn_deck_coordinates, only: coordinate_cards
@@ -178,6 +179,7 @@ contains
             select case (deck_passes(p)%handler)
             case ('body_cards')
                 call body_cards(rd, st%cards, cs, st%bnames, st%bmap)
+                if (.not. rd%failed()) call occupant_bodies(rd, st%cards, cs, st%bmap)
                 if (rd%failed()) exit
                 do k = 1, size(families)
                     call families(k)%empty(slot)
@@ -190,7 +192,9 @@ contains
             case ('load_cards'); call load_cards(rd, st, cs)
             case ('report_cards'); call report_cards(rd, st%cards, cs, st%bnames, st%bmap)
             case ('stiffen_cards'); call stiffen_cards(rd, st%cards, cs)
-            case ('model_changes'); call apply_model_changes(rd, changes, cs%model, cs%changes)
+            case ('model_changes')
+                call occupant_elements(rd, st%cards, cs)
+                if (.not. rd%failed()) call apply_model_changes(rd, changes, cs%model, cs%changes)
             case ('runlimit_card'); call runlimit_card(rd, st%cards, cs)
             case default
                 call rd%fail(rd%top//': the deck reader has no handler "'//trim(deck_passes(p)%handler)// &

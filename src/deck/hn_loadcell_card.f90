@@ -68,7 +68,7 @@ contains
                     call rd%real(i, f, 'point '//achar(iachar('x') + f - 3), 'm', sec%point(f - 2), -point_max, point_max)
                 end do
                 if (rd%failed()) return
-                sec%point = sec%point + bmap%shift(:, kb)   ! the frame body's deck frame -> its tree frame
+                sec%point = bmap%length*(sec%point + bmap%shift(:, kb))   ! deck frame -> tree frame (MERGE, OCCUPANT)
             end if
             cs%loadcells = [cs%loadcells, sec]
             lines = [lines, i]

@@ -254,7 +254,7 @@ contains
         class(disc_family_t), intent(in) :: this      !! the family
         character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
         items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION', 'BEND', 'BENDX', 'BENDY', &
-                                             'TORSION']
+                                             'TORSION', 'LENGTH']
     end subroutine disc_items
 
     !> Scale one property of every disc (d2b not given becomes d2 from here on).
@@ -278,6 +278,12 @@ contains
         case ('BENDX'); this%items%ix = factor*this%items%ix      ! lateral bending (about plate x) alone
         case ('BENDY'); this%items%iy = factor*this%items%iy      ! flexion-extension (about plate y) alone
         case ('TORSION'); this%items%j = factor*this%items%j       ! torsion stiffness (and its damping)
+        case ('LENGTH')      ! the geometry: A x factor^2, h x factor, Ix, Iy, J x factor^4
+            this%items%area = factor**2*this%items%area
+            this%items%h = factor*this%items%h
+            this%items%ix = factor**4*this%items%ix
+            this%items%iy = factor**4*this%items%iy
+            this%items%j = factor**4*this%items%j
         end select
     end subroutine disc_scale
 

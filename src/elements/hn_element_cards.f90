@@ -71,12 +71,14 @@ module hn_element_cards
 
     !> Where each body named in the deck went: its number in the reduced
     !! tree and the shift of points given in its frame (MERGE); the card line
-    !! of the MERGE that absorbed it (0: not absorbed).
+    !! of the MERGE that absorbed it (0: not absorbed); the factor on
+    !! lengths of an OCCUPANT card (points on bodies, free lengths).
     type :: body_map_t
         integer, allocatable :: new(:)
         real(wp), allocatable :: shift(:, :)
         integer, allocatable :: merged_by(:)
         integer, allocatable :: locked_by(:, :)   !! (coordinate, deck body): the LOCK or SCENE card line that locked it (0: none)
+        real(wp) :: length = one                  !! OCCUPANT: factor on points on bodies and free lengths
     end type body_map_t
 
     !> A named table of the deck.
@@ -337,11 +339,11 @@ contains
         real(wp), intent(inout) :: pb(3)  !! point b in its body's frame, moved onto the merged body [m]
         integer, intent(inout) :: ninternal  !! elements so far with both ends on one merged body
         if (ka > 0) then
-            pa = pa + bmap%shift(:, ka)
+            pa = bmap%length*(pa + bmap%shift(:, ka))
             ka = bmap%new(ka)
         end if
         if (kb > 0) then
-            pb = pb + bmap%shift(:, kb)
+            pb = bmap%length*(pb + bmap%shift(:, kb))
             kb = bmap%new(kb)
         end if
         if (ka == kb) ninternal = ninternal + 1
@@ -390,6 +392,7 @@ contains
             call rd%real(ll, lf, 'free length', 'm', at%length0, zero, big_length, default=-one)
         end select
         if (rd%failed()) return
+        if (at%length0 > zero) at%length0 = ctx%bmap%length*at%length0
         call map_ends(ctx%bmap, at%body_a, at%point_a, at%body_b, at%point_b, ctx%ninternal)
         keep = at%body_a /= at%body_b
     end subroutine line_card

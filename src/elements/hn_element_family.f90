@@ -53,7 +53,7 @@ module hn_element_family
     public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
     public :: path_columns, spatial_row, add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
 
-    integer, parameter, public :: max_family_items = 10  !! most properties a family has to scale
+    integer, parameter, public :: max_family_items = 11  !! most properties a family has to scale
     integer, parameter, public :: item_len = 10           !! length of a property name
     integer, parameter, public :: warning_len = 160       !! length of a plausibility warning
 

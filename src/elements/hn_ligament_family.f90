@@ -185,22 +185,25 @@ contains
         end do
     end subroutine ligament_plausibility
 
-    !> L1, L2.
+    !> L1, L2, LENGTH (the law's stretch axis: F(x) becomes F(x/factor)).
     pure subroutine ligament_items(this, items)
         class(ligament_family_t), intent(in) :: this  !! the family
         character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
         items = ''
-        items(1:2) = [character(len=item_len) :: 'L1', 'L2']
+        items(1:3) = [character(len=item_len) :: 'L1', 'L2', 'LENGTH']
     end subroutine ligament_items
 
     !> Scale l1 or l2 of every ligament.
     pure subroutine ligament_scale(this, item, factor)
         class(ligament_family_t), intent(inout) :: this   !! the family
-        character(len=*), intent(in) :: item              !! L1 or L2
+        character(len=*), intent(in) :: item              !! L1, L2 or LENGTH
         real(wp), intent(in) :: factor                    !! the factor
         select case (item)
         case ('L1'); this%items%l1 = factor*this%items%l1
         case ('L2'); this%items%l2 = factor*this%items%l2
+        case ('LENGTH')      ! F = l1 x + l2 x^n at x/factor: l1/factor, l2/factor^n
+            this%items%l1 = this%items%l1/factor
+            this%items%l2 = this%items%l2/factor**this%items%n
         end select
     end subroutine ligament_scale
 

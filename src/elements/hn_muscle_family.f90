@@ -290,18 +290,18 @@ contains
         end do
     end subroutine muscle_plausibility
 
-    !> M1, M2, F0.
+    !> M1, M2, F0, LENGTH (the Hill muscles' optimal fibre length).
     pure subroutine muscle_items(this, items)
         class(muscle_family_t), intent(in) :: this    !! the family
         character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
         items = ''
-        items(1:3) = [character(len=item_len) :: 'M1', 'M2', 'F0']
+        items(1:4) = [character(len=item_len) :: 'M1', 'M2', 'F0', 'LENGTH']
     end subroutine muscle_items
 
     !> Scale m1, the damping (M2: m2 and the Hill damping) or F0 (with the Hill damping) of every muscle.
     pure subroutine muscle_scale(this, item, factor)
         class(muscle_family_t), intent(inout) :: this   !! the family
-        character(len=*), intent(in) :: item            !! M1, M2 or F0
+        character(len=*), intent(in) :: item            !! M1, M2, F0 or LENGTH
         real(wp), intent(in) :: factor                  !! the factor
         select case (item)
         case ('M1'); this%items%m1 = factor*this%items%m1
@@ -311,6 +311,7 @@ contains
         case ('F0')      ! Hill-type muscles: F0 and the damping that is proportional to it
             this%items%hill%f0 = factor*this%items%hill%f0
             this%items%hill%damping = factor*this%items%hill%damping
+        case ('LENGTH'); this%items%hill%lopt = factor*this%items%hill%lopt
         end select
     end subroutine muscle_scale
 
@@ -763,7 +764,7 @@ contains
                 return
             end if
             if (kb > 0) then
-                p = p + bmap%shift(:, kb)
+                p = bmap%length*(p + bmap%shift(:, kb))
                 kb = bmap%new(kb)
             end if
             m%nvia = m%nvia + 1
