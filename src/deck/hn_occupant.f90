@@ -170,7 +170,9 @@ contains
         integer :: k
         character(len=6), allocatable :: codes(:)
         line = 0
-        k = findloc(cards%key, 'OCCUPANT', dim=1)
+        do k = size(cards), 1, -1       ! (a loop: no temporary of the key component)
+            if (cards(k)%key == 'OCCUPANT') exit
+        end do
         if (k == 0) return
         line = cards(k)%first
         codes = [character(len=6) :: sizes%code, 'SCALED']

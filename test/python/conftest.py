@@ -43,10 +43,11 @@ def package_env():
     return env
 
 
-def hhneck_module(name, *args, cwd=ROOT):
-    """Run `python3 -m hhneck.NAME ARGS` (this project's package) in cwd; the CompletedProcess."""
+def hhneck_module(name, *args, cwd=ROOT, env=None):
+    """Run `python3 -m hhneck.NAME ARGS` (this project's package) in cwd, with the variables of `env`
+    added to the package's environment; the CompletedProcess."""
     return subprocess.run([sys.executable, "-m", "hhneck." + name] + [str(a) for a in args], cwd=cwd,
-                          capture_output=True, text=True, env=package_env())
+                          capture_output=True, text=True, env=dict(package_env(), **(env or {})))
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 SHORT_END = 0.02          # [s] end time of the short deck
 

@@ -282,8 +282,11 @@ def test_plot_work_precision(tmp_path):
 # --- the deck writers --------------------------------------------------------------
 
 def test_case_decks_are_the_shipped_decks(tmp_path):
+    """hhneck-case-decks writes into the project it is given (HHNECK_ROOT: one made here, so that the
+    tree's own decks are not rewritten) the shipped decks, and nothing else."""
     (tmp_path / "input").mkdir()
-    r = hhneck_module("case_decks", cwd=str(tmp_path))
+    os.symlink(os.path.join(ROOT, "fpm.toml"), str(tmp_path / "fpm.toml"))
+    r = hhneck_module("case_decks", cwd=str(tmp_path), env={"HHNECK_ROOT": str(tmp_path)})
     assert r.returncode == 0, r.stderr
     written = sorted(os.listdir(tmp_path / "input"))
     assert written == ["case6-1.inp", "case6-2.inp", "case6-5.inp", "hybrid3_flexion.inp"]

@@ -354,6 +354,7 @@ def test_fit_model_writes_the_table_then_the_deck(tmp_path):
     copy = tmp_path / "tree"
     for d in ("dev", "input", "reference", "python"):
         shutil.copytree(os.path.join(ROOT, d), copy / d, ignore=shutil.ignore_patterns("__pycache__", "*.h5"))
+    shutil.copy(os.path.join(ROOT, "fpm.toml"), copy / "fpm.toml")    # the copy is a project (hhneck.paths)
     bin_ = tmp_path / "bin"
     bin_.mkdir()
     _script(bin_ / "fpm", "echo %s\n" % (bin_ / "hhneck"))

@@ -179,7 +179,8 @@ def test_settled_start_carries_the_weight(tmp_path):
     lines = open(deck).read().splitlines()
     assert "HOLD      PRESTRAIN" in lines and "HOLD      POSTURE" not in lines
     specimens.run_kang("front", str(tmp_path), hhneck_executable(), support="PRESTRAIN")
-    with h5py.File(tmp_path / "kang_front_prestrain.h5", "r") as f:
+    name = specimens.run_name("kang_front", "PRESTRAIN")
+    with h5py.File(tmp_path / (name + ".h5"), "r") as f:
         names = [str(n) for n in f["model"].attrs["bodies"]]
         mass = f["model/mass"][:]
         st1 = f["bodies/rotation"][0, names.index("T1")].T
@@ -189,7 +190,7 @@ def test_settled_start_carries_the_weight(tmp_path):
     w = 9.80665 * mass[names.index("C7"):].sum()
     assert fz[0] == pytest.approx(-w * np.cos(tilt), rel=1e-6)
     assert np.all(ehold == 0.0)
-    listing = open(tmp_path / "kang_front_prestrain.txt").read()
+    listing = open(tmp_path / (name + ".txt")).read()
     assert "PRE-STRAINED (HOLD PRESTRAIN)" in listing and "NEWTON ITERATIONS" in listing
 
 
