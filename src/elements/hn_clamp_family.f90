@@ -24,7 +24,7 @@ module hn_clamp_family
     use hn_tables, only: table_t
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
-    use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_slot_t, item_channels
     use hn_motion, only: motion_t, motion_rate_table, motion_constant, motion_eval
     use hn_rotation, only: cross, rotation_vector, axis_angle_matrix, unit_matrix
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
@@ -279,15 +279,9 @@ contains
         character(len=2), parameter :: suffix(ncomp_clamp) = ['FX', 'FY', 'FZ', 'MX', 'MY', 'MZ', 'D ', 'R ', 'A ']
         character(len=3), parameter :: units(ncomp_clamp) = ['N  ', 'N  ', 'N  ', 'N m', 'N m', 'N m', 'mm ', &
                                                               'deg', 'deg']
-        integer :: e, k, n
-        n = size(this%items)
-        allocate (c(ncomp_clamp*n))
-        do k = 1, ncomp_clamp
-            do e = 1, n
-                c((k - 1)*n + e) = family_channel_t(trim(this%items(e)%name)//'_'//trim(suffix(k)), trim(units(k)), &
-                                                    'CLAMP', e, k)
-            end do
-        end do
+        integer :: e
+        c = item_channels([(this%items(e)%name, e=1, size(this%items))], suffix, units, &
+                          [('CLAMP', e=1, ncomp_clamp)], [(e, e=1, ncomp_clamp)])
     end function clamp_channels
 
     !> /model/elements/clamps: body a the rig (0 = R), b the body held;

@@ -23,7 +23,7 @@ module hn_contact_family
                                  fd_rel, fd_abs_length
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
-    use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_slot_t, item_channels
     implicit none
     private
 
@@ -216,16 +216,9 @@ contains
         class(contact_family_t), intent(in) :: this   !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
         type(family_channel_t), allocatable :: c(:)
-        integer :: e, n
-        n = size(this%items)
-        allocate (c(3*n))
-        do e = 1, n
-            associate (nm => this%items(e)%name)
-                c(e) = family_channel_t(trim(nm)//'_N', 'N', 'CONTACT NORMAL', e, 1)
-                c(n + e) = family_channel_t(trim(nm)//'_F', 'N', 'CONTACT FRICTION', e, 2)
-                c(2*n + e) = family_channel_t(trim(nm)//'_D', 'mm', 'CONTACT DEPTH', e, 3)
-            end associate
-        end do
+        integer :: e
+        c = item_channels([(this%items(e)%name, e=1, size(this%items))], ['N', 'F', 'D'], ['N ', 'N ', 'mm'], &
+                          [character(len=16) :: 'CONTACT NORMAL', 'CONTACT FRICTION', 'CONTACT DEPTH'], [1, 2, 3])
     end function contact_channels
 
     !> /model/elements/contacts: body a the plane's, b the ellipsoid's;

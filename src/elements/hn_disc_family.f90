@@ -17,7 +17,7 @@ module hn_disc_family
                                  check_range
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
-    use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_slot_t, item_channels
     implicit none
     private
 
@@ -190,16 +190,9 @@ contains
         class(disc_family_t), intent(in) :: this      !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
         type(family_channel_t), allocatable :: c(:)
-        integer :: e, n
-        n = size(this%items)
-        allocate (c(3*n))
-        do e = 1, n
-            associate (nm => this%items(e)%name)
-                c(e) = family_channel_t(trim(nm)//'_P', 'N', 'DISC AXIAL', e, 3)
-                c(n + e) = family_channel_t(trim(nm)//'_VX', 'N', 'DISC SHEAR X', e, 1)
-                c(2*n + e) = family_channel_t(trim(nm)//'_MY', 'N m', 'DISC MOMENT Y', e, 5)
-            end associate
-        end do
+        integer :: e
+        c = item_channels([(this%items(e)%name, e=1, size(this%items))], ['P ', 'VX', 'MY'], ['N  ', 'N  ', 'N m'], &
+                          [character(len=13) :: 'DISC AXIAL', 'DISC SHEAR X', 'DISC MOMENT Y'], [3, 1, 5])
     end function disc_channels
 
     !> /model/elements/discs: plate centres, plate frames, area and thickness.

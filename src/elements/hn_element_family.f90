@@ -51,7 +51,8 @@ module hn_element_family
     private
 
     public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
-    public :: path_columns, spatial_row, add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
+    public :: path_columns, spatial_row, item_channels
+    public :: add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
 
     integer, parameter, public :: max_family_items = 11  !! most properties a family has to scale
     integer, parameter, public :: item_len = 10           !! length of a property name
@@ -538,6 +539,27 @@ contains
         character(len=*), intent(in) :: text                                   !! the line
         warnings = [character(len=warning_len) :: warnings, text]
     end subroutine add_warning
+
+    !> The channels of a family with the same rows for every element: for
+    !! each row k in turn, every element's channel NAME_SUFFIX(k), element
+    !! e's at (k - 1) n + e.
+    pure function item_channels(names, suffix, units, group, comp) result(c)
+        character(len=*), intent(in) :: names(:)    !! (n) the elements' names
+        character(len=*), intent(in) :: suffix(:)   !! (rows) each row's suffix, after "_"
+        character(len=*), intent(in) :: units(:)    !! (rows) its units
+        character(len=*), intent(in) :: group(:)    !! (rows) its listing group
+        integer, intent(in) :: comp(:)              !! (rows) its row of the family's output array
+        type(family_channel_t), allocatable :: c(:)
+        integer :: e, k, n
+        n = size(names)
+        allocate (c(n*size(suffix)))
+        do k = 1, size(suffix)
+            do e = 1, n
+                c((k - 1)*n + e) = family_channel_t(trim(names(e))//'_'//trim(suffix(k)), trim(units(k)), &
+                                                    trim(group(k)), e, comp(k))
+            end do
+        end do
+    end function item_channels
 
     !> Coordinates on the tree path between bodies ka and kb (0 = R): those
     !! in exactly one of the two chains, ascending, with sign +1 for kb's,
