@@ -392,7 +392,7 @@ contains
             e%kinetic_rel = e%kinetic_rel + 0.5_wp*model%tree%mass(k)*dot_product(dv, dv) + &
                             0.5_wp*dot_product(om, matmul(ir, om))
         end do
-        e%elastic = ws%eo%u_elastic
+        e%elastic = ws%eo%energy%u_elastic
         qx = dot_product(model%q_hold, ws%x)
         e%hold = -qx
         e%dissipated = equad(1)
@@ -487,7 +487,7 @@ contains
                 call me%model%family(f)%f%state_rates(t, me%ws%kin, y(i0 + 1:i0 + n), dydt(i0 + 1:i0 + n))
             end do
         end if
-        dydt(2*nf + ns + 1:2*nf + ns + nenergy) = [me%ws%eo%p_diss, me%ws%eo%p_muscle, me%ws%eo%p_applied, &
+        dydt(2*nf + ns + 1:2*nf + ns + nenergy) = [me%ws%eo%energy%p_diss, me%ws%eo%energy%p_muscle, me%ws%eo%p_applied, &
                                                    me%ws%p_prescribed]
     end subroutine model_rhs
 

@@ -10,7 +10,7 @@ module hn_forces
     use hn_loads, only: body_loads_t, loads_clear
     use hn_applied, only: apply_applied_load, applied_vector, applied_couple
     use hn_rotation, only: cross
-    use hn_element_family, only: family_work_t
+    use hn_element_family, only: family_work_t, family_energy_t
     use hn_line_elements, only: max_via
     implicit none
     private
@@ -30,9 +30,9 @@ module hn_forces
         !! tension [N], length [m]; muscles (3, nm) tension [N], length [m], activation; limits (1, nlim)
         !! generalized force [N or N m]; springs (1, ns) tension [N]
         type(family_values_t), allocatable :: fam(:)
-        real(wp) :: u_elastic = zero                !! energy stored in discs, ligaments, springs [J]
-        real(wp) :: p_diss = zero                   !! power dissipated by discs, springs, joint dampers [W]
-        real(wp) :: p_muscle = zero                 !! power absorbed by the muscles [W]
+        !> energy stored in discs, ligaments, springs, contacts [J]; power dissipated by discs, springs,
+        !! joint dampers, contacts and absorbed by the muscles [W]
+        type(family_energy_t) :: energy
         !> power of the applied force and couple tables, and of the release of the holding forces,
         !! (s - 1) q_hold . xdot (hn_dynamics' energy_terms) [W]
         real(wp) :: p_applied = zero
@@ -70,7 +70,7 @@ contains
         real(wp) :: v(3), p(3), pv(3)
 
         call loads_clear(loads)
-        eo%u_elastic = zero; eo%p_diss = zero; eo%p_muscle = zero; eo%p_applied = zero
+        eo%energy = family_energy_t(); eo%p_applied = zero
         do k = 1, model%tree%nbody
             loads%force(:, k) = model%tree%mass(k)*model%gravity
         end do
@@ -80,7 +80,7 @@ contains
 
         do f = 1, size(model%family)
             if (model%family_on(f)) call model%family(f)%f%add_loads(t, kin, x, xd, loads, eo%fam(f)%v, &
-                                                                     eo%fam(f)%work, eo%u_elastic, eo%p_diss, eo%p_muscle)
+                                                                     eo%fam(f)%work, eo%energy)
         end do
         do e = 1, size(model%applied)
             associate (al => model%applied(e))

@@ -25,6 +25,7 @@ module hn_jacobian
     use hn_kinds, only: wp, zero
     use hn_model, only: model_t
     use hn_kinematics, only: kinematics_t
+    use hn_element_family, only: tangent_work_t, tangent_work
     implicit none
     private
 
@@ -44,14 +45,12 @@ contains
         real(wp), intent(out) :: kgen(:, :)     !! (n,n) generalized stiffness [N/m, N m/rad, ...]
         real(wp), intent(out) :: cgen(:, :)     !! (n,n) generalized damping
         integer :: f
-        ! scratch of the element terms, sized once here rather than in every element's call
-        integer :: cols(max(size(kgen, 1), 1)), sgn(size(cols)), idx(size(cols))
-        real(wp) :: b(size(cols)), bd(6, size(cols))
+        type(tangent_work_t) :: tw   ! scratch of the element terms, sized once here rather than in every element's call
+        tw = tangent_work(max(size(kgen, 1), 1))
         kgen = zero
         cgen = zero
         do f = 1, size(model%family)
-            if (model%family_on(f)) call model%family(f)%f%add_tangent(model%tree, kin, t, x, xd, kgen, cgen, &
-                                                                       cols, sgn, idx, b, bd)
+            if (model%family_on(f)) call model%family(f)%f%add_tangent(model%tree, kin, t, x, xd, kgen, cgen, tw)
         end do
     end subroutine generalized_tangent
 

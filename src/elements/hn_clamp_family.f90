@@ -29,6 +29,7 @@ module hn_clamp_family
     use hn_rotation, only: cross, rotation_vector, axis_angle_matrix, unit_matrix
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, table_data_t, &
                                  max_family_items, item_len, warning_len, check_point, add_line_tangent, spatial_row
+    use hn_element_family, only: family_energy_t, tangent_work_t
     implicit none
     private
 
@@ -187,7 +188,7 @@ contains
     !> The load of every clamp on its body and the reaction on its rig;
     !! stored energy (both springs) and dissipated power (both dampers, less
     !! the power a turning rig puts in: the energy balance's external work).
-    pure subroutine clamp_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine clamp_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(clamp_family_t), intent(in) :: this     !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -197,9 +198,7 @@ contains
         real(wp), intent(inout) :: out(:, :)          !! (9, n) force [N], moment [N m], deflection [mm],
                                                       !! rotation [deg], rig angle [deg]
         type(family_work_t), intent(inout) :: work    !! scratch (unused)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W]
-        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         real(wp), parameter :: deg = 180.0_wp/acos(-one)
         real(wp) :: p(3), f(3), m(3), d(3), phi(3), angle, rel(6), ra(3), sa(3, 3), p_rig
         integer :: e
@@ -209,8 +208,8 @@ contains
                 out(:, e) = [f, m, 1000*norm2(d), deg*norm2(phi), deg*angle]
                 call rig_frame(kin, c%rig, sa, ra)
                 call add_force_pair(loads, c%rig, ra, c%body, kin%r(:, c%body), p, f, m)
-                u_elastic = u_elastic + half*(c%kt*dot_product(d, d) + c%kr*dot_product(phi, phi))
-                p_diss = p_diss + c%ct*dot_product(rel(1:3), rel(1:3)) + c%cr*dot_product(rel(4:6), rel(4:6)) - p_rig
+                energy%u_elastic = energy%u_elastic + half*(c%kt*dot_product(d, d) + c%kr*dot_product(phi, phi))
+                energy%p_diss = energy%p_diss + c%ct*dot_product(rel(1:3), rel(1:3)) + c%cr*dot_product(rel(4:6), rel(4:6)) - p_rig
             end associate
         end do
     end subroutine clamp_loads
@@ -239,7 +238,7 @@ contains
     !> K += kt b b^T, C += ct b b^T along R's three axes for the point's
     !! separation, and kr, cr for the relative rotation (the joint's small-
     !! deflection tangent: a stiff clamp is held near its reference).
-    pure subroutine clamp_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+    pure subroutine clamp_tangent(this, tree, kin, t, x, xd, kgen, cgen, tw)
         class(clamp_family_t), intent(in) :: this     !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree
         type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
@@ -248,23 +247,18 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates (unused)
         real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the clamps' added
         real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the clamps' added
-        integer, intent(out) :: cols(:)               !! scratch
-        integer, intent(out) :: sgn(:)                !! scratch
-        integer, intent(out) :: idx(:)                !! scratch
-        real(wp), intent(out) :: b(:)                 !! scratch
-        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
+        type(tangent_work_t), intent(inout) :: tw     !! scratch sized for the coordinates
         real(wp) :: p(3), ax(3)
         integer :: e, i
-        bd = zero
         do e = 1, size(this%items)
             associate (c => this%items(e))
                 p = kin%r(:, c%body) + matmul(kin%s(:, :, c%body), c%point)
                 do i = 1, 3
                     ax = zero; ax(i) = one
-                    call clamp_row(tree, kin, c%rig, c%body, p, ax, .false., cols, sgn, b)
-                    call add_line_tangent(b, c%kt, c%ct, kgen, cgen, idx)
-                    call clamp_row(tree, kin, c%rig, c%body, p, ax, .true., cols, sgn, b)
-                    call add_line_tangent(b, c%kr, c%cr, kgen, cgen, idx)
+                    call clamp_row(tree, kin, c%rig, c%body, p, ax, .false., tw%cols, tw%sgn, tw%b)
+                    call add_line_tangent(tw%b, c%kt, c%ct, kgen, cgen, tw%idx)
+                    call clamp_row(tree, kin, c%rig, c%body, p, ax, .true., tw%cols, tw%sgn, tw%b)
+                    call add_line_tangent(tw%b, c%kr, c%cr, kgen, cgen, tw%idx)
                 end do
             end associate
         end do

@@ -24,6 +24,7 @@ module hn_contact_family
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
     use hn_element_family, only: family_slot_t, item_channels
+    use hn_element_family, only: family_energy_t, tangent_work_t
     implicit none
     private
 
@@ -79,7 +80,7 @@ contains
     !> Forces of every contact at its contact point: N n + friction on the
     !! ellipsoid's body, the reaction on the plane's; stored energy (the
     !! loading curve's integral) and dissipated power (the rest of the work).
-    pure subroutine contact_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine contact_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(contact_family_t), intent(in) :: this   !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -88,9 +89,7 @@ contains
         type(body_loads_t), intent(inout) :: loads    !! loads, the contacts' added
         real(wp), intent(inout) :: out(:, :)          !! (6, nc) N [N], friction [N], penetration [m], point (3) [m]
         type(family_work_t), intent(inout) :: work    !! scratch (unused)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W]
-        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         type(contact_state_t) :: g
         real(wp) :: fn, fl, ft(3), rp(3)
         integer :: e
@@ -106,8 +105,8 @@ contains
                 if (c%plane_body > 0) rp = kin%r(:, c%plane_body)
                 call add_force_pair(loads, c%plane_body, rp, c%body, kin%r(:, c%body), g%point, fn*g%normal + ft, &
                                     [zero, zero, zero])
-                u_elastic = u_elastic + table_integral(this%tables(c%load), g%depth)
-                p_diss = p_diss + (fn - fl)*g%rate - dot_product(ft, g%vt)
+                energy%u_elastic = energy%u_elastic + table_integral(this%tables(c%load), g%depth)
+                energy%p_diss = energy%p_diss + (fn - fl)*g%rate - dot_product(ft, g%vt)
             end associate
         end do
     end subroutine contact_loads
@@ -134,7 +133,7 @@ contains
     !! friction's damping C += (mu N / max(|v_t|, v_s)) b_t b_t^T along the
     !! tangent directions it resists (both below v_s, the one across the
     !! slip beyond it).
-    pure subroutine contact_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+    pure subroutine contact_tangent(this, tree, kin, t, x, xd, kgen, cgen, tw)
         class(contact_family_t), intent(in) :: this   !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree
         type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
@@ -143,15 +142,10 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates
         real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the contacts' added
         real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the contacts' added
-        integer, intent(out) :: cols(:)               !! scratch
-        integer, intent(out) :: sgn(:)                !! scratch
-        integer, intent(out) :: idx(:)                !! scratch
-        real(wp), intent(out) :: b(:)                 !! scratch
-        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
+        type(tangent_work_t), intent(inout) :: tw     !! scratch sized for the coordinates
         type(contact_state_t) :: g
         real(wp) :: fn, fl, fp, fm, dl, kl, cl, s, cf, t1(3), t2(3)
         integer :: e
-        bd = zero
         do e = 1, size(this%items)
             associate (c => this%items(e))
                 call contact_geometry(kin, c, g)
@@ -162,21 +156,21 @@ contains
                 call normal_force(c, this%tables, max(g%depth - dl, zero), g%rate, fm, fl)
                 kl = (fp - fm)/(g%depth + dl - max(g%depth - dl, zero))
                 cl = merge(c%damping, zero, fn > zero)
-                call contact_row(tree, kin, c%plane_body, c%body, g%point, -g%normal, cols, sgn, b)
-                call add_line_tangent(b, kl, cl, kgen, cgen, idx)
+                call contact_row(tree, kin, c%plane_body, c%body, g%point, -g%normal, tw%cols, tw%sgn, tw%b)
+                call add_line_tangent(tw%b, kl, cl, kgen, cgen, tw%idx)
                 if (c%mu <= zero .or. fn <= zero) cycle
                 s = norm2(g%vt)
                 if (s < c%v_slip) then
                     cf = c%mu*fn/c%v_slip
                     call tangent_pair(g%normal, t1, t2)
-                    call contact_row(tree, kin, c%plane_body, c%body, g%point, t1, cols, sgn, b)
-                    call add_line_tangent(b, zero, cf, kgen, cgen, idx)
-                    call contact_row(tree, kin, c%plane_body, c%body, g%point, t2, cols, sgn, b)
-                    call add_line_tangent(b, zero, cf, kgen, cgen, idx)
+                    call contact_row(tree, kin, c%plane_body, c%body, g%point, t1, tw%cols, tw%sgn, tw%b)
+                    call add_line_tangent(tw%b, zero, cf, kgen, cgen, tw%idx)
+                    call contact_row(tree, kin, c%plane_body, c%body, g%point, t2, tw%cols, tw%sgn, tw%b)
+                    call add_line_tangent(tw%b, zero, cf, kgen, cgen, tw%idx)
                 else
                     cf = c%mu*fn/s
-                    call contact_row(tree, kin, c%plane_body, c%body, g%point, cross(g%normal, g%vt/s), cols, sgn, b)
-                    call add_line_tangent(b, zero, cf, kgen, cgen, idx)
+                    call contact_row(tree, kin, c%plane_body, c%body, g%point, cross(g%normal, g%vt/s), tw%cols, tw%sgn, tw%b)
+                    call add_line_tangent(tw%b, zero, cf, kgen, cgen, tw%idx)
                 end if
             end associate
         end do

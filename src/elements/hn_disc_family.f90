@@ -18,6 +18,7 @@ module hn_disc_family
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
     use hn_element_family, only: family_slot_t, item_channels
+    use hn_element_family, only: family_energy_t, tangent_work_t
     implicit none
     private
 
@@ -86,7 +87,7 @@ contains
     end subroutine disc_prestrain
 
     !> Loads of every disc; outputs their resultants.
-    pure subroutine disc_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine disc_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(disc_family_t), intent(in) :: this      !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -95,20 +96,18 @@ contains
         type(body_loads_t), intent(inout) :: loads    !! loads, the discs' added
         real(wp), intent(inout) :: out(:, :)          !! (6, nd) resultants
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W]
-        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         real(wp) :: u, pd
         integer :: e
         do e = 1, size(this%items)
             call apply_disc(this%items(e), kin, loads, out(:, e), u, pd)
-            u_elastic = u_elastic + u
-            p_diss = p_diss + pd
+            energy%u_elastic = energy%u_elastic + u
+            energy%p_diss = energy%p_diss + pd
         end do
     end subroutine disc_loads
 
     !> K += B^T ds/dq B, C += B^T ds/dqd B of every disc (add_disc).
-    pure subroutine disc_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+    pure subroutine disc_tangent(this, tree, kin, t, x, xd, kgen, cgen, tw)
         class(disc_family_t), intent(in) :: this      !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree
         type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
@@ -117,15 +116,10 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates
         real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the discs' added
         real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the discs' added
-        integer, intent(out) :: cols(:)               !! scratch
-        integer, intent(out) :: sgn(:)                !! scratch
-        integer, intent(out) :: idx(:)                !! scratch (unused)
-        real(wp), intent(out) :: b(:)                 !! scratch (unused)
-        real(wp), intent(out) :: bd(:, :)             !! scratch, (6, n)
+        type(tangent_work_t), intent(inout) :: tw     !! scratch sized for the coordinates
         integer :: e
-        idx = 0; b = zero
         do e = 1, size(this%items)
-            call add_disc(this%items(e), tree, kin, kgen, cgen, cols, sgn, bd)
+            call add_disc(this%items(e), tree, kin, kgen, cgen, tw%cols, tw%sgn, tw%bd)
         end do
     end subroutine disc_tangent
 

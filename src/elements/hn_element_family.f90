@@ -43,7 +43,7 @@ module hn_element_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_rotation, only: cross
-    use hn_line_elements, only: line_geometry_t, line_geometry, max_via, line_attach_t
+    use hn_line_elements, only: line_geometry_t, line_geometry, max_via
     use hn_deck_reader, only: deck_reader_t
     use hn_element_cards, only: card_context_t, family_card_t
     use hn_tables, only: table_t
@@ -51,8 +51,9 @@ module hn_element_family
     private
 
     public :: element_family_t, family_slot_t, family_channel_t, element_table_t, table_data_t, family_work_t
+    public :: family_energy_t, tangent_work_t, tangent_work
     public :: path_columns, spatial_row, item_channels
-    public :: add_warning, check_point, check_range, line_columns, add_line_tangent, attach_columns
+    public :: add_warning, check_point, check_range, line_columns, add_line_tangent
 
     integer, parameter, public :: max_family_items = 11  !! most properties a family has to scale
     integer, parameter, public :: item_len = 10           !! length of a property name
@@ -70,6 +71,26 @@ module hn_element_family
         type(line_geometry_t), allocatable :: g(:)        !! (count) geometry of each line element
         type(line_geometry_t), allocatable :: seg(:, :)   !! (max_via + 1, count) segments of muscle paths
     end type family_work_t
+
+    !> What a family's elements store and spend at one instant, each family's
+    !! share added by its `add_loads` (the run's energy balance).
+    type :: family_energy_t
+        real(wp) :: u_elastic = zero   !! energy stored in the elements [J]
+        real(wp) :: p_diss = zero      !! power dissipated by them [W]
+        real(wp) :: p_muscle = zero    !! power absorbed by the muscles [W]
+    end type family_energy_t
+
+    !> Scratch of the families' tangents for n active coordinates, sized once
+    !! per Jacobian (tangent_work): an element's row b = dL/dxdot of its
+    !! length, the joint columns it spans and their signs (line_columns), the
+    !! nonzero entries of b, and the 6 x n spatial rows of a joint element.
+    type :: tangent_work_t
+        integer, allocatable :: cols(:)       !! (n) columns an element's row spans
+        integer, allocatable :: sgn(:)        !! (n) their signs
+        integer, allocatable :: idx(:)        !! (n) nonzero entries of b
+        real(wp), allocatable :: b(:)         !! (n) the element's row
+        real(wp), allocatable :: bd(:, :)     !! (6, n) a joint element's spatial rows
+    end type tangent_work_t
 
     !> One channel a family defines: its value is output (comp, item) of the family.
     type :: family_channel_t
@@ -156,8 +177,8 @@ module hn_element_family
         end subroutine neutral_sub
 
         !> Add the family's loads at time t to the body loads and generalized forces.
-        pure subroutine loads_sub(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
-            import :: element_family_t, kinematics_t, body_loads_t, wp, family_work_t
+        pure subroutine loads_sub(this, t, kin, x, xd, loads, out, work, energy)
+            import :: element_family_t, kinematics_t, body_loads_t, wp, family_work_t, family_energy_t
             class(element_family_t), intent(in) :: this      !! the family
             real(wp), intent(in) :: t                        !! time [s]
             type(kinematics_t), intent(in) :: kin            !! kinematics at (x, xd)
@@ -166,14 +187,12 @@ module hn_element_family
             type(body_loads_t), intent(inout) :: loads       !! loads, the family's added
             real(wp), intent(inout) :: out(:, :)             !! (ncomp, count) the elements' outputs
             type(family_work_t), intent(inout) :: work       !! scratch sized for the family
-            real(wp), intent(inout) :: u_elastic             !! stored energy, the family's added [J]
-            real(wp), intent(inout) :: p_diss                !! dissipated power, the family's added [W]
-            real(wp), intent(inout) :: p_muscle              !! power absorbed by muscles, the family's added [W]
+            type(family_energy_t), intent(inout) :: energy   !! energy stored, power dissipated and absorbed, the family's added
         end subroutine loads_sub
 
         !> Add the family's generalized stiffness K and damping C.
-        pure subroutine tangent_sub(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
-            import :: element_family_t, body_tree_t, kinematics_t, wp
+        pure subroutine tangent_sub(this, tree, kin, t, x, xd, kgen, cgen, tw)
+            import :: element_family_t, body_tree_t, kinematics_t, wp, tangent_work_t
             class(element_family_t), intent(in) :: this      !! the family
             type(body_tree_t), intent(in) :: tree            !! the body tree
             type(kinematics_t), intent(in) :: kin            !! kinematics of (x, xd): joint columns filled
@@ -182,11 +201,7 @@ module hn_element_family
             real(wp), intent(in) :: xd(:)                    !! their rates [m/s, rad/s]
             real(wp), intent(inout) :: kgen(:, :)            !! (n, n) generalized stiffness, the family's added
             real(wp), intent(inout) :: cgen(:, :)            !! (n, n) generalized damping, the family's added
-            integer, intent(out) :: cols(:)                  !! scratch, at least n long
-            integer, intent(out) :: sgn(:)                   !! scratch, at least n long
-            integer, intent(out) :: idx(:)                   !! scratch, at least n long
-            real(wp), intent(out) :: b(:)                    !! scratch, n long
-            real(wp), intent(out) :: bd(:, :)                !! scratch, (6, n)
+            type(tangent_work_t), intent(inout) :: tw        !! scratch sized for the coordinates
         end subroutine tangent_sub
 
         !> The family's switching functions (whose sign changes mark where a one-way element switches).
@@ -484,31 +499,13 @@ contains
         ok = .true.
     end subroutine line_columns
 
-    !> The row b = dL/dxdot of a two-point element (line_columns on its
-    !! attachments), its length and rate, and the central-difference steps
-    !! of its law in length and rate (fd_rel of them, at least the absolute
-    !! floors).
-    pure subroutine attach_columns(tree, kin, a, cols, sgn, b, length, rate, dl, dr, ok)
-        type(body_tree_t), intent(in) :: tree            !! the body tree
-        type(kinematics_t), intent(in) :: kin            !! kinematics: joint columns filled
-        class(line_attach_t), intent(in) :: a            !! the element's attachments
-        integer, intent(out) :: cols(:)                  !! scratch, at least n long
-        integer, intent(out) :: sgn(:)                   !! scratch, at least n long
-        real(wp), intent(out) :: b(:)                    !! (n) the row
-        real(wp), intent(out) :: length                  !! its length [m]
-        real(wp), intent(out) :: rate                    !! its rate [m/s]
-        real(wp), intent(out) :: dl                      !! length step [m]
-        real(wp), intent(out) :: dr                      !! rate step [m/s]
-        logical, intent(out) :: ok                       !! the element has a length
-        integer :: bodies(max_via + 2)
-        real(wp) :: points(3, max_via + 2)
-        bodies = 0; points = zero
-        bodies(1) = a%body_a; bodies(2) = a%body_b
-        points(:, 1) = a%point_a; points(:, 2) = a%point_b
-        call line_columns(tree, kin, bodies, points, 2, cols, sgn, b, length, rate, ok)
-        dl = max(fd_rel*length, fd_abs_length)
-        dr = max(fd_rel*abs(rate), fd_abs_rate)
-    end subroutine attach_columns
+    !> The tangents' scratch for n active coordinates.
+    pure function tangent_work(n) result(tw)
+        integer, intent(in) :: n      !! active coordinates
+        type(tangent_work_t) :: tw    !! scratch sized for them (zero)
+        allocate (tw%cols(n), tw%sgn(n), tw%idx(n), tw%b(n), tw%bd(6, n))
+        tw%cols = 0; tw%sgn = 0; tw%idx = 0; tw%b = zero; tw%bd = zero
+    end function tangent_work
 
     !> K += kl b b^T, C += cl b b^T over the nonzero entries of b.
     pure subroutine add_line_tangent(b, kl, cl, kgen, cgen, idx)

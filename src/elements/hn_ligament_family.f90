@@ -9,12 +9,14 @@ module hn_ligament_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_line_elements, only: ligament_t, line_geometry_t, line_geometries, ligament_tension, ligament_energy, &
-                                apply_line_tensions, set_neutral_lengths
+                                apply_line_tensions, set_neutral_lengths, path_points, max_via
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
-                                 warning_len, check_point, check_range, attach_columns, add_line_tangent
+                                 warning_len, check_range
+    use hn_line_family, only: line_family_t, line_table
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
     use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_energy_t
     implicit none
     private
 
@@ -24,7 +26,7 @@ module hn_ligament_family
     real(wp), parameter :: ref_ligament_2mm = 30.0_wp     !! N at 2 mm stretch (reference/parameters.md)
 
     !> The ligaments of a model.
-    type, extends(element_family_t) :: ligament_family_t
+    type, extends(line_family_t) :: ligament_family_t
         type(ligament_t), allocatable :: items(:)
         integer :: nread = 0   !! ligaments read from the deck so far (items holds room for every card until end_cards)
     contains
@@ -34,12 +36,14 @@ module hn_ligament_family
         procedure :: ncomp => ligament_ncomp
         procedure :: set_neutral => ligament_neutral
         procedure :: add_loads => ligament_loads
-        procedure :: add_tangent => ligament_tangent
         procedure :: switch_count => ligament_switch_count
         procedure :: switching => ligament_switching
         procedure :: channels => ligament_channels
         procedure :: result_table => ligament_table
-        procedure :: plausibility => ligament_plausibility
+        procedure :: law_plausibility => ligament_plausibility
+        procedure :: path => ligament_path
+        procedure :: line_tension => ligament_line_tension
+        procedure :: line_kind => ligament_kind
         procedure :: scale_items => ligament_items
         procedure :: scale => ligament_scale
         procedure :: stiffen => ligament_stiffen
@@ -68,7 +72,7 @@ contains
     end subroutine ligament_neutral
 
     !> Tensions of every ligament applied to its bodies; stored energy.
-    pure subroutine ligament_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine ligament_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(ligament_family_t), intent(in) :: this  !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -77,47 +81,15 @@ contains
         type(body_loads_t), intent(inout) :: loads    !! loads, the ligaments' added
         real(wp), intent(inout) :: out(:, :)          !! (2, nl) tension [N], length [m]
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W] (none here)
-        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         associate (gl => work%g)
             call line_geometries(kin, this%items, gl)
             out(1, :) = ligament_tension(this%items, gl%length)
             out(2, :) = gl%length
             call apply_line_tensions(loads, kin, this%items, gl, out(1, :))
-            u_elastic = u_elastic + sum(ligament_energy(this%items, gl%length))
+            energy%u_elastic = energy%u_elastic + sum(ligament_energy(this%items, gl%length))
         end associate
     end subroutine ligament_loads
-
-    !> K += (dT/dL) b b^T of every ligament (b = dL/dxdot; no damping).
-    pure subroutine ligament_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
-        class(ligament_family_t), intent(in) :: this  !! the family
-        type(body_tree_t), intent(in) :: tree         !! the body tree
-        type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
-        real(wp), intent(in) :: t                     !! time [s]
-        real(wp), intent(in) :: x(:)                  !! active coordinates
-        real(wp), intent(in) :: xd(:)                 !! their rates
-        real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the ligaments' added
-        real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the ligaments' added
-        integer, intent(out) :: cols(:)               !! scratch
-        integer, intent(out) :: sgn(:)                !! scratch
-        integer, intent(out) :: idx(:)                !! scratch
-        real(wp), intent(out) :: b(:)                 !! scratch
-        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
-        integer :: e
-        real(wp) :: length, rate, dl, dr, kl, cl
-        logical :: ok
-        bd = zero
-        do e = 1, size(this%items)
-            associate (a => this%items(e))
-                call attach_columns(tree, kin, a, cols, sgn, b, length, rate, dl, dr, ok)
-                if (.not. ok) cycle
-                kl = (ligament_tension(a, length + dl) - ligament_tension(a, length - dl))/(2*dl)
-                cl = zero                          ! a ligament has no damping
-                call add_line_tangent(b, kl, cl, kgen, cgen, idx)
-            end associate
-        end do
-    end subroutine ligament_tangent
 
     !> One switching function per ligament with l1 > 0 (it becomes taut).
     pure integer function ligament_switch_count(this) result(n)
@@ -159,31 +131,48 @@ contains
     pure function ligament_table(this) result(tab)
         class(ligament_family_t), intent(in) :: this  !! the family
         type(element_table_t) :: tab
-        integer :: e, n
-        n = size(this%items)
-        tab%group = 'ligaments'
-        tab%description = 'ligament: tension-only band from point a to b'
-        allocate (tab%name(n), tab%extra(0))
-        tab%name = [character(len=12) :: (this%items(e)%name, e=1, n)]
-        tab%body = reshape([(this%items(e)%body_a, this%items(e)%body_b, e=1, n)], [2, n])
-        tab%point = reshape([(this%items(e)%point_a, this%items(e)%point_b, e=1, n)], [3, 2, n])
+        tab = line_table(this, 'ligaments', 'ligament: tension-only band from point a to b')
     end function ligament_table
 
-    !> Attachments far outside their bodies; tension at 2 mm stretch far from the reference model's.
-    pure subroutine ligament_plausibility(this, tree, warnings)
+    !> Ligament e's tension at 2 mm stretch far from the reference model's.
+    pure subroutine ligament_plausibility(this, e, warnings)
         class(ligament_family_t), intent(in) :: this  !! the family
-        type(body_tree_t), intent(in) :: tree         !! the body tree
-        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the ligaments' added
-        integer :: e
-        do e = 1, size(this%items)
-            associate (l => this%items(e))
-                call check_point(tree, l%body_a, l%point_a, 'ligament '//l%name, warnings)
-                call check_point(tree, l%body_b, l%point_b, 'ligament '//l%name, warnings)
-                call check_range('ligament '//trim(l%name)//' tension at 2 mm stretch', &
-                                 l%l1*2.0e-3_wp + l%l2*(2.0e-3_wp)**l%n, ref_ligament_2mm, 'N', warnings)
-            end associate
-        end do
+        integer, intent(in) :: e                      !! ligament number
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the ligament's added
+        associate (l => this%items(e))
+            call check_range('ligament '//trim(l%name)//' tension at 2 mm stretch', &
+                             l%l1*2.0e-3_wp + l%l2*(2.0e-3_wp)**l%n, ref_ligament_2mm, 'N', warnings)
+        end associate
     end subroutine ligament_plausibility
+
+    !> Ligament e's name and its two ends.
+    pure subroutine ligament_path(this, e, name, bodies, points, npt)
+        class(ligament_family_t), intent(in) :: this      !! the family
+        integer, intent(in) :: e                          !! ligament number
+        character(len=12), intent(out) :: name            !! its name
+        integer, intent(out) :: bodies(max_via + 2)       !! the ends' bodies
+        real(wp), intent(out) :: points(3, max_via + 2)   !! their body-frame positions [m]
+        integer, intent(out) :: npt                       !! 2
+        name = this%items(e)%name
+        call path_points(this%items(e), bodies, points, npt)
+    end subroutine ligament_path
+
+    !> Ligament e's tension (eq 10); no damping.
+    pure real(wp) function ligament_line_tension(this, e, t, length, rate) result(tension)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        integer, intent(in) :: e                      !! ligament number
+        real(wp), intent(in) :: t                     !! time [s] (unused)
+        real(wp), intent(in) :: length                !! length [m]
+        real(wp), intent(in) :: rate                  !! its rate [m/s] (unused)
+        tension = ligament_tension(this%items(e), length)
+    end function ligament_line_tension
+
+    !> 'ligament'.
+    pure function ligament_kind(this) result(word)
+        class(ligament_family_t), intent(in) :: this  !! the family
+        character(len=:), allocatable :: word
+        word = 'ligament'
+    end function ligament_kind
 
     !> L1, L2, LENGTH (the law's stretch axis: F(x) becomes F(x/factor)).
     pure subroutine ligament_items(this, items)

@@ -21,6 +21,7 @@ module hn_limit_family
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_coordinate
     use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_energy_t, tangent_work_t
     implicit none
     private
 
@@ -79,7 +80,7 @@ contains
     end subroutine limit_neutral
 
     !> Damper forces and range moments on their coordinates; dissipated power, stored energy.
-    pure subroutine limit_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine limit_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(limit_family_t), intent(in) :: this     !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -88,28 +89,26 @@ contains
         type(body_loads_t), intent(inout) :: loads    !! generalized forces, the family's added
         real(wp), intent(inout) :: out(:, :)          !! (1, nlim) damper forces [N or N m]
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W]
-        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         integer :: e
         do e = 1, size(this%items)
             associate (lim => this%items(e))
                 out(1, e) = limit_force(lim, x(lim%dof), xd(lim%dof))
                 loads%q(lim%dof) = loads%q(lim%dof) + out(1, e)
-                p_diss = p_diss - out(1, e)*xd(lim%dof)
+                energy%p_diss = energy%p_diss - out(1, e)*xd(lim%dof)
             end associate
         end do
         do e = 1, size(this%ranges)
             associate (r => this%ranges(e))
                 loads%q(r%dof) = loads%q(r%dof) + range_moment(r, x(r%dof))
-                u_elastic = u_elastic + range_energy(r, x(r%dof))
+                energy%u_elastic = energy%u_elastic + range_energy(r, x(r%dof))
             end associate
         end do
     end subroutine limit_loads
 
     !> The dampers: -dQ/dx and -dQ/dxdot of their laws on their coordinates;
     !! ranges (elastic beyond the range): K_jj -= dQ/dx.
-    pure subroutine limit_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+    pure subroutine limit_tangent(this, tree, kin, t, x, xd, kgen, cgen, tw)
         class(limit_family_t), intent(in) :: this     !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
         type(kinematics_t), intent(in) :: kin         !! kinematics (unused)
@@ -118,14 +117,9 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates
         real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the family's added
         real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the family's added
-        integer, intent(out) :: cols(:)               !! scratch (unused)
-        integer, intent(out) :: sgn(:)                !! scratch (unused)
-        integer, intent(out) :: idx(:)                !! scratch (unused)
-        real(wp), intent(out) :: b(:)                 !! scratch (unused)
-        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
+        type(tangent_work_t), intent(inout) :: tw     !! scratch sized for the coordinates
         real(wp) :: dx, dv
         integer :: e, j
-        cols = 0; sgn = 0; idx = 0; b = zero; bd = zero
         do e = 1, size(this%items)
             associate (lim => this%items(e))
                 j = lim%dof

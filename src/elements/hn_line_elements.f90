@@ -20,7 +20,7 @@ module hn_line_elements
     private
 
     public :: line_attach_t, line_geometry_t, line_geometry, line_geometries, apply_line_tension, &
-              apply_line_tensions, attachment_point, set_neutral_lengths
+              apply_line_tensions, attachment_point, set_neutral_lengths, path_points
     public :: spring_t, spring_tension, spring_energy, ligament_t, ligament_tension, ligament_energy
     public :: muscle_t, muscle_tension, muscle_law_value, muscle_geometries, apply_muscle_tensions, muscle_path_points
 
@@ -255,6 +255,26 @@ contains
             at%hill%l0 = at%length0      ! the rest length of the short-range stiffness k = q F / L0
         end select
     end subroutine set_neutral_lengths
+
+    !> The points of any line element's path in order: a muscle's through its
+    !! via points (muscle_path_points), every other kind's its two ends.
+    pure subroutine path_points(a, bodies, points, npt)
+        class(line_attach_t), intent(in) :: a          !! the element
+        integer, intent(out) :: bodies(max_via + 2)    !! bodies of the points (0 = inertial frame)
+        real(wp), intent(out) :: points(3, max_via + 2) !! body-frame positions from the mass centre [m]
+        integer, intent(out) :: npt                    !! number of points
+        select type (a)
+        type is (muscle_t)
+            call muscle_path_points(a, bodies, points, npt)
+        class default
+            npt = 2
+            bodies = 0
+            points = zero
+            bodies(1:2) = [a%body_a, a%body_b]
+            points(:, 1) = a%point_a
+            points(:, 2) = a%point_b
+        end select
+    end subroutine path_points
 
     !> The points of a muscle's path in order (origin, via points,
     !! insertion): their bodies and body-frame positions.

@@ -38,11 +38,12 @@ module hn_muscle_family
     use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
                                 apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
-                                 warning_len, fd_rel, fd_abs_length, fd_abs_rate, check_point, check_range, &
-                                 line_columns, add_line_tangent
+                                 warning_len, check_range
+    use hn_line_family, only: line_family_t, line_table
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, card_first, card_last, unique_element, unique_name
     use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_energy_t
     implicit none
     private
 
@@ -53,7 +54,7 @@ module hn_muscle_family
     real(wp), parameter :: ref_muscle_m2 = 400.0_wp       !! N s/m
 
     !> The muscles of a model and the activation inputs they refer to.
-    type, extends(element_family_t) :: muscle_family_t
+    type, extends(line_family_t) :: muscle_family_t
         type(muscle_t), allocatable :: items(:)
         type(table_t), allocatable :: tables(:)              !! activation tables (eq 11) referenced by muscles
         type(activation_t), allocatable :: activations(:)    !! activation histories of Hill-type muscles
@@ -66,12 +67,14 @@ module hn_muscle_family
         procedure :: ncomp => muscle_ncomp
         procedure :: set_neutral => muscle_neutral
         procedure :: add_loads => muscle_loads
-        procedure :: add_tangent => muscle_tangent
         procedure :: switch_count => muscle_switch_count
         procedure :: switching => muscle_switching
         procedure :: channels => muscle_channels
         procedure :: result_table => muscle_table
-        procedure :: plausibility => muscle_plausibility
+        procedure :: law_plausibility => muscle_plausibility
+        procedure :: path => muscle_path
+        procedure :: line_tension => muscle_line_tension
+        procedure :: line_kind => muscle_kind
         procedure :: scale_items => muscle_items
         procedure :: scale => muscle_scale
         procedure :: stiffen => muscle_stiffen
@@ -141,7 +144,7 @@ contains
     end subroutine muscle_neutral
 
     !> Tensions along every muscle's path; power absorbed.
-    pure subroutine muscle_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine muscle_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(muscle_family_t), intent(in) :: this    !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -150,9 +153,7 @@ contains
         type(body_loads_t), intent(inout) :: loads    !! loads, the muscles' added
         real(wp), intent(inout) :: out(:, :)          !! (3, nm) tension [N], length [m], activation
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J] (none here)
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W] (none here)
-        real(wp), intent(inout) :: p_muscle           !! power absorbed by the muscles [W]
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         integer :: e
         associate (gm => work%g)
             call muscle_geometries(kin, this%items, gm, work%seg)
@@ -162,43 +163,9 @@ contains
             out(1, :) = muscle_tension(this%items, gm%length, gm%rate, out(3, :))
             out(2, :) = gm%length
             call apply_muscle_tensions(loads, kin, this%items, work%seg, out(1, :))
-            p_muscle = p_muscle + sum(out(1, :)*gm%rate)
+            energy%p_muscle = energy%p_muscle + sum(out(1, :)*gm%rate)
         end associate
     end subroutine muscle_loads
-
-    !> K += (dT/dL) b b^T, C += (dT/dL') b b^T of every muscle along its path.
-    pure subroutine muscle_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
-        class(muscle_family_t), intent(in) :: this    !! the family
-        type(body_tree_t), intent(in) :: tree         !! the body tree
-        type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
-        real(wp), intent(in) :: t                     !! time [s] (activation)
-        real(wp), intent(in) :: x(:)                  !! active coordinates
-        real(wp), intent(in) :: xd(:)                 !! their rates
-        real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the muscles' added
-        real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the muscles' added
-        integer, intent(out) :: cols(:)               !! scratch
-        integer, intent(out) :: sgn(:)                !! scratch
-        integer, intent(out) :: idx(:)                !! scratch
-        real(wp), intent(out) :: b(:)                 !! scratch
-        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
-        integer :: e, bodies(max_via + 2), npt
-        real(wp) :: points(3, max_via + 2), length, rate, dl, dr, kl, cl, act
-        logical :: ok
-        bd = zero
-        do e = 1, size(this%items)
-            associate (m => this%items(e))
-                call muscle_path_points(m, bodies, points, npt)
-                call line_columns(tree, kin, bodies, points, npt, cols, sgn, b, length, rate, ok)
-                if (.not. ok) cycle
-                dl = max(fd_rel*length, fd_abs_length)
-                dr = max(fd_rel*abs(rate), fd_abs_rate)
-                act = muscle_activation(this, e, t)
-                kl = (muscle_tension(m, length + dl, rate, act) - muscle_tension(m, length - dl, rate, act))/(2*dl)
-                cl = (muscle_tension(m, length, rate + dr, act) - muscle_tension(m, length, rate - dr, act))/(2*dr)
-                call add_line_tangent(b, kl, cl, kgen, cgen, idx)
-            end associate
-        end do
-    end subroutine muscle_tangent
 
     !> One switching function per muscle (its law crossing zero).
     pure integer function muscle_switch_count(this) result(n)
@@ -250,12 +217,8 @@ contains
         type(element_table_t) :: tab
         integer :: e, n
         n = size(this%items)
-        tab%group = 'muscles'
-        tab%description = 'muscle: tension-only path from point a through its via points to b'
-        allocate (tab%name(n))
-        tab%name = [character(len=12) :: (this%items(e)%name, e=1, n)]
-        tab%body = reshape([(this%items(e)%body_a, this%items(e)%body_b, e=1, n)], [2, n])
-        tab%point = reshape([(this%items(e)%point_a, this%items(e)%point_b, e=1, n)], [3, 2, n])
+        tab = line_table(this, 'muscles', 'muscle: tension-only path from point a through its via points to b')
+        deallocate (tab%extra)
         allocate (tab%extra(3))
         tab%extra(1)%name = 'via_count'
         tab%extra(1)%units = '1'
@@ -274,21 +237,45 @@ contains
         tab%extra(3)%shape = [3, max_via, n]
     end function muscle_table
 
-    !> Attachments far outside their bodies; m1 and m2 far from the reference model's.
-    pure subroutine muscle_plausibility(this, tree, warnings)
+    !> Muscle e's m1 and m2 far from the reference model's.
+    pure subroutine muscle_plausibility(this, e, warnings)
         class(muscle_family_t), intent(in) :: this    !! the family
-        type(body_tree_t), intent(in) :: tree         !! the body tree
-        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the muscles' added
-        integer :: e
-        do e = 1, size(this%items)
-            associate (m => this%items(e))
-                call check_point(tree, m%body_a, m%point_a, 'muscle '//m%name, warnings)
-                call check_point(tree, m%body_b, m%point_b, 'muscle '//m%name, warnings)
-                call check_range('muscle '//trim(m%name)//' stiffness m1', m%m1, ref_muscle_m1, 'N/m', warnings)
-                call check_range('muscle '//trim(m%name)//' damping m2', m%m2, ref_muscle_m2, 'N s/m', warnings)
-            end associate
-        end do
+        integer, intent(in) :: e                      !! muscle number
+        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the muscle's added
+        associate (m => this%items(e))
+            call check_range('muscle '//trim(m%name)//' stiffness m1', m%m1, ref_muscle_m1, 'N/m', warnings)
+            call check_range('muscle '//trim(m%name)//' damping m2', m%m2, ref_muscle_m2, 'N s/m', warnings)
+        end associate
     end subroutine muscle_plausibility
+
+    !> Muscle e's name and its path: origin, via points, insertion.
+    pure subroutine muscle_path(this, e, name, bodies, points, npt)
+        class(muscle_family_t), intent(in) :: this        !! the family
+        integer, intent(in) :: e                          !! muscle number
+        character(len=12), intent(out) :: name            !! its name
+        integer, intent(out) :: bodies(max_via + 2)       !! the points' bodies
+        real(wp), intent(out) :: points(3, max_via + 2)   !! their body-frame positions [m]
+        integer, intent(out) :: npt                       !! nvia + 2
+        name = this%items(e)%name
+        call muscle_path_points(this%items(e), bodies, points, npt)
+    end subroutine muscle_path
+
+    !> Muscle e's tension at its activation at time t.
+    pure real(wp) function muscle_line_tension(this, e, t, length, rate) result(tension)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        integer, intent(in) :: e                      !! muscle number
+        real(wp), intent(in) :: t                     !! time [s]
+        real(wp), intent(in) :: length                !! path length [m]
+        real(wp), intent(in) :: rate                  !! its rate [m/s]
+        tension = muscle_tension(this%items(e), length, rate, muscle_activation(this, e, t))
+    end function muscle_line_tension
+
+    !> 'muscle'.
+    pure function muscle_kind(this) result(word)
+        class(muscle_family_t), intent(in) :: this    !! the family
+        character(len=:), allocatable :: word
+        word = 'muscle'
+    end function muscle_kind
 
     !> M1, M2, F0, LENGTH (the Hill muscles' optimal fibre length).
     pure subroutine muscle_items(this, items)

@@ -26,6 +26,7 @@ module hn_nz_family
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_coordinate
     use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_energy_t, tangent_work_t
     implicit none
     private
 
@@ -174,7 +175,7 @@ contains
     end subroutine nz_prestrain
 
     !> The springs' generalized forces on their coordinates; their stored energy.
-    pure subroutine nz_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine nz_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(nz_family_t), intent(in) :: this        !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -183,21 +184,19 @@ contains
         type(body_loads_t), intent(inout) :: loads    !! generalized forces, the family's added
         real(wp), intent(inout) :: out(:, :)          !! (1, n) the springs' Q [N m]
         type(family_work_t), intent(inout) :: work    !! scratch (unused)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W] (none: elastic)
-        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         integer :: e
         do e = 1, size(this%items)
             associate (sp => this%items(e))
                 out(1, e) = nz_moment(sp, x(sp%dof))
                 loads%q(sp%dof) = loads%q(sp%dof) + out(1, e)
-                u_elastic = u_elastic + nz_energy(sp, x(sp%dof))
+                energy%u_elastic = energy%u_elastic + nz_energy(sp, x(sp%dof))
             end associate
         end do
     end subroutine nz_loads
 
     !> K_jj += -dQ/dx of each spring on its coordinate (the closed-form slope); no damping.
-    pure subroutine nz_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+    pure subroutine nz_tangent(this, tree, kin, t, x, xd, kgen, cgen, tw)
         class(nz_family_t), intent(in) :: this        !! the family
         type(body_tree_t), intent(in) :: tree         !! the body tree (unused)
         type(kinematics_t), intent(in) :: kin         !! kinematics (unused)
@@ -206,13 +205,8 @@ contains
         real(wp), intent(in) :: xd(:)                 !! their rates
         real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the family's added
         real(wp), intent(inout) :: cgen(:, :)         !! generalized damping (unchanged)
-        integer, intent(out) :: cols(:)               !! scratch (unused)
-        integer, intent(out) :: sgn(:)                !! scratch (unused)
-        integer, intent(out) :: idx(:)                !! scratch (unused)
-        real(wp), intent(out) :: b(:)                 !! scratch (unused)
-        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
+        type(tangent_work_t), intent(inout) :: tw     !! scratch sized for the coordinates
         integer :: e, j
-        cols = 0; sgn = 0; idx = 0; b = zero; bd = zero
         do e = 1, size(this%items)
             j = this%items(e)%dof
             kgen(j, j) = kgen(j, j) + nz_slope(this%items(e), x(j))

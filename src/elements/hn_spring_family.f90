@@ -9,12 +9,13 @@ module hn_spring_family
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
     use hn_line_elements, only: spring_t, line_geometry_t, line_geometries, spring_tension, spring_energy, &
-                                apply_line_tensions, set_neutral_lengths
-    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
-                                 warning_len, check_point, attach_columns, add_line_tangent
+                                apply_line_tensions, set_neutral_lengths, path_points, max_via
+    use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len
+    use hn_line_family, only: line_family_t, line_table
     use hn_family_registration, only: family_registration_t
     use hn_element_cards, only: family_card_t, unique_element
     use hn_element_family, only: family_slot_t
+    use hn_element_family, only: family_energy_t
     implicit none
     private
 
@@ -22,7 +23,7 @@ module hn_spring_family
     public :: spring_registration
 
     !> The springs of a model.
-    type, extends(element_family_t) :: spring_family_t
+    type, extends(line_family_t) :: spring_family_t
         type(spring_t), allocatable :: items(:)
         integer :: nread = 0   !! springs read from the deck so far (items holds room for every card until end_cards)
     contains
@@ -32,12 +33,13 @@ module hn_spring_family
         procedure :: ncomp => spring_ncomp
         procedure :: set_neutral => spring_neutral
         procedure :: add_loads => spring_loads
-        procedure :: add_tangent => spring_tangent
         procedure :: switch_count => spring_switch_count
         procedure :: switching => spring_switching
         procedure :: channels => spring_channels
         procedure :: result_table => spring_table
-        procedure :: plausibility => spring_plausibility
+        procedure :: path => spring_path
+        procedure :: line_tension => spring_line_tension
+        procedure :: line_kind => spring_kind
         procedure :: scale_items => spring_items
         procedure :: scale => spring_scale
         procedure :: stiffen => spring_stiffen
@@ -66,7 +68,7 @@ contains
     end subroutine spring_neutral
 
     !> Tensions of every spring applied to its bodies; stored energy, dissipated power.
-    pure subroutine spring_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine spring_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(spring_family_t), intent(in) :: this    !! the family
         real(wp), intent(in) :: t                     !! time [s]
         type(kinematics_t), intent(in) :: kin         !! kinematics at (x, xd)
@@ -75,47 +77,15 @@ contains
         type(body_loads_t), intent(inout) :: loads    !! loads, the springs' added
         real(wp), intent(inout) :: out(:, :)          !! (1, ns) tension [N]
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
-        real(wp), intent(inout) :: u_elastic          !! stored energy [J]
-        real(wp), intent(inout) :: p_diss             !! dissipated power [W]
-        real(wp), intent(inout) :: p_muscle           !! muscle power [W] (none here)
+        type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         associate (gs => work%g)
             call line_geometries(kin, this%items, gs)
             out(1, :) = spring_tension(this%items, gs%length, gs%rate)
             call apply_line_tensions(loads, kin, this%items, gs, out(1, :))
-            u_elastic = u_elastic + sum(spring_energy(this%items, gs%length))
-            p_diss = p_diss + sum(this%items%damping*gs%rate**2)
+            energy%u_elastic = energy%u_elastic + sum(spring_energy(this%items, gs%length))
+            energy%p_diss = energy%p_diss + sum(this%items%damping*gs%rate**2)
         end associate
     end subroutine spring_loads
-
-    !> K += (dT/dL) b b^T, C += (dT/dL') b b^T of every spring.
-    pure subroutine spring_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
-        class(spring_family_t), intent(in) :: this    !! the family
-        type(body_tree_t), intent(in) :: tree         !! the body tree
-        type(kinematics_t), intent(in) :: kin         !! kinematics: joint columns filled
-        real(wp), intent(in) :: t                     !! time [s]
-        real(wp), intent(in) :: x(:)                  !! active coordinates
-        real(wp), intent(in) :: xd(:)                 !! their rates
-        real(wp), intent(inout) :: kgen(:, :)         !! generalized stiffness, the springs' added
-        real(wp), intent(inout) :: cgen(:, :)         !! generalized damping, the springs' added
-        integer, intent(out) :: cols(:)               !! scratch
-        integer, intent(out) :: sgn(:)                !! scratch
-        integer, intent(out) :: idx(:)                !! scratch
-        real(wp), intent(out) :: b(:)                 !! scratch
-        real(wp), intent(out) :: bd(:, :)             !! scratch (unused)
-        integer :: e
-        real(wp) :: length, rate, dl, dr, kl, cl
-        logical :: ok
-        bd = zero
-        do e = 1, size(this%items)
-            associate (a => this%items(e))
-                call attach_columns(tree, kin, a, cols, sgn, b, length, rate, dl, dr, ok)
-                if (.not. ok) cycle
-                kl = (spring_tension(a, length + dl, rate) - spring_tension(a, length - dl, rate))/(2*dl)
-                cl = (spring_tension(a, length, rate + dr) - spring_tension(a, length, rate - dr))/(2*dr)
-                call add_line_tangent(b, kl, cl, kgen, cgen, idx)
-            end associate
-        end do
-    end subroutine spring_tangent
 
     !> Springs never switch.
     pure integer function spring_switch_count(this) result(n)
@@ -145,29 +115,41 @@ contains
     pure function spring_table(this) result(tab)
         class(spring_family_t), intent(in) :: this    !! the family
         type(element_table_t) :: tab
-        integer :: e, n
-        n = size(this%items)
-        tab%group = 'springs'
-        tab%description = 'linear spring-damper from point a to b'
-        allocate (tab%name(n), tab%extra(0))
-        do e = 1, n
+        integer :: e
+        tab = line_table(this, 'springs', 'linear spring-damper from point a to b')
+        do e = 1, size(this%items)
             write (tab%name(e), '(a, i0)') 'SPRING', e
         end do
-        tab%body = reshape([(this%items(e)%body_a, this%items(e)%body_b, e=1, n)], [2, n])
-        tab%point = reshape([(this%items(e)%point_a, this%items(e)%point_b, e=1, n)], [3, 2, n])
     end function spring_table
 
-    !> Attachments far outside their bodies.
-    pure subroutine spring_plausibility(this, tree, warnings)
-        class(spring_family_t), intent(in) :: this    !! the family
-        type(body_tree_t), intent(in) :: tree         !! the body tree
-        character(len=warning_len), allocatable, intent(inout) :: warnings(:)  !! warnings, the springs' added
-        integer :: e
-        do e = 1, size(this%items)
-            call check_point(tree, this%items(e)%body_a, this%items(e)%point_a, 'spring '//this%items(e)%name, warnings)
-            call check_point(tree, this%items(e)%body_b, this%items(e)%point_b, 'spring '//this%items(e)%name, warnings)
-        end do
-    end subroutine spring_plausibility
+    !> Spring e's name and its two ends.
+    pure subroutine spring_path(this, e, name, bodies, points, npt)
+        class(spring_family_t), intent(in) :: this        !! the family
+        integer, intent(in) :: e                          !! spring number
+        character(len=12), intent(out) :: name            !! its name
+        integer, intent(out) :: bodies(max_via + 2)       !! the ends' bodies
+        real(wp), intent(out) :: points(3, max_via + 2)   !! their body-frame positions [m]
+        integer, intent(out) :: npt                       !! 2
+        name = this%items(e)%name
+        call path_points(this%items(e), bodies, points, npt)
+    end subroutine spring_path
+
+    !> Spring e's tension k (L - L0) + c L'.
+    pure real(wp) function spring_line_tension(this, e, t, length, rate) result(tension)
+        class(spring_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: e                     !! spring number
+        real(wp), intent(in) :: t                    !! time [s] (unused)
+        real(wp), intent(in) :: length               !! length [m]
+        real(wp), intent(in) :: rate                 !! its rate [m/s]
+        tension = spring_tension(this%items(e), length, rate)
+    end function spring_line_tension
+
+    !> 'spring'.
+    pure function spring_kind(this) result(word)
+        class(spring_family_t), intent(in) :: this   !! the family
+        character(len=:), allocatable :: word
+        word = 'spring'
+    end function spring_kind
 
     !> K, C.
     pure subroutine spring_items(this, items)

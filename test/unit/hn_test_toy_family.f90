@@ -36,6 +36,7 @@ module hn_test_toy_family
     use hn_element_family, only: family_slot_t
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, check_range
+    use hn_element_family, only: family_energy_t, tangent_work_t
     implicit none
     private
 
@@ -107,7 +108,7 @@ contains
     end function toy_damping
 
     !> Q_j = -k (x_j - x0) - c s(t) xdot_j; energy k d^2 / 2, dissipation c s(t) xdot^2.
-    pure subroutine toy_loads(this, t, kin, x, xd, loads, out, work, u_elastic, p_diss, p_muscle)
+    pure subroutine toy_loads(this, t, kin, x, xd, loads, out, work, energy)
         class(coord_spring_family_t), intent(in) :: this   !! the family
         real(wp), intent(in) :: t                          !! time [s]
         type(kinematics_t), intent(in) :: kin              !! kinematics (unused)
@@ -116,22 +117,20 @@ contains
         type(body_loads_t), intent(inout) :: loads         !! generalized forces, the springs' added
         real(wp), intent(inout) :: out(:, :)               !! (1, n) generalized forces
         type(family_work_t), intent(inout) :: work         !! scratch (unused)
-        real(wp), intent(inout) :: u_elastic               !! stored energy [J]
-        real(wp), intent(inout) :: p_diss                  !! dissipated power [W]
-        real(wp), intent(inout) :: p_muscle                !! muscle power [W] (none)
+        type(family_energy_t), intent(inout) :: energy     !! energy stored, power dissipated and absorbed, the family's added
         integer :: e
         do e = 1, size(this%items)
             associate (s => this%items(e))
                 out(1, e) = -s%k*(x(s%dof) - s%x0) - toy_damping(this, e, t)*xd(s%dof)
                 loads%q(s%dof) = loads%q(s%dof) + out(1, e)
-                u_elastic = u_elastic + half*s%k*(x(s%dof) - s%x0)**2
-                p_diss = p_diss + toy_damping(this, e, t)*xd(s%dof)**2
+                energy%u_elastic = energy%u_elastic + half*s%k*(x(s%dof) - s%x0)**2
+                energy%p_diss = energy%p_diss + toy_damping(this, e, t)*xd(s%dof)**2
             end associate
         end do
     end subroutine toy_loads
 
     !> K_jj += k, C_jj += c s(t) (the law is linear: its tangent exactly).
-    pure subroutine toy_tangent(this, tree, kin, t, x, xd, kgen, cgen, cols, sgn, idx, b, bd)
+    pure subroutine toy_tangent(this, tree, kin, t, x, xd, kgen, cgen, tw)
         class(coord_spring_family_t), intent(in) :: this   !! the family
         type(body_tree_t), intent(in) :: tree              !! the body tree (unused)
         type(kinematics_t), intent(in) :: kin              !! kinematics (unused)
@@ -140,13 +139,8 @@ contains
         real(wp), intent(in) :: xd(:)                      !! their rates (unused)
         real(wp), intent(inout) :: kgen(:, :)              !! generalized stiffness, the springs' added
         real(wp), intent(inout) :: cgen(:, :)              !! generalized damping, the springs' added
-        integer, intent(out) :: cols(:)                    !! scratch (unused)
-        integer, intent(out) :: sgn(:)                     !! scratch (unused)
-        integer, intent(out) :: idx(:)                     !! scratch (unused)
-        real(wp), intent(out) :: b(:)                      !! scratch (unused)
-        real(wp), intent(out) :: bd(:, :)                  !! scratch (unused)
+        type(tangent_work_t), intent(inout) :: tw          !! scratch sized for the coordinates
         integer :: e
-        cols = 0; sgn = 0; idx = 0; b = zero; bd = zero
         do e = 1, size(this%items)
             associate (s => this%items(e))
                 kgen(s%dof, s%dof) = kgen(s%dof, s%dof) + s%k
