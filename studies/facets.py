@@ -173,7 +173,7 @@ def coupling(exe=None, peak=1.0):
 
 
 def lateral(exe=None):
-    """input/lateral7g.inp without and with the facets (INCLUDE input/facets.inp after the case deck):
+    """input/lateral7g.inp without and with the facets (the table's cards INCLUDEd after the case deck):
     per subaxial joint the peak lateral bend (RX) and axial rotation (RZ) of the upper body on the
     lower, with their times."""
     from hhneck import run
@@ -181,7 +181,9 @@ def lateral(exe=None):
     import numpy as np
     exe = exe or run.find_executable(None, ROOT)
     work = tempfile.mkdtemp(prefix="facets-lateral-")
-    deck = "TITLE     LATERAL 7 G WITH FACETS\nINCLUDE   input/lateral7g.inp\nINCLUDE   input/facets.inp\n"
+    with open(os.path.join(work, "facets.inp"), "w") as f:     # the table's cards, with --set's changes
+        f.write("\n".join(facet_cards()) + "\n")
+    deck = "TITLE     LATERAL 7 G WITH FACETS\nINCLUDE   input/lateral7g.inp\nINCLUDE   facets.inp\n"
     rows = []
     for wf, d in ((False, os.path.join(ROOT, "input", "lateral7g.inp")), (True, deck)):
         h5 = os.path.join(work, "lateral_%d.h5" % wf)
