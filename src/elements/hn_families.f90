@@ -5,7 +5,7 @@
 !! it empty). A family's number is its place in this list; the model holds
 !! one slot per family in this order, and every evaluation visits them in
 !! this order (discs, ligaments, muscles, limits, springs, neutral-zone
-!! springs, contacts, clamps).
+!! springs, contacts, clamps, facets).
 !!
 !! Elsewhere a family is found by name (`family_index`) or asked through its
 !! bindings, and what the deck reader needs of a family's card (its repeat
@@ -29,6 +29,7 @@ module hn_families
     use hn_nz_family, only: nz_registration
     use hn_contact_family, only: contact_registration
     use hn_clamp_family, only: clamp_registration
+    use hn_facet_family, only: facet_registration
     implicit none
     private
 
@@ -50,7 +51,8 @@ contains
              spring_registration(), &
              nz_registration(), &
              contact_registration(), &
-             clamp_registration()]
+             clamp_registration(), &
+             facet_registration()]
         do f = 1, size(r)
             r(f)%cards%family = f
         end do
