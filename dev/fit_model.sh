@@ -10,7 +10,8 @@
 #      springs refitted by hhneck-fit-joints at every candidate
 #      -> reference/column_fit.csv and reference/nz_springs.csv, written into
 #      the table's rows (stages segments and nz_springs). Deterministic; about
-#      25 minutes on two cores (about 100 s per evaluation, MAX_EVAL of them);
+#      20 minutes on two shared cores (60 evaluations of 48 segment runs as
+#      statics, 15-25 s each; 1030 s measured);
 #   2. if dev/fit_controller.sh exists: the volunteer state's controller
 #      (input/volunteer_controller.inp, included after the model deck) fitted
 #      to the NBDL 12 g volunteers on the column of step 1; it moves no row of

@@ -8,7 +8,9 @@ names each bound's source or says it is assumed):
  - disc.bend_fraction, disc.torsion_fraction: the discs' own linear bending
    (Ix, Iy) and torsion (J) as fractions of S1's segment stiffness (the
    HYOID bushings are the whole segment's rotational stiffness, so the
-   disc's share lies in 0..1);
+   disc's share lies in 0..1; the bending's lower bound 0.03 keeps every
+   disc's bending stiffness within the program's plausibility check, two
+   orders of magnitude of 20 N m/rad: 0.03 x 7.8 N m/rad above 0.2);
  - ROMK, ROMT0: the range-of-motion resistance's stiffness and e-fold
    excess (the stops the Nightingale moments reach);
  - the neutral-zone springs (NZSPRING) of every joint, refitted by
@@ -56,7 +58,7 @@ from .paths import project_path
 
 CSV_PATH = project_path("reference", "column_fit.csv")
 #: (row, lower, upper): the fitted rows and their bounds (reference/parameters.md)
-PARAMS = (("disc.bend_fraction", 0.01, 1.0), ("disc.torsion_fraction", 0.01, 1.0),
+PARAMS = (("disc.bend_fraction", 0.03, 1.0), ("disc.torsion_fraction", 0.01, 1.0),
           ("ROMK", 0.05, 50.0), ("ROMT0", 0.25, 2.0))
 #: the search's starting point: the discs' bending of the segmental-column
 #: experiment (0.2), their torsion as kept before (0.6), the stops as assumed

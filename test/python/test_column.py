@@ -46,6 +46,8 @@ def test_the_deck_carries_the_tables_passive_values_and_passive_muscles():
     # the card's text is the table's value in the card's 9 columns (md.fmt)
     scales = {field(l, 1): field(l, 4) for l in lines if l.startswith("SCALE")}
     want = {name: p[name] for name, _, _ in md.SCALES}
+    # S1's bushing time constant, 0.1 s, on the discs' retardation time
+    assert want["VBEND"] * p["disc.tau"] == pytest.approx(0.1)
     want.update(NZBEND=p["disc.bend_fraction"], NZTORS=p["disc.torsion_fraction"])
     assert scales == {k: md.fmt(v) for k, v in want.items()}
     springs = [l for l in lines if l.startswith("NZSPRING")]
@@ -76,12 +78,12 @@ def test_one_joints_springs_are_the_fits_output(tmp_path):
     # the least squares of the kept points returns the law (the rotation
     # residual is the fit's minimum, not a copied number)
     lsq = [s for s in fit.values() if s["method"].startswith("lsq")]
-    assert lsq                                   # extension: Panjabi's and Nightingale's points
+    assert lsq                                   # a side with two points or more
     s = lsq[0]
     kept = [q for q in s["points"] if q["kept"]]
     theta = [q["theta"] for q in kept]
     m_nz = [q["m_nz"] for q in kept]
     m0, ths, rms = fit_joints.fit_sinh(theta, m_nz)
-    assert (m0, ths) == pytest.approx((s["m0"], s["ths"]), rel=1e-6) and len(kept) >= 5
+    assert (m0, ths) == pytest.approx((s["m0"], s["ths"]), rel=1e-6) and len(kept) >= 2
     off = fit_joints.rotation_residuals(theta, m_nz, 3 * m0, ths)
     assert math.sqrt(sum(r * r for r in off) / len(off)) > rms + 0.05
