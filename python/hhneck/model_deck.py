@@ -198,8 +198,8 @@ def record(rows, stage, path):
     stage's source tag. Stage nz_springs: every nz.BODY.COORD.COLUMN row
     from the CSV's row of BODY, COORD, which must cover the table's springs
     and name no other; stage segments: the rows named by the CSV of
-    hhneck.fit_column (read_column_fit), each a row of the table. The names written, in order; DeckError (the
-    table untouched) otherwise."""
+    hhneck.fit_column (read_column_fit), each a row of the table. The
+    names written, in order; DeckError (the table untouched) otherwise."""
     if stage not in STAGES:
         raise DeckError("stage %r; expected one of %s" % (stage, ", ".join(STAGES)))
     if stage == "nz_springs":
