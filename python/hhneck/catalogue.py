@@ -61,11 +61,11 @@ def segment_section(results, figdir, relto):
     each moment level, data against model, the ISO/TS 18571 scores of the
     moment-rotation curve) and a figure written to figdir."""
     lines = ["## Segment tests (quasi-static pure moments)", "",
-             "**Calibration**: the model deck's neutral-zone springs (NZSPRING cards) are fitted to these "
-             "data by `hhneck-fit-joints` (the other elements' moment subtracted, at the calibration's "
-             "starting point; the NBDL calibration then moves the discs' and stops' factors, so the springs "
-             "do not meet the data exactly); OC–C2 of Nightingale is not fitted (its joints take Panjabi's "
-             "C0–C1 and C1–C2). Set-up and signs: "
+             "**Calibration**: the passive column is fitted to these data alone (`python3 -m "
+             "hhneck.fit_column`: the discs' bending and torsion fractions and the range-of-motion factors "
+             "to the two sources' mean ISO/TS 18571, the tests solved as statics, the neutral-zone springs "
+             "refitted by `hhneck-fit-joints` at every candidate, the other elements' moment subtracted); "
+             "the springs of OC–C2's joints take Panjabi's C0–C1 and C1–C2. Set-up and signs: "
              "`python/hhneck/segments.py` (its docstring): the lower body fixed, a pure moment ramped on "
              "the upper one (for OC–C2 on the head, C1 free), no gravity, no muscles, the discs, ligaments, "
              "joint-limit dampers, range-of-motion elements and neutral-zone springs of the model deck "

@@ -57,17 +57,23 @@ def exe():
 
 @pytest.mark.parametrize("motion", ["flexion_extension", "lateral_bending", "axial_rotation"])
 def test_disc_alone_turns_by_moment_over_stiffness(tmp_path, exe, motion):
-    t, rot = segments.run_case("C4_C5", motion, 1.0, str(tmp_path), exe, disc_only=True)
-    d1, h, g, ix, iy, j = _disc_card(str(tmp_path / ("C4_C5_%s_1Nm_disc.inp" % motion)), "C5C4")
+    # the moment that turns the disc alone about 3 deg (at most 1 N m): the
+    # shipped discs keep a small fraction of the segment's stiffness
+    probe = str(tmp_path / "probe.inp")
+    segments.write_deck(probe, "C4_C5", motion, 1.0, disc_only=True)
+    d1, h, g, ix, iy, j = _disc_card(probe, "C5C4")
     k = {"flexion_extension": d1 * iy / h, "lateral_bending": d1 * ix / h, "axial_rotation": g * j / h}[motion]
-    expect = np.degrees(np.array([1.0, 0.5, -0.5, -1.0]) / k)
-    got = segments.rotations_at(t, rot, 1.0, [1.0, 0.5, -0.5, -1.0])
+    peak = float("%.3g" % min(1.0, 0.05 * k))
+    t, rot = segments.run_case("C4_C5", motion, peak, str(tmp_path), exe, disc_only=True)
+    levels = peak * np.array([1.0, 0.5, -0.5, -1.0])
+    expect = np.degrees(levels / k)
+    got = segments.rotations_at(t, rot, peak, levels)
     # on the loading ramp (1 N m over RAMP) the rotation lags the static one
-    # by the discs' Kelvin-Voigt relaxation time: (M - tau r)/K (tau 0.104 s
+    # by the discs' Kelvin-Voigt relaxation time: (M - tau r)/K (tau 0.1 s
     # with the shipped factors, a 1 % lag at 0.5 N m); a wrong axis, sign,
     # stiffness or damping is off by far more
-    tau = _relaxation_time(str(tmp_path / ("C4_C5_%s_1Nm_disc.inp" % motion)), "C5C4")
-    lagged = np.sign(expect) * (np.abs(expect) - np.degrees(tau * 1.0 / segments.RAMP / k))
+    tau = _relaxation_time(probe, "C5C4")
+    lagged = np.sign(expect) * (np.abs(expect) - np.degrees(tau * peak / segments.RAMP / k))
     assert np.allclose(got, lagged, rtol=2e-3), (got, lagged, expect)
     # at the end of the hold the rotation is the static one: to 1e-4 in
     # bending; a twist of 3.3 deg turns 0.16 % further than the linear

@@ -143,8 +143,9 @@ def test_generator_applies_the_factors_of_a_csv_only_when_asked(tmp_path):
 
 def test_fitted_factors_are_the_largest_that_reach_the_target(tmp_path):
     """fit_factors on the shipped deck (real segment runs, springs dropped):
-    at each fitted factor the case turns at least to its target, 5 % above
-    the factor (where it is below 1) it does not; the targets are the
+    at each fitted factor (at most 1: the shipped column may reach a target
+    unscaled) the case turns at least to its target, 5 % above the factor
+    (where it is below 1) it does not; the targets are the
     data's rotation at its largest moment or the range edge (10 deg for
     C1-C2 flexion, the C1 RY ROM card about its neutral)."""
     exe = hhneck_executable()
@@ -156,13 +157,15 @@ def test_fitted_factors_are_the_largest_that_reach_the_target(tmp_path):
     found = {"f_rot": 1.0, "f_lig": 1.0}
     for name, target in uc.TARGETS:
         value = fit[name]["value"]
-        assert 0.0 < value < 1.0
+        assert 0.0 < value <= 1.0          # 1: the column reaches the target unscaled
         found[name] = value
         got, want = uc._rotation_reached(exe, uc.scale_cards(base, found["f_rot"], found["f_lig"]), target,
                                          str(tmp_path), data)
         assert got >= want and got == pytest.approx(fit[name]["model_deg"], rel=1e-6)
-        above = dict(found, **{name: 1.05 * value})
-        got5, _ = uc._rotation_reached(exe, uc.scale_cards(base, above["f_rot"], above["f_lig"]), target,
-                                       str(tmp_path), data)
-        assert got5 < want, (name, got5, want)
+        if value < 1.0:
+            above = dict(found, **{name: 1.05 * value})
+            got5, _ = uc._rotation_reached(exe, uc.scale_cards(base, above["f_rot"], above["f_lig"]), target,
+                                           str(tmp_path), data)
+            assert got5 < want, (name, got5, want)
+    assert min(found.values()) < 1.0 or all(fit[n]["model_deg"] >= fit[n]["target_deg"] for n in fit)
 
