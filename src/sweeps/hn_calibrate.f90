@@ -48,7 +48,7 @@ contains
         type(score_t) :: sc(size(cal%sw))
         type(range_score_t) :: rg(size(cal%sw))
         logical :: ok
-        integer :: r, k, nnm, cu, ios
+        integer :: r, k, i, nnm, cu, ios
         logical :: curves_open
         curves_open = .false.
         associate (par => cal%par)
@@ -118,6 +118,12 @@ contains
             do k = 1, size(par)
                 write (lu, '(a,a10,a,a10,a,es12.5,a,es12.5,a)') 'PARAM ', par(k)%name, ' = ', field_text(vbest(k)), &
                     '   (bounds ', par(k)%low, ' to ', par(k)%high, ')'
+                do i = 1, size(par(k)%ties)
+                    associate (t => par(k)%ties(i))
+                        write (lu, '(a,a10,a,a10,3x,a10,a10,a,i0)') 'TIE   ', par(k)%name, ' = ', &
+                            field_text(t%a + t%b*vbest(k)), t%target, t%item, 'F', t%field
+                    end associate
+                end do
             end do
         end associate
     contains

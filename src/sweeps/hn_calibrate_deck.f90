@@ -4,8 +4,8 @@
 !! is hn_calibrate_cases'.
 module hn_calibrate_deck
     use hn_kinds, only: wp, zero, one, msglen
-    use hn_case, only: path_len
-    use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
+    use hn_case, only: path_len, deck_line_t
+    use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
     use hn_rating, only: peak_t
     use hn_volunteer_data, only: data_channel_t, is_peak_table
     use hn_calibrate_types, only: calibration_t, calibration_deck_t, standing_case_t, metric_iso18571
@@ -424,12 +424,28 @@ contains
                     call rd%fail(rd%where(st%optional_line(k))//' (OPTIONAL card): found "'// &
                                  trim(st%optional(k))//'"; expected the name of a PARAM card')
             end do
-            if (.not. rd%failed() .and. st%values_line > 0 .and. size(cal%values) /= size(st%params)) &
+            if (.not. rd%failed() .and. st%values_line > 0 .and. size(cal%values) /= param_count(st%params)) &
                 call rd%fail(rd%where(st%values_line)//' (VALUES card): found '//trim(int_str(size(cal%values)))// &
-                             ' values on the VALUES cards; expected one per PARAM card, '// &
-                             trim(int_str(size(st%params))))
+                             ' values on the VALUES cards; expected one per parameter (PARAM name), '// &
+                             trim(int_str(param_count(st%params))))
         end associate
     end subroutine check_calibration_cards
+
+    !> The number of parameters of the PARAM cards: a card that repeats an
+    !! earlier card's name is a further field of that parameter.
+    pure integer function param_count(params) result(n)
+        type(deck_line_t), intent(in) :: params(:)  !! the PARAM cards
+        integer :: k, j
+        n = 0
+        do k = 1, size(params)
+            n = n + 1
+            do j = 1, k - 1
+                if (upper(adjustl(params(j)%text(11:20))) /= upper(adjustl(params(k)%text(11:20)))) cycle
+                n = n - 1
+                exit
+            end do
+        end do
+    end function param_count
 
     !> A DATA name ending in .csv (any case): a reference CSV.
     pure logical function is_csv(name)
