@@ -159,7 +159,8 @@ contains
                            size(cal%stand) > 0))
             do k = 1, size(stx)
                 if (stx(k) < huge(one)) then
-                    write (lu, '(a,i0,a,es10.3,a,es10.3,a)') 'STANDING CASE ', k, ': LARGEST EXCURSION AT REST ', &
+                    write (lu, '(a,i0,a,es10.3,a,es10.3,a)') 'STANDING CASE ', k, ': LARGEST EXCURSION '// &
+                        trim(merge('AT THE END', 'AT REST   ', cal%stand(k)%at_end))//' ', &
                         stx(k), ' DEG (BOUND ', cal%stand(k)%bound, ' DEG) '//trim(cal%stand(k)%deck)
                 else
                     write (lu, '(a,i0,a)') 'STANDING CASE ', k, ': THE RUN AT REST DID NOT COMPLETE '// &
