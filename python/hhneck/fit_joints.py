@@ -46,11 +46,11 @@ rms_plus_deg, sources_plus, n_minus, rms_minus_deg, sources_minus,
 method_plus, method_minus, segment, mlin), a table on standard output, and
 the dropped and extrapolated points.
 
-The flow is dev/fit_model.sh: the model deck at the calibration's starting
-point with the discs' bending and torsion at disc.rot_fraction of
-reference/model_parameters.csv (the others must see them so: 60 % in the
-shipped model), this command (its springs then written into that table),
-the deck with the springs, the NBDL calibration, the deck with its fit. Since the others' runs drop the
+The flow is dev/fit_model.sh: hhneck.fit_column calls this fit (statics)
+at every candidate of the column's factors (the discs' bending and torsion
+fractions, the range-of-motion factors), so that the others are the
+candidate's; its best point's springs are written into
+reference/model_parameters.csv. Since the others' runs drop the
 NZSPRING cards, fitting again on a deck that has them gives the same
 constants. --check runs each segment case with the cards and reports the
 rotation at each data moment against the data (model/data).
@@ -305,9 +305,10 @@ def _cases():
     return sorted({(seg, motion) for _, seg in JOINTS for _, motion in COORD_MOTION})
 
 
-def run_others(cases, exe, model, workdir, jobs=None, data_dir=segments.DATA_DIR, drop=DROP):
+def run_others(cases, exe, model, workdir, jobs=None, data_dir=segments.DATA_DIR, drop=DROP, statics=False):
     """Run each (segment, motion) case to its largest data moment with the
-    `drop` cards left out; {case: (points, peak, t, rot, wall [s])}."""
+    `drop` cards left out (statics: as equilibria, segments.write_deck);
+    {case: (points, peak, t, rot, wall [s])}."""
     from concurrent.futures import ThreadPoolExecutor
     panjabi, night = segments.load_panjabi(data_dir), segments.load_nightingale(data_dir)
     points = {c: data_points(c[0], c[1], data_dir, panjabi, night) for c in cases}
@@ -315,7 +316,7 @@ def run_others(cases, exe, model, workdir, jobs=None, data_dir=segments.DATA_DIR
 
     def one(c):
         t0 = time.perf_counter()
-        t, rot = segments.run_case(c[0], c[1], peaks[c], workdir, exe, drop=drop, model=model)
+        t, rot = segments.run_case(c[0], c[1], peaks[c], workdir, exe, drop=drop, model=model, statics=statics)
         return t, rot, time.perf_counter() - t0
 
     with ThreadPoolExecutor(max_workers=jobs or os.cpu_count() or 1) as pool:
@@ -343,15 +344,17 @@ def fit_case(points, peak, t, rot, motion):
     return out
 
 
-def fit_joints(exe=None, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, workdir=None, jobs=None):
-    """Fit every joint and coordinate (module docstring); a list of rows,
+def fit_joints(exe=None, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, workdir=None, jobs=None,
+               statics=False):
+    """Fit every joint and coordinate (module docstring; statics: the
+    others' runs as equilibria, their zero-rate limit); a list of rows,
     one per (body, coord) in JOINTS x COORD_MOTION order: dicts body, coord,
     segment, motion, plus (side +1 and -1) the fit_case dicts; and the
     others' wall times {case: s}."""
     exe = exe or segments.default_executable()
     work = workdir or tempfile.mkdtemp(prefix="hhneck-fit-joints-")
     os.makedirs(work, exist_ok=True)
-    runs = run_others(_cases(), exe, model, work, jobs, data_dir)
+    runs = run_others(_cases(), exe, model, work, jobs, data_dir, statics=statics)
     fits = {c: fit_case(pts, peak, t, rot, c[1]) for c, (pts, peak, t, rot, _) in runs.items()}
     peaks = {c: r[1] for c, r in runs.items()}
     rows = []

@@ -13,12 +13,15 @@ join which bodies, the card layout) is this module's.
 A fit writes its values into the table, never into the deck by hand
 (dev/fit_model.sh), then regenerates the deck:
 
-    python3 -m hhneck.model_deck --record nz_springs reference/nz_springs.csv
-    python3 -m hhneck.model_deck --record nbdl12g FIT.txt --output input/head_neck_54dof.inp
+    python3 -m hhneck.model_deck --record segments reference/column_fit.csv
+    python3 -m hhneck.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp
 
-(stage nz_springs: the CSV hhneck-fit-joints writes; stage nbdl12g: the
-listing of hhneck --calibrate < input/calibrate_nbdl12g.inp, whose PARAM
-names are the rows' names).
+(stage segments: the CSV hhneck.fit_column writes, the column's factors
+fitted to the segment tests; stage nz_springs: the neutral-zone springs of
+that fit, reference/nz_springs.csv). The deck is the specimen state: its
+twelve Hill muscles are passive (their activation histories FLEX and EXT at
+zero); the volunteer state adds the controller (input/volunteer_controller.inp,
+included after it).
 
 Variants (experiments, not the shipped model; docs/validation.md):
 --fit LISTING takes the PARAM values of a calibration listing in place of
@@ -26,8 +29,7 @@ the table's rows of those names (the table unchanged); --posture straight
 a straight column, seated-held the seated angles as an initial deflection
 of the straight neutral; --t1-slope and --lordosis (deg) another seated
 posture; --nz-springs CSV the neutral-zone springs of that CSV (a file not
-written yet: the discs' bending and torsion at disc.rot_fraction, no
-springs; none: neither); --upper-cervical CSV the upper-cervical factors of
+written yet: no springs; none: no springs either); --upper-cervical CSV the upper-cervical factors of
 hhneck.upper_cervical; --suboccipital yes the four suboccipital muscles per
 side; --segmental yes two segmental muscles per subaxial level and side;
 --sub-bend F the subaxial discs' own bending Ix, Iy times F; --sub-flexion F
@@ -52,7 +54,12 @@ COLUMNS = ("name", "value", "unit", "status", "source", "stage", "description")
 STATUSES = ("sourced", "assumed", "fitted")
 #: the fit stages that write rows: (the source tag of the data they fit, what --record reads)
 STAGES = {"nz_springs": ("S21", "the CSV of hhneck-fit-joints (reference/nz_springs.csv)"),
-          "nbdl12g": ("S6", "the listing of hhneck --calibrate < input/calibrate_nbdl12g.inp")}
+          "segments": ("S21", "the CSV of hhneck.fit_column (reference/column_fit.csv)")}
+#: the rows of the passive column (discs, ligaments, joint stops, neutral-zone
+#: springs) by name prefix or name: constraint 1 (docs/validation.md,
+#: "Calibration"), no volunteer fit writes them
+PASSIVE_PREFIXES = ("disc.", "lig.", "rom.", "limit.", "nz.")
+PASSIVE_SCALES = ("VBEND", "VAXIAL", "ETENSION", "SHEAR", "AXIAL", "ROMK", "ROMT0", "LIMC1")
 NZ_COLUMNS = ("m0_plus", "ths_plus_deg", "m0_minus", "ths_minus_deg", "mlin")
 NZ_MLIN = 100.0       # N m: the NZSPRING card's default Mlin, for a CSV without the mlin column
 
@@ -172,13 +179,26 @@ def read_nz_springs(path):
     return out
 
 
+def read_column_fit(path):
+    """The (name, value text) rows of a hhneck.fit_column CSV (comment lines
+    skipped; columns name, value, ...); DeckError for none or a value that
+    is not a finite number."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    if not rows or "name" not in rows[0] or "value" not in rows[0]:
+        raise DeckError("%s has no row with a name and a value" % path)
+    for r in rows:
+        _number(r["value"], "%s: %s" % (path, r["name"]))
+    return [(r["name"], r["value"]) for r in rows]
+
+
 def record(rows, stage, path):
     """Write the values a fit stage produced (the file `path`: STAGES) into
     the table `rows` (in place): value, status fitted, the stage and the
     stage's source tag. Stage nz_springs: every nz.BODY.COORD.COLUMN row
     from the CSV's row of BODY, COORD, which must cover the table's springs
-    and name no other; a listing stage: the rows named by its PARAM lines,
-    each a row of the table. The names written, in order; DeckError (the
+    and name no other; stage segments: the rows named by the CSV of
+    hhneck.fit_column (read_column_fit), each a row of the table. The names written, in order; DeckError (the
     table untouched) otherwise."""
     if stage not in STAGES:
         raise DeckError("stage %r; expected one of %s" % (stage, ", ".join(STAGES)))
@@ -189,11 +209,7 @@ def record(rows, stage, path):
         if missing:
             raise DeckError("%s has no value for %s" % (path, " ".join(missing)))
     else:
-        values = read_fit(path)
-        if not values:
-            raise DeckError("%s has no PARAM line" % path)
-        for n, v in values:
-            _number(v, "%s: PARAM %s" % (path, n))
+        values = read_column_fit(path)
     by_name = {r["name"]: r for r in rows}
     unknown = [n for n, _ in values if n not in by_name]
     if unknown:
@@ -379,21 +395,21 @@ def _rom(p, body):
 
 
 def _nz_cards(p, nz_springs):
-    """(whether the discs are scaled for the springs, the NZSPRING rows
-    (body, coord, M0+, ths+, M0-, ths-, Mlin)): the table's springs, none
-    (`nz_springs` "none"), or a CSV's (none while the file is not written)."""
+    """The NZSPRING rows (body, coord, M0+, ths+, M0-, ths-, Mlin): the
+    table's springs, none (`nz_springs` "none"), or a CSV's (none while the
+    file is not written)."""
     if nz_springs == "none":
-        return False, []
+        return []
     if nz_springs is None:
         springs = [(b, c) for b in reversed(BODIES[1:]) for c in ("RX", "RY", "RZ")]
-        return True, [(b, c) + tuple(p["nz.%s.%s.%s" % (b, c, k)] for k in NZ_COLUMNS) for b, c in springs]
+        return [(b, c) + tuple(p["nz.%s.%s.%s" % (b, c, k)] for k in NZ_COLUMNS) for b, c in springs]
     if not os.path.exists(nz_springs):
-        return True, []
+        return []
     rows = read_nz_springs(nz_springs)
     unknown = sorted({r[0] for r in rows} - set(BODIES[1:]))
     if unknown:
         raise DeckError("%s names no joint body: %s" % (nz_springs, " ".join(unknown)))
-    return True, [(b, c) + tuple(float(v[k]) for k in NZ_COLUMNS) for b, c, v in rows]
+    return [(b, c) + tuple(float(v[k]) for k in NZ_COLUMNS) for b, c, v in rows]
 
 
 def _header_and_bodies(w, p, geo):
@@ -498,7 +514,7 @@ def _muscles(w, p, geo, muscles):
     else:
         w("* %d groups per side (beyond the first six: segmental MU, IT; suboccipital" % len(muscles))
         w("* S15), origins and insertions A (simplified anatomy).")
-    w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (FITTED scale); PCSA A; optimal" % (sigma_max / 1e6))
+    w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (x SIGMA); PCSA A; optimal" % (sigma_max / 1e6))
     w("* fibre length lopt and, on the FIBRE cards, the fibre length over lopt in the")
     w("* neutral posture S22 (the mapping in reference/model_parameters.csv; a muscle")
     w("* without a FIBRE card: lopt A, its fibres at lopt); damping %.2f s/m x F0 (A)." % damping)
@@ -529,15 +545,15 @@ def _muscles(w, p, geo, muscles):
             for side in "LR":
                 w(card("FIBRE", mname + side, p["muscle.%s.ln" % key]))
     w("* Activation histories: FLEX of the flexors (%s), EXT of the" % ", ".join(FLEXORS))
-    w("* extensors (the others); each its bracing level u0, reflex level u1 and delay")
-    w("* FITTED; onset blank = sled pulse onset (prescribed T1 acceleration first")
-    w("* above 1 g), rise time A; time constants Thelen 2003; short-range stiffness")
-    w("* of the active fibres k = q F / L0, q %.0f (Bergmark 1989, Cholewicki & McGill" % p["act.srs_q"])
-    w("* 1996: 10-40), over a stretch of %.0f %% of lopt (A)." % (100 * p["act.srs_range"]))
+    w("* extensors (the others), PASSIVE: no bracing, no reflex (the specimen state;")
+    w("* the volunteer state's controller, input/volunteer_controller.inp, drives the")
+    w("* muscles). Time constants Thelen 2003; short-range stiffness of the active")
+    w("* fibres k = q F / L0, q %.0f (Bergmark 1989, Cholewicki & McGill 1996: 10-40)," % p["act.srs_q"])
+    w("* over a stretch of %.0f %% of lopt (A)." % (100 * p["act.srs_range"]))
     w("*         name      u0        u1        onset (s) delay (s) rise (s)")
     w("*         tau act   tau deact q (SRS)   range")
-    for hist, s in HISTORIES:
-        w(card("ACTIVATE", hist, p["BRACE" + s], p["REFLEX" + s], None, p["DELAY" + s], p["act.rise"]))
+    for hist, _ in HISTORIES:
+        w(card("ACTIVATE", hist, 0.0, 0.0, None, 0.0, p["act.rise"]))
         w(cont(p["act.tau_act"], p["act.tau_deact"], p["act.srs_q"], p["act.srs_range"]))
 
 
@@ -567,8 +583,8 @@ def _limits(w, p, neutral):
 
 def _springs_and_scales(w, p, nz_springs):
     """The NZSPRING cards (_nz_cards) and the SCALE cards."""
-    nz_model, nz = _nz_cards(p, nz_springs)
-    fraction = p["disc.rot_fraction"]
+    nz = _nz_cards(p, nz_springs)
+    bend, torsion = p["disc.bend_fraction"], p["disc.torsion_fraction"]
     if nz:
         w("*")
         w("* NEUTRAL-ZONE SPRINGS on the joint rotations: D = x - x_neutral; for D >= 0")
@@ -577,22 +593,22 @@ def _springs_and_scales(w, p, nz_springs):
         w("* hhneck-fit-joints (reference/nz_springs.csv) to the segment tests of Panjabi")
         w("* et al. 2001 (0.33-1 N m) and Nightingale et al. 2007 (C4-C5, C6-C7 flexion-")
         w("* extension, to 3.5 N m), less the moment the other elements carry there (the")
-        w("* discs' bending and torsion at %.0f %%, NZBEND and NZTORS below); C7-T1 takes" % (100 * fraction))
-        w("* the C6-C7 values (A). + is the coordinate's positive direction.")
+        w("* discs' bending and torsion at the fractions NZBEND and NZTORS below); C7-T1")
+        w("* takes the C6-C7 values (A). + is the coordinate's positive direction.")
         w("*         body      coord     M0+ (N m) ths+(deg) M0- (N m) ths-(deg) Mlin (N m)")
         for row in nz:
             w(card("NZSPRING", *row))
     w("*")
-    w("* FITTED FACTORS: scale factors on the values above, fitted by the calibration")
-    w("* (hhneck --calibrate < input/calibrate_nbdl12g.inp; reference/parameters.md).")
+    w("* FACTORS on the values above (reference/parameters.md): the column's, fitted")
+    w("* to the segment tests alone (hhneck.fit_column, reference/column_fit.csv) or")
+    w("* sourced; SIGMA the muscles' stress, sourced. No volunteer fit moves them.")
     w("*         name      family    item      factor")
     for (name, fam, item) in SCALES:
         w(card("SCALE", name, fam, item, p[name]))
-    if nz_model:
-        w("* NOT FITTED: the discs' own linear bending and torsion kept at %.0f %% (A; the" % (100 * fraction))
-        w("* neutral-zone springs carry the rest of the segments' rotational stiffness)")
-        w(card("SCALE", "NZBEND", "DISCS", "BEND", fraction))
-        w(card("SCALE", "NZTORS", "DISCS", "TORSION", fraction))
+    w("* the discs' own linear bending and torsion, fractions of S1's segment stiffness")
+    w("* (the neutral-zone springs carry the rest); fitted to the segment tests")
+    w(card("SCALE", "NZBEND", "DISCS", "BEND", bend))
+    w(card("SCALE", "NZTORS", "DISCS", "TORSION", torsion))
 
 
 def _posture(w, posture, t1_slope, lordosis):

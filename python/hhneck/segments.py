@@ -367,9 +367,9 @@ def rate_curve(grid, reference, model):
 
 def _run_timed(args):
     import time
-    seg, motion, peak, work, exe, statics = args
+    seg, motion, peak, work, exe, statics, model = args
     t0 = time.perf_counter()
-    t, rot = run_case(seg, motion, peak, work, exe, statics=statics)
+    t, rot = run_case(seg, motion, peak, work, exe, statics=statics, model=model)
     with open(os.path.join(work, case_name(seg, motion, peak, statics=statics) + ".err")) as f:
         stderr = f.read()
     return t, rot, time.perf_counter() - t0, stderr
@@ -383,7 +383,8 @@ def case_list(quick=False, data_dir=DATA_DIR):
     return [c for c in cases if c[1] == "C4_C5"] if quick else cases
 
 
-def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None, solution="ramp"):
+def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None, solution="ramp",
+              model=MODEL_DECK):
     """Run and rate every segment case; returns a list of dicts, one per
     (source, segment, motion), with the case's wall time [s] (its run, in
     `jobs` parallel processes, default the number of cores) and its run's
@@ -392,7 +393,8 @@ def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None,
     called with each case's dict as its run ends (in the calling thread);
     the list is in the cases' order whatever order they end in. solution:
     "ramp" (the dynamic runs of the moment protocol, the default) or
-    "statics" (the equilibria of the STATICS card), SOLUTIONS."""
+    "statics" (the equilibria of the STATICS card), SOLUTIONS. model: the
+    model deck the segments' cards are taken from."""
     if solution not in SOLUTIONS:
         raise ValueError("solution: one of %s, not %r" % (", ".join(SOLUTIONS), solution))
     from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -403,7 +405,7 @@ def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None,
     cases = case_list(quick, data_dir)
     results = {}
     with ThreadPoolExecutor(max_workers=jobs or os.cpu_count() or 1) as pool:
-        futures = {pool.submit(_run_timed, (seg, motion, peak, work, exe, solution == "statics")): k
+        futures = {pool.submit(_run_timed, (seg, motion, peak, work, exe, solution == "statics", model)): k
                    for k, (_, seg, motion, peak) in enumerate(cases)}
         try:
             for fut in as_completed(futures):

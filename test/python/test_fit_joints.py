@@ -18,6 +18,7 @@ import pytest
 from conftest import ROOT, hhneck_executable, hhneck_module
 from hhneck import fit_joints as fj
 from hhneck import segments
+from hhneck import model_deck as md
 from test_segments import _disc_card, _relaxation_time
 from test_upper_cervical import _generate
 
@@ -182,19 +183,19 @@ def _program_takes(tmp_path, lines):
 
 
 def test_generator_disc_rotation_scales_and_no_springs_without_a_csv(tmp_path):
-    """--nz-springs with a file not written yet: the discs' rotation scaled,
-    no springs (the fitter's first pass); without the option (the CSV of
-    reference/): the shipped deck."""
-    lines = _generate("--nz-springs", str(tmp_path / "not_yet.csv"))
-    assert not any(l.startswith("NZSPRING") for l in lines)
-    scales = [l for l in lines if l.startswith("SCALE")]
-    assert "SCALE     NZBEND    DISCS     BEND      0.6" in scales
-    assert "SCALE     NZTORS    DISCS     TORSION   0.6" in scales
+    """--nz-springs with a file not written yet, or none: the discs'
+    rotation scaled by the table's fractions, no springs; without the
+    option (the table's springs): the shipped deck."""
+    p = md.table_values(md.read_table())
+    for arg in (str(tmp_path / "not_yet.csv"), "none"):
+        lines = _generate("--nz-springs", arg)
+        assert not any(l.startswith("NZSPRING") for l in lines)
+        scales = [l for l in lines if l.startswith("SCALE")]
+        assert md.card("SCALE", "NZBEND", "DISCS", "BEND", p["disc.bend_fraction"]) in scales
+        assert md.card("SCALE", "NZTORS", "DISCS", "TORSION", p["disc.torsion_fraction"]) in scales
     _program_takes(tmp_path, lines)
     with open(segments.MODEL_DECK) as f:
         assert _generate() == f.read().splitlines()
-    none = _generate("--nz-springs", "none")
-    assert not any(l.startswith(("NZSPRING", "SCALE     NZBEND")) for l in none)
 
 
 def test_generator_refuses_a_row_of_an_unknown_body(tmp_path):
