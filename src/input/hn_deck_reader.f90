@@ -764,12 +764,13 @@ contains
 
     !> The card `key` whose field F1 holds `name` (any such card when name
     !! is blank) and, when `name2` is given and not blank, whose field F2
-    !! holds `name2`, among `lines`: how many there are (and which, in
+    !! holds `name2`, and, when `name23` is given and not blank, whose field
+    !! F2 or F3 holds `name23`, among `lines`: how many there are (and which, in
     !! `matches`), and for exactly one the line holding field number `field`
     !! counted across the card and its continuation cards (F8 is F1 of the
     !! first continuation card), with that field's columns. line = 0 when the
     !! card has no continuation card for the field.
-    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2, name2, matches)
+    pure subroutine locate_field(lines, key, name, field, nfound, line, c1, c2, name2, matches, name23)
         type(deck_line_t), intent(in) :: lines(:)  !! card images
         character(len=*), intent(in) :: key        !! card name (columns 1-8)
         character(len=*), intent(in) :: name       !! name in field F1, or blank
@@ -780,13 +781,16 @@ contains
         integer, intent(out) :: c2                 !! the field's last column
         character(len=*), intent(in), optional :: name2          !! text in field F2 too (absent or blank: any)
         integer, allocatable, intent(out), optional :: matches(:) !! the matching card images, in deck order
+        character(len=*), intent(in), optional :: name23         !! text in field F2 or F3 (absent or blank: any)
         integer :: i, k
-        logical :: second
+        logical :: second, either
         nfound = 0
         k = 0
         line = 0
         second = .false.
         if (present(name2)) second = len_trim(name2) > 0
+        either = .false.
+        if (present(name23)) either = len_trim(name23) > 0
         if (present(matches)) allocate (matches(0))
         call field_columns(1 + mod(field - 1, nfields), c1, c2)
         do i = 1, size(lines)
@@ -796,6 +800,10 @@ contains
             end if
             if (second) then
                 if (upper(adjustl(lines(i)%text(21:30))) /= upper(name2)) cycle
+            end if
+            if (either) then
+                if (upper(adjustl(lines(i)%text(21:30))) /= upper(name23) .and. &
+                    upper(adjustl(lines(i)%text(31:40))) /= upper(name23)) cycle
             end if
             nfound = nfound + 1
             k = i

@@ -48,7 +48,7 @@ contains
         type(score_t) :: sc(size(cal%sw))
         type(range_score_t) :: rg(size(cal%sw))
         logical :: ok
-        integer :: r, k, nnm, cu, ios
+        integer :: r, k, i, nnm, cu, ios
         logical :: curves_open
         curves_open = .false.
         associate (par => cal%par)
@@ -118,6 +118,12 @@ contains
             do k = 1, size(par)
                 write (lu, '(a,a10,a,a10,a,es12.5,a,es12.5,a)') 'PARAM ', par(k)%name, ' = ', field_text(vbest(k)), &
                     '   (bounds ', par(k)%low, ' to ', par(k)%high, ')'
+                do i = 1, size(par(k)%ties)
+                    associate (t => par(k)%ties(i))
+                        write (lu, '(a,a10,a,a10,3x,a10,a10,a,i0)') 'TIE   ', par(k)%name, ' = ', &
+                            field_text(t%a + t%b*vbest(k)), t%target, t%item, 'F', t%field
+                    end associate
+                end do
             end do
         end associate
     contains
@@ -153,7 +159,8 @@ contains
                            size(cal%stand) > 0))
             do k = 1, size(stx)
                 if (stx(k) < huge(one)) then
-                    write (lu, '(a,i0,a,es10.3,a,es10.3,a)') 'STANDING CASE ', k, ': LARGEST EXCURSION AT REST ', &
+                    write (lu, '(a,i0,a,es10.3,a,es10.3,a)') 'STANDING CASE ', k, ': LARGEST EXCURSION '// &
+                        trim(merge('AT THE END', 'AT REST   ', cal%stand(k)%at_end))//' ', &
                         stx(k), ' DEG (BOUND ', cal%stand(k)%bound, ' DEG) '//trim(cal%stand(k)%deck)
                 else
                     write (lu, '(a,i0,a)') 'STANDING CASE ', k, ': THE RUN AT REST DID NOT COMPLETE '// &

@@ -4,8 +4,8 @@
 !! is hn_calibrate_cases'.
 module hn_calibrate_deck
     use hn_kinds, only: wp, zero, one, msglen
-    use hn_case, only: path_len
-    use hn_deck_reader, only: deck_reader_t, read_card_images, int_str
+    use hn_case, only: path_len, deck_line_t
+    use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
     use hn_rating, only: peak_t
     use hn_volunteer_data, only: data_channel_t, is_peak_table
     use hn_calibrate_types, only: calibration_t, calibration_deck_t, standing_case_t, metric_iso18571
@@ -68,7 +68,7 @@ contains
             case ('PARAM'); call read_param_card(st, i)
             case ('OPTIONAL'); call read_optional_card(st, i)
             case ('PASSIVE'); call read_passive_card(st, cal, i)
-            case ('STANDING'); call read_standing_card(st, cal, i)
+            case ('STANDING', 'RETURN'); call read_standing_card(st, cal, i)
             case ('RANGES'); call read_ranges_card(st, cal, i)
             case ('VALUES'); call read_values_card(st, cal, i)
             case ('CURVES'); call read_curves_card(st, cal, i)
@@ -333,19 +333,23 @@ contains
     !> STANDING deck (columns 11-70) bound (F7, deg): a run of the deck, the
     !! model at rest, must keep every joint rotation within the bound of its
     !! start; with STANDING cards they judge standing in place of the
-    !! volunteer cases' linear margin at rest.
+    !! volunteer cases' linear margin at rest. RETURN deck bound: a run of the
+    !! deck (a push) must end with the head's rotation vector relative to R
+    !! (HEADL_VX, _VY, _VZ) within the bound of its start.
     subroutine read_standing_card(st, cal, i)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
         type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
         integer, intent(in) :: i                       !! the card's line
         type(standing_case_t) :: sc
         sc%deck = adjustl(st%rd%lines(i)%text(11:70))
+        sc%at_end = st%rd%key(i) == 'RETURN'
         if (len_trim(sc%deck) == 0) then
-            call st%rd%fail(st%rd%where(i)//', columns 11-70 (STANDING card): found no deck; expected the '// &
-                            'deck of the model at rest')
+            call st%rd%fail(st%rd%where(i)//', columns 11-70 ('//trim(st%rd%key(i))//' card): found no deck; '// &
+                            'expected the deck of the model at rest'//trim(merge(' or after a push', &
+                                                                                  '                ', sc%at_end)))
             return
         end if
-        call st%rd%real(i, 7, 'largest excursion at rest', 'deg', sc%bound, 1.0e-3_wp, 90.0_wp)
+        call st%rd%real(i, 7, 'largest excursion', 'deg', sc%bound, 1.0e-3_wp, 90.0_wp)
         if (st%rd%failed()) return
         cal%stand = [cal%stand, sc]
     end subroutine read_standing_card
@@ -389,7 +393,7 @@ contains
         integer, intent(in) :: i                       !! the card's line
         call st%rd%fail(st%rd%where(i)//', columns 1-8: found "'//trim(st%rd%key(i))// &
                         '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, OPTIONAL, '// &
-                        'PASSIVE, STANDING, RANGES, VALUES, CURVES or END')
+                        'PASSIVE, STANDING, RETURN, RANGES, VALUES, CURVES or END')
     end subroutine unknown_card
 
     !> The checks across cards, after the last: each PEAK card's channel a
@@ -424,12 +428,28 @@ contains
                     call rd%fail(rd%where(st%optional_line(k))//' (OPTIONAL card): found "'// &
                                  trim(st%optional(k))//'"; expected the name of a PARAM card')
             end do
-            if (.not. rd%failed() .and. st%values_line > 0 .and. size(cal%values) /= size(st%params)) &
+            if (.not. rd%failed() .and. st%values_line > 0 .and. size(cal%values) /= param_count(st%params)) &
                 call rd%fail(rd%where(st%values_line)//' (VALUES card): found '//trim(int_str(size(cal%values)))// &
-                             ' values on the VALUES cards; expected one per PARAM card, '// &
-                             trim(int_str(size(st%params))))
+                             ' values on the VALUES cards; expected one per parameter (PARAM name), '// &
+                             trim(int_str(param_count(st%params))))
         end associate
     end subroutine check_calibration_cards
+
+    !> The number of parameters of the PARAM cards: a card that repeats an
+    !! earlier card's name is a further field of that parameter.
+    pure integer function param_count(params) result(n)
+        type(deck_line_t), intent(in) :: params(:)  !! the PARAM cards
+        integer :: k, j
+        n = 0
+        do k = 1, size(params)
+            n = n + 1
+            do j = 1, k - 1
+                if (upper(adjustl(params(j)%text(11:20))) /= upper(adjustl(params(k)%text(11:20)))) cycle
+                n = n - 1
+                exit
+            end do
+        end do
+    end function param_count
 
     !> A DATA name ending in .csv (any case): a reference CSV.
     pure logical function is_csv(name)

@@ -245,7 +245,8 @@ contains
     end subroutine case_growth
 
     !> The largest excursion of any joint rotation from its start [deg] in
-    !! the run of each STANDING deck at parameter values v (its joint
+    !! the run of each STANDING deck at parameter values v (RETURN: the
+    !! change of the head's rotation vector relative to R at the run's end) (its joint
     !! rotation channels alone, at the deck's OUTPUT interval); a run that
     !! cannot be built or does not complete counts as fallen (huge).
     function standing_excursions(cal, v) result(exc)
@@ -264,7 +265,11 @@ contains
             call sweep_member_case(cal%stand(k)%sw, v, cs, stat, msg, deck_sampling=.true.)
             if (stat /= stat_ok) cycle
             call channels_define(cs, chs)
-            joints = pack(chs%name, chs%group(:)(1:6) == 'JOINTS')
+            if (cal%stand(k)%at_end) then     ! RETURN: the head's rotation vector relative to R
+                joints = [character(len=chname_len) :: 'HEADL_VX', 'HEADL_VY', 'HEADL_VZ']
+            else
+                joints = pack(chs%name, chs%group(:)(1:6) == 'JOINTS')
+            end if
             if (size(joints) == 0) cycle
             open (newunit=lu, file='/dev/null', action='write')
             block
@@ -274,7 +279,11 @@ contains
             close (lu)
             if (res%exit_code /= exit_ok) cycle
             n = size(res%samples, 2)
-            exc(k) = maxval(abs(res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n)))
+            if (cal%stand(k)%at_end) then     ! RETURN: where the run ends
+                exc(k) = norm2(res%samples(:, n) - res%samples(:, 1))
+            else
+                exc(k) = maxval(abs(res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n)))
+            end if
         end do
         !$omp end parallel do
     end function standing_excursions

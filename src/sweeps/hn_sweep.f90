@@ -23,7 +23,7 @@ module hn_sweep
     implicit none
     private
 
-    public :: sweep_t, sweep_param_t, member_record_t, read_sweep, read_sweep_lines, sweep_design, &
+    public :: sweep_t, sweep_param_t, param_tie_t, member_record_t, read_sweep, read_sweep_lines, sweep_design, &
               sweep_member_case, spread_value, &
               run_member, field_text, param_target_text
     public :: output_names, output_units, output_ref, output_group, nout, name_len, member_summary
@@ -61,6 +61,17 @@ module hn_sweep
     integer, parameter :: output_group(nout) = [1, 0, 2, 3, 4, 5, 5, 5, 6, 6, 7, 8, 9, &
         1, 1, 1, 1, 0, 2, 2, 2, 3, 5, 5, 5, 6, 6, 6, 1, 0, 0]
 
+    !> A further deck field a FIELD parameter writes (a second PARAM card of
+    !! its name): the value a + b x, x the parameter's value.
+    type :: param_tie_t
+        character(len=10) :: target = ''   !! card name
+        character(len=10) :: item = ''     !! the name in field F1 of the card (name.text: F2 or F3 holds text)
+        integer :: field = 0               !! field number across the card
+        integer :: line = 0                !! base deck line holding the field
+        integer :: card_line = 0           !! sweep deck line of the PARAM card
+        real(wp) :: a = zero, b = one      !! the map from the parameter's value
+    end type param_tie_t
+
     !> One parameter of the sweep.
     type :: sweep_param_t
         character(len=10) :: name = ''
@@ -77,6 +88,7 @@ module hn_sweep
         integer :: card_line = 0           !! sweep deck line of the PARAM card
         logical :: if_present = .false.    !! bound only where the base deck has the target (a calibration's OPTIONAL)
         logical :: bound = .true.          !! bound in this base deck (false: if_present and the target absent)
+        type(param_tie_t), allocatable :: ties(:)  !! further fields it writes (FIELD kind)
     end type sweep_param_t
 
     !> A sweep: base deck, parameters, design.
@@ -294,12 +306,13 @@ contains
             return
         end if
         p%card_line = i
+        allocate (p%ties(0))
         call rd%name(i, 1, 'parameter name', p%name)
-        do k = 1, size(sw%params)
-            if (sw%params(k)%name == p%name .and. .not. rd%failed()) &
-                call rd%fail(rd%context(i, 1, 'parameter name')//': found "'//trim(p%name)// &
-                             '" a second time; expected a new name')
-        end do
+        k = findloc(sw%params%name, p%name, dim=1)
+        if (k > 0 .and. .not. rd%failed()) then
+            call tie_card(rd, i, sw%params(k))
+            return
+        end if
         call read_param_kind(rd, i, 2, p%kind, p%field)
         if (rd%failed()) return
         call rd%name(i, 3, 'target', p%target)
@@ -330,15 +343,48 @@ contains
         if (.not. rd%failed()) sw%params = [sw%params, p]
     end subroutine param_card
 
+    !> A second PARAM card of a FIELDn parameter's name: a further field the
+    !! parameter writes, F5 and F6 the values written there when the
+    !! parameter is at its low and high value (a linear map), F7 blank.
+    subroutine tie_card(rd, i, p)
+        type(deck_reader_t), intent(inout) :: rd
+        integer, intent(in) :: i
+        type(sweep_param_t), intent(inout) :: p
+        type(param_tie_t) :: t
+        real(wp) :: low, high
+        integer :: kind
+        t%card_line = i
+        call read_param_kind(rd, i, 2, kind, t%field)
+        if (rd%failed()) return
+        if (kind /= par_field .or. p%kind /= par_field .or. .not. p%high > p%low) then
+            call rd%fail(rd%context(i, 1, 'parameter name')//': found "'//trim(p%name)// &
+                         '" a second time; expected a new name (only a FIELDn parameter with a range is named '// &
+                         'again, by FIELDn cards: further fields it writes)')
+            return
+        end if
+        call rd%name(i, 3, 'target', t%target)
+        call rd%name(i, 4, 'item', t%item, optional_blank=.true.)
+        call rd%real(i, 5, 'low', '-', low, -1.0e30_wp, 1.0e30_wp)
+        call rd%real(i, 6, 'high', '-', high, -1.0e30_wp, 1.0e30_wp)
+        if (.not. rd%failed() .and. .not. rd%is_blank(i, 7)) &
+            call rd%fail(rd%context(i, 7, 'spacing')//': found "'//trim(rd%raw(i, 7))//'"; expected blank (the '// &
+                         'field follows the parameter '//trim(p%name)//' linearly)')
+        if (rd%failed()) return
+        t%b = (high - low)/(p%high - p%low)
+        t%a = low - t%b*p%low
+        p%ties = [p%ties, t]
+    end subroutine tie_card
+
     !> Resolve a parameter against the base case: family and property, body,
-    !! or the deck line and field, and its nominal value.
+    !! or the deck line and field (and those of its ties), and its nominal value.
     subroutine bind_param(rd, sw, base, p)
         type(deck_reader_t), intent(inout) :: rd
         type(sweep_t), intent(in) :: sw
         type(case_t), intent(in) :: base
         type(sweep_param_t), intent(inout) :: p
         character(len=:), allocatable :: at
-        integer :: i, k, nfound, c1, c2, ios
+        real(wp) :: x
+        integer :: k
         at = rd%where(p%card_line)//' (PARAM '//trim(p%name)//')'
         select case (p%kind)
         case (par_family)
@@ -370,29 +416,12 @@ contains
                 call rd%fail(rd%context(p%card_line, 4, 'item')//': found "'//trim(p%item)// &
                              '"; expected MASS or INERTIA')
         case (par_field)
-            call locate_field(sw%base_lines, p%target, p%item, p%field, nfound, p%line, c1, c2)
-            if (nfound == 0 .and. p%if_present) then
-                p%bound = .false.
-                return
-            else if (nfound /= 1) then
-                call rd%fail(at//': found '//trim(int_str(nfound))//' '//trim(p%target)//' cards'// &
-                             trim(merge(' named '//p%item, repeat(' ', 17), len_trim(p%item) > 0))// &
-                             ' in the base deck; expected exactly one')
-                return
-            end if
-            if (p%line == 0) then
-                call rd%fail(at//': the '//trim(p%target)//' card has no continuation card for field '// &
-                             trim(int_str(p%field)))
-                return
-            end if
-            read (sw%base_lines(p%line)%text(c1:c2), *, iostat=ios) p%nominal
-            if (ios /= 0 .or. len_trim(sw%base_lines(p%line)%text(c1:c2)) == 0) then
-                call rd%fail(at//': '//sw%base_lines(p%line)%source//' line '// &
-                             trim(int_str(sw%base_lines(p%line)%line))//', columns '//trim(int_str(c1))//'-'// &
-                             trim(int_str(c2))//' holds "'//trim(sw%base_lines(p%line)%text(c1:c2))// &
-                             '"; expected a number to vary')
-                return
-            end if
+            call bind_field(rd, sw, at, p%target, p%item, p%field, p%if_present, p%line, p%nominal, p%bound)
+            do k = 1, size(p%ties)
+                if (rd%failed() .or. .not. p%bound) exit
+                call bind_field(rd, sw, rd%where(p%ties(k)%card_line)//' (PARAM '//trim(p%name)//')', &
+                                p%ties(k)%target, p%ties(k)%item, p%ties(k)%field, .false., p%ties(k)%line, x, p%bound)
+            end do
         end select
         if (rd%failed()) return
         if (sw%design == design_oat) then
@@ -401,6 +430,47 @@ contains
             if (p%log_spacing .and. p%nominal < zero) call rd%fail(at//': LOG spacing needs a positive nominal')
         end if
     end subroutine bind_param
+
+    !> The base deck line of field `field` of the card `target` named `item`
+    !! (F1; `name.text` when no card's F1 is the whole item: the card whose
+    !! F1 is name and whose F2 or F3 is text) and the number it holds.
+    subroutine bind_field(rd, sw, at, target, item, field, if_present, line, nominal, bound)
+        type(deck_reader_t), intent(inout) :: rd
+        type(sweep_t), intent(in) :: sw
+        character(len=*), intent(in) :: at, target, item
+        integer, intent(in) :: field
+        logical, intent(in) :: if_present
+        integer, intent(out) :: line
+        real(wp), intent(out) :: nominal
+        logical, intent(inout) :: bound
+        integer :: nfound, c1, c2, ios, k
+        nominal = zero
+        call locate_field(sw%base_lines, target, item, field, nfound, line, c1, c2)
+        k = index(item, '.', back=.true.)
+        if (nfound == 0 .and. k > 1 .and. k < len_trim(item)) &
+            call locate_field(sw%base_lines, target, item(:k - 1), field, nfound, line, c1, c2, name23=item(k + 1:))
+        if (nfound == 0 .and. if_present) then
+            bound = .false.
+            return
+        else if (nfound /= 1) then
+            call rd%fail(at//': found '//trim(int_str(nfound))//' '//trim(target)//' cards'// &
+                         trim(merge(' named '//item, repeat(' ', 17), len_trim(item) > 0))// &
+                         ' in the base deck; expected exactly one (item name.text: the card named name whose '// &
+                         'F2 or F3 holds text)')
+            return
+        end if
+        if (line == 0) then
+            call rd%fail(at//': the '//trim(target)//' card has no continuation card for field '// &
+                         trim(int_str(field)))
+            return
+        end if
+        read (sw%base_lines(line)%text(c1:c2), *, iostat=ios) nominal
+        if (ios /= 0 .or. len_trim(sw%base_lines(line)%text(c1:c2)) == 0) &
+            call rd%fail(at//': '//sw%base_lines(line)%source//' line '// &
+                         trim(int_str(sw%base_lines(line)%line))//', columns '//trim(int_str(c1))//'-'// &
+                         trim(int_str(c2))//' holds "'//trim(sw%base_lines(line)%text(c1:c2))// &
+                         '"; expected a number to vary')
+    end subroutine bind_field
 
     !> What a parameter's target is, in words: 'MUSCLES', 'body HEAD',
     !! 'SCALE card named SIGMA'.
@@ -543,13 +613,19 @@ contains
         character(len=msglen), intent(out) :: errmsg   !! why the member's case is invalid ('' when stat_ok)
         logical, intent(in), optional :: deck_sampling !! true: keep the deck's OUTPUT interval (its result file's)
         type(deck_line_t), allocatable :: lines(:)
-        integer :: p, c1, c2
+        integer :: p, c1, c2, k
         logical :: rebuild_tree, keep
         lines = sw%base_lines
         do p = 1, size(sw%params)
             if (sw%params(p)%kind /= par_field .or. .not. sw%params(p)%bound) cycle
             call field_columns(1 + mod(sw%params(p)%field - 1, nfields), c1, c2)
             lines(sw%params(p)%line)%text(c1:c2) = field_text(v(p))
+            do k = 1, size(sw%params(p)%ties)
+                associate (t => sw%params(p)%ties(k))
+                    call field_columns(1 + mod(t%field - 1, nfields), c1, c2)
+                    lines(t%line)%text(c1:c2) = field_text(t%a + t%b*v(p))
+                end associate
+            end do
         end do
         call read_case_lines(lines, trim(sw%base), cs, stat, errmsg, sw%search)
         if (stat /= 0) return

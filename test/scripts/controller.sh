@@ -10,11 +10,16 @@
 #   10 deg of its start at 600 ms, the largest rotation well before the end;
 # - the loops do the returning: the same pulses on the model deck alone (its
 #   reflex held for ever) and on the controller with every loop gain zero
-#   (bracing alone) leave the head more than 10 deg from its start at 600 ms.
+#   (bracing alone) leave the head more than 10 deg from its start at 600 ms;
+# - the controller's calibration (input/calibrate_controller.inp) judges the
+#   returns by the change of the head's rotation vector (its RETURN cards):
+#   scored at the controller deck's own values, that change agrees with the
+#   angle measured here.
 # builds: release
 . test/scripts/lib/checks.sh
 
 cp -r input "$tmp/input"
+ln -s "$(pwd)/reference" "$tmp/reference"
 cd "$tmp" || exit 1
 # the controller with every loop gain zero; the return decks without it
 python3 - <<'PY'
@@ -32,6 +37,10 @@ for d in ("rear5g_return", "lateral7g_return"):
     open("input/%s_zero.inp" % d, "w").write(deck.replace("volunteer_controller.inp", "controller_zero.inp"))
     open("input/%s_model.inp" % d, "w").write(deck.replace("INCLUDE   input/volunteer_controller.inp\n", ""))
 PY
+# the calibration scored at the controller deck's own values (no VALUES, no fit)
+grep -v '^VALUES' input/calibrate_controller.inp | sed 's/^FIT       NELDER    [0-9 ]\{10\}/FIT       NELDER    0         /' > cal0.inp
+if "$HHNECK" --calibrate < cal0.inp > cal0.lst 2> cal0.err; then pass "the calibration scores the deck's values"
+else fail "the calibration scores the deck's values"; fi
 for d in volunteer_rest rear5g_return lateral7g_return rear5g_return_zero lateral7g_return_zero \
          rear5g_return_model lateral7g_return_model; do
     if "$HHNECK" --h5 "$d.h5" < "input/$d.inp" > "$d.lst" 2> "$d.err"; then pass "$d runs"; else fail "$d runs"; fi
@@ -66,5 +75,14 @@ for d in ("rear5g_return", "lateral7g_return"):
     for v, what in (("zero", "every loop gain zero"), ("model", "the model deck's held reflex")):
         t, a = head_angle(d + "_" + v)
         check(a[-1] > 10.0, "%s with %s: %.3g deg at %.3g s, not back" % (d, what, a[-1], t[-1]))
+ret = {}
+for l in open("cal0.lst"):
+    if "LARGEST EXCURSION AT THE END" in l:
+        ret[l.split()[-1]] = float(l.split("AT THE END")[1].split()[0])
+for d in ("rear5g_return", "lateral7g_return"):
+    t, a = head_angle(d)
+    e = ret.get("input/%s.inp" % d, -1.0)
+    check(abs(e - a[-1]) < 0.2 + 0.05*a[-1], "%s: the calibration's RETURN change %.3g deg, the angle here %.3g deg"
+          % (d, e, a[-1]))
 PY
 finish
