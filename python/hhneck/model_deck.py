@@ -602,13 +602,28 @@ def _springs_and_scales(w, p, nz_springs):
     w("* FACTORS on the values above (reference/parameters.md): the column's, fitted")
     w("* to the segment tests alone (hhneck.fit_column, reference/column_fit.csv) or")
     w("* sourced; SIGMA the muscles' stress, sourced. No volunteer fit moves them.")
+    w("* VBEND: S1's time constant 0.1 s over the discs' bending fraction NZBEND, so")
+    w("* that the discs carry S1's damping coefficient (10 % of its stiffness per s).")
     w("*         name      family    item      factor")
     for (name, fam, item) in SCALES:
-        w(card("SCALE", name, fam, item, p[name]))
+        w(card("SCALE", name, fam, item, scale_factor(p, name)))
     w("* the discs' own linear bending and torsion, fractions of S1's segment stiffness")
     w("* (the neutral-zone springs carry the rest); fitted to the segment tests")
     w(card("SCALE", "NZBEND", "DISCS", "BEND", bend))
     w(card("SCALE", "NZTORS", "DISCS", "TORSION", torsion))
+
+
+def scale_factor(p, name):
+    """The factor of the model deck's SCALE card `name` from the table p: the
+    table's value, but for VBEND the discs' retardation time that gives the
+    segment S1's damping coefficient: S1 gives a segment's damping as 10 %
+    of its whole stiffness per second (time constant 0.1 s, the table's
+    VBEND 20 over disc.tau), and the discs, the segment's only damped
+    element, keep the fraction disc.bend_fraction of that stiffness, so
+    their retardation time is the time constant over that fraction."""
+    if name == "VBEND":
+        return p["VBEND"] / p["disc.bend_fraction"]
+    return p[name]
 
 
 def _posture(w, posture, t1_slope, lordosis):

@@ -22,10 +22,10 @@ Moment protocol (one run per segment and axis): 0 -> +M over 20 s, held
 2 s, -> 0 at 42 s, -> -M at 62 s, held to 64 s. The rotation at a moment
 level is read on the loading ramps (t = RAMP level/M and T_NEG + RAMP
 |level|/M). Quasi-static enough: the discs' viscous terms (retardation
-time d2b/d1 = 0.1 s, S1's bushing time constant) lag the rotation by
-0.1 s of the 20 s ramp, and the slowest segment mode (the head on C1) has
-a period near 0.2 s; the tests check the closed form within 1 %. The
-statics below are the ramps' zero-rate limit; the column is fitted on them.
+time d2b/d1, which carries S1's damping coefficient on the discs' share of
+the stiffness) lag the rotation on the ramps; the statics below are the
+ramps' zero-rate limit, on which the column is fitted and the catalogue
+rates it.
 The calibration's protocol (protocol="sweep", hhneck.calibration): 0 -> -M
 over 20 s, held 2 s, -M -> +M over 40 s (t = SWEEP_START .. SWEEP_START +
 2 RAMP), held to 64 s: the whole moment-rotation curve on one rising ramp,
@@ -33,9 +33,9 @@ rotation as a function of time as the calibration's reference rows need it
 (the negative branch read unloading from -M, as a cyclic test passes it; the
 catalogue's loading branches differ from it by the viscous lag only).
 
-The catalogue runs the dynamic ramps above (SOLUTIONS "ramp", the
-default: the neutral-zone springs are fitted on them, fit_joints) or solves
-each test as statics ("statics", hhneck-segments --protocol statics): the
+The catalogue solves each test as statics (SOLUTIONS "statics", the
+default: the tests are quasi-static, and the column is fitted on them) or
+runs the dynamic ramps above ("ramp", hhneck-segments --protocol ramp): the
 same deck with a STATICS card, one equilibrium per 0.01 N m of the
 moment table (rates zero, so the viscous lag of the ramps is absent: the
 rotations are the limit of ever slower ramps), read by the same readers
@@ -383,7 +383,7 @@ def case_list(quick=False, data_dir=DATA_DIR):
     return [c for c in cases if c[1] == "C4_C5"] if quick else cases
 
 
-def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None, solution="ramp",
+def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None, on_case=None, solution="statics",
               model=MODEL_DECK):
     """Run and rate every segment case; returns a list of dicts, one per
     (source, segment, motion), with the case's wall time [s] (its run, in
@@ -392,8 +392,9 @@ def catalogue(exe=None, quick=False, data_dir=DATA_DIR, workdir=None, jobs=None,
     quick: C4-C5 only (one segment per source and motion). on_case(r) is
     called with each case's dict as its run ends (in the calling thread);
     the list is in the cases' order whatever order they end in. solution:
-    "ramp" (the dynamic runs of the moment protocol, the default) or
-    "statics" (the equilibria of the STATICS card), SOLUTIONS. model: the
+    "statics" (the equilibria of the STATICS card, the default: the tests
+    are quasi-static) or "ramp" (the dynamic runs of the moment protocol,
+    their check), SOLUTIONS. model: the
     model deck the segments' cards are taken from."""
     if solution not in SOLUTIONS:
         raise ValueError("solution: one of %s, not %r" % (", ".join(SOLUTIONS), solution))
@@ -455,9 +456,9 @@ def main(argv=None):
     p.add_argument("--data", default=DATA_DIR, help="the pmhs_neck data folder")
     p.add_argument("--out", help="working directory for the decks, listings and result files")
     p.add_argument("--jobs", type=int, help="runs at a time (default: the number of cores)")
-    p.add_argument("--protocol", choices=SOLUTIONS, default="ramp",
-                   help="ramp (the dynamic moment ramps, the default, as the springs' fit runs them) or "
-                        "statics (equilibria at each level: the ramps' zero-rate limit)")
+    p.add_argument("--protocol", choices=SOLUTIONS, default="statics",
+                   help="statics (equilibria at each level: the ramps' zero-rate limit, the default, as the "
+                        "column's fit solves them) or ramp (the dynamic moment ramps)")
     a = p.parse_args(argv)
     for r in catalogue(a.exe, a.quick, a.data, a.out, a.jobs, solution=a.protocol):
         print("%-17s %-6s %-18s ISO 18571 %.3f  model/data at +peak %.2f, -peak %.2f  (%.2f s)" % (

@@ -179,7 +179,10 @@ def test_a_row_changes_exactly_its_fields():
     assert _changes("body.HEAD.mass", 4.5) == {("BODY", "HEAD", "C1", 0, 3): ("3.847", "4.5")}
     assert _changes("SIGMA", 1.25) == {("SCALE", "SIGMA", "MUSCLES", 0, 4): ("1.0", "1.25")}
     bend = md.table_values(_rows())["disc.bend_fraction"]
-    assert _changes("disc.bend_fraction", 0.5) == {("SCALE", "NZBEND", "DISCS", 0, 4): (md.fmt(bend), "0.5")}
+    vbend = md.scale_factor(md.table_values(_rows()), "VBEND")
+    # the bending fraction moves the discs' retardation time with it: S1's damping coefficient kept
+    assert _changes("disc.bend_fraction", 0.5) == {("SCALE", "NZBEND", "DISCS", 0, 4): (md.fmt(bend), "0.5"),
+                                                   ("SCALE", "VBEND", "DISCS", 0, 4): (md.fmt(vbend), "40.0")}
     rom = _changes("rom.k", 60.0)
     assert len(rom) == 24 and all(k[0] == "ROM" and k[3:] == (0, 5) and v == ("50.0", "60.0")
                                   for k, v in rom.items())
@@ -234,6 +237,8 @@ def test_a_column_fit_lands_in_its_rows_and_the_deck(tmp_path):
     changed = [(field(a, 1), field(b, 4)) for a, b in zip(base, got) if a != b]
     assert all(a.startswith("SCALE") for a, b in zip(base, got) if a != b)
     want = {scale[n]: float(v) for n, v in fit.items()}
+    # the discs' retardation time follows their bending fraction (S1's damping coefficient kept)
+    want["VBEND"] = md.table_values(md.read_table(str(table)))["VBEND"] / float(fit["disc.bend_fraction"])
     assert {n: float(v) for n, v in changed} == pytest.approx(want, rel=1e-5)
     with open(os.path.join(ROOT, "input", "case6-1.inp")) as f:
         r = subprocess.run([hhneck_executable(), "--check"], stdin=f, cwd=tmp_path, capture_output=True, text=True)

@@ -50,6 +50,25 @@ def _relaxation_time(deck, name):
     return d2 * scale.get("VISCOUS", 1.0) * scale.get("VBEND", 1.0) / (d1 * scale.get("E", 1.0))
 
 
+def _kelvin_voigt(table, k, tau, times):
+    """The rotation [deg] of a Kelvin-Voigt element K theta + K tau theta' =
+    M(t) from rest under the piecewise-linear moment table [(t, M)], at
+    `times`: on each piece M = a + b (t - t0) it is exactly
+    theta = (M - b tau)/K + (theta0 - (a - b tau)/K) exp(-(t - t0)/tau)."""
+    out = []
+    for time in np.atleast_1d(times):
+        theta = 0.0
+        for (t0, a), (t1, m1) in zip(table[:-1], table[1:]):
+            b = (m1 - a) / (t1 - t0) if t1 > t0 else 0.0
+            end = min(time, t1)
+            if end > t0:
+                theta = (a + b * (end - t0) - b * tau) / k + (theta - (a - b * tau) / k) * np.exp(-(end - t0) / tau)
+            if time <= t1:
+                break
+        out.append(np.degrees(theta))
+    return np.array(out)
+
+
 @pytest.fixture(scope="module")
 def exe():
     return hhneck_executable()
@@ -68,24 +87,30 @@ def test_disc_alone_turns_by_moment_over_stiffness(tmp_path, exe, motion):
     levels = peak * np.array([1.0, 0.5, -0.5, -1.0])
     expect = np.degrees(levels / k)
     got = segments.rotations_at(t, rot, peak, levels)
-    # on the loading ramp (1 N m over RAMP) the rotation lags the static one
-    # by the discs' Kelvin-Voigt relaxation time: (M - tau r)/K (tau 0.1 s
-    # with the shipped factors, a 1 % lag at 0.5 N m); a wrong axis, sign,
-    # stiffness or damping is off by far more
+    # on the loading ramps the rotation lags the static one as the discs'
+    # Kelvin-Voigt law says (relaxation time tau, which carries S1's damping
+    # coefficient on the discs' share of the stiffness: seconds, so the
+    # exact solution with its transient, not the late-ramp lag tau r/K); a
+    # wrong axis, sign, stiffness or damping is off by far more
     tau = _relaxation_time(probe, "C5C4")
-    lagged = np.sign(expect) * (np.abs(expect) - np.degrees(tau * peak / segments.RAMP / k))
+    times = np.array([segments.RAMP, 0.5 * segments.RAMP, segments.T_NEG + 0.5 * segments.RAMP,
+                      segments.T_NEG + segments.RAMP])
+    lagged = _kelvin_voigt(segments.moment_table(peak), k, tau, times)
     assert np.allclose(got, lagged, rtol=2e-3), (got, lagged, expect)
-    # at the end of the hold the rotation is the static one: to 1e-4 in
-    # bending; a twist of 3.3 deg turns 0.16 % further than the linear
-    # G J/h (the disc's finite-rotation terms, of order theta^2/2 = 0.17 %)
+    assert np.all(np.abs(got) < np.abs(expect))                  # and it lags
+    # at the end of the hold the rotation creeps towards the static one as
+    # the law says: to 1e-4 in bending; a twist of 3 deg turns 0.16 % further
+    # than the linear G J/h (the disc's finite-rotation terms, of order
+    # theta^2/2 = 0.17 %)
     hold_end = np.interp(segments.RAMP + segments.HOLD - 1e-6, t, rot)
-    assert hold_end == pytest.approx(expect[0], rel=3e-3 if motion == "axial_rotation" else 1e-4)
+    creep = _kelvin_voigt(segments.moment_table(peak), k, tau, segments.RAMP + segments.HOLD - 1e-6)[0]
+    assert got[0] < creep < expect[0]
+    assert hold_end == pytest.approx(creep, rel=3e-3 if motion == "axial_rotation" else 1e-4)
 
 
 def test_sweep_protocol_disc_alone_against_its_closed_form(tmp_path, exe):
     # the calibration's protocol: 0 -> -M, held, -M -> +M at the rate M/RAMP;
-    # on the rising ramp the disc alone turns (m - tau r)/K at every moment m
-    # once the hold's state has relaxed (tau 0.1 s against the 5 s to m = -0.5)
+    # on the rising ramp the disc alone turns as its Kelvin-Voigt law says
     table = segments.moment_table(1.0, "sweep")
     assert table[0] == (0.0, 0.0) and table[-1] == (segments.T_END, 1.0)
     assert table[2] == (segments.SWEEP_START, -1.0)
@@ -96,7 +121,7 @@ def test_sweep_protocol_disc_alone_against_its_closed_form(tmp_path, exe):
     deck = str(tmp_path / "C4_C5_flexion_extension_1Nm_disc_sweep.inp")
     d1, h, g, ix, iy, j = _disc_card(deck, "C5C4")
     k, tau = d1 * iy / h, _relaxation_time(deck, "C5C4")
-    expect = np.degrees((m - tau * 1.0 / segments.RAMP) / k)
+    expect = _kelvin_voigt(table, k, tau, segments.sweep_time(m, 1.0))
     got = np.interp(segments.sweep_time(m, 1.0), t, rot)
     assert np.allclose(got, expect, rtol=2e-3, atol=1e-4), (got, expect)
     with pytest.raises(ValueError):
@@ -149,16 +174,17 @@ def test_data_branches_split_at_the_neutral_zone():
 def test_statics_are_the_limit_of_ever_slower_ramps(tmp_path, exe, monkeypatch):
     """C4-C5 flexion with every element: the STATICS levels (the
     catalogue's solution) against the dynamic ramps. On the 20 s ramps the
-    rotation lags the static one by the viscous terms (up to 2 % of it at
-    these levels); on ramps ten times slower the lag is a tenth: the
-    statics are the ramps' zero-rate limit, level by level."""
+    rotation lags the static one by the viscous terms (up to 5 % of it at
+    these levels, the discs carrying S1's damping coefficient); on ramps ten
+    times slower the lag is a fifth at most: the statics are the ramps'
+    zero-rate limit, level by level."""
     levels = np.array([1.0, 0.67, 0.33, -0.33, -0.67, -1.0])
     t, rot = segments.run_case("C4_C5", "flexion_extension", 1.0, str(tmp_path), exe, statics=True)
     static = segments.rotations_at(t, rot, 1.0, levels)
     assert t.size == round(segments.T_END / (segments.RAMP * segments.GRID_STEP)) + 1
     t, rot = segments.run_case("C4_C5", "flexion_extension", 1.0, str(tmp_path), exe)
     lag = static - segments.rotations_at(t, rot, 1.0, levels)
-    assert np.all(lag * np.sign(levels) > 0) and np.all(np.abs(lag) < 0.02 * np.abs(static)), (static, lag)
+    assert np.all(lag * np.sign(levels) > 0) and np.all(np.abs(lag) < 0.05 * np.abs(static)), (static, lag)
     for name, v in (("RAMP", 10 * segments.RAMP), ("T_NEG", 10 * segments.T_NEG),
                     ("T_END", 10 * segments.T_END)):
         monkeypatch.setattr(segments, name, v)
@@ -187,7 +213,8 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     # and (0.66, 4.93) points of the data file
     assert 5.4 < data[0] < 5.52
     import h5py
-    with h5py.File(tmp_path / "segments" / "C4_C5_flexion_extension_1Nm.h5", "r") as f:
+    # the catalogue solves the segment tests as statics (their load times as time)
+    with h5py.File(tmp_path / "segments" / "C4_C5_flexion_extension_1Nm_statics.h5", "r") as f:
         t = f["time"][:]
         c4 = f["channels"]["C4_RY"][:]
     at_peak = np.interp(segments.RAMP, t, c4) - c4[0]
