@@ -218,6 +218,7 @@ contains
         end if
         call me%integ%set_step(me%cs%h)
         call me%integ%set_tolerances(me%cs%rtol, me%cs%atol)
+        call me%integ%set_jacobian_reuse(me%cs%jac_steps, me%cs%jac_band)
         call me%integ%init(me%sys, me%cs%t_start, y, stat, msg)
         if (stat /= stat_ok) then
             call me%fail(exit_diverged, trim(msg))
