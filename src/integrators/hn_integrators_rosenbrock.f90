@@ -247,7 +247,8 @@ contains
         integer :: i, j
         hg = h*gam
         ! with the factorization of another step h0 in the band, the stages
-        ! solve with the Jacobian (h0/h) J: a W-method keeps its order
+        ! solve with the Jacobian (h0/h) J: a W-method keeps its classical
+        ! order (on stiff components an inexact Jacobian costs accuracy)
         if (.not. me%w%factored_for(hg, me%band)) then
             call me%w%factor(hg, stat, errmsg)
             me%nfact = me%w%factorizations()
