@@ -5,6 +5,7 @@ module hn_case
     use hn_model, only: model_t
     use hn_deck_reader, only: deck_line_t, path_len
     use hn_sections, only: section_t
+    use hn_integrators, only: jacobian_steps_default, factor_band_default
     implicit none
     private
 
@@ -24,6 +25,8 @@ module hn_case
         character(len=8) :: output_xdd = 'SOLVE'
         character(len=8) :: integrator = 'RK4'
         real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-8_wp
+        integer :: jac_steps = jacobian_steps_default   !! SOLVER F3: accepted steps one ROS34PW2 Jacobian serves
+        real(wp) :: jac_band = factor_band_default      !! SOLVER F4: step-size band of one ROS34PW2 factorization
         real(wp), allocatable :: x0(:), xd0(:)      !! initial active coordinates and rates
         logical :: hold_posture = .false.           !! generalized forces hold the start posture (released: model%hold_release)
         logical :: hold_prestrain = .false.         !! HOLD PRESTRAIN: the joints' elements pre-strained to settle it (hn_prestrain)

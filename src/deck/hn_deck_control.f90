@@ -2,11 +2,11 @@
 !! H5FILE, EVENTS, HOLD, DUMP (`control_cards`), HEADNECK, CRITERIA,
 !! LOADCELL, PRINT and STATICS (`report_cards`, after the bodies) and RUNLIMIT (`runlimit_card`).
 module hn_deck_control
-    use hn_kinds, only: wp, zero
+    use hn_kinds, only: wp, zero, one
     use hn_case, only: case_t
     use hn_deck_reader, only: deck_reader_t
     use hn_linsolve, only: solver_cholesky, solver_names, solver_code
-    use hn_integrators, only: integrator_names
+    use hn_integrators, only: integrator_names, jacobian_steps_default, factor_band_default, factor_band_max
     use hn_criteria_card, only: criteria_card
     use hn_loadcell_card, only: loadcell_cards
     use hn_print_card, only: print_cards
@@ -150,6 +150,20 @@ contains
                 if (rd%failed()) return
                 cs%model%jacobian = s(1:8)
             end if
+            ! ROS34PW2's reuse of its Jacobian and factorization
+            ! (read as a real: --set writes its values in E format)
+            call rd%real(i, 3, 'accepted steps per Jacobian', '-', v, one, 1.0e5_wp, &
+                         default=real(jacobian_steps_default, wp))
+            if (rd%failed()) return
+            if (v /= aint(v)) then
+                call rd%fail(rd%context(i, 3, 'accepted steps per Jacobian')//': found '//trim(real_str(v))// &
+                             '; expected a whole number')
+                return
+            end if
+            cs%jac_steps = nint(v)
+            call rd%real(i, 4, 'step-size band of a factorization', '-', cs%jac_band, one, factor_band_max, &
+                         default=factor_band_default)
+            if (rd%failed()) return
         end if
         ic = single(rd, cards, 'GRAVITY', .false.)
         if (ic > 0) then

@@ -28,10 +28,9 @@ submodule(hn_integrators) hn_integrators_rosenbrock
         1.0564298455794094_wp, 2.296429974281067_wp, -1.307599564525376_wp, -1.045260255335102_wp, &
         -1.3864882699759573_wp, -8.262611700275677_wp, 7.250979895056055_wp, 2.398120075195581_wp, &
         0.5721822314575016_wp, 4.742931142090097_wp, -4.398120075195578_wp, -0.9169932983520199_wp], [ns, 3])
-    !> Accepted steps with one ROS34PW2 Jacobian before a new one is formed.
-    integer, parameter :: rosw_jac_age_max = 20
-    !> A proposed step up to this factor longer than the last is not taken,
-    !! so that the factorization of I - h gamma J can be reused.
+    !> Without a band (band = 1) a proposed step up to this factor longer
+    !! than the last is not taken, so that the factorization of
+    !! I - h gamma J can be reused.
     real(wp), parameter :: keep_step_factor = 1.2_wp
 
     !> The tableau in the transformed form of the implementation: stages
@@ -170,7 +169,6 @@ contains
         if (.not. allocated(me%u)) then
             allocate (me%u(size(me%y), ns))
             me%jac_age = -1
-            me%jac_age_max = rosw_jac_age_max
         end if
         me%u = zero
         if (me%hnext <= zero) me%hnext = me%h
@@ -188,7 +186,7 @@ contains
     end subroutine rosw_jacobian
 
     !> One accepted ROS34PW2 step: four stages with one factorization of
-    !! I - h gamma J (reused while h and J stay), error from the embedded
+    !! I - h gamma J (reused while J stays and h is in its band), error from the embedded
     !! order-2 solution, the next step from err^(-1/3).
     module procedure rosw_step
         type(rosw_tableau_t) :: tb
@@ -198,7 +196,7 @@ contains
         stat = stat_ok; errmsg = ''
         rejected = .false.
         tb = rosw_tableau()
-        if (me%jac_age < 0 .or. me%jac_age >= me%jac_age_max) then
+        if (me%jac_age < 0 .or. me%jac_age >= me%jac_steps) then
             call rosw_jacobian(me, sys, stat, errmsg)
             if (stat /= stat_ok) return
         end if
@@ -227,11 +225,11 @@ contains
         fac = min(fac_max, max(fac_min, fac))
         ! no growth right after a rejection (Hairer & Wanner's safeguard)
         if (rejected) fac = min(fac, one)
-        ! a clipped step does not shrink the next; a small increase is not
-        ! worth a new factorization
+        ! a clipped step does not shrink the next; without a band a small
+        ! increase is not worth a new factorization
         if (h >= me%hnext*unclipped .or. fac < one) then
             me%hnext = h*fac
-            if (fac >= one .and. fac <= keep_step_factor) me%hnext = h
+            if (me%band <= one .and. fac >= one .and. fac <= keep_step_factor) me%hnext = h
         end if
         call accept(me, me%t + h, ynew, fnew)
     end procedure rosw_step
@@ -248,7 +246,10 @@ contains
         real(wp) :: hg, ys(size(ynew)), fs(size(ynew)), r(size(ynew))
         integer :: i, j
         hg = h*gam
-        if (.not. me%w%factored_for(hg)) then
+        ! with the factorization of another step h0 in the band, the stages
+        ! solve with the Jacobian (h0/h) J: a W-method keeps its classical
+        ! order (on stiff components an inexact Jacobian costs accuracy)
+        if (.not. me%w%factored_for(hg, me%band)) then
             call me%w%factor(hg, stat, errmsg)
             me%nfact = me%w%factorizations()
             if (stat /= stat_ok) then

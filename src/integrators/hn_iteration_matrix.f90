@@ -216,11 +216,17 @@ contains
         b = me%have_jac
     end function im_has_jacobian
 
-    !> The factorization is of W for this hg.
-    pure logical function im_factored_for(me, hg) result(b)
+    !> The factorization is of W for this hg, or with `band` for an hg0 with
+    !! hg/band <= hg0 <= hg band.
+    pure logical function im_factored_for(me, hg, band) result(b)
         class(iteration_matrix_t), intent(in) :: me
-        real(wp), intent(in) :: hg   !! step times the method's gamma [s]
-        b = me%hg == hg
+        real(wp), intent(in) :: hg                 !! step times the method's gamma [s]
+        real(wp), intent(in), optional :: band     !! factor of the band (>= 1; default 1: hg itself)
+        if (present(band)) then
+            b = me%hg > zero .and. me%hg >= hg/band .and. me%hg <= hg*band
+        else
+            b = me%hg == hg
+        end if
     end function im_factored_for
 
     !> Jacobians formed so far.

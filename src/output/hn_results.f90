@@ -49,6 +49,7 @@ module hn_results
         procedure :: flush => results_flush
         procedure :: close => results_close
         procedure :: criteria => results_criteria
+        procedure :: counts => results_counts
         procedure :: failed => results_failed
         procedure :: error => results_error
     end type results_t
@@ -378,6 +379,26 @@ contains
                 ' (marked incomplete, ', me%nwritten, trim(merge(' sample) ', ' samples)', me%nwritten == 1))
         end if
     end subroutine results_close
+
+    !> The integrator's counts as root attributes (docs/output-format.md):
+    !! steps, rejected steps, dynamics evaluations (of the integration and
+    !! at output times), Jacobians and factorizations of the iteration matrix.
+    subroutine results_counts(me, steps, rejected, evaluations, output_evaluations, jacobians, factorizations)
+        class(results_t), intent(inout) :: me
+        integer, intent(in) :: steps                !! accepted steps
+        integer, intent(in) :: rejected             !! rejected steps
+        integer, intent(in) :: evaluations          !! dynamics evaluations of the integration
+        integer, intent(in) :: output_evaluations   !! evaluations at output times
+        integer, intent(in) :: jacobians            !! Jacobians formed (0: explicit methods)
+        integer, intent(in) :: factorizations       !! factorizations of the iteration matrix
+        if (.not. me%active) return
+        call me%h5%attr_int('/', 'steps', steps)
+        call me%h5%attr_int('/', 'rejected_steps', rejected)
+        call me%h5%attr_int('/', 'evaluations', evaluations)
+        call me%h5%attr_int('/', 'output_evaluations', output_evaluations)
+        call me%h5%attr_int('/', 'jacobians', jacobians)
+        call me%h5%attr_int('/', 'factorizations', factorizations)
+    end subroutine results_counts
 
     !> Group /injury: each criterion's value and where it occurs, labelled
     !! and with units (docs/output-format.md); the filtered time histories

@@ -218,6 +218,7 @@ contains
         end if
         call me%integ%set_step(me%cs%h)
         call me%integ%set_tolerances(me%cs%rtol, me%cs%atol)
+        call me%integ%set_jacobian_reuse(me%cs%jac_steps, me%cs%jac_band)
         call me%integ%init(me%sys, me%cs%t_start, y, stat, msg)
         if (stat /= stat_ok) then
             call me%fail(exit_diverged, trim(msg))
@@ -753,6 +754,8 @@ contains
             call range_report(me)
         end if
         call end_of_run_lines(me)
+        call me%out%counts(me%res%nsteps, me%res%nreject, me%res%nevals, me%res%nevals_output, me%res%njac, &
+                           me%res%nfact)
         call me%out%close(me%ch, trim(me%res%status), trim(me%res%message), st, line, note)
         if (st /= stat_ok) call me%fail(exit_output, trim(line))
         if (len_trim(note) > 0 .and. len_trim(me%res%file_note) > 0) then
@@ -801,6 +804,11 @@ contains
                 ' S: ', res%nsteps, ' STEPS (', res%nreject, ' REJECTED, ', res%nevents, ' EVENTS), ', &
                 res%nevals, ' DYNAMICS EVALUATIONS + ', res%nevals_output, ' AT OUTPUTS, ', res%wall, ' S WALL TIME'
             call me%lst%message(line)
+            if (res%njac > 0 .or. res%nfact > 0) then
+                write (line, '(a,i0,a,i0,a)') 'END OF RUN: ', res%njac, ' JACOBIANS AND ', res%nfact, &
+                    ' FACTORIZATIONS OF THE ITERATION MATRIX'
+                call me%lst%message(line)
+            end if
             if (res%exit_code /= exit_ok) call me%lst%message('RUN INCOMPLETE: '//trim(res%message))
         end associate
     end subroutine end_of_run_lines
