@@ -658,7 +658,7 @@ def _scaled_discs(lines, sub_bend, sub_flexion):
 
 
 def deck_lines(p, posture="seated", t1_slope=None, lordosis=None, nz_springs=None, upper_cervical_csv="none",
-               suboccipital=False, segmental=False, sub_bend=1.0, sub_flexion=1.0):
+               suboccipital=False, segmental=True, sub_bend=1.0, sub_flexion=1.0):
     """The model deck's lines from the values `p` (table_values): the shipped
     deck with the defaults; the variants of the module's docstring
     otherwise. DeckError for a CSV it cannot use or a card beyond column 80."""
@@ -706,7 +706,7 @@ def _parser():
     ap.add_argument("--nz-springs", help="the neutral-zone springs of this CSV, or none (default the table's)")
     ap.add_argument("--upper-cervical", default="none", help="the upper-cervical factors of this CSV, or none")
     ap.add_argument("--suboccipital", choices=("yes", "no"), default="no")
-    ap.add_argument("--segmental", choices=("yes", "no"), default="no")
+    ap.add_argument("--segmental", choices=("yes", "no"), default="yes")
     ap.add_argument("--sub-bend", type=float, default=1.0, help="the subaxial discs' Ix, Iy times F")
     ap.add_argument("--sub-flexion", type=float, default=1.0, help="the Iy of the discs C3-C4 ... C7-T1 times F")
     return ap
