@@ -64,7 +64,9 @@ TYPICAL_SCRIPT_TIMES="test/scripts/mpi_sweep.sh 85 test/scripts/new_nbdl_case.sh
     test/scripts/readme_commands.sh 38 test/scripts/robustness.sh 25 test/scripts/two_clones.sh 21
     test/scripts/activation_groups.sh 20 test/scripts/parallel_calibration.sh 17 test/scripts/animate.sh 16
     test/scripts/results.sh 15 test/scripts/listing_references.sh 15 test/scripts/deck_writers.sh 15
-    test/scripts/api_docs.sh 11"
+    test/scripts/api_docs.sh 11 test/python/test_commands.py 45 test/python/test_calibration_iso.py 45
+    test/python/test_segments.py 45 test/python/test_model_deck.py 37 test/python/test_upper_cervical.py 20
+    test/python/test_catalogue.py 10 test/python/test_import_anywhere.py 8 test/python/test_specimens.py 8"
 # fpm's debug profile, without its -fcoarray=single: with it gfortran 12
 # writes test module files that it cannot read back once they use pFUnit
 DEBUG_FLAGS="-Wall -Wextra -Wimplicit-interface -fPIC -fmax-errors=1 -g -fcheck=bounds -fcheck=array-temps -fbacktrace"
