@@ -9,8 +9,9 @@
 #      debug build's executable (to the checking build's instead for a
 #      script with a line "# builds: debug checking" when that build runs;
 #      to the release build's for one with "# builds: release"),
-#   4. the Python tests of the tools, test/python (pytest), with HHNECK set
-#      to the release build's executable.
+#   4. the Python tests of the tools, test/python (pytest, one run per file
+#      test/python/test_*.py, each a job of the pool below), with HHNECK
+#      set to the release build's executable.
 # The scripts and the Python tests run with this checkout's Python
 # environment .venv (tools/setup.sh) first on PATH: its python3 imports
 # this checkout's package, and the console commands (hhneck-animate, ...)
@@ -44,11 +45,28 @@ times=build/test_times    # seconds per test program in the last run
 script_times=build/script_times    # seconds per script (and build) and of the Python tests in the last run
 
 # the test programs that run in the checking build alone when it runs: the
-# regression test re-runs whole case decks at rtol 1e-8, the longest
-# program by far, and the checking build's run-time checks include every
-# one of the debug build's (-fcheck=all, FPE traps); the debug build still
-# compiles it (its warnings), and runs it under --no-checking-build
-CHECKING_ONLY="test_regression"
+# slowest, those of 7 s or more (the regression test re-runs whole case
+# decks at rtol 1e-8, the longest program by far). Both builds are -O0 of
+# the same gfortran, so they compute the same numbers, and the checking
+# build's run-time checks include every one of the debug build's
+# (-fcheck=all, FPE traps): a run in the debug build would repeat the
+# checking build's. The debug build still compiles them (their warnings),
+# and runs them under --no-checking-build
+CHECKING_ONLY="test_regression test_free_bodies test_scene test_feedback test_nz_springs test_calibration
+    test_stability test_stiffened test_cases"
+# the order of a first run (no build/test_times, build/script_times yet,
+# as from a clean clone): typical seconds of the slowest test programs
+# and of the slowest scripts and Python test files, so that none of them
+# starts last and leaves a core idle at the end of a step
+TYPICAL_TEST_TIMES="test_regression 67 test_free_bodies 20 test_scene 17 test_feedback 16
+    test_nz_springs 11 test_calibration 11 test_stability 9 test_stiffened 8 test_cases 7"
+TYPICAL_SCRIPT_TIMES="test/scripts/mpi_sweep.sh 85 test/scripts/new_nbdl_case.sh 61
+    test/scripts/readme_commands.sh 38 test/scripts/robustness.sh 25 test/scripts/two_clones.sh 21
+    test/scripts/activation_groups.sh 20 test/scripts/parallel_calibration.sh 17 test/scripts/animate.sh 16
+    test/scripts/results.sh 15 test/scripts/listing_references.sh 15 test/scripts/deck_writers.sh 15
+    test/scripts/api_docs.sh 11 test/python/test_commands.py 45 test/python/test_calibration_iso.py 45
+    test/python/test_segments.py 45 test/python/test_model_deck.py 37 test/python/test_upper_cervical.py 20
+    test/python/test_catalogue.py 10 test/python/test_import_anywhere.py 8 test/python/test_specimens.py 8"
 # fpm's debug profile, without its -fcoarray=single: with it gfortran 12
 # writes test module files that it cannot read back once they use pFUnit
 DEBUG_FLAGS="-Wall -Wextra -Wimplicit-interface -fPIC -fmax-errors=1 -g -fcheck=bounds -fcheck=array-temps -fbacktrace"
@@ -62,6 +80,13 @@ start=$(date +%s)
 echo "== pFUnit ready ($(($(date +%s) - start)) s)"
 PF_INC=$(./tools/pfunit.sh include)
 PF_LINK=$(./tools/pfunit.sh link)
+# gold links the test programs when the machine has it (binutils): fpm
+# puts every test module into each test program, about 70 MB of objects
+# with their debug information, and gold links one in half of ld's time
+# (0.5 s of processor time, not 1 s; about 130 links in the two builds)
+if ld.gold --version > /dev/null 2>&1; then
+    PF_LINK="$PF_LINK -fuse-ld=gold"
+fi
 
 if [ -n "$only" ]; then
     if [ $# -ge 2 ]; then
@@ -103,14 +128,15 @@ run_tests() {
     # after this one), the programs of CHECKING_ONLY are left to it
     skip='^$'
     if [ -n "${2:-}" ]; then
-        skip="/($(echo "$CHECKING_ONLY" | tr ' ' '|'))\$"
+        # shellcheck disable=SC2086
+        skip="/($(echo $CHECKING_ONLY | tr ' ' '|'))\$"
         for n in $CHECKING_ONLY; do echo "   $n: in the checking build only"; done
     fi
     fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | grep '/test/' |
         grep -E -v "$skip" |
-        awk -v known="$times" 'BEGIN {
-                n = split("test_regression test_cases test_free_bodies test_stability test_stiffened test_scene", slow)
-                for (i = 1; i <= n; i++) t[slow[i]] = 100 - i
+        awk -v known="$times" -v typical="$TYPICAL_TEST_TIMES" 'BEGIN {
+                n = split(typical, f, " ")
+                for (i = 1; i < n; i += 2) t[f[i]] = f[i + 1]
                 while ((getline line < known) > 0) { split(line, f, " "); t[f[2]] = f[1] }
             }
             { name = $0; sub(".*/", "", name); print (name in t ? t[name] : 0), $0 }' |
@@ -183,9 +209,9 @@ run_checks() {
     rm -rf "$jobs"
     mkdir -p "$jobs"
     n=0
-    for script in test/scripts/*.sh python; do
+    for script in test/scripts/*.sh test/python/test_*.py; do
         builds=release
-        [ "$script" = python ] || builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1)
+        case $script in *.sh) builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1) ;; esac
         for build in ${builds:-debug}; do
             case $build in
                 # a script for both builds runs in the checking build alone when
@@ -198,9 +224,9 @@ run_checks() {
             esac
             [ -f "$jobs/exe.$build" ] || exe_of "$build" > "$jobs/exe.$build"
             n=$((n + 1))
-            if [ "$script" = python ]; then
-                title="test/python (pytest)"
-                command="python3 -m pytest -q -p no:cacheprovider test/python"
+            if [ "${script%.py}" != "$script" ]; then
+                title="$script (pytest)"
+                command="python3 -m pytest -q -p no:cacheprovider $script"
             else
                 title="$script ($build build)"
                 command="sh $script"
@@ -211,10 +237,13 @@ run_checks() {
     done
     # shellcheck disable=SC2016
     ls "$jobs" | sed -n 's/\.sh$//p' |
-        awk -v known="$script_times" -v dir="$jobs" 'BEGIN {
+        awk -v known="$script_times" -v dir="$jobs" -v typical="$TYPICAL_SCRIPT_TIMES" 'BEGIN {
+                n = split(typical, f, " ")
+                for (i = 1; i < n; i += 2) d[f[i]] = f[i + 1]
                 while ((getline line < known) > 0) { i = index(line, " "); t[substr(line, i + 1)] = substr(line, 1, i - 1) }
             }
-            { getline title < (dir "/" $0 ".title"); print (title in t ? t[title] : 0), $0 }' |
+            { getline title < (dir "/" $0 ".title"); file = title; sub(/ .*/, "", file)
+              print (title in t ? t[title] : (file in d ? d[file] : 0)), $0 }' |
         sort -rn | cut -d' ' -f2 |
         xargs -P "$TEST_JOBS" -n 1 sh -c \
             't=$(date +%s); sh "$0/$1.sh" >> "$0/$1.out" 2>&1; echo $? > "$0/$1.rc";

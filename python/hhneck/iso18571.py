@@ -51,6 +51,27 @@ def resample(t, *curves):
     return (grid,) + tuple(np.interp(grid, t, c) for c in curves)
 
 
+def _package_class():
+    """The package's class ISO18571, imported on first use: the package
+    (numba under it) takes seconds to import, which a command's --help or a
+    module that only imports this one need not pay. The numba functions of
+    its DTW (dtwalign) are cached on disk, where numba can write: each
+    process would otherwise compile them again, 14 s of processor time,
+    where loading them takes under 1 s; numba recompiles when their source
+    changes."""
+    from objective_rating_metrics.rating import ISO18571
+    try:
+        from numba.core.registry import CPUDispatcher
+        from dtwalign import backtrack, cost, window
+        for module in (backtrack, cost, window):
+            for f in vars(module).values():
+                if isinstance(f, CPUDispatcher) and f._cache.__class__.__name__ == "NullCache":
+                    f.enable_caching()
+    except Exception:          # another dtwalign or numba, or nowhere to write: compiled as before
+        pass
+    return ISO18571
+
+
 def rate(t, reference, model, window=None, ndigits=None):
     """ISO/TS 18571 scores of `model` against `reference`, both sampled at
     the times `t` [s]: dict(corridor=, phase=, magnitude=, slope=, overall=).
@@ -75,10 +96,7 @@ def rate(t, reference, model, window=None, ndigits=None):
         raise ValueError("%d samples at 10 kHz: at least %d needed" % (grid.size, MIN_SAMPLES))
     if np.max(np.abs(ref)) == 0 or np.ptp(ref) == 0:
         raise ValueError("the reference curve is zero or constant: nothing to rate against")
-    # imported here: the package (numba under it) takes seconds to import,
-    # which a command's --help or a module that only imports this one need not pay
-    from objective_rating_metrics.rating import ISO18571
-    iso = ISO18571(np.column_stack((grid, ref)), np.column_stack((grid, mod)), dt=DT)
+    iso = _package_class()(np.column_stack((grid, ref)), np.column_stack((grid, mod)), dt=DT)
     nd = -1 if ndigits is None else ndigits
     return dict(corridor=float(iso.corridor_rating(ndigits=nd)),
                 phase=float(iso.phase_rating(ndigits=nd)),
