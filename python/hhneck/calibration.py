@@ -12,12 +12,6 @@ fitted values: a prediction, since it took no part in its fit.
     run_calibration(deck, workdir, exe=None) -> dict(values=, objective=, cases=)
     leave_one_out(workdir, groups=None, params=PARAMS, evals=..., starts=..., jobs=1) -> rows
     volunteer_scores(params, values, workdir) -> (NBDL case means, largest real part at rest)
-    two_stage(workdir, evals, starts, nbdl_evals, nbdl_starts) -> dict (passive to the
-        catalogue, then the muscles to NBDL 12 g on that passive set)
-    joint_fit(workdir, evals, starts, nbdl_weight, segment_sources=()) -> dict (every NBDL fit
-        parameter and LIGK fitted to NBDL 12 g, the specimen cases and, with --joint --segments,
-        the segment sources in one objective; the muscles' parameters OPTIONAL there)
-    score_set(params, values, workdir) -> (catalogue group means, NBDL case means, rest)
 
 Segment cases (write_segment_case): the segment deck of hhneck.segments
 with protocol "sweep" (the whole moment-rotation curve on one rising
@@ -45,8 +39,12 @@ of Izambert et al. 2003, S13), assumed otherwise (the spans the NBDL
 calibration deck uses; the ligaments' stiffness a factor 2 either way).
 The shipped model deck is not changed: the fitted values are reported.
 
+No fit here moves a passive parameter to the volunteers: the shipped
+column is fitted to the segment tests alone (hhneck.fit_column), the
+volunteers fit the controller alone (input/calibrate_controller.inp).
+
 Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
-       [--two-stage [--model DECK] | --joint [--nbdl-weight W] [--leave-out GROUP ...]] [--table FILE]
+       [--table FILE]
 """
 import argparse
 import os
@@ -407,7 +405,6 @@ def table(rows, params):
 
 #: the NBDL 12 g calibration deck (the shipped fit's) and its muscles' parameters
 NBDL12_DECK = project_path("input", "calibrate_nbdl12g.inp")
-MUSCLE_PARAMS = ("SIGMA", "BRACEF", "REFLEXF", "DELAYF", "BRACEE", "REFLEXE", "DELAYE")
 
 
 def deck_params(path):
@@ -436,173 +433,6 @@ def values_listing(model=segments.MODEL_DECK, deck=NBDL12_DECK):
     return "\n".join(out) + "\n"
 
 
-def muscle_fit_deck(path, evals, starts, nbdl12=NBDL12_DECK):
-    """The NBDL 12 g calibration deck with the muscles' parameters alone
-    (MUSCLE_PARAMS, the others as the model deck has them), from the same
-    starting point (its VALUES of those parameters), `evals` evaluations
-    from `starts` starting points; written to `path`, its PARAM tuples returned."""
-    params, values = deck_params(nbdl12)
-    keep = [k for k, p in enumerate(params) if p[0] in MUSCLE_PARAMS]
-    lines = []
-    for l in open(nbdl12).read().splitlines():
-        if is_card(l, "VALUES") or (is_card(l, "PARAM") and l[10:20].strip() not in MUSCLE_PARAMS):
-            continue
-        if is_card(l, "FIT"):
-            l = set_field(set_field(l, 2, str(evals)), 3, str(starts))
-        lines.append(l)
-    vals = [values[k] for k in keep]
-    lines += values_cards(vals)
-    write_deck(path, lines)
-    return [params[k] for k in keep]
-
-
-def two_stage(workdir, evals=150, starts=16, nbdl_evals=1000, nbdl_starts=100, exe=None, groups=None,
-              model=segments.MODEL_DECK):
-    """The passive properties fitted to the whole catalogue (every segment
-    source and specimen case, each group weighing 1), then the muscles
-    (MUSCLE_PARAMS) fitted to the NBDL 12 g volunteers on that passive set
-    (the shipped fit's deck, starting point and objective, the other
-    parameters as shipped); scored on the NBDL 15 g and 12 g runs
-    (CORA-style) and on every catalogue group (ISO 18571). Returns a dict:
-    passive, muscles ({name: value}), catalogue ({group: mean} at the
-    final set), stage1 ({group: mean} at the passive fit, shipped muscles),
-    volunteers ({deck: mean}) and rest (1/s). groups: the catalogue's
-    groups fitted and scored (default case_groups(): all of them); model:
-    the model deck (default the shipped one; e.g. a variant of the deck
-    generator's)."""
-    groups = groups or case_groups()
-    cases = [c for cs in groups.values() for c in cs]
-    d1, d2, d3 = (os.path.join(workdir, d) for d in ("passive", "muscles", "scores"))
-    for d in (d1, d2, d3):
-        os.makedirs(os.path.join(d, "input"), exist_ok=True)
-    fit = run_calibration(calibration_deck("passive_fit", cases, d1, PARAMS, evals, starts,
-                                           weights=group_weights(groups), model=model), d1, exe)
-    passive = [fit["values"][p[0]] for p in PARAMS]
-    stage1 = by_case(fit, cases)
-    name = os.path.join("input", os.path.basename(segments.MODEL_DECK))
-    model_deck_with(PARAMS, passive, os.path.join(d2, name), model)
-    deck = os.path.join(d2, "muscle_fit.inp")
-    mparams = muscle_fit_deck(deck, nbdl_evals, nbdl_starts)
-    mfit = run_calibration(deck, d2, exe)
-    muscles = [mfit["values"][p[0]] for p in mparams]
-    allp, allv = list(PARAMS) + mparams, passive + muscles
-    catalogue, volunteers, rest = score_set(allp, allv, d3, groups, exe, model)
-    return dict(passive=dict(zip([p[0] for p in PARAMS], passive)),
-                muscles=dict(zip([p[0] for p in mparams], muscles)),
-                stage1={g: float(np.mean([stage1[c] for c in cs])) for g, cs in groups.items()},
-                catalogue=catalogue, volunteers=volunteers, rest=rest)
-
-
-def score_set(params, values, workdir, groups=None, exe=None, model=segments.MODEL_DECK):
-    """A parameter set scored everywhere: every catalogue group (ISO 18571,
-    the model deck with the values in workdir/input/, the passive PARAMS
-    among them also as the segment decks' VALUES) and the NBDL cases
-    (volunteer_scores). Returns (catalogue {group: mean}, NBDL {deck: mean}, rest [1/s])."""
-    groups = groups or case_groups()
-    cases = [c for cs in groups.values() for c in cs]
-    name = os.path.join(workdir, "input", os.path.basename(segments.MODEL_DECK))
-    os.makedirs(os.path.dirname(name), exist_ok=True)
-    volunteers, rest = volunteer_scores(params, values, os.path.join(workdir, "volunteers"), exe, model=model)
-    model_deck_with(params, values, name, model)
-    given = dict(zip([p[0] for p in params], values))
-    passive = [given[p[0]] for p in PARAMS]
-    final = by_case(run_calibration(calibration_deck("catalogue", cases, workdir, PARAMS, values=passive,
-                                                     model=name), workdir, exe), cases)
-    return {g: float(np.mean([final[c] for c in cs])) for g, cs in groups.items()}, volunteers, rest
-
-
-def joint_fit(workdir, evals=600, starts=16, nbdl_weight=3.0, exe=None, specimens=tuple(CASES),
-              segment_sources=(), model=segments.MODEL_DECK):
-    """Every parameter of the shipped NBDL fit (input/calibrate_nbdl12g.inp:
-    its 15, its study, PASSIVE and RANGES cards) and the ligaments' LIGK
-    fitted in one objective to the NBDL 12 g volunteers (weight nbdl_weight),
-    the specimen cases (weight 1 each) and the curves of each segment source
-    in segment_sources (e.g. ("panjabi", "nightingale"): weight 1 per source,
-    group_weights), all rated by ISO 18571, from the shipped values; then the
-    set scored everywhere (score_set: NBDL 15 g and the sources not fitted
-    are prediction). A segment deck has no muscles: the muscles' parameters
-    (MUSCLE_PARAMS) are OPTIONAL, bound in the cases that have them.
-    model: the model deck (default the shipped one; another, e.g. a variant
-    of the deck generator's, goes to the fit's input/ folder, where every
-    case's INCLUDE finds it first), its values the starting point.
-    Returns dict(values={name: value}, objective, fitted={deck: mean},
-    catalogue, volunteers, rest)."""
-    fitdir = os.path.join(workdir, "fit")
-    os.makedirs(os.path.join(fitdir, "input"), exist_ok=True)
-    copy = os.path.join(fitdir, "input", os.path.basename(segments.MODEL_DECK))
-    if os.path.abspath(model) != os.path.abspath(segments.MODEL_DECK):
-        shutil.copyfile(model, copy)
-    else:
-        copy = model
-    params, _ = deck_params(NBDL12_DECK)
-    params = params + [PARAMS[-1]]
-    start = [float(l.split("=")[1]) for l in values_listing(model).splitlines()] + [1.0]
-    lines = ["TITLE     JOINT CALIBRATION: NBDL 12 G, THE SPECIMENS" +
-             (" AND THE SEGMENT SOURCES" if segment_sources else "")]
-    for l in open(NBDL12_DECK).read().splitlines():
-        if l.startswith("*") or not l.strip() or is_card(l, "TITLE") or is_card(l, "VALUES") \
-                or is_card(l, "PARAM"):
-            continue
-        if is_card(l, "CASE"):
-            l = "%-70s%s" % (l.rstrip(), number_field(nbdl_weight))
-        elif is_card(l, "RATING"):
-            l = set_field(l, 5, "ISO18571")
-        elif is_card(l, "FIT"):
-            l = set_field(set_field(l, 2, str(evals)), 3, str(starts))
-        lines.append(l)
-    groups = {c: [c] for c in specimens}
-    groups.update({g: cs for g, cs in segment_cases().items() if g in segment_sources})
-    weights = group_weights(groups)
-    for case in [c for cs in groups.values() for c in cs]:
-        lines += case_cards(case, fitdir, weights[case], model=copy)
-    lines += param_cards(params) + values_cards(start)
-    if segment_sources:
-        lines.append("OPTIONAL  " + "".join("%-10s" % n for n in MUSCLE_PARAMS))
-    deck = os.path.join(fitdir, "joint_fit.inp")
-    write_deck(deck, lines)
-    fit = run_calibration(deck, fitdir, exe)
-    values = [fit["values"][p[0]] for p in params] if evals > 0 else start   # evaluate-only: the start
-    catalogue, volunteers, rest = score_set(params, values, os.path.join(workdir, "scores"), exe=exe,
-                                            model=model)
-    return dict(values=dict(zip([p[0] for p in params], values)), objective=fit["objective"],
-                fitted=fit["cases"], catalogue=catalogue, volunteers=volunteers, rest=rest)
-
-
-def joint_groups(with_segments, leave_out=()):
-    """(specimen cases, segment sources) of a joint fit: every specimen case
-    and, with_segments, every segment source, less the groups in leave_out
-    (ValueError for a name that is neither)."""
-    unknown = set(leave_out) - set(SEGMENT_SOURCES) - set(CASES)
-    if unknown:
-        raise ValueError("--leave-out: %s; expected %s" % (", ".join(sorted(unknown)),
-                                                         ", ".join(list(SEGMENT_SOURCES) + list(CASES))))
-    return (tuple(c for c in CASES if c not in leave_out),
-            tuple(g for g in SEGMENT_SOURCES if with_segments and g not in leave_out))
-
-
-def two_stage_text(r):
-    """The two-stage fit's values and scores as Markdown."""
-    lines = ["passive set (fitted to the catalogue): " + ", ".join("%s %.3g" % kv for kv in r["passive"].items()),
-             "", "muscles (fitted to NBDL 12 g on it): " + ", ".join("%s %.3g" % kv for kv in r["muscles"].items()),
-             "", "| group | passive fit, shipped muscles (calibration) | final set |", "|---|---|---|"]
-    lines += ["| %s | %.3f | %.3f |" % (g, r["stage1"][g], r["catalogue"][g]) for g in r["catalogue"]]
-    lines += ["", "NBDL 15 g / 12 g (CORA-style; 12 g calibration of the muscles, 15 g prediction): " +
-              volunteer_text(r["volunteers"], r["rest"])]
-    return "\n".join(lines) + "\n"
-
-
-def joint_text(r):
-    """The joint fit's values and scores as Markdown."""
-    lines = ["values: " + ", ".join("%s %.3g" % kv for kv in r["values"].items()), "",
-             "objective J %.4f; fitted cases (ISO 18571): " % r["objective"] +
-             ", ".join("%s %.3f" % kv for kv in r["fitted"].items()), "",
-             "| group | at the fitted values |", "|---|---|"]
-    lines += ["| %s | %.3f |" % kv for kv in r["catalogue"].items()]
-    lines += ["", "NBDL 15 g / 12 g (CORA-style; 12 g calibration, 15 g prediction): " +
-              volunteer_text(r["volunteers"], r["rest"])]
-    return "\n".join(lines) + "\n"
-
-
 def volunteer_text(cases, rest):
     """The NBDL cell of a table: the two case means, or why none."""
     if not cases:
@@ -623,42 +453,9 @@ def main(argv=None):
     ap.add_argument("--table", help="write the Markdown table to this file too")
     ap.add_argument("--segments", action="store_true",
                     help="the whole catalogue: the segment sources (Panjabi, Nightingale) as groups beside the "
-                         "specimen cases (with --joint: in the joint objective too)")
+                         "specimen cases")
     ap.add_argument("--jobs", type=int, default=1, help="folds run at a time (default 1)")
-    ap.add_argument("--two-stage", action="store_true",
-                    help="instead of the leave-one-out: the passive parameters fitted to the whole catalogue, "
-                         "then the muscles to the NBDL 12 g volunteers on them (two_stage)")
-    ap.add_argument("--nbdl-evals", type=int, default=1000, help="evaluations of the muscles' fit (--two-stage)")
-    ap.add_argument("--nbdl-starts", type=int, default=100, help="its LHS starting points (--two-stage)")
-    ap.add_argument("--joint", action="store_true",
-                    help="instead of the leave-one-out: every NBDL fit parameter and LIGK fitted to NBDL 12 g "
-                         "and the specimen cases in one objective (joint_fit), --evals and --starts its own")
-    ap.add_argument("--nbdl-weight", type=float, default=3.0, help="the NBDL 12 g case's weight (--joint)")
-    ap.add_argument("--leave-out", action="append", metavar="GROUP",
-                    help="(--joint, repeatable) a segment source or specimen case left out of the joint fit, "
-                         "so that its score at the fitted values is a prediction")
-    ap.add_argument("--model", default=segments.MODEL_DECK,
-                    help="the model deck of --two-stage and --joint, its values --joint's starting point "
-                         "(default the shipped input/head_neck_54dof.inp)")
     args = ap.parse_args(argv)
-    if args.joint or args.two_stage:
-        work = os.path.abspath(args.workdir)
-        if args.joint:
-            try:
-                cases, sources = joint_groups(args.segments, args.leave_out or ())
-            except ValueError as e:
-                ap.error(str(e))
-            text = joint_text(joint_fit(work, args.evals, args.starts, args.nbdl_weight,
-                                        specimens=cases, segment_sources=sources,
-                                        model=os.path.abspath(args.model)))
-        else:
-            text = two_stage_text(two_stage(work, args.evals, args.starts, args.nbdl_evals, args.nbdl_starts,
-                                            model=os.path.abspath(args.model)))
-        sys.stdout.write(text)
-        if args.table:
-            with open(args.table, "w") as f:
-                f.write(text)
-        return 0
     if args.quick:
         groups, params, evals, starts = {c: [c] for c in ("stemper", "kang_front")}, QUICK_PARAMS, 2, 2
     elif args.segments:

@@ -626,6 +626,14 @@ def scale_factor(p, name):
     return p[name]
 
 
+def table_value(p, name, factor):
+    """The table's value of SCALE card `name` whose deck factor is `factor`
+    (a calibration listing's PARAM value): the inverse of scale_factor."""
+    if name == "VBEND":
+        return factor * p["disc.bend_fraction"]
+    return factor
+
+
 def _posture(w, posture, t1_slope, lordosis):
     """The HEADNECK card and the posture's NEUTRAL or INITIAL cards; the
     joints' neutral RY (deg) the ranges of motion are centred on."""
@@ -728,7 +736,8 @@ def main(argv=None):
                 return 0
         p = table_values(rows)
         if a.fit:
-            p.update({n: _number(v, "%s: PARAM %s" % (a.fit, n)) for n, v in read_fit(a.fit) if n in p})
+            fitted = {n: _number(v, "%s: PARAM %s" % (a.fit, n)) for n, v in read_fit(a.fit) if n in p}
+            p.update({n: table_value(p, n, v) for n, v in fitted.items()})
         lines = deck_lines(p, a.posture, a.t1_slope, a.lordosis, a.nz_springs, a.upper_cervical,
                            a.suboccipital == "yes", a.segmental == "yes", a.sub_bend, a.sub_flexion)
     except (OSError, DeckError) as e:

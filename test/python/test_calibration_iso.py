@@ -11,8 +11,7 @@ Stemper 2004 specimen case with a reference CSV and RATED cards
 catalogue. Then the leave-one-out command's quick form: the
 table it writes, the fitted value within its bounds, and the prediction
 equal to an evaluation of the left-out case at the fitted value; the model
-deck written with given values (exactly those fields), the muscles' fit
-deck, and the quick forms of the two-stage and the joint fit."""
+deck written with given values (exactly those fields)."""
 import os
 import re
 import subprocess
@@ -31,6 +30,7 @@ TOL = 2e-6
 NBDL = """TITLE     ISO 18571 AGREEMENT, NBDL 15 G
 CASE      input/nbdl15g.inp
 DATA      reference/nbdl_15g
+STANDING  input/calibrate_controller_rest.inp                             5.0
 RATING    30.0      250.0     60        10.0      ISO18571
 CHANNEL   HEAD_AX   VALUE               Head_XAccel.csv
 CHANNEL   HEAD_AZ   VALUE               Head_ZAccel.csv
@@ -164,15 +164,18 @@ def test_segment_cases_agree_with_the_package_and_the_catalogue(tmp_path):
     worst, n = _agreement(listing, tmp_path / "segments_curves.csv", as_samples=True)
     assert n == 4
     assert worst <= TOL, worst
-    # the same curves as the catalogue's (its loading protocol; the sweep reads
-    # the negative branch unloading from -M): over all 24 curves the ratings
-    # differ by 0.003 to 0.018, the viscous lag; a wrong channel, sign or
-    # scale of the rows moves them by far more
+    # the same curves as the catalogue's (its dynamic moment protocol, "ramp";
+    # the sweep reads the negative branch unloading from -M): the ratings of
+    # these four differ by 0.046 at most, the viscous lag (the discs'
+    # retardation time, S1's 0.1 s over their bending fraction, is 3.3 s
+    # against ramps of 20 s); a wrong channel, sign or scale of the rows
+    # moves them by far more
     got = calibration.by_case(calibration.parse_listing(listing), SEGMENT_CASES)
     cat = {"%s_%s_%s" % (r["source"].split()[0].lower(), r["segment"], r["motion"]): r["iso"]["overall"]
-           for r in segments.catalogue(hhneck_executable(), quick=True, workdir=str(tmp_path / "cat"))}
+           for r in segments.catalogue(hhneck_executable(), quick=True, workdir=str(tmp_path / "cat"),
+                                       solution="ramp")}
     for case in SEGMENT_CASES:
-        assert abs(got[case] - cat[case]) < 0.03, (case, got[case], cat[case])
+        assert abs(got[case] - cat[case]) < 0.08, (case, got[case], cat[case])
 
 
 def test_group_weights_and_cases():
@@ -225,12 +228,6 @@ def test_model_deck_with_sets_exactly_the_named_fields(tmp_path):
     assert s1 == s0[:40] + "1.25" and s1.startswith("SCALE     SIGMA")
     assert a1.startswith("ACTIVATE  EXT       0.125     ") and a1[50:60].strip() == "0.0625"
     assert a1[30:50] == a0[30:50] and a1[60:] == a0[60:]
-    # the muscles' fit deck: the seven muscle parameters and their starting values alone
-    mp = calibration.muscle_fit_deck(str(tmp_path / "m.inp"), 7, 3)
-    got, start = calibration.deck_params(str(tmp_path / "m.inp"))
-    assert [p[0] for p in got] == list(calibration.MUSCLE_PARAMS) and got == mp
-    assert start == [v for p, v in zip(params, values) if p[0] in calibration.MUSCLE_PARAMS]
-    assert "FIT       NELDER    7         3         13" in (tmp_path / "m.inp").read_text()
     # a calibration on another model deck: copied where the specimen decks'
     # INCLUDE finds it first, and the segment decks' cards taken from it
     work = tmp_path / "variant"
@@ -239,85 +236,3 @@ def test_model_deck_with_sets_exactly_the_named_fields(tmp_path):
     assert (work / "input" / "head_neck_54dof.inp").read_text() == out.read_text()
     assert "SCALE     LIGK      LIGAMENTS L1        1.5" in (work / "panjabi_C4_C5_axial_rotation.inp").read_text()
     assert "INCLUDE   input/head_neck_54dof.inp" in (work / "stemper_hold_passive.inp").read_text()
-
-
-def test_two_stage_quick(tmp_path, monkeypatch):
-    monkeypatch.setenv("HHNECK", hhneck_executable())
-    groups = {g: c for g, c in calibration.case_groups().items() if g in ("nightingale", "stemper")}
-    r = calibration.two_stage(str(tmp_path), 2, 2, 2, 2, groups=groups)
-    for p in calibration.PARAMS:
-        assert p[4] <= r["passive"][p[0]] <= p[5]
-    assert list(r["muscles"]) == list(calibration.MUSCLE_PARAMS)
-    assert set(r["catalogue"]) == set(groups) and all(0.0 < v < 1.0 for v in r["catalogue"].values())
-    if r["volunteers"]:
-        assert len(r["volunteers"]) == 2 and all(0.0 < v < 1.0 for v in r["volunteers"].values())
-    else:
-        assert r["rest"] > -1.0
-    # the final set's segment scores need no muscles: the passive fit's own
-    assert r["catalogue"]["nightingale"] == pytest.approx(r["stage1"]["nightingale"], abs=1e-4)
-    text = calibration.two_stage_text(r)
-    assert "| nightingale |" in text and "NBDL 15 g / 12 g" in text
-
-
-
-def test_joint_groups_leave_one_out():
-    """--joint --segments --leave-out: the groups of the joint fit less the one left out."""
-    assert calibration.joint_groups(False) == (tuple(calibration.CASES), ())
-    assert calibration.joint_groups(True, ["nightingale"]) == (tuple(calibration.CASES), ("panjabi",))
-    assert calibration.joint_groups(True, ["kang_side"]) == (("stemper", "kang_front"), ("panjabi", "nightingale"))
-    with pytest.raises(ValueError, match="nightingal;"):
-        calibration.joint_groups(True, ["nightingal"])
-    with pytest.raises(SystemExit):
-        calibration.main(["unused", "--joint", "--leave-out", "nightingal"])
-
-
-def test_joint_fit_from_another_model_deck(tmp_path, monkeypatch):
-    """--joint --model: a variant of the model deck (AXIAL at 1.1 of the shipped value; at 0.9 the
-    set no longer passes the check at rest, -0.902 1/s) is the
-    fit's starting point, and every case reads it: the volunteers' and the specimen's decks
-    through the fit's input/ copy, the segment decks through their cards."""
-    monkeypatch.setenv("HHNECK", hhneck_executable())
-    params, _ = calibration.deck_params(calibration.NBDL12_DECK)
-    shipped = {l.split()[1]: float(l.split("=")[1]) for l in calibration.values_listing().splitlines()}
-    variant = tmp_path / "variant.inp"
-    calibration.model_deck_with([p for p in params if p[0] == "AXIAL"], [1.1 * shipped["AXIAL"]], str(variant))
-    work = tmp_path / "w"
-    r = calibration.joint_fit(str(work), 0, 2, specimens=("stemper",), segment_sources=("nightingale",),
-                              model=str(variant))
-    assert r["values"]["AXIAL"] == pytest.approx(1.1 * shipped["AXIAL"], rel=1e-5)
-    assert r["values"]["SIGMA"] == pytest.approx(shipped["SIGMA"], rel=1e-5)
-    assert (work / "fit" / "input" / "head_neck_54dof.inp").read_text() == variant.read_text()
-    axial = [l for l in (work / "fit" / "nightingale_C4_C5_flexion_extension.inp").read_text().splitlines()
-             if calibration.is_card(l, "SCALE", "AXIAL")]
-    assert len(axial) == 1 and float(calibration.field(axial[0], 4)) == pytest.approx(1.1 * shipped["AXIAL"],
-                                                                                      rel=1e-5)
-    # evaluate-only: the listing's scores at the start are the set's scores (score_set, the same variant)
-    seg = [v for k, v in r["fitted"].items() if k.startswith("nightingale")]
-    assert np.mean(seg) == pytest.approx(r["catalogue"]["nightingale"], abs=2e-6)
-    assert r["fitted"]["stemper_hold_passive.inp"] == pytest.approx(r["catalogue"]["stemper"], abs=2e-6)
-
-
-def test_joint_fit_quick(tmp_path, monkeypatch):
-    monkeypatch.setenv("HHNECK", hhneck_executable())
-    r = calibration.joint_fit(str(tmp_path), 2, 2, specimens=("stemper",), segment_sources=("nightingale",))
-    params, _ = calibration.deck_params(calibration.NBDL12_DECK)
-    bounds = {p[0]: (p[4], p[5]) for p in params + [calibration.PARAMS[-1]]}
-    assert list(r["values"]) == list(bounds)
-    for k, v in r["values"].items():
-        assert bounds[k][0] <= v <= bounds[k][1], (k, v)
-    # one objective over the volunteers (weight 3), the specimen case and Nightingale's three curves
-    # (weight 1/3 each), rated by ISO 18571; the muscles' parameters OPTIONAL: left out of the segment cases
-    deck = (tmp_path / "fit" / "joint_fit.inp").read_text()
-    assert "ISO18571" in deck and deck.count("\nCASE ") == 5 and "\nPASSIVE" in deck
-    assert "\nOPTIONAL  " + "".join("%-10s" % n for n in calibration.MUSCLE_PARAMS).rstrip() in deck
-    listing = (tmp_path / "fit" / "joint_fit.txt").read_text()
-    assert [l.split()[1] for l in listing.splitlines() if "without (OPTIONAL" in l] == ["3-5"]
-    assert len(r["fitted"]) == 5 and set(r["catalogue"]) == set(calibration.case_groups())
-    # a second deck scores the segment cases at the fitted values with the passive parameters alone
-    # (score_set): the same scores, since the muscles' values do not reach a segment deck
-    seg = [v for k, v in r["fitted"].items() if k.startswith("nightingale")]
-    assert len(seg) == 3 and np.mean(seg) == pytest.approx(r["catalogue"]["nightingale"], abs=2e-6)
-    if r["volunteers"]:
-        assert all(0.0 < v < 1.0 for v in r["volunteers"].values())
-    text = calibration.joint_text(r)
-    assert "| panjabi |" in text and "NBDL 15 g / 12 g" in text

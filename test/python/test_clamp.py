@@ -113,7 +113,7 @@ def test_clamped_head_twist(tmp_path):
     # the clamp's couple (on the head, in R) balances the neck's moment on the head about its mass centre
     clamp = np.stack([ch["RIG_MX"], ch["RIG_MY"], ch["RIG_MZ"]], axis=1)
     neck = np.einsum("tij,tj->ti", head, np.stack([ch["HC_MX"], ch["HC_MY"], ch["HC_MZ"]], axis=1))
-    assert clamp[-1, 2] > 0.1                                  # the neck resists: the rig turns the head against it
+    assert clamp[-1, 2] > 0.02                                 # the neck resists: the rig turns the head against it
     # after the start (the head taking up the rig's rate) the head's inertia is
     # negligible: the balance holds to 0.1 % of the twisting couple at every sample
     late = t >= 0.05

@@ -5,8 +5,8 @@ adds exactly the four suboccipital muscles per side with F0 = sectional
 area x sigma_max; --segmental yes exactly two muscles per subaxial level
 and side, each joining adjacent vertebrae; --sub-bend F scales exactly the
 subaxial discs' Ix and Iy, --sub-flexion F exactly the Iy of the discs
-C3-C4 ... C7-T1; every variant is read by the program; off, each gives
-the shipped deck."""
+C3-C4 ... C7-T1; every variant is read by the program; at its shipped setting
+(segmental muscles on, the others off), each gives the shipped deck."""
 import os
 import subprocess
 
@@ -20,7 +20,8 @@ def _program_reads(tmp_path, lines):
     """hhneck --check passes on input/nbdl12g.inp with the model deck `lines`."""
     (tmp_path / "input").mkdir(exist_ok=True)
     (tmp_path / "input" / "head_neck_54dof.inp").write_text("\n".join(lines) + "\n")
-    (tmp_path / "input" / "nbdl12g_t1.inp").write_text(open(os.path.join(ROOT, "input", "nbdl12g_t1.inp")).read())
+    for name in ("nbdl12g_t1.inp", "volunteer_controller.inp"):
+        (tmp_path / "input" / name).write_text(open(os.path.join(ROOT, "input", name)).read())
     with open(os.path.join(ROOT, "input", "nbdl12g.inp")) as fin:
         r = subprocess.run([hhneck_executable(), "--check"], stdin=fin, capture_output=True, text=True,
                            cwd=tmp_path)
@@ -44,13 +45,13 @@ def _data_cards(lines, without=("HILL",)):
     return out
 
 
-def test_every_variant_off_is_the_shipped_deck():
+def test_every_variant_at_its_shipped_setting_is_the_shipped_deck():
     shipped = open(segments.MODEL_DECK).read().splitlines()
-    assert _generate("--suboccipital", "no", "--segmental", "no", "--sub-bend", "1", "--sub-flexion", "1") == shipped
+    assert _generate("--suboccipital", "no", "--segmental", "yes", "--sub-bend", "1", "--sub-flexion", "1") == shipped
 
 
 def test_segmental_muscles_join_adjacent_subaxial_vertebrae(tmp_path):
-    plain, seg = _generate(), _generate("--segmental", "yes")
+    plain, seg = _generate("--segmental", "no"), _generate()
     extra = [l for l in _hill(seg) if l not in _hill(plain)]
     assert len(extra) == 24 and len(_hill(seg)) == len(_hill(plain)) + 24
     order = ["T1", "C7", "C6", "C5", "C4", "C3", "C2"]
