@@ -53,7 +53,7 @@ def locate(key, item, n):
             and (not other or other in (field(l, 2), field(l, 3)))]
     if len(hits) != 1:
         sys.exit("fit_controller.sh: %d %s cards named %s in %s; expected one" % (len(hits), key, item, deck_path))
-    return hits[0] + (n - 1)//7
+    return hits[0], hits[0] + (n - 1)//7
 
 fitted = {}     # (card, F1, F3, field) -> parameter name
 seen = set()
@@ -66,11 +66,11 @@ for l in cal:
     if len(short) <= 9 and float(short) == float(v):
         v = short
     seen.add(name)
-    i = locate(key, item, n)
+    card, i = locate(key, item, n)
     other = item.partition(".")[2]
     c = 10 + 10*((n - 1) % 7)
     deck[i] = (deck[i].ljust(c + 10)[:c] + v.ljust(10) + deck[i][c + 10:]).rstrip()
-    fitted[(key, field(deck[i], 1), other, (n - 1) % 7 + 1)] = name
+    fitted[(key, field(deck[card], 1), other, n)] = name
 
 # the header: what is fitted and by what
 head = [i for i, l in enumerate(deck) if l.startswith("* The gains are") or l.startswith("* The bracing levels u0")]
@@ -90,12 +90,14 @@ open(deck_path, "w").write("\n".join(deck) + "\n")
 # the table: every value of the controller deck
 units = {("ACTIVATE", 2): "1", ("ACTIVATE", 3): "1", ("ACTIVATE", 4): "s", ("ACTIVATE", 5): "s",
          ("FEEDBACK", 4): "1/rad", ("FEEDBACK", 5): "s/rad", ("FEEDBACK", 6): "s",
+         ("FEEDBACK", 8): "1/(rad s)",
          ("SPINDLE", 2): "1/lopt", ("SPINDLE", 3): "s/lopt", ("SPINDLE", 4): "s"}
 what = {("ACTIVATE", 2): "bracing level u0 (excitation at the start)",
         ("ACTIVATE", 3): "excitation after the start, u1 = u0 (no open-loop reflex)",
         ("FEEDBACK", 4): "vestibular loop gain kp on the head's rotation",
         ("FEEDBACK", 5): "vestibular loop gain kd on the head's angular velocity",
         ("FEEDBACK", 6): "vestibular loop delay (vestibulocollic latency)",
+        ("FEEDBACK", 8): "vestibular loop gain ki on the time integral of the head's rotation",
         ("SPINDLE", 2): "stretch loop gain kp on each muscle's stretch",
         ("SPINDLE", 3): "stretch loop gain kd on each muscle's rate of lengthening",
         ("SPINDLE", 4): "stretch loop delay (stretch reflex latency)"}
@@ -108,12 +110,14 @@ for i, l in enumerate(deck):
         continue
     hist = field(l, 1)
     label = hist + ("." + field(l, 3) if key == "FEEDBACK" else "")
-    for n in (2, 3, 4, 5, 6):
-        if (key, n) not in what or not field(l, n):
+    more = deck[i + 1] if i + 1 < len(deck) and not deck[i + 1][:10].strip() else ""
+    for n in (2, 3, 4, 5, 6, 8):
+        text = field(l, n) if n <= 7 else field(more, n - 7)
+        if (key, n) not in what or not text:
             continue
         if n == 4 and key == "ACTIVATE" or n == 5 and key == "ACTIVATE":
             continue
-        name = "%s.%s.%s" % (key.lower(), label, {2: "u0", 3: "u1", 4: "kp", 5: "kd", 6: "delay"}[n]
+        name = "%s.%s.%s" % (key.lower(), label, {2: "u0", 3: "u1", 4: "kp", 5: "kd", 6: "delay", 8: "ki"}[n]
                              if key != "SPINDLE" else {2: "kp", 3: "kd", 4: "delay"}[n])
         k = (key, hist, field(l, 3) if key == "FEEDBACK" else "", n)
         if k in fitted:
@@ -124,7 +128,7 @@ for i, l in enumerate(deck):
         else:
             status, source, stage = "assumed", "", ""
             desc = what[(key, n)] + " (chosen: the head returns after a lateral push)"
-        rows.append('%s,%s,%s,%s,%s,%s,"%s"' % (name, field(l, n), units[(key, n)], status, source, stage, desc))
+        rows.append('%s,%s,%s,%s,%s,%s,"%s"' % (name, text, units[(key, n)], status, source, stage, desc))
     if key == "ACTIVATE":
         c = deck[i + 1]
         for n, (nm, unit, desc, status, source) in cont.items():

@@ -113,10 +113,11 @@ contains
     pure logical function card_known(key) result(yes)
         character(len=*), intent(in) :: key     !! card name (upper case)
         yes = card_index(key) > 0
-        if (.not. yes) yes = card_continuations(key) >= 0
+        if (.not. yes) yes = card_continuations(key) /= -1
     end function card_known
 
-    !> Continuation cards card `key` takes (ncont_computed: TABLE; 0 when it is no card).
+    !> Continuation cards card `key` takes (ncont_computed: TABLE; ncont_optional:
+    !! one when the next line continues it; 0 when it is no card).
     pure integer function card_ncont(key) result(n)
         character(len=*), intent(in) :: key     !! card name (upper case)
         integer :: k
@@ -124,7 +125,8 @@ contains
         if (k > 0) then
             n = cards(k)%ncont
         else
-            n = max(0, card_continuations(key))
+            n = card_continuations(key)
+            if (n == -1) n = 0
         end if
     end function card_ncont
 

@@ -14,6 +14,7 @@ module hn_deck_state
     use hn_cards, only: card_known, card_ncont, card_repeats
     use hn_families, only: family_names, family_index
     use hn_element_cards, only: deck_state_t, card_t, body_map_t, named_table_t, family_card_t, coord_names, big_length, &
+                                ncont_optional, continued, &
                                 big_modulus, body_ref, coord_ref, table_ref, active_coordinate, locked_error, unit_of, &
                                 unit_factor, unit_limit
     implicit none
@@ -77,6 +78,7 @@ contains
             end if
             need = card_ncont(key)
             if (kmore > 0) need = more(kmore)%ncont
+            if (need == ncont_optional) need = merge(1, 0, continued(rd, i))
             if (need < 0) then
                 s = rd%raw(i, 2)
                 read (s, *, iostat=ios) npts

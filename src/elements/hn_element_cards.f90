@@ -29,7 +29,7 @@ module hn_element_cards
     public :: card_t, body_map_t, named_table_t, deck_state_t, card_context_t, family_card_t
     public :: coord_names, big_length, big_modulus
     public :: body_ref, coord_ref, table_ref, active_coordinate, locked_error, unit_of, unit_factor, unit_limit
-    public :: distinct_bodies, map_ends, line_points, line_card
+    public :: distinct_bodies, map_ends, line_points, line_card, continued
 
     !> The coordinates of a body in deck order.
     character(len=2), parameter :: coord_names(6) = ['TX', 'TY', 'TZ', 'RX', 'RY', 'RZ']
@@ -48,6 +48,11 @@ module hn_element_cards
     !! of the same name for the body and coordinate in F1, F2.
     integer, parameter, public :: unique_none = 0, unique_element = 1, unique_name = 2, unique_coordinate = 3
 
+    !> A family card's continuation count that is not fixed: one
+    !! continuation card when the next deck line's columns 1-10 are blank,
+    !! none otherwise (an optional continuation card).
+    integer, parameter, public :: ncont_optional = -2
+
     !> A deck card that belongs to a family: its key, its family (its
     !! place in the registry; 0 in the family's own entry), its continuation
     !! cards, when it is read (card_first, card_in_order, card_last), which
@@ -55,7 +60,7 @@ module hn_element_cards
     type :: family_card_t
         character(len=8) :: key = ''
         integer :: family = 0
-        integer :: ncont = 0
+        integer :: ncont = 0                  !! continuation cards (ncont_optional: none or one)
         integer :: order = card_in_order
         integer :: unique = unique_none       !! which repeats the deck refuses (unique_none ... unique_coordinate)
         logical :: coordinate = .false.       !! F1 names a body, F2 one of its coordinates (CHANGE ... F7 names F2)
@@ -123,6 +128,15 @@ module hn_element_cards
 
 
 contains
+
+    !> Whether deck line i has a continuation card after it (the next
+    !! line's columns 1-10 blank): an optional continuation card's test.
+    pure logical function continued(rd, i)
+        type(deck_reader_t), intent(in) :: rd   !! the deck
+        integer, intent(in) :: i                !! the card's deck line
+        continued = i < rd%nlines
+        if (continued) continued = len_trim(rd%lines(i + 1)%text(1:10)) == 0
+    end function continued
 
     !> Number of the deck's cards named `key`.
     pure integer function context_ncards(ctx, key) result(n)

@@ -15,7 +15,13 @@
 !!   u_k = min(1, max(0, kp theta(t_k - tau) + kd omega(t_k - tau))),
 !! theta and omega between samples linear in time, before t0 their start
 !! values (a delay that is not a multiple of dt interpolates the samples);
-!! u_k is held until t_{k+1} (zero before the first sample). The loop
+!! u_k is held until t_{k+1} (zero before the first sample). With an
+!! integral gain ki (a rotation loop's, the I of the PID controllers
+!! cited above) the sum I_k = I_{k-1} + dt theta(t_k - tau) (I_0 = dt
+!! theta at the first sample) adds ki I_k inside the clip, ki I_k itself
+!! kept within [-1, 1] (no wind-up beyond a full excitation): a load held
+!! at rest, which kp alone answers with a lasting offset, is answered
+!! with the offset going to zero. The loop
 !! gives an excitation only: it is added to its history's, and the
 !! history's activation, a state of the equations of motion, follows the
 !! sum (hn_muscle_family), so the excitation falls back to the history's
@@ -52,6 +58,7 @@ module hn_feedback
         real(wp) :: lopt = one           !! a stretch loop's optimal fibre length, the stretch's unit [m]
         real(wp) :: kp = zero            !! gain on the rotation [1/rad]
         real(wp) :: kd = zero            !! gain on the angular velocity [s/rad]
+        real(wp) :: ki = zero            !! gain on the rotation's time integral [1/(rad s)]
         real(wp) :: gain_act = zero      !! a stretch loop's gain rise per unit of its muscle's activation g [-]
         real(wp) :: delay = zero         !! sensing and neural delay tau [s]
         real(wp) :: dt = 1.0e-3_wp       !! sample interval [s]
@@ -67,16 +74,32 @@ module hn_feedback
         real(wp), allocatable :: omega(:)         !! (n) sampled angular velocity [rad/s]
         real(wp) :: tk = zero                     !! the last sample time [s]
         real(wp) :: uk = zero                     !! the excitation held since
+        real(wp) :: integral = zero               !! the delayed rotation summed over the samples, I_k [rad s]
     end type feedback_t
 
 contains
 
     !> The excitation kp theta + kd omega at t - tau, times the gains'
-    !! scale (default 1), clipped to [0, 1], from the samples so far.
+    !! scale (default 1), plus ki times the loop's integral, clipped to
+    !! [0, 1], from the samples so far.
     pure real(wp) function feedback_excitation(fb, t, scale) result(u)
         type(feedback_t), intent(in) :: fb         !! the loop, at least one sample taken
         real(wp), intent(in) :: t                  !! the sample time [s]
         real(wp), intent(in), optional :: scale    !! the gains' factor, 1 + g a_b (default 1)
+        real(wp) :: theta, omega
+        call delayed_sensor(fb, t, theta, omega)
+        u = fb%kp*theta + fb%kd*omega
+        if (present(scale)) u = scale*u
+        u = min(one, max(zero, u + fb%ki*fb%integral))
+    end function feedback_excitation
+
+    !> The sensor's rotation and rate at t - tau, linear between the
+    !! samples so far, the first sample's before it.
+    pure subroutine delayed_sensor(fb, t, theta, omega)
+        type(feedback_t), intent(in) :: fb    !! the loop, at least one sample taken
+        real(wp), intent(in) :: t             !! the time [s]
+        real(wp), intent(out) :: theta        !! the rotation at t - tau
+        real(wp), intent(out) :: omega        !! its rate at t - tau
         real(wp) :: p, w
         integer :: i
         p = (t - fb%delay - fb%t0)/fb%dt
@@ -87,13 +110,13 @@ contains
             w = merge(p - (i - 1), zero, i < fb%n)
         end if
         if (i < fb%n) then
-            u = fb%kp*((one - w)*fb%theta(i) + w*fb%theta(i + 1)) + fb%kd*((one - w)*fb%omega(i) + w*fb%omega(i + 1))
+            theta = (one - w)*fb%theta(i) + w*fb%theta(i + 1)
+            omega = (one - w)*fb%omega(i) + w*fb%omega(i + 1)
         else
-            u = fb%kp*fb%theta(fb%n) + fb%kd*fb%omega(fb%n)
+            theta = fb%theta(fb%n)
+            omega = fb%omega(fb%n)
         end if
-        if (present(scale)) u = scale*u
-        u = min(one, max(zero, u))
-    end function feedback_excitation
+    end subroutine delayed_sensor
 
     !> The sensor's rotation about lab axis `axis` from orientation s0 to s:
     !! that component of the rotation vector of s s0^T [rad].
@@ -152,6 +175,7 @@ contains
         real(wp), intent(in) :: omega           !! its rate
         real(wp), intent(in) :: scale           !! the gains' factor
         real(wp), allocatable :: grown(:)
+        real(wp) :: delayed, rate
         if (fb%n == 0) then
             fb%t0 = t
             if (allocated(fb%theta)) deallocate (fb%theta)
@@ -166,6 +190,12 @@ contains
         fb%theta(fb%n) = theta
         fb%omega(fb%n) = omega
         fb%tk = t
+        if (fb%n == 1) fb%integral = zero
+        if (fb%ki /= zero) then
+            call delayed_sensor(fb, t, delayed, rate)
+            fb%integral = fb%integral + fb%dt*delayed
+            fb%integral = min(one, max(-one, fb%ki*fb%integral))/fb%ki
+        end if
         fb%uk = feedback_excitation(fb, t, scale)
     end subroutine record_sample
 

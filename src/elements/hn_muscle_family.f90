@@ -27,7 +27,7 @@ module hn_muscle_family
     use hn_kinds, only: wp, zero, one
     use hn_deck_reader, only: deck_reader_t, int_str
     use hn_element_cards, only: card_context_t, card_t, body_map_t, line_card, body_ref, table_ref, big_length, &
-                                big_modulus
+                                big_modulus, continued
     use hn_kinematics, only: kinematics_t
     use hn_loads, only: body_loads_t
     use hn_tree, only: body_tree_t
@@ -41,7 +41,7 @@ module hn_muscle_family
                                  warning_len, check_range
     use hn_line_family, only: line_family_t, line_table
     use hn_family_registration, only: family_registration_t
-    use hn_element_cards, only: family_card_t, card_first, card_last, unique_element, unique_name
+    use hn_element_cards, only: family_card_t, card_first, card_last, unique_element, unique_name, ncont_optional
     use hn_element_family, only: family_slot_t
     use hn_element_family, only: family_energy_t
     implicit none
@@ -581,9 +581,10 @@ contains
         activations = [activations, ah]
     end subroutine activation_card
 
-    !> A FEEDBACK card: history body axis kp kd delay interval, a
-    !! postural feedback loop adding to the activation history's muscles
-    !! (hn_feedback); one per history and axis. The loop takes the
+    !> A FEEDBACK card: history body axis kp kd delay interval, and on its
+    !! optional continuation the integral gain ki, a postural feedback loop
+    !! adding to the activation history's muscles (hn_feedback); one per
+    !! history and axis. The loop takes the
     !! history's time constants; its sensor is the body as the scene keeps
     !! it (a merged body senses the body that absorbed it).
     subroutine feedback_card(rd, ctx, i, activations, feedbacks)
@@ -603,6 +604,8 @@ contains
         call rd%real(i, 5, 'angular velocity gain kd', 's/rad', fb%kd, -1.0e2_wp, 1.0e2_wp, default=zero)
         call rd%real(i, 6, 'delay', 's', fb%delay, zero, 1.0_wp, default=zero)
         call rd%real(i, 7, 'sample interval', 's', fb%dt, 1.0e-5_wp, 0.1_wp, default=1.0e-3_wp)
+        if (continued(rd, i)) call rd%real(i + 1, 1, 'integral gain ki', '1/(rad s)', fb%ki, -1.0e3_wp, 1.0e3_wp, &
+                                           default=zero)
         if (rd%failed()) return
         fb%axis = findloc(['X', 'Y', 'Z'], ax(1:1), dim=1)
         fb%body = ctx%bmap%new(kb)
@@ -806,7 +809,7 @@ contains
             family_card_t('HILL', 0, 1, unique=unique_element), &
             family_card_t('VIA', 0, 0, card_last), &
             family_card_t('ACTIVATE', 0, 1, card_first, unique_name, what='history name'), &
-            family_card_t('FEEDBACK', 0, 0, card_last), &
+            family_card_t('FEEDBACK', 0, ncont_optional, card_last), &
             family_card_t('SPINDLE', 0, 0, card_last), &
             family_card_t('GROUP', 0, 0, card_last), &
             family_card_t('FIBRE', 0, 0, card_last, unique_name, what='muscle name')], muscle_empty)
