@@ -6,6 +6,7 @@ module hn_calibrate_deck
     use hn_kinds, only: wp, zero, one, msglen
     use hn_case, only: path_len, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
+    use hn_deck_state, only: real_str
     use hn_rating, only: peak_t
     use hn_volunteer_data, only: data_channel_t, is_peak_table
     use hn_calibrate_types, only: calibration_t, calibration_deck_t, standing_case_t, metric_iso18571
@@ -432,8 +433,33 @@ contains
                 call rd%fail(rd%where(st%values_line)//' (VALUES card): found '//trim(int_str(size(cal%values)))// &
                              ' values on the VALUES cards; expected one per parameter (PARAM name), '// &
                              trim(int_str(param_count(st%params))))
+            if (.not. rd%failed() .and. st%values_line > 0) call check_values_in_range(st, cal%values)
         end associate
     end subroutine check_calibration_cards
+
+    !> Each VALUES value within the range (F5, F6) of its PARAM card, the
+    !! first card of its name; a card without a range is not checked.
+    subroutine check_values_in_range(st, values)
+        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards; out: a located error
+        real(wp), intent(in) :: values(:)              !! the VALUES, one per parameter in PARAM order
+        real(wp) :: lo, hi
+        integer :: k, j, p, ios1, ios2
+        p = 0
+        do k = 1, size(st%params)
+            if (any([(upper(adjustl(st%params(j)%text(11:20))) == upper(adjustl(st%params(k)%text(11:20))), &
+                      j=1, k - 1)])) cycle
+            p = p + 1
+            read (st%params(k)%text(51:60), *, iostat=ios1) lo
+            read (st%params(k)%text(61:70), *, iostat=ios2) hi
+            if (ios1 /= 0 .or. ios2 /= 0 .or. p > size(values)) cycle
+            if (hi <= lo .or. (values(p) >= lo .and. values(p) <= hi)) cycle
+            call st%rd%fail(st%rd%where(st%values_line)//' (VALUES cards): value '//trim(int_str(p))//' (PARAM '// &
+                            trim(adjustl(st%params(k)%text(11:20)))//') is '//trim(real_str(values(p)))// &
+                            '; expected one within its range, '//trim(adjustl(st%params(k)%text(51:60)))//' to '// &
+                            trim(adjustl(st%params(k)%text(61:70))))
+            return
+        end do
+    end subroutine check_values_in_range
 
     !> The number of parameters of the PARAM cards: a card that repeats an
     !! earlier card's name is a further field of that parameter.
