@@ -7,7 +7,8 @@
 # - 10 s at rest (T1 held, gravity, the start posture held, C3 and C4 pushed
 #   at 5 deg/s): within 2 deg of its start throughout;
 # - a rear 5 g, 80 ms half-sine and a lateral 7 g, 80 ms half-sine: within
-#   10 deg of its start at 600 ms, the largest rotation well before the end;
+#   10 deg of its start at 600 ms, having left that bound well before the
+#   end;
 # - the loops do the returning: the same pulses on the model deck alone (its
 #   reflex held for ever) and on the controller with every loop gain zero
 #   (bracing alone) leave the head more than 10 deg from its start at 600 ms;
@@ -25,9 +26,14 @@ cd "$tmp" || exit 1
 python3 - <<'PY'
 src = open("input/volunteer_controller.inp").read().splitlines()
 out = []
+key = ""
 for l in src:
+    if l[:10].strip() and not l.startswith("*"):
+        key = l[:8].strip()
     if l.startswith("FEEDBACK"):
         l = l[:40] + "%-10s%-10s" % ("0.0", "0.0") + l[60:]
+    elif key == "FEEDBACK" and not l[:10].strip() and l.strip():
+        l = " "*10 + "0.0"      # ki, on the continuation
     elif l.startswith("SPINDLE"):
         l = l[:20] + "%-10s%-10s" % ("0.0", "0.0") + l[40:]
     out.append(l)
@@ -70,8 +76,8 @@ for d in ("rear5g_return", "lateral7g_return"):
     i = np.argmax(a)
     check(t[-1] > 0.599 and a[-1] < 10.0, "%s: %.3g deg from its start at %.3g s (peak %.3g deg at %.3g s)"
           % (d, a[-1], t[-1], a[i], t[i]))
-    check(a[i] > 15.0 and t[i] < 0.3, "%s: the pulse moves the head (peak %.3g deg at %.3g s), well before the end"
-          % (d, a[i], t[i]))
+    check(a[i] > 10.0 and t[i] < 0.3, "%s: the pulse takes the head beyond the 10 deg bound (peak %.3g deg at "
+          "%.3g s), well before the end" % (d, a[i], t[i]))
     for v, what in (("zero", "every loop gain zero"), ("model", "the model deck's held reflex")):
         t, a = head_angle(d + "_" + v)
         check(a[-1] > 10.0, "%s with %s: %.3g deg at %.3g s, not back" % (d, what, a[-1], t[-1]))
