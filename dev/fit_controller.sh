@@ -91,7 +91,7 @@ open(deck_path, "w").write("\n".join(deck) + "\n")
 units = {("ACTIVATE", 2): "1", ("ACTIVATE", 3): "1", ("ACTIVATE", 4): "s", ("ACTIVATE", 5): "s",
          ("FEEDBACK", 4): "1/rad", ("FEEDBACK", 5): "s/rad", ("FEEDBACK", 6): "s",
          ("FEEDBACK", 8): "1/(rad s)",
-         ("SPINDLE", 2): "1/lopt", ("SPINDLE", 3): "s/lopt", ("SPINDLE", 4): "s"}
+         ("SPINDLE", 2): "1/lopt", ("SPINDLE", 3): "s/lopt", ("SPINDLE", 4): "s", ("SPINDLE", 7): "1/(lopt s)"}
 what = {("ACTIVATE", 2): "bracing level u0 (excitation at the start)",
         ("ACTIVATE", 3): "excitation after the start, u1 = u0 (no open-loop reflex)",
         ("FEEDBACK", 4): "vestibular loop gain kp on the head's rotation",
@@ -100,7 +100,8 @@ what = {("ACTIVATE", 2): "bracing level u0 (excitation at the start)",
         ("FEEDBACK", 8): "vestibular loop gain ki on the time integral of the head's rotation",
         ("SPINDLE", 2): "stretch loop gain kp on each muscle's stretch",
         ("SPINDLE", 3): "stretch loop gain kd on each muscle's rate of lengthening",
-        ("SPINDLE", 4): "stretch loop delay (stretch reflex latency)"}
+        ("SPINDLE", 4): "stretch loop delay (stretch reflex latency)",
+        ("SPINDLE", 7): "stretch loop gain ki on the time integral of each muscle's stretch"}
 cont = {1: ("tau_act", "s", "activation time constant", "sourced", "S5"),
         2: ("tau_deact", "s", "deactivation time constant", "sourced", "S5")}
 rows = ["name,value,unit,status,source,stage,description"]
@@ -111,20 +112,23 @@ for i, l in enumerate(deck):
     hist = field(l, 1)
     label = hist + ("." + field(l, 3) if key == "FEEDBACK" else "")
     more = deck[i + 1] if i + 1 < len(deck) and not deck[i + 1][:10].strip() else ""
-    for n in (2, 3, 4, 5, 6, 8):
+    for n in (2, 3, 4, 5, 6, 7, 8):
         text = field(l, n) if n <= 7 else field(more, n - 7)
         if (key, n) not in what or not text:
             continue
         if n == 4 and key == "ACTIVATE" or n == 5 and key == "ACTIVATE":
             continue
         name = "%s.%s.%s" % (key.lower(), label, {2: "u0", 3: "u1", 4: "kp", 5: "kd", 6: "delay", 8: "ki"}[n]
-                             if key != "SPINDLE" else {2: "kp", 3: "kd", 4: "delay"}[n])
+                             if key != "SPINDLE" else {2: "kp", 3: "kd", 4: "delay", 7: "ki"}[n])
         k = (key, hist, field(l, 3) if key == "FEEDBACK" else "", n)
         if k in fitted:
             status, source, stage = "fitted", "S6", "controller"
             desc = "%s, %s (PARAM %s of input/calibrate_controller.inp)" % (what[(key, n)], hist, fitted[k])
         elif "delay" in name:
             status, source, stage, desc = "sourced", "S10", "", what[(key, n)]
+        elif (key, n) in (("SPINDLE", 7), ("FEEDBACK", 8)):
+            status, source, stage = "assumed", "", ""
+            desc = what[(key, n)] + " (chosen: the column holds its posture at rest)"
         else:
             status, source, stage = "assumed", "", ""
             desc = what[(key, n)] + " (chosen: the head returns after a lateral push)"

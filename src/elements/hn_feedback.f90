@@ -39,7 +39,8 @@
 !! stretch reflex): at t_k both are multiplied by 1 + g a_b(t_k), a_b the
 !! muscle's activation then without the loop's own (its history's and the
 !! history's rotation loops'), g >= 0 (g = 0: fixed gains),
-!!   u_k = min(1, max(0, (1 + g a_b(t_k)) (kp theta(t_k - tau) + kd omega(t_k - tau)))).
+!!   u_k = min(1, max(0, (1 + g a_b(t_k)) (kp theta(t_k - tau) + kd omega(t_k - tau)))),
+!! plus ki I_k inside the clip with an integral gain (SPINDLE F7), as above.
 module hn_feedback
     use hn_kinds, only: wp, zero, one
     use hn_rotation, only: rotation_vector

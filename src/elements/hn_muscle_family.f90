@@ -627,7 +627,7 @@ contains
         feedbacks = [feedbacks, fb]
     end subroutine feedback_card
 
-    !> A SPINDLE card: history kp kd delay interval g, a stretch loop
+    !> A SPINDLE card: history kp kd delay interval g ki, a stretch loop
     !! (hn_feedback) on every Hill-type muscle of the activation history,
     !! each sensing its own stretch; one card per history. The loops take
     !! the history's time constants.
@@ -646,6 +646,7 @@ contains
         call rd%real(i, 4, 'delay', 's', fb%delay, zero, 1.0_wp, default=zero)
         call rd%real(i, 5, 'sample interval', 's', fb%dt, 1.0e-5_wp, 0.1_wp, default=1.0e-3_wp)
         call rd%real(i, 6, 'gain rise per unit activation g', '-', fb%gain_act, zero, 1.0e2_wp, default=zero)
+        call rd%real(i, 7, 'stretch integral gain ki', 'per lopt s', fb%ki, zero, 1.0e3_wp, default=zero)
         if (rd%failed()) return
         if (any(feedbacks%muscle > 0 .and. feedbacks%history == fb%history)) then
             call rd%fail(rd%context(i, 1, 'activation history')//': history "'// &
