@@ -101,7 +101,13 @@ def with_values(model, values, bind):
         hits = [i for i, line in enumerate(lines) if is_card(line, card, item)]
         if len(hits) != 1:
             sys.exit("parameter %s: %d %s cards named %s in the model deck" % (name, len(hits), card, item))
-        lines[hits[0]] = set_field(lines[hits[0]], n, "%.6g" % value)
+        old = field(lines[hits[0]], n)
+        try:
+            same = float(old) == float("%.6g" % value)
+        except ValueError:
+            same = False
+        if not same:        # a field that holds the value already keeps its text
+            lines[hits[0]] = set_field(lines[hits[0]], n, "%.6g" % value)
     return "\n".join(lines) + "\n"
 
 

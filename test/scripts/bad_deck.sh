@@ -24,13 +24,17 @@ check "the error goes to stderr, not into the listing" sh -c "! grep -q 'deck er
 # two DISC cards named C2C1 (the model deck included by the NBDL deck)
 mkdir -p "$tmp/input"
 sed 's/^DISC      C1HD /DISC      C2C1 /' input/head_neck_54dof.inp > "$tmp/input/head_neck_54dof.inp"
-cp input/nbdl15g_t1.inp "$tmp/input/"
+cp input/nbdl15g_t1.inp input/volunteer_controller.inp "$tmp/input/"
 sed 's/^H5FILE .*/H5FILE    twice.h5/' input/nbdl15g.inp > "$tmp/input/twice.inp"
 ( cd "$tmp" && "$HHNECK" --check input/twice.inp ) > /dev/null 2> "$tmp/twice.err"
 rc=$?
 check "two DISC cards of one name: --check ends with exit code 2 (got $rc)" [ "$rc" -eq 2 ]
+# the lines of the cards named, as the decks hold them
+inc=$(grep -n '^INCLUDE   input/head_neck_54dof.inp' input/nbdl15g.inp | cut -d: -f1)
+first=$(grep -n '^DISC      C2C1 ' input/head_neck_54dof.inp | cut -d: -f1)
+second=$(grep -n '^DISC      C1HD ' input/head_neck_54dof.inp | cut -d: -f1)
 check "the message names the second DISC card and the first" \
-    grep -q 'head_neck_54dof.inp line 89 (included from input/twice.inp line 16), columns 11-20 (DISC card, element name): found "C2C1" again.*the DISC card at input/head_neck_54dof.inp line 85' "$tmp/twice.err"
+    grep -q "head_neck_54dof.inp line $second (included from input/twice.inp line $inc), columns 11-20 (DISC card, element name): found \"C2C1\" again.*the DISC card at input/head_neck_54dof.inp line $first" "$tmp/twice.err"
 ( cd "$tmp" && "$HHNECK" input/twice.inp ) > /dev/null 2>&1
 rc=$?
 check "the run is refused as a deck error before it starts (exit code 2, got $rc)" [ "$rc" -eq 2 ]
@@ -46,8 +50,10 @@ awk '{print} /^HOLD/ {print "INITIAL   T1        TX        0.0       1.0"}' inpu
 "$HHNECK" --check < "$tmp/initial.inp" > /dev/null 2> "$tmp/initial.err"
 rc=$?
 check "an INITIAL card on a prescribed coordinate: exit code 2 (got $rc)" [ "$rc" -eq 2 ]
+hold=$(grep -n '^HOLD' input/nbdl15g.inp | cut -d: -f1)
+prescrib=$(grep -n '^PRESCRIB  T1        TX' input/nbdl15g.inp | cut -d: -f1)
 check "the message names the PRESCRIB card and the INITIAL card" \
-    grep -q 'stdin line 19, columns 11-30 (PRESCRIB card.*the INITIAL card at stdin line 16' "$tmp/initial.err"
+    grep -q "stdin line $((prescrib + 1)), columns 11-30 (PRESCRIB card.*the INITIAL card at stdin line $((hold + 1))" "$tmp/initial.err"
 
 # RK4 with a 1E-9 s step over 0.1 s: named by --check with the step count
 sed 's/^CONTROL .*/CONTROL   0.1       1.0E-9    0.005     RK4/' input/nbdl15g.inp > "$tmp/rk4.inp"

@@ -91,7 +91,7 @@ check "the long directory path has ${#long} characters (at least 120)" [ ${#long
 # hhneck.paths)
 ln -s "$root/reference" "$long/proj/reference"
 ln -s "$root/fpm.toml" "$long/proj/fpm.toml"
-cp input/nbdl15g.inp input/nbdl12g.inp input/nbdl8g.inp "$long/proj/input/"
+cp input/nbdl15g.inp input/nbdl12g.inp input/nbdl8g.inp input/volunteer_controller.inp "$long/proj/input/"
 (cd "$long/proj" && export HHNECK_ROOT="$long/proj" &&
      python3 -m hhneck.model_deck --output input/head_neck_54dof.inp &&
      python3 -m hhneck.case_decks && python3 -m hhneck.nbdl_tables)
@@ -255,7 +255,13 @@ sys.path[:0] = ["python", "studies"]
 from hhneck.deck_fields import CardError, write_deck
 import cross_severity as c
 hhneck, listing, long = sys.argv[1:4]
-values = [v for _, v in c.params(listing)]
+# the shipped values clipped into the study's PARAM ranges (the calibration
+# refuses VALUES outside them; the model deck's VBEND and its histories'
+# delays now lie outside this earlier study's ranges)
+from hhneck.deck_fields import field, is_card
+ranges = {field(l, 1): (float(field(l, 5)), float(field(l, 6)))
+          for l in open("input/calibrate_nbdl.inp").read().splitlines() if is_card(l, "PARAM")}
+values = ["%.6g" % min(max(float(v), ranges[n][0]), ranges[n][1]) for n, v in c.params(listing)]
 bad = []
 for sev in ("15g", "12g"):
     path = os.path.join(long, "score%s.inp" % sev)

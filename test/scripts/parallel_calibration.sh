@@ -11,7 +11,12 @@ cut_fit() {   # cut_fit DECK EVALS STARTS: the deck's FIT card cut to EVALS eval
     sed -e "s/^\(FIT       NELDER    \)2500      300 /\1$(printf '%-10s%-4s' "$2" "$3")/" "$1"
 }
 cut_fit input/calibrate_nbdl12g.inp 5 4 > "$tmp/one_case.inp"
-cut_fit input/calibrate_nbdl.inp 0 4 | sed -e '/^VALUES/d' > "$tmp/two_cases.inp"
+# the two-case deck judges standing by a run of the volunteer state at rest
+# (a STANDING case, 2 s, joints within 10 deg) in place of the linear margin,
+# which the controller's loops (sampled-data) do not enter
+standing=$(printf 'STANDING  %-60s%-10s' input/calibrate_controller_rest.inp 10.0)
+cut_fit input/calibrate_nbdl.inp 0 4 | sed -e '/^VALUES/d' | awk -v s="$standing" '{print} /^FIT / {print s}' \
+    > "$tmp/two_cases.inp"
 for deck in one_case two_cases; do
     check "the $deck deck is cut short" grep -q '^FIT       NELDER    [0-9] ' "$tmp/$deck.inp"
     OMP_NUM_THREADS=1 "$HHNECK" --calibrate "$tmp/$deck.inp" > "$tmp/$deck.1" 2> "$tmp/$deck.1.err"
@@ -21,9 +26,12 @@ for deck in one_case two_cases; do
     check "$deck: both complete (exit $rc1 and $rc2)" sh -c '[ "$1" -eq 0 ] && [ "$2" -eq 0 ]' sh "$rc1" "$rc2"
     check "$deck: the listing on two threads is the listing on one" cmp "$tmp/$deck.1" "$tmp/$deck.2"
 done
+# the VALUES point, 4 starts, Nelder-Mead's simplex of 16 points and one
+# iteration (a reflection, and at most one expansion or contraction)
 n=$(grep -c '^ *\(start\|nelder\) ' "$tmp/one_case.1")
-check "one_case: the fit lists its 22 evaluations (found $n)" [ "$n" -eq 22 ]
+check "one_case: the fit lists its 22 or 23 evaluations (found $n)" sh -c '[ "$1" -ge 22 ] && [ "$1" -le 23 ]' sh "$n"
 check "two_cases: both cases are rated" sh -c '[ "$(grep -c "^CASE .*: MEAN RATING" "$1")" -eq 2 ]' sh "$tmp/two_cases.1"
-check "two_cases: the nominal values stand at rest and are run (an objective below 2)" \
-    awk '/^OBJECTIVE J =/ {found = 1; exit !($4 < 2)} END {if (!found) exit 1}' "$tmp/two_cases.1"
+check "two_cases: the nominal values stand at rest (the standing case within its bound) and are run" \
+    awk '/^STANDING CASE 1: LARGEST EXCURSION AT REST/ {found = 1; exit !($8 + 0 < $11 + 0)} END {if (!found) exit 1}' \
+    "$tmp/two_cases.1"
 finish

@@ -83,7 +83,7 @@ done
 check "the README has commands to run (sh and python blocks)" [ "$n" -gt 10 ]
 check "the first command prints the listing of case 6-2 (its title)" grep -q "CASE 6-2 FOREHEAD PENDULUM IMPACT" "$tmp/rc/1.out"
 check "the first command's listing has the injury criteria" grep -q "INJURY CRITERIA" "$tmp/rc/1.out"
-check "the first command's listing ends with END OF RUN" sh -c 'tail -n 3 "$0" | grep -q "END OF RUN AT T ="' "$tmp/rc/1.out"
+check "the first command's listing ends with END OF RUN" sh -c 'tail -n 6 "$0" | grep -q "END OF RUN AT T ="' "$tmp/rc/1.out"
 check "the first command's standard output is the listing alone (it starts with the page rule)" \
     sh -c 'head -n 1 "$0" | grep -q "^====="' "$tmp/rc/1.out"
 finish

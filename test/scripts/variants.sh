@@ -72,8 +72,9 @@ check "both --change cards are noted, in their order" \
     input/nbdl15g.inp > /dev/null 2> "$tmp/bad.err"
 rc=$?
 check "an ambiguous --change card is a deck error (exit 2, got $rc)" [ "$rc" -eq 2 ]
+rx=$(grep -n '^LIMIT     C7        RX' input/head_neck_54dof.inp | cut -d: -f1)
 check "located at --change 2, with the candidates and what tells them apart" \
-    grep -q '^hhneck: deck error: --change 2 (CHANGE C7LIM): found 3 LIMIT cards named C7 (.*line 306 .* RX, line 307 RY, line 308 RZ); expected the coordinate too, in F7' \
+    grep -q "^hhneck: deck error: --change 2 (CHANGE C7LIM): found 3 LIMIT cards named C7 (.*line $rx .* RX, line $((rx + 1)) RY, line $((rx + 2)) RZ); expected the coordinate too, in F7" \
     "$tmp/bad.err"
 "$HHNECK" --sweep --change "$tend" input/sweep_nbdl_oat.inp > /dev/null 2> "$tmp/sweep.err"
 rc=$?
