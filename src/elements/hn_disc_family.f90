@@ -235,28 +235,34 @@ contains
         end do
     end subroutine disc_plausibility
 
-    !> E, VISCOUS, G, VAXIAL, VBEND, ETENSION, BEND (the second moments Ix, Iy), BENDX (Ix: lateral
-    !! bending about the plate's x axis), BENDY (Iy: flexion-extension), TORSION (J).
+    !> E, VISCOUS, G, VAXIAL, VBEND, VROT (d2r: bending and torsion damping alone), ETENSION, BEND (the
+    !! second moments Ix, Iy), BENDX (Ix: lateral bending about the plate's x axis), BENDY (Iy:
+    !! flexion-extension), TORSION (J).
     pure subroutine disc_items(this, items)
         class(disc_family_t), intent(in) :: this      !! the family
         character(len=item_len), intent(out) :: items(max_family_items)   !! the properties
-        items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'ETENSION', 'BEND', 'BENDX', 'BENDY', &
-                                             'TORSION', 'LENGTH']
+        items = [character(len=item_len) :: 'E', 'VISCOUS', 'G', 'VAXIAL', 'VBEND', 'VROT', 'ETENSION', 'BEND', &
+                                             'BENDX', 'BENDY', 'TORSION', 'LENGTH']
     end subroutine disc_items
 
-    !> Scale one property of every disc (d2b not given becomes d2 from here on).
+    !> Scale one property of every disc (d2b not given becomes d2 from here on, d2r not given d2b).
     pure subroutine disc_scale(this, item, factor)
         class(disc_family_t), intent(inout) :: this   !! the family
         character(len=*), intent(in) :: item          !! one of disc_items
         real(wp), intent(in) :: factor                !! the factor
         where (this%items%d2b < zero) this%items%d2b = this%items%d2
+        where (this%items%d2r < zero) this%items%d2r = this%items%d2b
         select case (item)
         case ('E'); this%items%d1 = factor*this%items%d1
         case ('VISCOUS')     ! every mode's damping
             this%items%d2 = factor*this%items%d2
             this%items%d2b = factor*this%items%d2b
+            this%items%d2r = factor*this%items%d2r
         case ('VAXIAL'); this%items%d2 = factor*this%items%d2     ! axial damping (eq 1)
-        case ('VBEND'); this%items%d2b = factor*this%items%d2b    ! shear, bending, torsion damping
+        case ('VBEND')       ! shear, bending, torsion damping
+            this%items%d2b = factor*this%items%d2b
+            this%items%d2r = factor*this%items%d2r
+        case ('VROT'); this%items%d2r = factor*this%items%d2r     ! bending and torsion damping alone
         case ('G'); this%items%g = factor*this%items%g
         case ('ETENSION'); this%items%ft = factor*this%items%ft   ! axial stiffness in tension / d1's
         case ('BEND')        ! bending stiffness (and its damping) in both planes
@@ -274,13 +280,14 @@ contains
         end select
     end subroutine disc_scale
 
-    !> STIFFEN: d1, d2, d2b and G (damping-to-stiffness ratios kept).
+    !> STIFFEN: d1, d2, d2b, d2r and G (damping-to-stiffness ratios kept).
     pure subroutine disc_stiffen(this, factor)
         class(disc_family_t), intent(inout) :: this   !! the family
         real(wp), intent(in) :: factor                !! the factor
         this%items%d1 = factor*this%items%d1
         this%items%d2 = factor*this%items%d2
         this%items%d2b = factor*this%items%d2b
+        this%items%d2r = factor*this%items%d2r
         this%items%g = factor*this%items%g
     end subroutine disc_stiffen
 

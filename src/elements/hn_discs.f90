@@ -13,7 +13,13 @@
 !!   torsion  T = G J theta3 / h                              (eq 7)
 !! and C = (d2/d1) K in the axial mode (eq 1) and C = (d2b/d1) K in shear,
 !! bending and torsion (d2b = d2 unless the deck gives it: the same
-!! two-parameter viscoelastic law in every mode).
+!! two-parameter viscoelastic law in every mode). The rotations may carry
+!! their own viscous modulus d2r (bending and torsion; d2r = d2b unless
+!! given): with the retardation times ts = d2b/d1 and tr = d2r/d1,
+!!   C = min(ts, tr) K + (tr - ts)+ K_rr + (ts - tr)+ K_uu
+!! (K_rr, K_uu the rotational and translational principal blocks of K), a
+!! sum of positive semi-definite terms: the rotations damped with tr, the
+!! shear with ts, whichever is the larger.
 !! In tension (u3 > 0) the axial stiffness is ft (A/h) d1, ft the deck's
 !! tension fraction (default 1: the paper's linear law); the damping stays
 !! C in either direction.
@@ -43,6 +49,7 @@ module hn_discs
         real(wp) :: d1 = zero                 !! elastic modulus E [Pa]
         real(wp) :: d2 = zero                 !! viscous modulus, axial [Pa s]
         real(wp) :: d2b = -one                !! viscous modulus of shear, bending and torsion [Pa s]; < 0: d2
+        real(wp) :: d2r = -one                !! viscous modulus of bending and torsion alone [Pa s]; < 0: d2b's
         real(wp) :: ft = one                  !! axial stiffness in tension as a fraction of d1's [-]
         real(wp) :: g = zero                  !! shear modulus [Pa]
         real(wp) :: ix = zero, iy = zero      !! second moments of area about plate x, y [m^4]
@@ -94,9 +101,24 @@ contains
         d%rb = matmul(transpose(su), sl)
         d%d0 = matmul(transpose(sl), pup - plo)
         d%k = disc_stiffness(d)
-        d%c = (disc_d2b(d)/d%d1)*d%k          ! shear, bending, torsion (K has no axial coupling)
+        d%c = disc_damping(d%k, disc_d2b(d)/d%d1, disc_d2r(d)/d%d1)
         d%c(3, 3) = (d%d2/d%d1)*d%k(3, 3)     ! axial (eq 1)
     end subroutine disc_set_reference
+
+    !> The damping of shear, bending and torsion from the stiffness K and the
+    !! retardation times of the shear (ts) and of the rotations (tr):
+    !! min(ts, tr) K plus the excess of either on its own principal block of
+    !! K (symmetric and positive semi-definite with K). The axial entry is
+    !! the caller's (K has no axial coupling).
+    pure function disc_damping(k, ts, tr) result(c)
+        real(wp), intent(in) :: k(6, 6)         !! the disc's stiffness (disc_stiffness)
+        real(wp), intent(in) :: ts               !! retardation time of the shear, d2b/d1 [s]
+        real(wp), intent(in) :: tr               !! retardation time of bending and torsion, d2r/d1 [s]
+        real(wp) :: c(6, 6)
+        c = min(ts, tr)*k
+        c(4:6, 4:6) = c(4:6, 4:6) + max(zero, tr - ts)*k(4:6, 4:6)
+        c(1:3, 1:3) = c(1:3, 1:3) + max(zero, ts - tr)*k(1:3, 1:3)
+    end function disc_damping
 
     !> The viscous modulus of shear, bending and torsion: d2b, or d2 where the deck gives none.
     elemental function disc_d2b(d) result(v)
@@ -104,6 +126,13 @@ contains
         real(wp) :: v                            !! [Pa s]
         v = merge(d%d2b, d%d2, d%d2b >= zero)
     end function disc_d2b
+
+    !> The viscous modulus of bending and torsion: d2r, or disc_d2b where the deck gives none.
+    elemental function disc_d2r(d) result(v)
+        type(disc_t), intent(in) :: d            !! the disc
+        real(wp) :: v                            !! [Pa s]
+        v = merge(d%d2r, disc_d2b(d), d%d2r >= zero)
+    end function disc_d2r
 
     !> Body frames and plate centres (R) of the two bodies.
     pure subroutine plates(d, kin, sa, sb, plo, pup)

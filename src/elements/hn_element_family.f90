@@ -55,7 +55,7 @@ module hn_element_family
     public :: path_columns, spatial_row, item_channels
     public :: add_warning, check_point, check_range, line_columns, add_line_tangent
 
-    integer, parameter, public :: max_family_items = 11  !! most properties a family has to scale
+    integer, parameter, public :: max_family_items = 12  !! most properties a family has to scale
     integer, parameter, public :: item_len = 10           !! length of a property name
     integer, parameter, public :: warning_len = 160       !! length of a plausibility warning
 
