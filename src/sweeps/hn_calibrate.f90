@@ -21,7 +21,7 @@ module hn_calibrate
     use hn_volunteer_data, only: peak_table_t
     use hn_deck_reader, only: int_str
     use hn_joint_limits, only: range_margin
-    use hn_calibrate_types, only: calibration_t, reference_case_t, range_score_t, metric_cora, metric_iso18571
+    use hn_calibrate_types, only: calibration_t, reference_case_t, range_score_t, metric_cora, metric_iso18571, standing_case_t
     use hn_calibrate_cases, only: read_calibration
     use hn_calibrate_scores, only: range_score, case_rating
     use hn_calibrate_objective, only: evaluate, member_histories
@@ -160,7 +160,7 @@ contains
             do k = 1, size(stx)
                 if (stx(k) < huge(one)) then
                     write (lu, '(a,i0,a,es10.3,a,es10.3,a)') 'STANDING CASE ', k, ': LARGEST EXCURSION '// &
-                        trim(merge('AT THE END', 'AT REST   ', cal%stand(k)%at_end))//' ', &
+                        trim(excursion_kind(cal%stand(k)))//' ', &
                         stx(k), ' DEG (BOUND ', cal%stand(k)%bound, ' DEG) '//trim(cal%stand(k)%deck)
                 else
                     write (lu, '(a,i0,a)') 'STANDING CASE ', k, ': THE RUN AT REST DID NOT COMPLETE '// &
@@ -180,6 +180,21 @@ contains
             flush (lu)
         end subroutine report
     end subroutine calibrate
+
+    !> What a standing case's excursion measures, for the listing: AT REST
+    !! (STANDING: the joints), OF THE HEAD (REST: its rotation throughout),
+    !! AT THE END (RETURN: the head's rotation where the run ends).
+    pure function excursion_kind(sc) result(text)
+        type(standing_case_t), intent(in) :: sc   !! the standing case
+        character(len=:), allocatable :: text
+        if (sc%at_end) then
+            text = 'AT THE END'
+        else if (sc%head) then
+            text = 'OF THE HEAD'
+        else
+            text = 'AT REST'
+        end if
+    end function excursion_kind
 
     !> Position of value x in the unit range of parameter p (inverse of spread_value).
     pure real(wp) function unit_of(p, x) result(u)

@@ -69,7 +69,7 @@ contains
             case ('PARAM'); call read_param_card(st, i)
             case ('OPTIONAL'); call read_optional_card(st, i)
             case ('PASSIVE'); call read_passive_card(st, cal, i)
-            case ('STANDING', 'RETURN'); call read_standing_card(st, cal, i)
+            case ('STANDING', 'RETURN', 'REST'); call read_standing_card(st, cal, i)
             case ('RANGES'); call read_ranges_card(st, cal, i)
             case ('VALUES'); call read_values_card(st, cal, i)
             case ('CURVES'); call read_curves_card(st, cal, i)
@@ -336,7 +336,8 @@ contains
     !! start; with STANDING cards they judge standing in place of the
     !! volunteer cases' linear margin at rest. RETURN deck bound: a run of the
     !! deck (a push) must end with the head's rotation vector relative to R
-    !! (HEADL_VX, _VY, _VZ) within the bound of its start.
+    !! (HEADL_VX, _VY, _VZ) within the bound of its start. REST deck bound:
+    !! the head's rotation vector within the bound of its start throughout.
     subroutine read_standing_card(st, cal, i)
         type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
         type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
@@ -344,10 +345,11 @@ contains
         type(standing_case_t) :: sc
         sc%deck = adjustl(st%rd%lines(i)%text(11:70))
         sc%at_end = st%rd%key(i) == 'RETURN'
+        sc%head = st%rd%key(i) /= 'STANDING'
         if (len_trim(sc%deck) == 0) then
             call st%rd%fail(st%rd%where(i)//', columns 11-70 ('//trim(st%rd%key(i))//' card): found no deck; '// &
                             'expected the deck of the model at rest'//trim(merge(' or after a push', &
-                                                                                  '                ', sc%at_end)))
+                                                                                  '                ', sc%head)))
             return
         end if
         call st%rd%real(i, 7, 'largest excursion', 'deg', sc%bound, 1.0e-3_wp, 90.0_wp)
@@ -394,7 +396,7 @@ contains
         integer, intent(in) :: i                       !! the card's line
         call st%rd%fail(st%rd%where(i)//', columns 1-8: found "'//trim(st%rd%key(i))// &
                         '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, OPTIONAL, '// &
-                        'PASSIVE, STANDING, RETURN, RANGES, VALUES, CURVES or END')
+                        'PASSIVE, STANDING, RETURN, REST, RANGES, VALUES, CURVES or END')
     end subroutine unknown_card
 
     !> The checks across cards, after the last: each PEAK card's channel a

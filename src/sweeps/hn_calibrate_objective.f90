@@ -246,9 +246,10 @@ contains
 
     !> The largest excursion of any joint rotation from its start [deg] in
     !! the run of each STANDING deck at parameter values v (RETURN: the
-    !! change of the head's rotation vector relative to R at the run's end) (its joint
-    !! rotation channels alone, at the deck's OUTPUT interval); a run that
-    !! cannot be built or does not complete counts as fallen (huge).
+    !! change of the head's rotation vector relative to R at the run's end;
+    !! REST: its largest change over the run) (its joint or head rotation
+    !! channels alone, at the deck's OUTPUT interval); a run that cannot be
+    !! built or does not complete counts as fallen (huge).
     function standing_excursions(cal, v) result(exc)
         type(calibration_t), intent(in) :: cal       !! the calibration
         real(wp), intent(in) :: v(:)                 !! one value per parameter
@@ -265,7 +266,7 @@ contains
             call sweep_member_case(cal%stand(k)%sw, v, cs, stat, msg, deck_sampling=.true.)
             if (stat /= stat_ok) cycle
             call channels_define(cs, chs)
-            if (cal%stand(k)%at_end) then     ! RETURN: the head's rotation vector relative to R
+            if (cal%stand(k)%head) then       ! RETURN, REST: the head's rotation vector relative to R
                 joints = [character(len=chname_len) :: 'HEADL_VX', 'HEADL_VY', 'HEADL_VZ']
             else
                 joints = pack(chs%name, chs%group(:)(1:6) == 'JOINTS')
@@ -281,6 +282,8 @@ contains
             n = size(res%samples, 2)
             if (cal%stand(k)%at_end) then     ! RETURN: where the run ends
                 exc(k) = norm2(res%samples(:, n) - res%samples(:, 1))
+            else if (cal%stand(k)%head) then  ! REST: the largest change over the run
+                exc(k) = sqrt(maxval(sum((res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n))**2, dim=1)))
             else
                 exc(k) = maxval(abs(res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n)))
             end if

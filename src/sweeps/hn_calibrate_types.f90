@@ -35,11 +35,13 @@ module hn_calibrate_types
 
     !> A standing case (STANDING card): a deck of the model at rest, its
     !! parameters bound as a case's; the model stands when no joint rotation
-    !! of its run moves more than the bound from its start.
+    !! of its run moves more than the bound from its start (REST: the head's
+    !! rotation at any time of the run; RETURN: at its end).
     type, public :: standing_case_t
         character(len=path_len) :: deck = ''   !! the deck (STANDING columns 11-70)
         real(wp) :: bound = zero               !! the largest excursion allowed (STANDING F7) [deg]
         logical :: at_end = .false.            !! a RETURN card: the head's rotation at the end of the run only
+        logical :: head = .false.              !! a RETURN or REST card: the head's rotation, not the joints'
         type(sweep_t) :: sw                    !! the PARAM cards bound to its deck
     end type standing_case_t
 
