@@ -35,7 +35,7 @@ for l in src:
     elif key == "FEEDBACK" and not l[:10].strip() and l.strip():
         l = " "*10 + "0.0"      # ki, on the continuation
     elif l.startswith("SPINDLE"):
-        l = l[:20] + "%-10s%-10s" % ("0.0", "0.0") + l[40:]
+        l = l[:20] + "%-10s%-10s" % ("0.0", "0.0") + l[40:70] + ("0.0" if l[70:].strip() else "")   # kp, kd; ki (F7)
     out.append(l)
 open("input/controller_zero.inp", "w").write("\n".join(out) + "\n")
 for d in ("rear5g_return", "lateral7g_return"):
