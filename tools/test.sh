@@ -1,15 +1,17 @@
 #!/bin/sh
 # The whole test suite (docs/testing.md):
 #   1. every test program -- the pFUnit suites of test/unit/*.pf and the
-#      program tests test/*.f90 -- in a debug build,
-#   2. the same again in a checking build that traps invalid operations,
-#      division by zero and overflow and checks every array bound and
-#      pointer (skipped with --no-checking-build),
-#   3. every whole-program check test/scripts/*.sh, with HHNECK set to the
-#      debug build's executable (to the checking build's instead for a
-#      script with a line "# builds: debug checking" when that build runs;
-#      to the release build's for one with "# builds: release"),
-#   4. the Python tests of the tools, test/python (pytest, one run per file
+#      program tests test/*.f90 -- in a checking build that traps invalid
+#      operations, division by zero and overflow and checks every array
+#      bound and pointer (in the debug build instead with
+#      --no-checking-build: the checking build's run-time checks include
+#      every one of the debug build's, so the programs are built and run
+#      once),
+#   2. every whole-program check test/scripts/*.sh, with HHNECK set to the
+#      checking build's executable (the debug build's with
+#      --no-checking-build; the release build's for a script with a line
+#      "# builds: release"),
+#   3. the Python tests of the tools, test/python (pytest, one run per file
 #      test/python/test_*.py, each a job of the pool below), with HHNECK
 #      set to the release build's executable.
 # The scripts and the Python tests run with this checkout's Python
@@ -44,16 +46,6 @@ TEST_JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
 times=build/test_times    # seconds per test program in the last run
 script_times=build/script_times    # seconds per script (and build) and of the Python tests in the last run
 
-# the test programs that run in the checking build alone when it runs: the
-# slowest, those of 7 s or more (the regression test re-runs whole case
-# decks at rtol 1e-8, the longest program by far). Both builds are -O0 of
-# the same gfortran, so they compute the same numbers, and the checking
-# build's run-time checks include every one of the debug build's
-# (-fcheck=all, FPE traps): a run in the debug build would repeat the
-# checking build's. The debug build still compiles them (their warnings),
-# and runs them under --no-checking-build
-CHECKING_ONLY="test_regression test_free_bodies test_scene test_feedback test_nz_springs test_calibration
-    test_stability test_stiffened test_cases"
 # the order of a first run (no build/test_times, build/script_times yet,
 # as from a clean clone): typical seconds of the slowest test programs
 # and of the slowest scripts and Python test files, so that none of them
@@ -113,27 +105,14 @@ step() {
     echo "   ($(($(date +%s) - t0)) s)"
 }
 
-# run_tests FLAGS [NEXT]: build every test program with FLAGS, run them
+# run_tests FLAGS: build every test program with FLAGS, run them
 # TEST_JOBS at a time, then show each one's output. A program that stops
-# without its closing line is reported as one failed check. With NEXT,
-# the test programs of the build with flags NEXT are compiled in the
-# background while these run (the cores the compiler's dependency chain
-# leaves idle); the next run_tests waits for it and builds what is left,
-# showing any compiler error itself.
+# without its closing line is reported as one failed check.
 run_tests() {
-    wait_next_build
     fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner true || return 1
     # the slowest first (their times from the last run, else these), so
-    # that no long program starts last; with NEXT (the checking build runs
-    # after this one), the programs of CHECKING_ONLY are left to it
-    skip='^$'
-    if [ -n "${2:-}" ]; then
-        # shellcheck disable=SC2086
-        skip="/($(echo $CHECKING_ONLY | tr ' ' '|'))\$"
-        for n in $CHECKING_ONLY; do echo "   $n: in the checking build only"; done
-    fi
+    # that no long program starts last
     fpm test --flag "$1 $PF_INC" --link-flag "$PF_LINK" --runner echo 2>/dev/null | grep '/test/' |
-        grep -E -v "$skip" |
         awk -v known="$times" -v typical="$TYPICAL_TEST_TIMES" 'BEGIN {
                 n = split(typical, f, " ")
                 for (i = 1; i < n; i += 2) t[f[i]] = f[i + 1]
@@ -144,13 +123,6 @@ run_tests() {
     out=$work/out
     rm -rf "$out"
     mkdir -p "$out"
-    if [ -n "${2:-}" ]; then
-        # (step runs this function in a pipeline's subshell: the next one
-        # learns that the build ended from a file, not from wait)
-        : > "$work/next_build.started"
-        { fpm test --flag "$2 $PF_INC" --link-flag "$PF_LINK" --runner true
-          : > "$work/next_build.done"; } > "$work/next_build.log" 2>&1 &
-    fi
     # shellcheck disable=SC2016
     xargs -P "$TEST_JOBS" -n 1 sh -c \
         'n=$(basename "$1"); t=$(date +%s); "$1" >> "$0/$n.out" 2>&1; echo $? > "$0/$n.rc";
@@ -173,24 +145,15 @@ run_tests() {
     return $status
 }
 
-# wait_next_build: wait for the background build of run_tests NEXT, if one runs
-wait_next_build() {
-    [ -f "$work/next_build.started" ] || return 0
-    while [ ! -f "$work/next_build.done" ]; do sleep 1; done
-    rm -f "$work/next_build.started" "$work/next_build.done"
-}
-
 if [ "$checking" = yes ]; then
-    step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS" "$CHECK_FLAGS"
     step "test programs, checking build ($CHECK_FLAGS)" run_tests "$CHECK_FLAGS"
 else
     step "test programs, debug build ($DEBUG_FLAGS)" run_tests "$DEBUG_FLAGS"
 fi
 
-# the whole-program checks run the debug build's executable; a script
-# with a line "# builds: debug checking" runs on the checking build's when
-# that build runs (else on the debug build's),
-# one with "# builds: release" on fpm's release build (the README's run).
+# the whole-program checks run the checking build's executable when that
+# build runs (else the debug build's); a script with a line "# builds:
+# release" runs on fpm's release build (the README's run).
 # The executables are built first, one build at a time; then the scripts
 # and the Python tests (on the release build's executable: they test the
 # tools over the program as a user runs it) run TEST_JOBS at a
@@ -212,12 +175,12 @@ run_checks() {
     for script in test/scripts/*.sh test/python/test_*.py; do
         builds=release
         case $script in *.sh) builds=$(sed -n 's/^# builds: *//p' "$script" | head -n 1) ;; esac
-        for build in ${builds:-debug}; do
+        for build in ${builds:-debug checking}; do
             case $build in
                 # a script for both builds runs in the checking build alone when
                 # that build runs: its checks include every one of the debug
                 # build's, and with no trapped exception the two compute alike
-                debug) case " $builds " in *" checking "*) [ "$checking" = no ] || continue ;; esac ;;
+                debug) [ "$checking" = no ] || continue ;;
                 release) ;;
                 checking) [ "$checking" = yes ] || continue ;;
                 *) echo "$script: unknown build '$build'" >&2; continue ;;

@@ -8,7 +8,6 @@
 # once read as 12 and 0.5), refused with the exact located message in
 # --check and in a run, while a CHANGE that fills its field edge to edge
 # passes; a calibration deck checked, not run.
-# builds: debug checking
 . test/scripts/lib/checks.sh
 
 sed 's/^CONTROL   0.1  /CONTROL   -0.1 /' input/case6-2.inp > "$tmp/bad.inp"

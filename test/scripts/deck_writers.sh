@@ -9,7 +9,6 @@
 # (hhneck.model_deck from reference/model_parameters.csv, hhneck.case_decks,
 # hhneck.nbdl_tables).
 # make_nbdl_tables.py --data with a long data folder: new_nbdl_case.sh.
-# builds: debug checking
 . test/scripts/lib/checks.sh
 root=$(pwd)
 

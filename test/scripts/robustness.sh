@@ -7,7 +7,6 @@
 # double range, no free coordinate, huge decks and tables, degenerate
 # models, run limits, the command line. One PASS/FAIL line per check (SKIP
 # with the reason where the machine cannot do it), then "N passed, N failed".
-# builds: debug checking
 set -u
 cd "$(dirname "$0")/../.."
 ROOT=$(pwd)
