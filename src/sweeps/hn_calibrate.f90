@@ -187,13 +187,11 @@ contains
     pure function excursion_kind(sc) result(text)
         type(standing_case_t), intent(in) :: sc   !! the standing case
         character(len=:), allocatable :: text
-        if (sc%at_end) then
-            text = 'AT THE END'
-        else if (sc%head) then
-            text = 'OF THE HEAD'
-        else
-            text = 'AT REST'
-        end if
+        select case (sc%kind)
+        case ('RETURN'); text = 'AT THE END'
+        case ('REST'); text = 'OF THE HEAD'
+        case default; text = 'AT REST'
+        end select
     end function excursion_kind
 
     !> Position of value x in the unit range of parameter p (inverse of spread_value).

@@ -344,12 +344,11 @@ contains
         integer, intent(in) :: i                       !! the card's line
         type(standing_case_t) :: sc
         sc%deck = adjustl(st%rd%lines(i)%text(11:70))
-        sc%at_end = st%rd%key(i) == 'RETURN'
-        sc%head = st%rd%key(i) /= 'STANDING'
+        sc%kind = st%rd%key(i)
         if (len_trim(sc%deck) == 0) then
             call st%rd%fail(st%rd%where(i)//', columns 11-70 ('//trim(st%rd%key(i))//' card): found no deck; '// &
                             'expected the deck of the model at rest'//trim(merge(' or after a push', &
-                                                                                  '                ', sc%head)))
+                                                                                  '                ', sc%kind /= 'STANDING')))
             return
         end if
         call st%rd%real(i, 7, 'largest excursion', 'deg', sc%bound, 1.0e-3_wp, 90.0_wp)

@@ -266,7 +266,7 @@ contains
             call sweep_member_case(cal%stand(k)%sw, v, cs, stat, msg, deck_sampling=.true.)
             if (stat /= stat_ok) cycle
             call channels_define(cs, chs)
-            if (cal%stand(k)%head) then       ! RETURN, REST: the head's rotation vector relative to R
+            if (cal%stand(k)%kind /= 'STANDING') then   ! RETURN, REST: the head's rotation vector relative to R
                 joints = [character(len=chname_len) :: 'HEADL_VX', 'HEADL_VY', 'HEADL_VZ']
             else
                 joints = pack(chs%name, chs%group(:)(1:6) == 'JOINTS')
@@ -280,13 +280,14 @@ contains
             close (lu)
             if (res%exit_code /= exit_ok) cycle
             n = size(res%samples, 2)
-            if (cal%stand(k)%at_end) then     ! RETURN: where the run ends
-                exc(k) = norm2(res%samples(:, n) - res%samples(:, 1))
-            else if (cal%stand(k)%head) then  ! REST: the largest change over the run
-                exc(k) = sqrt(maxval(sum((res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n))**2, dim=1)))
-            else
+            select case (cal%stand(k)%kind)
+            case ('STANDING')   ! the largest excursion of any joint rotation
                 exc(k) = maxval(abs(res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n)))
-            end if
+            case ('RETURN')     ! the head's change where the run ends
+                exc(k) = norm2(res%samples(:, n) - res%samples(:, 1))
+            case default        ! REST: the head's largest change over the run
+                exc(k) = sqrt(maxval(sum((res%samples(:, 1:n) - spread(res%samples(:, 1), 2, n))**2, dim=1)))
+            end select
         end do
         !$omp end parallel do
     end function standing_excursions

@@ -40,8 +40,7 @@ module hn_calibrate_types
     type, public :: standing_case_t
         character(len=path_len) :: deck = ''   !! the deck (STANDING columns 11-70)
         real(wp) :: bound = zero               !! the largest excursion allowed (STANDING F7) [deg]
-        logical :: at_end = .false.            !! a RETURN card: the head's rotation at the end of the run only
-        logical :: head = .false.              !! a RETURN or REST card: the head's rotation, not the joints'
+        character(len=8) :: kind = 'STANDING'  !! its card: STANDING (joints), RETURN (head at the end), REST (head throughout)
         type(sweep_t) :: sw                    !! the PARAM cards bound to its deck
     end type standing_case_t
 
