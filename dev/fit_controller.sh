@@ -11,15 +11,22 @@
 # dev/fit_model.sh runs this as its last stage. Deterministic: the fit starts
 # from the calibration deck's VALUES point, not from the controller deck's
 # values, so a second run gives the same deck.
-# Usage: dev/fit_controller.sh [FIT]   (default fit_controller.txt; about 15
+# Usage: dev/fit_controller.sh [FIT]   (default fit_controller.txt; about 20
 # minutes on two cores). It rewrites input/volunteer_controller.inp and
 # reference/controller_parameters.csv in place.
+#        dev/fit_controller.sh --listing FIT   steps 2 and 3 alone, from the
+# listing FIT of an earlier run of step 1.
 set -e
 cd "$(dirname "$0")/.."
-fit=${1:-fit_controller.txt}
-exe=$(fpm run --profile release --runner echo 2>/dev/null | tail -1)
-case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
-"$exe" --calibrate < input/calibrate_controller.inp > "$fit"
+if [ "$1" = --listing ]; then
+    fit=$2
+    [ -f "$fit" ] || { echo "fit_controller.sh: no listing $fit" >&2; exit 1; }
+else
+    fit=${1:-fit_controller.txt}
+    exe=$(fpm run --profile release --runner echo 2>/dev/null | tail -1)
+    case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
+    "$exe" --calibrate < input/calibrate_controller.inp > "$fit"
+fi
 python3 - "$fit" <<'PY'
 import re
 import sys
@@ -46,6 +53,23 @@ for l in fit:
 if not value:
     sys.exit("fit_controller.sh: no PARAM line in %s: the calibration did not finish" % sys.argv[1])
 
+def field_text(v):
+    """the listing's number v in at most 9 columns (a field is 10 wide, one
+    blank between fields): the same number where it can be (0.00476348 as
+    .00476348), else rounded to the most digits that fit"""
+    x = float(v)
+    for text in ("%.6g" % x, v):
+        short = text.replace("0.", ".", 1) if text.lstrip("-").startswith("0.") else text
+        for t in (text, short):
+            if len(t) <= 9 and float(t) == x:
+                return t
+    for digits in range(6, 0, -1):
+        for t in ("%.*g" % (digits, x), "%.*E" % (digits - 1, x)):
+            t = t.replace("E+0", "E+").replace("E-0", "E-")
+            if len(t) <= 9:
+                return t
+    sys.exit("fit_controller.sh: %s does not fit in 9 columns" % v)
+
 def locate(key, item, n):
     """the index of the controller deck line holding field n of card key named item (name.text: F2 or F3 text)"""
     name, _, other = item.partition(".")
@@ -62,9 +86,7 @@ for l in cal:
         continue
     name, n, key, item = field(l, 1), int(field(l, 2)[5:]), field(l, 3), field(l, 4)
     v = value[name] if name not in seen else tie[(key, item, n)]
-    short = "%.6g" % float(v)       # the same number, shorter where it can be
-    if len(short) <= 9 and float(short) == float(v):
-        v = short
+    v = field_text(v)
     seen.add(name)
     card, i = locate(key, item, n)
     other = item.partition(".")[2]
