@@ -19,7 +19,7 @@ A fit writes its values into the table, never into the deck by hand
 (stage segments: the CSV hhneck.fit_column writes, the column's factors
 fitted to the segment tests; stage nz_springs: the neutral-zone springs of
 that fit, reference/nz_springs.csv). The deck is the specimen state: its
-twelve Hill muscles are passive (their activation histories FLEX and EXT at
+52 Hill muscles are passive (their activation histories FLEX and EXT at
 zero); the volunteer state adds the controller (input/volunteer_controller.inp,
 included after it).
 
@@ -32,7 +32,9 @@ posture; --nz-springs CSV the neutral-zone springs of that CSV (a file not
 written yet: no springs; none: no springs either); --upper-cervical CSV the upper-cervical factors of
 hhneck.upper_cervical; --suboccipital yes the four suboccipital muscles per
 side; --segmental yes two segmental muscles per subaxial level and side;
---sub-bend F the subaxial discs' own bending Ix, Iy times F; --sub-flexion F
+--cervical yes the eight cervical muscles of S22 per side (scalenes, levator
+scapulae, the cervical splenius, semispinalis, longissimus, iliocostalis:
+hhneck.hyoid_muscles); --sub-bend F the subaxial discs' own bending Ix, Iy times F; --sub-flexion F
 the flexion-extension bending Iy of the discs C3-C4 ... C7-T1 times F.
 
 Pure arithmetic on the table's numbers: no solver code lives here.
@@ -289,11 +291,16 @@ SUBOCCIPITAL_MUSCLES = (("RCPMAJ", "C2", "HEAD"), ("RCPMIN", "C1", "HEAD"), ("OC
 # intertransversarius IT from the lower vertebra to the upper one, on EXT, straight
 SEGMENTAL_LEVELS = (("T1", "C7"), ("C7", "C6"), ("C6", "C5"), ("C5", "C4"), ("C4", "C3"), ("C3", "C2"))
 SEGMENTAL_KINDS = ("MU", "IT")
+# the cervical muscles of S22 (--cervical yes, shipped; hhneck.hyoid_muscles maps
+# their rows from the HYOID model): the scalenes, levator scapulae and the cervical
+# parts of splenius, semispinalis, longissimus and iliocostalis, T1 to C2-C5, straight
+CERVICAL_MUSCLES = (("SCALA", "T1", "C4"), ("SCALM", "T1", "C3"), ("SCALP", "T1", "C5"), ("LEVS", "T1", "C2"),
+                    ("SPLCV", "T1", "C3"), ("SSCV", "T1", "C3"), ("LNGCV", "T1", "C4"), ("ILCV", "T1", "C5"))
 # Muscles that run along the vertebral column follow it through a via point on
 # every vertebra they pass, where the straight neutral line crosses that
 # vertebra's mass-centre height; the superficial SCM and trapezius run straight (A)
 VIA_MUSCLES = ("SPLC", "SSC", "LCOL", "LCAP")
-FLEXORS = ("SCM", "LCOL", "LCAP")           # on FLEX; the others on EXT
+FLEXORS = ("SCM", "LCOL", "LCAP", "SCALA", "SCALM", "SCALP")   # on FLEX; the others on EXT
 HISTORIES = (("FLEX", "F"), ("EXT", "E"))   # the activation histories, the suffix of their rows
 # the fitted SCALE cards: name (the row), family, item
 SCALES = (("SIGMA", "MUSCLES", "F0"), ("VBEND", "DISCS", "VBEND"), ("VAXIAL", "DISCS", "VAXIAL"),
@@ -367,9 +374,11 @@ class _Geometry:
         return body, (base[0] + d[0], base[1] + s * d[1], base[2] + d[2])
 
 
-def _muscle_rows(p, suboccipital, segmental):
+def _muscle_rows(p, suboccipital, segmental, cervical=True):
     """[(name, origin body, insertion body, the rows' name)] of the muscles."""
     rows = [(m, a, b, m) for m, a, b in MUSCLES]
+    if cervical:
+        rows += [(m, a, b, m) for m, a, b in CERVICAL_MUSCLES]
     if suboccipital:
         rows += [(m, a, b, m) for m, a, b in SUBOCCIPITAL_MUSCLES]
     if segmental:
@@ -509,11 +518,17 @@ def _muscles(w, p, geo, muscles):
     w("*")
     w("* MUSCLES: Hill-type (contractile element with force-length and force-velocity")
     w("* relations, passive element, damping along the line; docs/deck-format.md),")
+    cervical = [m for m, _, _ in CERVICAL_MUSCLES if m in {k for _, _, _, k in muscles}]
     if len(muscles) == len(MUSCLES):
         w("* six groups per side, origins and insertions A (simplified anatomy).")
     else:
         w("* %d groups per side (beyond the first six: segmental MU, IT; suboccipital" % len(muscles))
         w("* S15), origins and insertions A (simplified anatomy).")
+    if cervical:
+        w("* The cervical muscles %s" % ", ".join(cervical))
+        w("* (scalenes, levator scapulae, the cervical splenius, semispinalis,")
+        w("* longissimus, iliocostalis) are S22's: origins, insertions, F0, lopt and")
+        w("* lf/lopt mapped from the HYOID model by hhneck.hyoid_muscles, straight.")
     w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (x SIGMA); PCSA A; optimal" % (sigma_max / 1e6))
     w("* fibre length lopt and, on the FIBRE cards, the fibre length over lopt in the")
     w("* neutral posture S22 (the mapping in reference/model_parameters.csv; a muscle")
@@ -544,8 +559,10 @@ def _muscles(w, p, geo, muscles):
         if "muscle.%s.ln" % key in p:
             for side in "LR":
                 w(card("FIBRE", mname + side, p["muscle.%s.ln" % key]))
-    w("* Activation histories: FLEX of the flexors (%s), EXT of the" % ", ".join(FLEXORS))
-    w("* extensors (the others), PASSIVE: no bracing, no reflex (the specimen state;")
+    w("* Activation histories: FLEX of the flexors")
+    w("* (%s)," % ", ".join(FLEXORS))
+    w("* EXT of the extensors (the others), PASSIVE: no bracing, no reflex (the")
+    w("* specimen state;")
     w("* the volunteer state's controller, input/volunteer_controller.inp, drives the")
     w("* muscles). Time constants Thelen 2003; short-range stiffness of the active")
     w("* fibres k = q F / L0, q %.0f (Bergmark 1989, Cholewicki & McGill 1996: 10-40)," % p["act.srs_q"])
@@ -666,7 +683,7 @@ def _scaled_discs(lines, sub_bend, sub_flexion):
 
 
 def deck_lines(p, posture="seated", t1_slope=None, lordosis=None, nz_springs=None, upper_cervical_csv="none",
-               suboccipital=False, segmental=True, sub_bend=1.0, sub_flexion=1.0):
+               suboccipital=False, segmental=True, sub_bend=1.0, sub_flexion=1.0, cervical=True):
     """The model deck's lines from the values `p` (table_values): the shipped
     deck with the defaults; the variants of the module's docstring
     otherwise. DeckError for a CSV it cannot use or a card beyond column 80."""
@@ -679,7 +696,7 @@ def deck_lines(p, posture="seated", t1_slope=None, lordosis=None, nz_springs=Non
     _header_and_bodies(body.append, p, geo)
     _discs(body.append, p, geo)
     _ligaments(body.append, p, geo)
-    _muscles(body.append, p, geo, _muscle_rows(p, suboccipital, segmental))
+    _muscles(body.append, p, geo, _muscle_rows(p, suboccipital, segmental, cervical))
     neutral = _posture(tail.append, posture, t1_slope, lordosis)
     _limits(body.append, p, neutral)
     _springs_and_scales(body.append, p, nz_springs)
@@ -715,6 +732,7 @@ def _parser():
     ap.add_argument("--upper-cervical", default="none", help="the upper-cervical factors of this CSV, or none")
     ap.add_argument("--suboccipital", choices=("yes", "no"), default="no")
     ap.add_argument("--segmental", choices=("yes", "no"), default="yes")
+    ap.add_argument("--cervical", choices=("yes", "no"), default="yes")
     ap.add_argument("--sub-bend", type=float, default=1.0, help="the subaxial discs' Ix, Iy times F")
     ap.add_argument("--sub-flexion", type=float, default=1.0, help="the Iy of the discs C3-C4 ... C7-T1 times F")
     return ap
@@ -739,7 +757,8 @@ def main(argv=None):
             fitted = {n: _number(v, "%s: PARAM %s" % (a.fit, n)) for n, v in read_fit(a.fit) if n in p}
             p.update({n: table_value(p, n, v) for n, v in fitted.items()})
         lines = deck_lines(p, a.posture, a.t1_slope, a.lordosis, a.nz_springs, a.upper_cervical,
-                           a.suboccipital == "yes", a.segmental == "yes", a.sub_bend, a.sub_flexion)
+                           a.suboccipital == "yes", a.segmental == "yes", a.sub_bend, a.sub_flexion,
+                           a.cervical == "yes")
     except (OSError, DeckError) as e:
         print("model_deck: %s; not written" % e, file=sys.stderr)
         return 1
