@@ -17,7 +17,7 @@ module hn_calibrate_case_cards
 
 contains
 
-    !> CASE: a case deck (columns 11-70) and its weight (F7, default 1).
+    !> The CASE card: a case deck (columns 11-70) and its weight (F7, default 1).
     subroutine read_case_card(deck, i)
         class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                      !! the card's line

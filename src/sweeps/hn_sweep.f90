@@ -233,7 +233,7 @@ contains
         end associate
     end subroutine parse_sweep
 
-    !> TITLE: the sweep's title (columns 11-80).
+    !> The TITLE card: the sweep's title (columns 11-80).
     subroutine title_card(deck, i)
         class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
         integer, intent(in) :: i                    !! the card's deck line
@@ -243,7 +243,7 @@ contains
         end select
     end subroutine title_card
 
-    !> H5FILE: the sweep's result file (columns 11-80).
+    !> The H5FILE card: the sweep's result file (columns 11-80).
     subroutine h5file_card(deck, i)
         class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
         integer, intent(in) :: i                    !! the card's deck line
@@ -253,7 +253,7 @@ contains
         end select
     end subroutine h5file_card
 
-    !> BASE: the base case deck (columns 11-80), found as an INCLUDE file is
+    !> The BASE card: the base case deck (columns 11-80), found as an INCLUDE file is
     !! (next to the file holding the card, here, the include path), and read.
     subroutine base_card(deck, i)
         class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
@@ -292,7 +292,7 @@ contains
         end select
     end subroutine base_card
 
-    !> DESIGN FACTORIAL levels, LHS runs seed, or OAT step (%).
+    !> The DESIGN card: FACTORIAL levels, LHS runs and seed, or OAT step (%).
     subroutine design_card(deck, i)
         class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
         integer, intent(in) :: i                    !! the card's deck line
