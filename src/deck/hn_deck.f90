@@ -1,8 +1,9 @@
 !> Interpretation of a fixed-format input deck into a run case. The cards
 !! and their columns are documented in docs/deck-format.md; every error
 !! names the source, line, columns, card and field, what was found and
-!! what was expected. This module reads the deck and runs the passes of
-!! the card registry (hn_cards) over it; each card group has its module
+!! what was expected. This module reads the deck, splits it into cards by
+!! the card engine on the card registry (hn_cards) and runs the passes of
+!! hn_deck_passes over them; each card group has its module
 !! (hn_deck_control, _bodies, _scene, _coordinates, _tables, _elements,
 !! _loads), on what they share (hn_deck_state). What the deck knows of the
 !! element families (their cards, which repeats are refused, which fields
@@ -13,23 +14,15 @@ module hn_deck
     use hn_kinds, only: msglen
     use hn_case, only: case_t, deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
-    use hn_model, only: model_set_neutral, model_add_family
-    use hn_element_family, only: family_slot_t
+    use hn_model, only: model_set_neutral
     use hn_element_cards, only: family_card_t, unique_element, unique_name, unique_coordinate
     use hn_families, only: cards_with, family_registration_t
     use hn_integrators, only: integrator_names
     use hn_plausibility, only: plausibility_warnings
-    use hn_changes, only: change_t, read_changes, apply_field_changes, apply_model_changes, kind_field
+    use hn_changes, only: read_changes, apply_field_changes, kind_field
     use hn_sorting, only: sort_index_text
-    use hn_cards, only: deck_passes
-    use hn_occupant, only: occupant_bodies, occupant_elements
-    use hn_deck_state, only: card_t, deck_state_t, group_cards
-    use hn_deck_control, only: runlimit_card, control_cards, report_cards
-    use hn_deck_coordinates, only: coordinate_cards
-    use hn_deck_bodies, only: body_cards
-    use hn_deck_tables, only: table_cards
-    use hn_deck_elements, only: element_cards
-    use hn_deck_loads, only: load_cards, stiffen_cards
+    use hn_deck_state, only: card_t, group_cards
+    use hn_deck_passes, only: deck_reading_t, deck_pass_t, deck_passes
     implicit none
     private
 
@@ -138,75 +131,54 @@ contains
     end subroutine read_case_lines
 
     !> The cards of `rd` into the case, card group by card group: the
-    !! passes of the card registry (hn_cards, `deck_passes`) in their order;
-    !! `families` (outside the registry) join the model after its bodies.
+    !! passes of hn_deck_passes (`deck_passes`) in their order; `families`
+    !! (outside the registry) join the model after its bodies.
     subroutine interpret(rd, cs, families)
         type(deck_reader_t), intent(inout) :: rd
         type(case_t), intent(out) :: cs
         type(family_registration_t), intent(in) :: families(:)
-        type(deck_state_t) :: st
-        type(family_slot_t) :: slot
-        type(change_t), allocatable :: changes(:)
+        type(deck_reading_t) :: dr
+        type(deck_pass_t), allocatable :: passes(:)
         type(family_card_t), allocatable :: fc(:)
         logical, allocatable :: coordinate(:)
         integer, allocatable :: first(:)
-        integer :: k, p, f
+        integer :: k, p
         fc = cards_with(families)
-        st%fcards = fc
+        dr%st%fcards = fc
+        dr%families = families
         coordinate = fc%coordinate   ! the family cards whose F1, F2 name a body and coordinate
         if (.not. rd%failed()) then
             cs%deck = rd%lines(1:rd%nlines)
-            call group_cards(rd, st%cards, more=fc)
+            call group_cards(rd, dr%st%cards, more=fc)
         end if
         allocate (cs%scene(0), cs%changes(0), cs%subtitles(0))
         ! CHANGE cards: fields rewritten in rd's images (cs%deck keeps the deck as read)
         if (.not. rd%failed()) then
             allocate (first(0))
-            do k = 1, size(st%cards)
-                if (st%cards(k)%key == 'CHANGE') first = [first, st%cards(k)%first]
+            do k = 1, size(dr%st%cards)
+                if (dr%st%cards(k)%key == 'CHANGE') first = [first, dr%st%cards(k)%first]
             end do
-            call read_changes(rd, first, changes)
+            call read_changes(rd, first, dr%changes)
         end if
         ! cards that repeat one another are refused before a change can be ambiguous, and again
         ! when a change rewrote a field that identifies a card (F1, F2)
-        if (.not. rd%failed()) call check_repeats(rd, st%cards, fc)
-        if (.not. rd%failed()) call apply_field_changes(rd, changes, cs%changes, keys_of(fc, coordinate))
+        if (.not. rd%failed()) call check_repeats(rd, dr%st%cards, fc)
+        if (.not. rd%failed()) call apply_field_changes(rd, dr%changes, cs%changes, keys_of(fc, coordinate))
         if (.not. rd%failed()) then
-            if (any(changes%kind == kind_field .and. changes%field <= 2)) call check_repeats(rd, st%cards, fc)
+            if (any(dr%changes%kind == kind_field .and. dr%changes%field <= 2)) call check_repeats(rd, dr%st%cards, fc)
         end if
-        do p = 1, size(deck_passes)
+        passes = deck_passes()
+        do p = 1, size(passes)
             if (rd%failed()) exit
-            select case (deck_passes(p)%handler)
-            case ('body_cards')
-                call body_cards(rd, st%cards, cs, st%bnames, st%bmap)
-                if (.not. rd%failed()) call occupant_bodies(rd, st%cards, cs, st%bmap)
-                if (rd%failed()) exit
-                do k = 1, size(families)
-                    call families(k)%empty(slot)
-                    call model_add_family(cs%model, slot%f, f)
-                end do
-            case ('control_cards'); call control_cards(rd, st%cards, cs)
-            case ('table_cards'); call table_cards(rd, st%cards, st%tabs, cs)
-            case ('coordinate_cards'); call coordinate_cards(rd, st, cs)
-            case ('element_cards'); call element_cards(rd, st, cs)
-            case ('load_cards'); call load_cards(rd, st, cs)
-            case ('report_cards'); call report_cards(rd, st%cards, cs, st%bnames, st%bmap)
-            case ('stiffen_cards'); call stiffen_cards(rd, st%cards, cs)
-            case ('model_changes')
-                call occupant_elements(rd, st%cards, cs)
-                if (.not. rd%failed()) call apply_model_changes(rd, changes, cs%model, cs%changes)
-            case ('runlimit_card'); call runlimit_card(rd, st%cards, cs)
-            case default
-                call rd%fail(rd%top//': the deck reader has no handler "'//trim(deck_passes(p)%handler)// &
-                             '" (hn_cards, deck_passes)')
-            end select
+            call passes(p)%read(rd, dr, cs)
         end do
-        if (.not. rd%failed()) call check_unknowns(rd, st%cards, cs)
+        if (.not. rd%failed()) call check_unknowns(rd, dr%st%cards, cs)
         if (.not. rd%failed()) then
             call model_set_neutral(cs%model)
             call plausibility_warnings(cs%model, cs%warnings)
-            do k = 1, size(st%tabs)
-                if (len_trim(st%tabs(k)%warning) > 0) cs%warnings = [character(len=160) :: cs%warnings, st%tabs(k)%warning]
+            do k = 1, size(dr%st%tabs)
+                if (len_trim(dr%st%tabs(k)%warning) > 0) &
+                    cs%warnings = [character(len=160) :: cs%warnings, dr%st%tabs(k)%warning]
             end do
         end if
     end subroutine interpret

@@ -26,7 +26,7 @@ contains
         type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
         type(case_t), intent(inout) :: cs  !! the run case the cards fill
         integer :: ic
-        ic = single(rd, cards, 'RUNLIMIT', .false.)
+        ic = single(cards, 'RUNLIMIT')
         if (ic == 0 .or. rd%failed()) return
         call rd%real(cards(ic)%first, 1, 'wall-time limit', 's', cs%wall_limit, 1.0e-3_wp, 1.0e7_wp, default=zero)
         call rd%int(cards(ic)%first, 2, 'step limit', cs%step_limit, 1, huge(1), default=0)
@@ -36,38 +36,26 @@ contains
     end subroutine runlimit_card
 
     !> TITLE: the deck's first card is its title. A deck that INCLUDEs a
-    !! case deck (a variant of it) meets that deck's TITLE too: the first
-    !! TITLE card of an INCLUDEd file is a subtitle, in deck order. A second
-    !! TITLE card in one file is refused.
+    !! case deck (a variant of it) meets that deck's TITLE too: the TITLE
+    !! card of an INCLUDEd file is a subtitle, in deck order (the card
+    !! engine refused a second TITLE card in one file).
     subroutine title_cards(rd, cards, cs)
         type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
         type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
         type(case_t), intent(inout) :: cs  !! the run case the cards fill
-        integer :: k, j, first, earlier, i
-        first = 0
+        integer :: k
+        logical :: first
+        first = .true.
         do k = 1, size(cards)
             if (cards(k)%key /= 'TITLE') cycle
-            i = cards(k)%first
-            if (first == 0) then
-                first = k
-                cs%model%title = rd%text(i, 11)
-                cycle
+            if (first) then
+                cs%model%title = rd%text(cards(k)%first, 11)
+            else
+                cs%subtitles = [character(len=80) :: cs%subtitles, rd%text(cards(k)%first, 11)]
             end if
-            earlier = 0
-            if (rd%lines(i)%via == 0) earlier = first
-            do j = first, k - 1
-                if (earlier /= 0) exit
-                if (cards(j)%key == 'TITLE' .and. rd%lines(cards(j)%first)%via == rd%lines(i)%via) earlier = j
-            end do
-            if (earlier /= 0) then
-                call rd%fail(rd%where(i)//', columns 1-8: found a second TITLE card; expected only one (the '// &
-                             'first is at '//rd%where(cards(earlier)%first)//'; the TITLE of an INCLUDEd deck '// &
-                             'is a subtitle)')
-                return
-            end if
-            cs%subtitles = [character(len=80) :: cs%subtitles, rd%text(i, 11)]
+            first = .false.
         end do
-        if (first == 0) call rd%fail(rd%top//': the deck has no TITLE card; expected one')
+        if (first) call rd%fail(rd%top//': the deck has no TITLE card; expected one')
     end subroutine title_cards
 
     !> TITLE, CONTROL, SOLVER, GRAVITY, OUTPUT, H5FILE, DUMP, HOLD.
@@ -83,8 +71,8 @@ contains
         call title_cards(rd, cards, cs)
         if (rd%failed()) return
 
-        ic = single(rd, cards, 'CONTROL', .true.)
-        if (rd%failed()) return
+        ic = single(cards, 'CONTROL')
+        if (rd%failed() .or. ic == 0) return     ! (the card engine refused a deck without one)
         i = cards(ic)%first
         call rd%real(i, 7, 'start time', 's', cs%t_start, -1.0e4_wp, 1.0e4_wp, default=zero)
         call rd%real(i, 1, 'end time', 's', cs%t_end, -1.0e4_wp, 1.0e4_wp)
@@ -134,7 +122,7 @@ contains
         ! the recursive forms) and the Jacobian of the stiff integrators
         ! (default STRUCT: from the elements' tangent; FD: differences)
         cs%model%solver = solver_cholesky
-        ic = single(rd, cards, 'SOLVER', .false.)
+        ic = single(cards, 'SOLVER')
         if (ic > 0) then
             i = cards(ic)%first
             call rd%name(i, 1, 'method', s)
@@ -165,7 +153,7 @@ contains
                          default=factor_band_default)
             if (rd%failed()) return
         end if
-        ic = single(rd, cards, 'GRAVITY', .false.)
+        ic = single(cards, 'GRAVITY')
         if (ic > 0) then
             do f = 1, 3
                 call rd%real(cards(ic)%first, f, 'gravity component', 'm/s^2', v, -1.0e3_wp, 1.0e3_wp)
@@ -173,7 +161,7 @@ contains
             end do
         end if
         cs%sample_dt = min(cs%print_dt, 1.0e-4_wp)
-        ic = single(rd, cards, 'OUTPUT', .false.)
+        ic = single(cards, 'OUTPUT')
         if (ic > 0) then
             call rd%real(cards(ic)%first, 1, 'HDF5 sample interval', 's', cs%sample_dt, 1.0e-9_wp, 1.0e4_wp)
             if (rd%failed()) return
@@ -188,12 +176,12 @@ contains
         end if
         call h5file_card(rd, cards, cs)
         if (rd%failed()) return
-        ic = single(rd, cards, 'EVENTS', .false.)
+        ic = single(cards, 'EVENTS')
         if (ic > 0) then
             call rd%choice(cards(ic)%first, 1, 'event handling', [character(len=5) :: 'NONE', 'TIME', 'STATE'], s)
             cs%events = s(1:8)
         end if
-        ic = single(rd, cards, 'HOLD', .false.)
+        ic = single(cards, 'HOLD')
         if (ic > 0) call hold_card(rd, cards(ic)%first, cs)
         allocate (cs%dump_times(0))
         do k = 1, size(cards)
@@ -212,25 +200,20 @@ contains
         end do
     end subroutine control_cards
 
-    !> The H5FILE card: the result file. One card per file of the deck; the deck's
-    !! own card wins over an INCLUDEd deck's (a variant names its own file),
-    !! and an INCLUDEd deck's only is marked h5file_included: a variant's
-    !! run is then named after the variant's deck file (hhneck's main).
+    !> The H5FILE card: the result file. One card per file of the deck (the
+    !! card engine refused a second in one file); the deck's own card wins
+    !! over an INCLUDEd deck's (a variant names its own file), and an
+    !! INCLUDEd deck's only is marked h5file_included: a variant's run is
+    !! then named after the variant's deck file (hhneck's main).
     subroutine h5file_card(rd, cards, cs)
-        type(deck_reader_t), intent(inout) :: rd  !! the deck: card images, located field access, the first error
+        type(deck_reader_t), intent(in) :: rd  !! the deck: card images, located field access
         type(card_t), intent(in) :: cards(:)  !! the deck's cards with their continuation cards (group_cards)
         type(case_t), intent(inout) :: cs  !! the run case: h5file, h5file_included
-        integer :: k, i, j, chosen
+        integer :: k, i, chosen
         chosen = 0
         do k = 1, size(cards)
             if (cards(k)%key /= 'H5FILE') cycle
             i = cards(k)%first
-            do j = 1, k - 1
-                if (cards(j)%key /= 'H5FILE' .or. rd%lines(cards(j)%first)%via /= rd%lines(i)%via) cycle
-                call rd%fail(rd%where(i)//', columns 1-8: found a second H5FILE card; expected only one (the '// &
-                             'first is at '//rd%where(cards(j)%first)//')')
-                return
-            end do
             if (chosen == 0) then
                 chosen = i
             else if (rd%lines(i)%via == 0) then
@@ -295,17 +278,17 @@ contains
         if (cs%head == 0) cs%head = size(bnames)
         cs%head = bmap%new(cs%head)
         cs%t1 = findloc(cs%model%tree%parent, 0, dim=1)
-        ic = single(rd, cards, 'HEADNECK', .false.)
+        ic = single(cards, 'HEADNECK')
         if (ic > 0) then
             cs%head = bmap%new(body_ref(rd, cards(ic)%first, 1, 'head body', bnames, .false.))
             if (.not. rd%is_blank(cards(ic)%first, 2)) &
                 cs%t1 = bmap%new(body_ref(rd, cards(ic)%first, 2, 'T1 body', bnames, .false.))
         end if
-        ic = single(rd, cards, 'CRITERIA', .false.)
+        ic = single(cards, 'CRITERIA')
         if (ic > 0) call criteria_card(rd, cards(ic)%first, cs)
         call loadcell_cards(rd, cards, cs, bnames, bmap)
         call print_cards(rd, cards, cs)
-        ic = single(rd, cards, 'STATICS', .false.)
+        ic = single(cards, 'STATICS')
         if (ic > 0) call statics_card(rd, cards(ic)%first, cs)
     end subroutine report_cards
 

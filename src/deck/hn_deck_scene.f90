@@ -28,7 +28,7 @@ contains
         character(len=10) :: s
         character(len=msglen) :: msg
         character(len=100) :: note
-        ic = single(rd, cards, 'SCENE', .false.)
+        ic = single(cards, 'SCENE')
         if (ic > 0) then
             call rd%choice(cards(ic)%first, 1, 'scene', [character(len=8) :: 'SAGITTAL', 'FULL'], s)
             if (rd%failed()) return

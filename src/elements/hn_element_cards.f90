@@ -8,7 +8,9 @@
 !! located references of one card to a body, a coordinate or a table, the
 !! coordinate units, and the attachment of a point-to-point element
 !! (`line_card`) are here too, so a family module can read its cards with
-!! the field access of hn_deck_reader and no module of src/deck/.
+!! the field access of hn_deck_reader and no module of src/deck/. `card_t`,
+!! `ncont_optional` and `continued` are the card engine's (hn_card_engine),
+!! re-exported.
 !!
 !! `family_card_t` is one card of a family as its registry entry
 !! (hn_family_registration) lists it: key, family, continuation cards, when in the reading it is
@@ -18,6 +20,7 @@
 module hn_element_cards
     use hn_kinds, only: wp, zero, one, deg, g_std
     use hn_deck_reader, only: deck_reader_t
+    use hn_card_engine, only: card_t, ncont_optional, continued
     use hn_tables, only: table_t
     use hn_tree, only: body_tree_t
     use hn_motion, only: motion_t, motion_eval
@@ -48,10 +51,10 @@ module hn_element_cards
     !! of the same name for the body and coordinate in F1, F2.
     integer, parameter, public :: unique_none = 0, unique_element = 1, unique_name = 2, unique_coordinate = 3
 
-    !> A family card's continuation count that is not fixed: one
-    !! continuation card when the next deck line's columns 1-10 are blank,
-    !! none otherwise (an optional continuation card).
-    integer, parameter, public :: ncont_optional = -2
+    !> A family card's continuation count that is not fixed (`ncont_optional`
+    !! of the card engine): one continuation card when the next deck line's
+    !! columns 1-10 are blank, none otherwise (an optional continuation card).
+    public :: ncont_optional
 
     !> A deck card that belongs to a family: its key, its family (its
     !! place in the registry; 0 in the family's own entry), its continuation
@@ -66,13 +69,6 @@ module hn_element_cards
         logical :: coordinate = .false.       !! F1 names a body, F2 one of its coordinates (CHANGE ... F7 names F2)
         character(len=16) :: what = 'name'    !! what F1 holds, in a unique_name message
     end type family_card_t
-
-    !> One card with its continuation cards: deck lines first .. first+ncont.
-    type :: card_t
-        character(len=8) :: key = ''
-        integer :: first = 0
-        integer :: ncont = 0
-    end type card_t
 
     !> Where each body named in the deck went: its number in the reduced
     !! tree and the shift of points given in its frame (MERGE); the card line
@@ -128,15 +124,6 @@ module hn_element_cards
 
 
 contains
-
-    !> Whether deck line i has a continuation card after it (the next
-    !! line's columns 1-10 blank): an optional continuation card's test.
-    pure logical function continued(rd, i)
-        type(deck_reader_t), intent(in) :: rd   !! the deck
-        integer, intent(in) :: i                !! the card's deck line
-        continued = i < rd%nlines
-        if (continued) continued = len_trim(rd%lines(i + 1)%text(1:10)) == 0
-    end function continued
 
     !> Number of the deck's cards named `key`.
     pure integer function context_ncards(ctx, key) result(n)

@@ -3,13 +3,15 @@
 !! checks across cards; the binding of the cases to their decks and data
 !! is hn_calibrate_cases'.
 module hn_calibrate_deck
-    use hn_kinds, only: wp, zero, one, msglen
-    use hn_case, only: path_len, deck_line_t
+    use hn_kinds, only: wp, zero, one
+    use hn_case, only: deck_line_t
     use hn_deck_reader, only: deck_reader_t, read_card_images, int_str, upper
+    use hn_card_engine, only: card_deck_t, deck_format_t, deck_card_t, read_deck_cards, any_times, exactly_once
     use hn_deck_state, only: real_str
     use hn_rating, only: peak_t
-    use hn_volunteer_data, only: data_channel_t, is_peak_table
-    use hn_calibrate_types, only: calibration_t, calibration_deck_t, standing_case_t, metric_iso18571
+    use hn_volunteer_data, only: data_channel_t
+    use hn_calibrate_types, only: calibration_t, calibration_deck_t, calibration_reading_t, metric_iso18571
+    use hn_calibrate_case_cards, only: read_case_card, read_data_card, read_rated_card, read_standing_card
     implicit none
     private
 
@@ -47,106 +49,55 @@ contains
         type(calibration_t), intent(out) :: cal  !! the calibration, its cases not yet bound
         type(calibration_deck_t), intent(out) :: st  !! the deck and its cards; st%rd%stat, st%rd%errmsg: the first error
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for CASE decks and INCLUDE files
-        integer :: i
-        st%rd%top = source
-        if (present(include_path)) st%rd%search = include_path
-        call read_card_images(st%rd, path, source, 0)
-        allocate (cal%decks(0), cal%data(0), cal%values(0), cal%channels(0), cal%peaks(0), cal%weight(0), cal%stand(0))
-        allocate (st%params(0), st%optional(0), st%optional_line(0), st%channel_line(0), st%peak_line(0), &
-                  st%data_line(0), st%peak_channel(0), &
-                  st%rated_line(0), st%rated_case(0), st%is_ref(0), st%is_pub(0))
-        do i = 1, st%rd%nlines
-            if (st%rd%failed()) exit
-            select case (st%rd%key(i))
-            case ('TITLE'); call read_title_card(st, cal, i)
-            case ('CASE'); call read_case_card(st, cal, i)
-            case ('DATA'); call read_data_card(st, cal, i)
-            case ('RATED'); call read_rated_card(st, cal, i)
-            case ('FIT'); call read_fit_card(st, cal, i)
-            case ('RATING'); call read_rating_card(st, cal, i)
-            case ('CHANNEL'); call read_channel_card(st, cal, i)
-            case ('PEAK'); call read_peak_card(st, cal, i)
-            case ('PARAM'); call read_param_card(st, i)
-            case ('OPTIONAL'); call read_optional_card(st, i)
-            case ('PASSIVE'); call read_passive_card(st, cal, i)
-            case ('STANDING', 'RETURN', 'REST'); call read_standing_card(st, cal, i)
-            case ('RANGES'); call read_ranges_card(st, cal, i)
-            case ('VALUES'); call read_values_card(st, cal, i)
-            case ('CURVES'); call read_curves_card(st, cal, i)
-            case ('END'); exit
-            case default; call unknown_card(st, i)
-            end select
-        end do
-        call check_calibration_cards(st, cal, source)
+        type(calibration_reading_t) :: r
+        r%rd%top = source
+        if (present(include_path)) r%rd%search = include_path
+        call read_card_images(r%rd, path, source, 0)
+        allocate (r%cal%decks(0), r%cal%data(0), r%cal%values(0), r%cal%channels(0), r%cal%peaks(0), r%cal%weight(0), &
+                  r%cal%stand(0))
+        allocate (r%params(0), r%optional(0), r%optional_line(0), r%channel_line(0), r%peak_line(0), &
+                  r%data_line(0), r%peak_channel(0), r%rated_line(0), r%rated_case(0), r%is_ref(0), r%is_pub(0))
+        call read_deck_cards(r, calibration_format())
+        call check_calibration_cards(r%calibration_deck_t, r%cal, source)
+        st = r%calibration_deck_t
+        cal = r%cal
     end subroutine read_calibration_cards
 
+    !> The calibration deck's cards for the card engine (docs/sweeps.md):
+    !! the study's here, the cases' in hn_calibrate_case_cards.
+    function calibration_format() result(fmt)
+        type(deck_format_t) :: fmt
+        fmt%name = 'calibration'
+        fmt%doc = 'docs/sweeps.md'
+        fmt%title_first = .false.
+        allocate (fmt%cards, source=[deck_card_t('TITLE', 0, any_times, read_title_card), &
+                                     deck_card_t('CASE', 0, any_times, read_case_card), &
+                                     deck_card_t('DATA', 0, any_times, read_data_card), &
+                                     deck_card_t('RATED', 0, any_times, read_rated_card), &
+                                     deck_card_t('FIT', 0, exactly_once, read_fit_card), &
+                                     deck_card_t('RATING', 0, exactly_once, read_rating_card), &
+                                     deck_card_t('CHANNEL', 0, any_times, read_channel_card), &
+                                     deck_card_t('PEAK', 0, any_times, read_peak_card), &
+                                     deck_card_t('PARAM', 0, any_times, read_param_card), &
+                                     deck_card_t('OPTIONAL', 0, any_times, read_optional_card), &
+                                     deck_card_t('PASSIVE', 0, any_times, read_passive_card), &
+                                     deck_card_t('STANDING', 0, any_times, read_standing_card), &
+                                     deck_card_t('RETURN', 0, any_times, read_standing_card), &
+                                     deck_card_t('REST', 0, any_times, read_standing_card), &
+                                     deck_card_t('RANGES', 0, any_times, read_ranges_card), &
+                                     deck_card_t('VALUES', 0, any_times, read_values_card), &
+                                     deck_card_t('CURVES', 0, any_times, read_curves_card)])
+    end function calibration_format
+
     !> TITLE: the calibration's title (columns 11-80).
-    pure subroutine read_title_card(st, cal, i)
-        type(calibration_deck_t), intent(in) :: st     !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_title_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
-        cal%title = adjustl(st%rd%lines(i)%text(11:80))
+        select type (st => deck)
+        type is (calibration_reading_t)
+            st%cal%title = adjustl(st%rd%lines(i)%text(11:80))
+        end select
     end subroutine read_title_card
-
-    !> CASE: a case deck (columns 11-70) and its weight (F7, default 1).
-    subroutine read_case_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
-        integer, intent(in) :: i                       !! the card's line
-        real(wp) :: w
-        cal%decks = [character(len=path_len) :: cal%decks, adjustl(st%rd%lines(i)%text(11:70))]
-        call st%rd%real(i, 7, 'case weight', '-', w, 1.0e-6_wp, 1.0e6_wp, default=one)
-        cal%weight = [cal%weight, w]
-    end subroutine read_case_card
-
-    !> The DATA card: the last case's volunteer directory or reference CSV (a name
-    !! ending in .csv), found as an INCLUDE file is: next to the calibration
-    !! deck, in the working directory, then on the include path (-I,
-    !! HHNECK_PATH); one DATA card after each CASE card.
-    subroutine read_data_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
-        integer, intent(in) :: i                       !! the card's line
-        character(len=:), allocatable :: dname, found
-        character(len=msglen) :: msg
-        if (size(cal%data) /= size(cal%decks) - 1) then
-            call st%rd%fail(st%rd%where(i)//' (DATA card): expected one DATA card after each CASE card')
-            return
-        end if
-        dname = trim(adjustl(st%rd%lines(i)%text(11:80)))
-        st%is_ref = [st%is_ref, is_csv(dname)]
-        call st%rd%find_file(dname, st%rd%lines(i)%source, found, msg, directory=.not. st%is_ref(size(st%is_ref)))
-        if (len(found) == 0) then
-            call st%rd%fail(st%rd%where(i)//' (DATA card): '//trim(msg))
-            return
-        end if
-        cal%data = [character(len=path_len) :: cal%data, found]
-        st%data_line = [st%data_line, i]
-        ! a CSV whose header starts with `peak`: published peaks, not curves
-        st%is_pub = [st%is_pub, st%is_ref(size(st%is_ref)) .and. is_peak_table(found)]
-        if (st%is_pub(size(st%is_pub))) st%is_ref(size(st%is_ref)) = .false.
-    end subroutine read_data_card
-
-    !> The RATED card: a card of the last case, whose DATA card names a reference
-    !! CSV; its fields are read with the CSV (rated_columns).
-    subroutine read_rated_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(in) :: cal         !! the calibration so far (its cases)
-        integer, intent(in) :: i                       !! the card's line
-        if (size(cal%decks) == 0 .or. size(st%is_ref) /= size(cal%decks)) then
-            call st%rd%fail(st%rd%where(i)//', columns 1-8 (RATED card): expected RATED cards after the DATA '// &
-                            'card of a case (a reference CSV)')
-            return
-        end if
-        if (.not. st%is_ref(size(st%is_ref))) then
-            call st%rd%fail(st%rd%where(i)//', columns 1-8 (RATED card): the DATA card before it names a '// &
-                            'directory of volunteer runs; expected RATED cards after the DATA card of a '// &
-                            'reference CSV (a name ending in .csv)')
-            return
-        end if
-        st%rated_line = [st%rated_line, i]
-        st%rated_case = [st%rated_case, size(cal%decks)]
-    end subroutine read_rated_card
 
     !> A channel frequency class of SAE J211/1 (60, 180, 600 or 1000 Hz)
     !! in field f of card i, as a real [Hz]; anything else fails the
@@ -166,241 +117,229 @@ contains
     end subroutine read_cfc_class
 
     !> FIT NELDER max-evaluations starting-points seed [peak-weight
-    !! [peak-time-weight [peak-margin]]] (one card: check_calibration_cards).
-    subroutine read_fit_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    !! [peak-time-weight [peak-margin]]]: one card.
+    subroutine read_fit_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
         character(len=10) :: s
-        associate (rd => st%rd)
-            st%nfit = st%nfit + 1
-            call rd%name(i, 1, 'optimizer', s)
-            if (s /= 'NELDER' .and. .not. rd%failed()) call rd%fail(rd%context(i, 1, 'optimizer')// &
-                                                                   ': found "'//trim(s)//'"; expected NELDER')
-            call rd%int(i, 2, 'maximum evaluations', cal%max_evals, 0, 100000)
-            call rd%int(i, 3, 'starting points', cal%nstart, 2, 10000)
-            call rd%int(i, 4, 'seed', cal%seed, 1, 2147483646)
-            call rd%real(i, 5, 'peak weight', '-', cal%peak_weight, zero, 1.0e3_wp, default=0.02_wp)
-            call rd%real(i, 6, 'peak-time weight', '-', cal%time_weight, zero, 1.0e3_wp, default=zero)
-            call rd%real(i, 7, 'peak margin', 'SD', cal%peak_margin, zero, 0.9_wp, default=zero)
-        end associate
+        select type (st => deck)
+        type is (calibration_reading_t)
+            associate (cal => st%cal, rd => st%rd)
+                call rd%name(i, 1, 'optimizer', s)
+                if (s /= 'NELDER' .and. .not. rd%failed()) call rd%fail(rd%context(i, 1, 'optimizer')// &
+                                                                       ': found "'//trim(s)//'"; expected NELDER')
+                call rd%int(i, 2, 'maximum evaluations', cal%max_evals, 0, 100000)
+                call rd%int(i, 3, 'starting points', cal%nstart, 2, 10000)
+                call rd%int(i, 4, 'seed', cal%seed, 1, 2147483646)
+                call rd%real(i, 5, 'peak weight', '-', cal%peak_weight, zero, 1.0e3_wp, default=0.02_wp)
+                call rd%real(i, 6, 'peak-time weight', '-', cal%time_weight, zero, 1.0e3_wp, default=zero)
+                call rd%real(i, 7, 'peak margin', 'SD', cal%peak_margin, zero, 0.9_wp, default=zero)
+            end associate
+        end select
     end subroutine read_fit_card
 
     !> RATING window-start window-end CFC-class peak-time-tolerance [CORA
     !! or ISO18571]: one card.
-    subroutine read_rating_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_rating_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
         character(len=10) :: opt
-        associate (rd => st%rd)
-            if (st%rating_line > 0) then
-                call rd%fail(rd%where(i)//', columns 1-8 (RATING card): found a second RATING card; '// &
-                             'expected one (the RATING card at '//rd%where(st%rating_line)//' has it)')
-                return
-            end if
-            st%rating_line = i
-            call rd%real(i, 1, 'window start', 'ms', cal%window(1), zero, 1.0e6_wp)
-            call rd%real(i, 2, 'window end', 'ms', cal%window(2), zero, 1.0e6_wp)
-            if (.not. rd%failed() .and. .not. cal%window(2) > cal%window(1)) &
-                call rd%fail(rd%context(i, 2, 'window end')//': found '//trim(rd%raw(i, 2))// &
-                             ' ms; expected a time after the window start '//trim(rd%raw(i, 1))//' ms')
-            call read_cfc_class(rd, i, 3, cal%cfc)
-            call rd%real(i, 4, 'peak-time tolerance', 'ms', cal%time_tolerance, 1.0e-3_wp, 1.0e6_wp)
-            if (.not. rd%failed() .and. .not. rd%is_blank(i, 5)) then
-                call rd%choice(i, 5, 'metric', [character(len=10) :: 'CORA', 'ISO18571'], opt)
-                if (opt == 'ISO18571') cal%metric = metric_iso18571
-            end if
-        end associate
+        select type (st => deck)
+        type is (calibration_reading_t)
+            associate (cal => st%cal, rd => st%rd)
+                st%rating_line = i
+                call rd%real(i, 1, 'window start', 'ms', cal%window(1), zero, 1.0e6_wp)
+                call rd%real(i, 2, 'window end', 'ms', cal%window(2), zero, 1.0e6_wp)
+                if (.not. rd%failed() .and. .not. cal%window(2) > cal%window(1)) &
+                    call rd%fail(rd%context(i, 2, 'window end')//': found '//trim(rd%raw(i, 2))// &
+                                 ' ms; expected a time after the window start '//trim(rd%raw(i, 1))//' ms')
+                call read_cfc_class(rd, i, 3, cal%cfc)
+                call rd%real(i, 4, 'peak-time tolerance', 'ms', cal%time_tolerance, 1.0e-3_wp, 1.0e6_wp)
+                if (.not. rd%failed() .and. .not. rd%is_blank(i, 5)) then
+                    call rd%choice(i, 5, 'metric', [character(len=10) :: 'CORA', 'ISO18571'], opt)
+                    if (opt == 'ISO18571') cal%metric = metric_iso18571
+                end if
+            end associate
+        end select
     end subroutine read_rating_card
 
     !> CHANNEL channel VALUE-or-RATE [DEG-RAD] file (columns 41-80): a
     !! rated channel, one card per channel.
-    subroutine read_channel_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_channel_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
         type(data_channel_t) :: dc
         character(len=10) :: opt
         integer :: k
-        associate (rd => st%rd)
-            dc = data_channel_t()
-            call rd%name(i, 1, 'channel', dc%name)
-            call rd%choice(i, 2, 'from the file', [character(len=10) :: 'VALUE', 'RATE'], opt)
-            dc%derivative = opt == 'RATE'
-            if (.not. rd%failed() .and. .not. rd%is_blank(i, 3)) then
-                call rd%choice(i, 3, 'conversion', [character(len=10) :: 'DEG-RAD'], opt)
-                dc%deg_to_rad = .true.
-            end if
-            dc%file = rd%text(i, 41)
-            if (.not. rd%failed() .and. len_trim(dc%file) == 0) &
-                call rd%fail(columns(rd, i, 41, 'data file')//': found a blank; expected the name of the file '// &
-                             'of the channel''s runs in each DATA directory')
-            if (rd%failed()) return
-            k = channel_number(cal, dc%name)
-            if (k > 0) then
-                call rd%fail(rd%context(i, 1, 'channel')//': found "'//trim(dc%name)//'" again; expected '// &
-                             'one CHANNEL card per channel (the CHANNEL card at '// &
-                             rd%where(st%channel_line(k))//' has it)')
-                return
-            end if
-        end associate
-        cal%channels = [cal%channels, dc]
-        st%channel_line = [st%channel_line, i]
+        select type (st => deck)
+        type is (calibration_reading_t)
+            associate (cal => st%cal, rd => st%rd)
+                dc = data_channel_t()
+                call rd%name(i, 1, 'channel', dc%name)
+                call rd%choice(i, 2, 'from the file', [character(len=10) :: 'VALUE', 'RATE'], opt)
+                dc%derivative = opt == 'RATE'
+                if (.not. rd%failed() .and. .not. rd%is_blank(i, 3)) then
+                    call rd%choice(i, 3, 'conversion', [character(len=10) :: 'DEG-RAD'], opt)
+                    dc%deg_to_rad = .true.
+                end if
+                dc%file = rd%text(i, 41)
+                if (.not. rd%failed() .and. len_trim(dc%file) == 0) &
+                    call rd%fail(columns(rd, i, 41, 'data file')//': found a blank; expected the name of the file '// &
+                                 'of the channel''s runs in each DATA directory')
+                if (rd%failed()) return
+                k = channel_number(cal, dc%name)
+                if (k > 0) then
+                    call rd%fail(rd%context(i, 1, 'channel')//': found "'//trim(dc%name)//'" again; expected '// &
+                                 'one CHANNEL card per channel (the CHANNEL card at '// &
+                                 rd%where(st%channel_line(k))//' has it)')
+                    return
+                end if
+                cal%channels = [cal%channels, dc]
+                st%channel_line = [st%channel_line, i]
+            end associate
+        end select
     end subroutine read_channel_card
 
     !> PEAK channel MIN-or-MAX window-start window-end name (columns
     !! 51-80): a peak, one card per name; its channel, a CHANNEL card's
     !! before or after it, is found by check_calibration_cards.
-    subroutine read_peak_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_peak_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
         type(peak_t) :: pk
         character(len=10) :: s, opt
         character(len=:), allocatable :: ctext
         integer :: k
-        associate (rd => st%rd)
-            pk = peak_t()
-            call rd%name(i, 1, 'channel', s)
-            call rd%choice(i, 2, 'extreme', [character(len=10) :: 'MIN', 'MAX'], opt)
-            pk%sign = merge(-one, one, opt == 'MIN')
-            call rd%real(i, 3, 'window start', 'ms', pk%window(1), zero, 1.0e6_wp)
-            call rd%real(i, 4, 'window end', 'ms', pk%window(2), zero, 1.0e6_wp)
-            if (.not. rd%failed() .and. .not. pk%window(2) > pk%window(1)) &
-                call rd%fail(rd%context(i, 4, 'window end')//': found '//trim(rd%raw(i, 4))// &
-                             ' ms; expected a time after the window start '//trim(rd%raw(i, 3))//' ms')
-            ctext = rd%text(i, 51)
-            if (.not. rd%failed() .and. (len(ctext) == 0 .or. len(ctext) > peak_name_len)) &
-                call rd%fail(columns(rd, i, 51, 'peak name')//': found "'//ctext//'"; expected a name of 1 to '// &
-                             trim(int_str(peak_name_len))//' characters')
-            if (rd%failed()) return
-            pk%name = ctext
-            k = peak_number(cal, pk%name)
-            if (k > 0) then
-                call rd%fail(columns(rd, i, 51, 'peak name')//': found "'//trim(pk%name)//'" again; expected '// &
-                             'one PEAK card per name (the PEAK card at '//rd%where(st%peak_line(k))//' has it)')
-                return
-            end if
-        end associate
-        cal%peaks = [cal%peaks, pk]
-        st%peak_line = [st%peak_line, i]
-        st%peak_channel = [character(len=10) :: st%peak_channel, s]
+        select type (st => deck)
+        type is (calibration_reading_t)
+            associate (cal => st%cal, rd => st%rd)
+                pk = peak_t()
+                call rd%name(i, 1, 'channel', s)
+                call rd%choice(i, 2, 'extreme', [character(len=10) :: 'MIN', 'MAX'], opt)
+                pk%sign = merge(-one, one, opt == 'MIN')
+                call rd%real(i, 3, 'window start', 'ms', pk%window(1), zero, 1.0e6_wp)
+                call rd%real(i, 4, 'window end', 'ms', pk%window(2), zero, 1.0e6_wp)
+                if (.not. rd%failed() .and. .not. pk%window(2) > pk%window(1)) &
+                    call rd%fail(rd%context(i, 4, 'window end')//': found '//trim(rd%raw(i, 4))// &
+                                 ' ms; expected a time after the window start '//trim(rd%raw(i, 3))//' ms')
+                ctext = rd%text(i, 51)
+                if (.not. rd%failed() .and. (len(ctext) == 0 .or. len(ctext) > peak_name_len)) &
+                    call rd%fail(columns(rd, i, 51, 'peak name')//': found "'//ctext//'"; expected a name of 1 to '// &
+                                 trim(int_str(peak_name_len))//' characters')
+                if (rd%failed()) return
+                pk%name = ctext
+                k = peak_number(cal, pk%name)
+                if (k > 0) then
+                    call rd%fail(columns(rd, i, 51, 'peak name')//': found "'//trim(pk%name)//'" again; expected '// &
+                                 'one PEAK card per name (the PEAK card at '//rd%where(st%peak_line(k))//' has it)')
+                    return
+                end if
+                cal%peaks = [cal%peaks, pk]
+                st%peak_line = [st%peak_line, i]
+                st%peak_channel = [character(len=10) :: st%peak_channel, s]
+            end associate
+        end select
     end subroutine read_peak_card
 
     !> PARAM: a fitted parameter, kept for each case's sweep (bind_cases).
-    pure subroutine read_param_card(st, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+    subroutine read_param_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
-        st%params = [st%params, st%rd%lines(i)]
+        select type (st => deck)
+        type is (calibration_reading_t)
+            st%params = [st%params, st%rd%lines(i)]
+        end select
     end subroutine read_param_card
 
     !> The OPTIONAL card: up to 7 PARAM names (F1-F7), each bound in the cases whose
     !! deck has its target (family, body or card) and left out of the
     !! others, e.g. the muscles' parameters beside segment cases that have
     !! no muscles; every one must be bound in some case (bind_cases).
-    subroutine read_optional_card(st, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
+    subroutine read_optional_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
         character(len=10) :: name
         integer :: f
-        do f = 1, 7
-            if (st%rd%is_blank(i, f)) cycle
-            call st%rd%name(i, f, 'parameter name', name)
-            if (st%rd%failed()) return
-            if (any(st%optional == name)) then
-                call st%rd%fail(st%rd%context(i, f, 'parameter name')//': found "'//trim(name)// &
-                                '" a second time on the OPTIONAL cards; expected each parameter once')
-                return
-            end if
-            st%optional = [character(len=10) :: st%optional, name]
-            st%optional_line = [st%optional_line, i]
-        end do
-        if (.not. any(st%optional_line == i)) &
-            call st%rd%fail(st%rd%context(i, 1, 'parameter name')//': found no name; expected the PARAM '// &
-                            'names bound only in the cases that have their target')
+        select type (st => deck)
+        type is (calibration_reading_t)
+            do f = 1, 7
+                if (st%rd%is_blank(i, f)) cycle
+                call st%rd%name(i, f, 'parameter name', name)
+                if (st%rd%failed()) return
+                if (any(st%optional == name)) then
+                    call st%rd%fail(st%rd%context(i, f, 'parameter name')//': found "'//trim(name)// &
+                                    '" a second time on the OPTIONAL cards; expected each parameter once')
+                    return
+                end if
+                st%optional = [character(len=10) :: st%optional, name]
+                st%optional_line = [st%optional_line, i]
+            end do
+            if (.not. any(st%optional_line == i)) &
+                call st%rd%fail(st%rd%context(i, 1, 'parameter name')//': found no name; expected the PARAM '// &
+                                'names bound only in the cases that have their target')
+        end select
     end subroutine read_optional_card
 
     !> PASSIVE [limit]: a set whose neck stands without its muscles is not run.
-    subroutine read_passive_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_passive_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
-        cal%passive = .true.
-        call st%rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
-                        -100.0_wp, 100.0_wp, default=zero)
+        select type (st => deck)
+        type is (calibration_reading_t)
+            associate (cal => st%cal)
+                cal%passive = .true.
+                call st%rd%real(i, 1, 'largest real part at rest without muscles', '1/s', cal%passive_limit, &
+                                -100.0_wp, 100.0_wp, default=zero)
+            end associate
+        end select
     end subroutine read_passive_card
 
-    !> STANDING deck (columns 11-70) bound (F7, deg): a run of the deck, the
-    !! model at rest, must keep every joint rotation within the bound of its
-    !! start; with STANDING cards they judge standing in place of the
-    !! volunteer cases' linear margin at rest. RETURN deck bound: a run of the
-    !! deck (a push) must end with the head's rotation vector relative to R
-    !! (HEADL_VX, _VY, _VZ) within the bound of its start. REST deck bound:
-    !! the head's rotation vector within the bound of its start throughout.
-    subroutine read_standing_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
-        integer, intent(in) :: i                       !! the card's line
-        type(standing_case_t) :: sc
-        sc%deck = adjustl(st%rd%lines(i)%text(11:70))
-        sc%kind = st%rd%key(i)
-        if (len_trim(sc%deck) == 0) then
-            call st%rd%fail(st%rd%where(i)//', columns 11-70 ('//trim(st%rd%key(i))//' card): found no deck; '// &
-                            'expected the deck of the model at rest'//trim(merge(' or after a push', &
-                                                                                  '                ', sc%kind /= 'STANDING')))
-            return
-        end if
-        call st%rd%real(i, 7, 'largest excursion', 'deg', sc%bound, 1.0e-3_wp, 90.0_wp)
-        if (st%rd%failed()) return
-        cal%stand = [cal%stand, sc]
-    end subroutine read_standing_card
-
     !> RANGES weight [margin]: the joints past their ranges in J.
-    subroutine read_ranges_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_ranges_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
-        call st%rd%real(i, 1, 'range weight', '-', cal%range_weight, zero, 1.0e3_wp)
-        call st%rd%real(i, 2, 'range margin', '-', cal%range_inside, zero, 0.9_wp, default=zero)
+        select type (st => deck)
+        type is (calibration_reading_t)
+            associate (cal => st%cal)
+                call st%rd%real(i, 1, 'range weight', '-', cal%range_weight, zero, 1.0e3_wp)
+                call st%rd%real(i, 2, 'range margin', '-', cal%range_inside, zero, 0.9_wp, default=zero)
+            end associate
+        end select
     end subroutine read_ranges_card
 
     !> The VALUES card: up to 7 parameter values, in PARAM order (their count:
     !! check_calibration_cards).
-    subroutine read_values_card(st, cal, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_values_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
         integer :: f
         real(wp) :: x
-        if (st%values_line == 0) st%values_line = i
-        do f = 1, 7
-            if (st%rd%is_blank(i, f)) cycle
-            call st%rd%real(i, f, 'parameter value', '-', x, -1.0e30_wp, 1.0e30_wp)
-            cal%values = [cal%values, x]
-        end do
+        select type (st => deck)
+        type is (calibration_reading_t)
+            associate (cal => st%cal)
+                if (st%values_line == 0) st%values_line = i
+                do f = 1, 7
+                    if (st%rd%is_blank(i, f)) cycle
+                    call st%rd%real(i, f, 'parameter value', '-', x, -1.0e30_wp, 1.0e30_wp)
+                    cal%values = [cal%values, x]
+                end do
+            end associate
+        end select
     end subroutine read_values_card
 
     !> CURVES file (columns 11-80): the rated curves of an evaluation alone.
-    subroutine read_curves_card(st, cal, i)
-        type(calibration_deck_t), intent(in) :: st     !! the deck and its cards so far
-        type(calibration_t), intent(inout) :: cal      !! the calibration the card fills
+    subroutine read_curves_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck     !! the calibration deck (calibration_reading_t)
         integer, intent(in) :: i                       !! the card's line
-        cal%curves = st%rd%text(i, 11)
+        select type (st => deck)
+        type is (calibration_reading_t)
+            st%cal%curves = st%rd%text(i, 11)
+        end select
     end subroutine read_curves_card
 
-    !> A card the calibration deck does not have.
-    subroutine unknown_card(st, i)
-        type(calibration_deck_t), intent(inout) :: st  !! the deck and its cards so far
-        integer, intent(in) :: i                       !! the card's line
-        call st%rd%fail(st%rd%where(i)//', columns 1-8: found "'//trim(st%rd%key(i))// &
-                        '"; expected TITLE, CASE, DATA, RATED, FIT, RATING, CHANNEL, PEAK, PARAM, OPTIONAL, '// &
-                        'PASSIVE, STANDING, RETURN, REST, RANGES, VALUES, CURVES or END')
-    end subroutine unknown_card
-
     !> The checks across cards, after the last: each PEAK card's channel a
-    !! CHANNEL card's (its curve), at least one CASE each with its DATA, one
-    !! FIT and one RATING card, CHANNEL and PEAK cards when a case has
+    !! CHANNEL card's (its curve), at least one CASE each with its DATA
+    !! (one FIT and one RATING card: the card engine), CHANNEL and PEAK cards when a case has
     !! volunteers, one value per PARAM card on the VALUES cards, each
     !! OPTIONAL name a PARAM card's.
     subroutine check_calibration_cards(st, cal, source)
@@ -416,10 +355,8 @@ contains
                     call rd%fail(rd%context(st%peak_line(k), 1, 'channel')//': found "'//trim(st%peak_channel(k))// &
                                  '"; expected the channel of a CHANNEL card')
             end do
-            if (.not. rd%failed() .and. (size(cal%decks) == 0 .or. size(cal%data) /= size(cal%decks) .or. &
-                                         st%nfit /= 1 .or. st%rating_line == 0)) &
-                call rd%fail(source//': expected at least one CASE card, each followed by its DATA card, one FIT '// &
-                             'card and one RATING card')
+            if (.not. rd%failed() .and. (size(cal%decks) == 0 .or. size(cal%data) /= size(cal%decks))) &
+                call rd%fail(source//': expected at least one CASE card, each followed by its DATA card')
             if (.not. rd%failed() .and. .not. all(st%is_ref) .and. (size(cal%channels) == 0 .or. &
                                                                   size(cal%peaks) == 0)) &
                 call rd%fail(source//': expected at least one CHANNEL and one PEAK card (the deck has a case of '// &
@@ -477,15 +414,6 @@ contains
             end do
         end do
     end function param_count
-
-    !> A DATA name ending in .csv (any case): a reference CSV.
-    pure logical function is_csv(name)
-        character(len=*), intent(in) :: name   !! the DATA card's name
-        integer :: n
-        n = len_trim(name)
-        is_csv = .false.
-        if (n > 4) is_csv = any(name(n - 3:n) == ['.csv', '.CSV', '.Csv'])
-    end function is_csv
 
     !> The number of the CHANNEL card of channel `name` so far (0: none).
     pure integer function channel_number(cal, name) result(n)

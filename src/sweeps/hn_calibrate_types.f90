@@ -2,11 +2,12 @@
 !! reference or published peaks, weight, the sweep binding the parameters
 !! to the deck), its study (rated channels, peaks, window, filter,
 !! metric), the optimizer's settings, and the state of the reading of a
-!! calibration deck from card to card (hn_calibrate_deck, hn_calibrate_cases).
+!! calibration deck from card to card (hn_calibrate_deck,
+!! hn_calibrate_case_cards, hn_calibrate_cases).
 module hn_calibrate_types
     use hn_kinds, only: wp, zero
     use hn_case, only: deck_line_t, path_len
-    use hn_deck_reader, only: deck_reader_t
+    use hn_card_engine, only: card_deck_t
     use hn_sweep, only: sweep_t, sweep_param_t
     use hn_rating, only: peak_t, corridor_t
     use hn_volunteer_data, only: data_channel_t, reference_data_t, peak_table_t
@@ -84,10 +85,10 @@ module hn_calibrate_types
     end type calibration_t
 
     !> What the reading of a calibration deck keeps from card to card: the
-    !! deck itself and where each card was, for the checks across cards
-    !! and the located messages of each case's binding to its sweep.
-    type, public :: calibration_deck_t
-        type(deck_reader_t) :: rd                        !! the deck: card images, located field access, the first error
+    !! deck itself (`rd`, of the card engine's card_deck_t) and where each
+    !! card was, for the checks across cards and the located messages of
+    !! each case's binding to its sweep.
+    type, extends(card_deck_t), public :: calibration_deck_t
         type(deck_line_t), allocatable :: params(:)      !! the PARAM cards, the sweep of every case
         character(len=10), allocatable :: optional(:)    !! (OPTIONAL card fields) parameters bound only where present
         integer, allocatable :: optional_line(:)         !! (the same) the line of its OPTIONAL card
@@ -99,10 +100,16 @@ module hn_calibrate_types
         integer, allocatable :: channel_line(:)          !! (CHANNEL card) its line
         integer, allocatable :: peak_line(:)             !! (PEAK card) its line
         character(len=10), allocatable :: peak_channel(:)    !! (PEAK card) the channel it names (F1)
-        integer :: nfit = 0                              !! FIT cards read
         integer :: rating_line = 0                       !! the line of the RATING card (0: none yet)
         integer :: values_line = 0                       !! the line of the first VALUES card (0: none)
     end type calibration_deck_t
+
+    !> A calibration deck being read by the card engine (its handlers in
+    !! hn_calibrate_deck and hn_calibrate_case_cards): what is kept from card
+    !! to card and the calibration the cards fill.
+    type, extends(calibration_deck_t), public :: calibration_reading_t
+        type(calibration_t) :: cal                       !! the calibration, its cases not yet bound
+    end type calibration_reading_t
 
 
 end module hn_calibrate_types

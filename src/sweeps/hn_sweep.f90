@@ -9,6 +9,7 @@ module hn_sweep
     use hn_case, only: case_t, deck_line_t, path_len
     use hn_deck_reader, only: deck_reader_t, read_card_images, field_columns, int_str, nfields, upper, field_text, &
                               field_value, locate_field, stdin_path
+    use hn_card_engine, only: card_deck_t, deck_format_t, deck_card_t, read_deck_cards, any_times, exactly_once
     use hn_deck, only: read_case_lines
     use hn_changes, only: read_param_kind, kind_family, kind_body, kind_field
     use hn_tree, only: tree_build
@@ -118,6 +119,13 @@ module hn_sweep
         integer :: rank = 0                     !! MPI rank that ran it
     end type member_record_t
 
+    !> A sweep deck being read by the card engine: the sweep its cards fill
+    !! and the file it came from (its BASE deck is looked for next to it).
+    type, extends(card_deck_t) :: sweep_deck_t
+        type(sweep_t) :: sw                       !! the sweep the cards fill
+        character(len=:), allocatable :: path     !! the sweep deck's file (stdin_path: none)
+    end type sweep_deck_t
+
 contains
 
     !> Read the sweep deck `path` (named `source` in messages), the base
@@ -132,16 +140,18 @@ contains
         integer, intent(out) :: stat                   !! stat_ok, or stat_bad_input (the first error)
         character(len=msglen), intent(out) :: errmsg   !! the first error, located in the sweep or base deck
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE and BASE files
-        type(deck_reader_t) :: rd
-        rd%top = source
-        allocate (rd%search(0))
-        if (present(include_path)) rd%search = include_path
-        call read_card_images(rd, path, source, 0)
-        if (.not. rd%failed() .and. rd%nlines == 0) &
-            call rd%fail(source//' line 1: the sweep deck is empty; expected a TITLE card first')
-        call parse_sweep(rd, source, path, sw, [character(len=10) ::])
-        stat = rd%stat
-        errmsg = rd%errmsg
+        type(sweep_deck_t) :: dk
+        dk%rd%top = source
+        allocate (dk%rd%search(0))
+        if (present(include_path)) dk%rd%search = include_path
+        call read_card_images(dk%rd, path, source, 0)
+        if (.not. dk%rd%failed() .and. dk%rd%nlines == 0) &
+            call dk%rd%fail(source//' line 1: the sweep deck is empty; expected a TITLE card first')
+        dk%path = path
+        call parse_sweep(dk, source, [character(len=10) ::])
+        sw = dk%sw
+        stat = dk%rd%stat
+        errmsg = dk%rd%errmsg
     end subroutine read_sweep
 
     !> A sweep deck already read into card images (INCLUDE expanded), e.g.
@@ -158,83 +168,138 @@ contains
         character(len=*), intent(in), optional :: include_path(:)  !! directories searched for INCLUDE and BASE files
         character(len=*), intent(in), optional :: path !! the file the lines came from (absent: none, as stdin)
         character(len=*), intent(in), optional :: optional_names(:)  !! parameters bound only where their target is
-        type(deck_reader_t) :: rd
+        type(sweep_deck_t) :: dk
         character(len=10), allocatable :: opt(:)
-        rd%top = source
-        rd%lines = lines
-        rd%nlines = size(lines)
-        allocate (rd%search(0))
-        if (present(include_path)) rd%search = include_path
+        dk%rd%top = source
+        dk%rd%lines = lines
+        dk%rd%nlines = size(lines)
+        allocate (dk%rd%search(0))
+        if (present(include_path)) dk%rd%search = include_path
         allocate (opt(0))
         if (present(optional_names)) opt = optional_names
-        if (present(path)) then
-            call parse_sweep(rd, source, path, sw, opt)
-        else
-            call parse_sweep(rd, source, stdin_path, sw, opt)
-        end if
-        stat = rd%stat
-        errmsg = rd%errmsg
+        dk%path = stdin_path
+        if (present(path)) dk%path = path
+        call parse_sweep(dk, source, opt)
+        sw = dk%sw
+        stat = dk%rd%stat
+        errmsg = dk%rd%errmsg
     end subroutine read_sweep_lines
 
-    !> The cards of a sweep deck, the base deck they name, and every
-    !! parameter checked against the base deck.
-    subroutine parse_sweep(rd, source, path, sw, optional_names)
-        type(deck_reader_t), intent(inout) :: rd
+    !> The sweep deck's cards for the card engine (docs/sweeps.md).
+    function sweep_format() result(fmt)
+        type(deck_format_t) :: fmt
+        fmt%name = 'sweep'
+        fmt%doc = 'docs/sweeps.md'
+        allocate (fmt%cards, source=[deck_card_t('TITLE', 0, any_times, title_card), &
+                                     deck_card_t('BASE', 0, exactly_once, base_card), &
+                                     deck_card_t('DESIGN', 0, exactly_once, design_card), &
+                                     deck_card_t('PARAM', 0, any_times, param_card), &
+                                     deck_card_t('H5FILE', 0, any_times, h5file_card)])
+    end function sweep_format
+
+    !> The cards of a sweep deck (the card engine), the base deck they name,
+    !! and every parameter checked against the base deck.
+    subroutine parse_sweep(dk, source, optional_names)
+        type(sweep_deck_t), intent(inout) :: dk
         character(len=*), intent(in) :: source
-        character(len=*), intent(in) :: path       ! the sweep deck's file (stdin_path: none)
-        type(sweep_t), intent(out) :: sw
         character(len=*), intent(in) :: optional_names(:)  ! parameters left unbound where their target is absent
-        type(deck_reader_t) :: bd
         type(case_t) :: base
-        character(len=10) :: s
+        character(len=msglen) :: errmsg
+        integer :: p, stat
+        allocate (dk%sw%params(0))
+        dk%sw%search = dk%rd%search
+        call read_deck_cards(dk, sweep_format())
+        associate (rd => dk%rd, sw => dk%sw)
+            if (size(sw%params) == 0 .and. .not. rd%failed()) &
+                call rd%fail(source//': found no PARAM card; expected 1 to '//trim(int_str(max_params)))
+            if (.not. rd%failed()) sw%deck = rd%lines(1:rd%nlines)
+            ! the base deck as it is, then every parameter against it
+            if (.not. rd%failed()) then
+                call read_case_lines(sw%base_lines, trim(sw%base), base, stat, errmsg, sw%search)
+                if (stat /= 0) call rd%fail('base deck '//trim(sw%base)//': '//trim(errmsg))
+            end if
+            if (.not. rd%failed()) then
+                do p = 1, size(sw%params)
+                    sw%params(p)%if_present = any(optional_names == sw%params(p)%name)
+                    call bind_param(rd, sw, base, sw%params(p))
+                    if (rd%failed()) exit
+                end do
+            end if
+            if (.not. rd%failed()) then
+                if (design_runs(sw) > max_runs) call rd%fail(source//': the design has '// &
+                    trim(int_str(design_runs(sw)))//' runs; at most '//trim(int_str(max_runs))//' are allowed')
+            end if
+            if (.not. rd%failed()) call check_extremes(rd, sw)
+        end associate
+    end subroutine parse_sweep
+
+    !> The TITLE card: the sweep's title (columns 11-80).
+    subroutine title_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
+        integer, intent(in) :: i                    !! the card's deck line
+        select type (dk => deck)
+        type is (sweep_deck_t)
+            dk%sw%title = adjustl(dk%rd%lines(i)%text(11:80))
+        end select
+    end subroutine title_card
+
+    !> The H5FILE card: the sweep's result file (columns 11-80).
+    subroutine h5file_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
+        integer, intent(in) :: i                    !! the card's deck line
+        select type (dk => deck)
+        type is (sweep_deck_t)
+            dk%sw%h5file = adjustl(dk%rd%lines(i)%text(11:80))
+        end select
+    end subroutine h5file_card
+
+    !> The BASE card: the base case deck (columns 11-80), found as an INCLUDE file is
+    !! (next to the file holding the card, here, the include path), and read.
+    subroutine base_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
+        integer, intent(in) :: i                    !! the card's deck line
+        type(deck_reader_t) :: bd
         character(len=msglen) :: errmsg
         character(len=:), allocatable :: found
-        integer :: i, np, ntitle, nbase, ndesign, p, stat
-        allocate (sw%params(0))
-        sw%search = rd%search
-        ntitle = 0; nbase = 0; ndesign = 0
-        do i = 1, rd%nlines
-            if (rd%failed()) exit
-            if (rd%lines(i)%text(9:10) /= '  ') then
-                call rd%fail(rd%where(i)//', columns 9-10: found "'//rd%lines(i)%text(9:10)// &
-                             '"; expected blanks after the card name (fields start in column 11)')
-                exit
-            end if
-            if (i == 1 .and. rd%key(i) /= 'TITLE') then
-                call rd%fail(rd%where(i)//', columns 1-8: found "'//trim(rd%key(i))//'"; expected a TITLE card first')
-                exit
-            end if
-            select case (rd%key(i))
-            case ('TITLE')
-                ntitle = ntitle + 1
-                sw%title = adjustl(rd%lines(i)%text(11:80))
-            case ('BASE')
-                nbase = nbase + 1
+        select type (dk => deck)
+        type is (sweep_deck_t)
+            associate (rd => dk%rd, sw => dk%sw)
                 sw%base = adjustl(rd%lines(i)%text(11:80))
-                if (len_trim(sw%base) == 0) call rd%fail(rd%where(i)//', columns 11-80 (BASE card): found no '// &
-                                                        'file name; expected the path of the base case deck')
-                if (.not. rd%failed()) then
-                    ! found as an INCLUDE file is: next to the file holding the card, here, the include path
-                    if (rd%lines(i)%via > 0) then
-                        call rd%find_file(trim(sw%base), rd%lines(i)%source, found, errmsg)
-                    else
-                        call rd%find_file(trim(sw%base), path, found, errmsg)
-                    end if
-                    if (len(found) == 0) then
-                        call rd%fail(rd%where(i)//', columns 11-80 (BASE card): '//trim(errmsg))
-                    else
-                        sw%base_path = found
-                        bd%top = found
-                        bd%search = rd%search
-                        call read_card_images(bd, found, found, 0)
-                        if (bd%failed()) call rd%fail('base deck named at '//rd%where(i)//': '//trim(bd%errmsg))
-                    end if
-                    if (.not. rd%failed()) sw%base_lines = bd%lines(1:bd%nlines)
+                if (len_trim(sw%base) == 0) then
+                    call rd%fail(rd%where(i)//', columns 11-80 (BASE card): found no file name; expected the '// &
+                                 'path of the base case deck')
+                    return
                 end if
-            case ('H5FILE')
-                sw%h5file = adjustl(rd%lines(i)%text(11:80))
-            case ('DESIGN')
-                ndesign = ndesign + 1
+                if (rd%lines(i)%via > 0) then
+                    call rd%find_file(trim(sw%base), rd%lines(i)%source, found, errmsg)
+                else
+                    call rd%find_file(trim(sw%base), dk%path, found, errmsg)
+                end if
+                if (len(found) == 0) then
+                    call rd%fail(rd%where(i)//', columns 11-80 (BASE card): '//trim(errmsg))
+                    return
+                end if
+                sw%base_path = found
+                bd%top = found
+                bd%search = rd%search
+                call read_card_images(bd, found, found, 0)
+                if (bd%failed()) then
+                    call rd%fail('base deck named at '//rd%where(i)//': '//trim(bd%errmsg))
+                else
+                    sw%base_lines = bd%lines(1:bd%nlines)
+                end if
+            end associate
+        end select
+    end subroutine base_card
+
+    !> The DESIGN card: FACTORIAL levels, LHS runs and seed, or OAT step (%).
+    subroutine design_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
+        integer, intent(in) :: i                    !! the card's deck line
+        character(len=10) :: s
+        select type (dk => deck)
+        type is (sweep_deck_t)
+            associate (rd => dk%rd, sw => dk%sw)
                 call rd%name(i, 1, 'design', s)
                 select case (s)
                 case ('FACTORIAL')
@@ -251,56 +316,29 @@ contains
                     if (.not. rd%failed()) call rd%fail(rd%context(i, 1, 'design')//': found "'//trim(s)// &
                                                         '"; expected FACTORIAL, LHS or OAT')
                 end select
-            case ('PARAM')
-                call param_card(rd, i, sw)
-            case ('END')
-                exit
-            case default
-                if (len_trim(rd%key(i)) == 0) then
-                    call rd%fail(rd%where(i)//', columns 1-8: found a blank card name; sweep cards have no '// &
-                                 'continuation cards')
-                else
-                    call rd%fail(rd%where(i)//', columns 1-8: found unknown card "'//trim(rd%key(i))// &
-                                 '"; expected TITLE, BASE, DESIGN, PARAM, H5FILE or END')
-                end if
-            end select
-        end do
-        if (.not. rd%failed()) then
-            if (nbase /= 1) call rd%fail(source//': found '//trim(int_str(nbase))//' BASE cards; expected one')
-            if (ndesign /= 1 .and. .not. rd%failed()) &
-                call rd%fail(source//': found '//trim(int_str(ndesign))//' DESIGN cards; expected one')
-            np = size(sw%params)
-            if (np == 0 .and. .not. rd%failed()) call rd%fail(source//': found no PARAM card; expected 1 to '// &
-                                                               trim(int_str(max_params)))
-        end if
-        if (.not. rd%failed()) sw%deck = rd%lines(1:rd%nlines)
-        ! the base deck as it is, then every parameter against it
-        if (.not. rd%failed()) then
-            call read_case_lines(sw%base_lines, trim(sw%base), base, stat, errmsg, sw%search)
-            if (stat /= 0) call rd%fail('base deck '//trim(sw%base)//': '//trim(errmsg))
-        end if
-        if (.not. rd%failed()) then
-            do p = 1, size(sw%params)
-                sw%params(p)%if_present = any(optional_names == sw%params(p)%name)
-                call bind_param(rd, sw, base, sw%params(p))
-                if (rd%failed()) exit
-            end do
-        end if
-        if (.not. rd%failed()) then
-            if (design_runs(sw) > max_runs) call rd%fail(source//': the design has '// &
-                trim(int_str(design_runs(sw)))//' runs; at most '//trim(int_str(max_runs))//' are allowed')
-        end if
-        if (.not. rd%failed()) call check_extremes(rd, sw)
-    end subroutine parse_sweep
+            end associate
+        end select
+    end subroutine design_card
 
-    !> One PARAM card: name, kind, target, item, low, high, spacing.
-    subroutine param_card(rd, i, sw)
+    !> One PARAM card: name, kind, target, item, low, high, spacing; a
+    !! second card of a FIELDn parameter's name is a further field it writes.
+    subroutine param_card(deck, i)
+        class(card_deck_t), intent(inout) :: deck   !! the sweep deck (sweep_deck_t)
+        integer, intent(in) :: i                    !! the card's deck line
+        select type (dk => deck)
+        type is (sweep_deck_t)
+            call read_param(dk%rd, i, dk%sw)
+        end select
+    end subroutine param_card
+
+    !> The fields of a PARAM card into the sweep's parameters.
+    subroutine read_param(rd, i, sw)
         type(deck_reader_t), intent(inout) :: rd
         integer, intent(in) :: i
         type(sweep_t), intent(inout) :: sw
         type(sweep_param_t) :: p
         character(len=10) :: s
-        integer :: ios, k
+        integer :: k
         if (size(sw%params) >= max_params) then
             call rd%fail(rd%where(i)//' (PARAM card): more than '//trim(int_str(max_params))//' parameters')
             return
@@ -341,7 +379,7 @@ contains
             call rd%fail(rd%context(i, 5, 'low')//': found '//trim(rd%raw(i, 5))// &
                          '; expected a positive scale factor (FAMILY and BODY parameters scale the base values)')
         if (.not. rd%failed()) sw%params = [sw%params, p]
-    end subroutine param_card
+    end subroutine read_param
 
     !> A second PARAM card of a FIELDn parameter's name: a further field the
     !! parameter writes, F5 and F6 the values written there when the
