@@ -31,7 +31,7 @@ import sys
 import tempfile
 from dataclasses import dataclass
 
-from .deck_fields import CardError, field_text
+from .decks import CardError, field_text
 from .paths import find_project, project_root
 from .results import read_channels, read_results
 

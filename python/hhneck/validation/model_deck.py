@@ -7,16 +7,16 @@ table's numbers or arithmetic on them (the derived card values of
 reference/parameters.md); the structure (bodies, which ligaments and muscles
 join which bodies, the card layout) is this module's.
 
-    python3 -m hhneck.model_deck --output input/head_neck_54dof.inp
-    python3 -m hhneck.model_deck [options] > DECK
+    python3 -m hhneck.validation.model_deck --output input/head_neck_54dof.inp
+    python3 -m hhneck.validation.model_deck [options] > DECK
 
 A fit writes its values into the table, never into the deck by hand
 (dev/fit_model.sh), then regenerates the deck:
 
-    python3 -m hhneck.model_deck --record segments reference/column_fit.csv
-    python3 -m hhneck.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp
+    python3 -m hhneck.validation.model_deck --record segments reference/column_fit.csv
+    python3 -m hhneck.validation.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp
 
-(stage segments: the CSV hhneck.fit_column writes, the column's factors
+(stage segments: the CSV hhneck.validation.fit_column writes, the column's factors
 fitted to the segment tests; stage nz_springs: the neutral-zone springs of
 that fit, reference/nz_springs.csv). The deck is the specimen state: its
 twelve Hill muscles are passive (their activation histories FLEX and EXT at
@@ -30,7 +30,7 @@ a straight column, seated-held the seated angles as an initial deflection
 of the straight neutral; --t1-slope and --lordosis (deg) another seated
 posture; --nz-springs CSV the neutral-zone springs of that CSV (a file not
 written yet: no springs; none: no springs either); --upper-cervical CSV the upper-cervical factors of
-hhneck.upper_cervical; --suboccipital yes the four suboccipital muscles per
+hhneck.validation.upper_cervical; --suboccipital yes the four suboccipital muscles per
 side; --segmental yes two segmental muscles per subaxial level and side;
 --sub-bend F the subaxial discs' own bending Ix, Iy times F; --sub-flexion F
 the flexion-extension bending Iy of the discs C3-C4 ... C7-T1 times F.
@@ -47,14 +47,14 @@ import re
 import sys
 
 from . import segments, upper_cervical
-from .deck_fields import CardError, check_cards, scale_fields
+from ..decks import CardError, check_cards, scale_fields
 
 TABLE = os.path.join(segments.ROOT, "reference", "model_parameters.csv")
 COLUMNS = ("name", "value", "unit", "status", "source", "stage", "description")
 STATUSES = ("sourced", "assumed", "fitted")
 #: the fit stages that write rows: (the source tag of the data they fit, what --record reads)
-STAGES = {"nz_springs": ("S21", "the CSV of hhneck-fit-joints (reference/nz_springs.csv)"),
-          "segments": ("S21", "the CSV of hhneck.fit_column (reference/column_fit.csv)")}
+STAGES = {"nz_springs": ("S21", "the CSV of python3 -m hhneck.validation.fit_joints (reference/nz_springs.csv)"),
+          "segments": ("S21", "the CSV of hhneck.validation.fit_column (reference/column_fit.csv)")}
 #: the rows of the passive column (discs, ligaments, joint stops, neutral-zone
 #: springs) by name prefix or name: constraint 1 (docs/validation.md,
 #: "Calibration"), no volunteer fit writes them
@@ -158,7 +158,7 @@ def read_fit(listing):
 
 
 def read_nz_springs(path):
-    """The rows of a hhneck-fit-joints CSV (comment lines skipped):
+    """The rows of a python3 -m hhneck.validation.fit_joints CSV (comment lines skipped):
     [(body, coord, {column: text} of NZ_COLUMNS)], each M0 and ths > 0 (an
     empty mlin: NZ_MLIN)."""
     with open(path, newline="") as f:
@@ -180,7 +180,7 @@ def read_nz_springs(path):
 
 
 def read_column_fit(path):
-    """The (name, value text) rows of a hhneck.fit_column CSV (comment lines
+    """The (name, value text) rows of a hhneck.validation.fit_column CSV (comment lines
     skipped; columns name, value, ...); DeckError for none or a value that
     is not a finite number."""
     with open(path, newline="") as f:
@@ -198,7 +198,7 @@ def record(rows, stage, path):
     stage's source tag. Stage nz_springs: every nz.BODY.COORD.COLUMN row
     from the CSV's row of BODY, COORD, which must cover the table's springs
     and name no other; stage segments: the rows named by the CSV of
-    hhneck.fit_column (read_column_fit), each a row of the table. The
+    hhneck.validation.fit_column (read_column_fit), each a row of the table. The
     names written, in order; DeckError (the table untouched) otherwise."""
     if stage not in STAGES:
         raise DeckError("stage %r; expected one of %s" % (stage, ", ".join(STAGES)))
@@ -699,7 +699,7 @@ def deck_lines(p, posture="seated", t1_slope=None, lordosis=None, nz_springs=Non
 # ---------------------------------------------------------------- command
 
 def _parser():
-    ap = argparse.ArgumentParser(prog="python3 -m hhneck.model_deck", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python3 -m hhneck.validation.model_deck", description=__doc__.split("\n\n")[0])
     ap.add_argument("--table", default=TABLE, help="the parameter table (default reference/model_parameters.csv)")
     ap.add_argument("--record", nargs=2, metavar=("STAGE", "FILE"),
                     help="first write the values of fit stage STAGE (%s) from FILE into the table"

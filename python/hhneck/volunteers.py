@@ -1,7 +1,7 @@
 """The NBDL sled cases' volunteer runs and their comparison with the model:
-the library of hhneck-compare-nbdl and hhneck-nbdl-tables.
+the library of hhneck-compare-nbdl and python3 -m hhneck.validation.nbdl_tables.
 
-    from hhneck import nbdl
+    from hhneck import volunteers as nbdl
     t, runs, names = nbdl.runs("T1_XAccel", "12g")     # one channel of the 12 g runs
     chans, peaks, overall = nbdl.compare("15g", "nbdl15g.h5")[:3]
 
@@ -9,14 +9,14 @@ A case's runs are a directory of CHANNEL.csv files (columns time_ms,
 run_...): the shipped cases' are the project's reference/nbdl_15g and
 reference/nbdl_12g (data_dir), another's is given as `data`. Every
 volunteer run and the model are filtered CFC 60 (SAE J211/1) unless said
-otherwise; the ratings and peaks are those of hhneck.compare_nbdl's
+otherwise; the ratings and peaks are those of hhneck.tools.compare_nbdl's
 docstring (method in docs/validation.md)."""
 import os
 import sys
 
 import numpy as np
 
-from . import iso18571
+from . import ratings
 from .paths import project_path
 
 G = 9.80665
@@ -218,7 +218,7 @@ def compare(sev, h5, data=None):
         m = (t >= WINDOW[0]) & (t <= WINDOW[1])
         C, X, score, lag = cora(t, mi, mean, sd)
         inside = np.mean(np.abs(mi[m] - mean[m]) <= sd[m])
-        iso = iso18571.rate(t * 1e-3, mean, mi, window=(WINDOW[0] * 1e-3, WINDOW[1] * 1e-3))["overall"]
+        iso = ratings.rate(t * 1e-3, mean, mi, window=(WINDOW[0] * 1e-3, WINDOW[1] * 1e-3))["overall"]
         chans.append(dict(label=label, C=C, X=X, score=score, lag=lag, inside=inside, iso=iso,
                           rated=label in RATED))
         curves[label] = (t, data, mean, sd)

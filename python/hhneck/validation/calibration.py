@@ -1,8 +1,8 @@
 """Calibration over the catalogue, and its leave-one-out test: for each
 group of cases -- a specimen case (Stemper 2004 rear, Kang 2018 front and
-side; the decks of hhneck.specimens) or, with --segments, a segment source
+side; the decks of hhneck.validation.specimens) or, with --segments, a segment source
 (Panjabi 2001's 21 curves, Nightingale 2007's 3; the decks of
-hhneck.segments) -- fit the passive parameters to the other groups with
+hhneck.validation.segments) -- fit the passive parameters to the other groups with
 `hhneck --calibrate` (ISO/TS 18571 objective, RATING F5 ISO18571; each
 group weighs 1, its curves equally) and score the group left out with the
 fitted values: a prediction, since it took no part in its fit.
@@ -13,23 +13,23 @@ fitted values: a prediction, since it took no part in its fit.
     leave_one_out(workdir, groups=None, params=PARAMS, evals=..., starts=..., jobs=1) -> rows
     volunteer_scores(params, values, workdir) -> (NBDL case means, largest real part at rest)
 
-Segment cases (write_segment_case): the segment deck of hhneck.segments
+Segment cases (write_segment_case): the segment deck of hhneck.validation.segments
 with protocol "sweep" (the whole moment-rotation curve on one rising
 moment ramp), its reference the data on the catalogue's 0.01 N m grid,
 each row at the time its moment is applied, rated row by row (RATED F6
 SAMPLES) as the catalogue rates rotation against moment.
 
 Reference CSVs: each case's rated channels, their reference curve (the
-corridor's midline or the specimens' mean, hhneck.specimen_data) and
+corridor's midline or the specimens' mean, hhneck.validation.specimen_data) and
 bounds, on the common grid k 0.1 ms (each channel linearly interpolated
 from its own 0.1 ms grid onto the grid points its curve covers, the
-window hhneck.specimens.rated_reference rates; Kang: 0 to 1.2 x the time
+window hhneck.validation.specimens.rated_reference rates; Kang: 0 to 1.2 x the time
 of the reference's largest magnitude in 0-99.9 ms), empty cells elsewhere. The model channel of each column is a
 RATED card: the sign changes, "from the start" and the CFC class of
-hhneck.specimens.
+hhneck.validation.specimens.
 The rated channels and their model channels are those of the catalogue
-(hhneck.specimens.CHANNELS), load cells included; where the catalogue
-rates a head angle the result file has no channel of (hhneck.specimens.
+(hhneck.validation.specimens.CHANNELS), load cells included; where the catalogue
+rates a head angle the result file has no channel of (hhneck.validation.specimens.
 ANGLES: the Kang head rotations, integrals of the angular velocity), the
 RATED card rates the file's nearest (its Bryant angle).
 
@@ -40,10 +40,10 @@ calibration deck uses; the ligaments' stiffness a factor 2 either way).
 The shipped model deck is not changed: the fitted values are reported.
 
 No fit here moves a passive parameter to the volunteers: the shipped
-column is fitted to the segment tests alone (hhneck.fit_column), the
+column is fitted to the segment tests alone (hhneck.validation.fit_column), the
 volunteers fit the controller alone (input/calibrate_controller.inp).
 
-Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
+Usage: python3 -m hhneck.validation.calibration WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
        [--table FILE]
 """
 import argparse
@@ -56,8 +56,8 @@ import sys
 import numpy as np
 
 from . import segments, specimens
-from .deck_fields import field, is_card, number_field, set_field, write_deck
-from .paths import project_path, project_root
+from ..decks import field, is_card, number_field, set_field, write_deck
+from ..paths import project_path, project_root
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
 
@@ -72,11 +72,11 @@ PARAMS = [
 ]
 QUICK_PARAMS = PARAMS[4:5]
 
-# case: (data file stem, Kang window); the rated channels are hhneck.specimens.CHANNELS,
+# case: (data file stem, Kang window); the rated channels are hhneck.validation.specimens.CHANNELS,
 # each a reference column C01, C02, ... of the case's CSV
 CASES = {"stemper": ("stemper2004_1p8ms", False), "kang_front": ("kang2018_front", True),
          "kang_side": ("kang2018_side", True)}
-#: the segment sources of the catalogue (hhneck.segments): source -> its peak moment [N m]
+#: the segment sources of the catalogue (hhneck.validation.segments): source -> its peak moment [N m]
 SEGMENT_SOURCES = {"panjabi": 1.0, "nightingale": 3.5}
 
 
@@ -105,7 +105,7 @@ def _segment_key(case):
 
 
 def write_segment_case(case, workdir, data_dir=segments.DATA_DIR, model=segments.MODEL_DECK):
-    """The deck of segment case `case` (protocol "sweep" of hhneck.segments)
+    """The deck of segment case `case` (protocol "sweep" of hhneck.validation.segments)
     and its reference CSV in workdir: (deck, reference, RATED card lines).
     The reference: the data's mean rotation [deg] on the catalogue's 0.01 N m
     grid from -M to +M (Nightingale with its lower and upper bounds), each
@@ -441,7 +441,7 @@ def volunteer_text(cases, rest):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="hhneck-calibrate-catalogue",
+    ap = argparse.ArgumentParser(prog="python3 -m hhneck.validation.calibration",
                                  description="Leave-one-out calibration of the passive parameters over the "
                                              "specimen cases, and with --segments the segment sources "
                                              "(ISO/TS 18571).")

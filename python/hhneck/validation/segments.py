@@ -14,7 +14,7 @@ of them), and only the elements joining the specimen's bodies: the discs,
 ligaments, joint-limit dampers, range-of-motion resistance and neutral-zone
 springs (NZSPRING) of the model deck, with its SCALE factors of those
 families. write_deck and run_case can drop given cards (drop=("NZSPRING",):
-the other elements alone, as hhneck.fit_joints needs them). The deck is written
+the other elements alone, as hhneck.validation.fit_joints needs them). The deck is written
 from the model deck (input/head_neck_54dof.inp) card for card, nothing
 retyped, so a change of the model is a change of every segment test.
 
@@ -26,7 +26,7 @@ time d2b/d1, which carries S1's damping coefficient on the discs' share of
 the stiffness) lag the rotation on the ramps; the statics below are the
 ramps' zero-rate limit, on which the column is fitted and the catalogue
 rates it.
-The calibration's protocol (protocol="sweep", hhneck.calibration): 0 -> -M
+The calibration's protocol (protocol="sweep", hhneck.validation.calibration): 0 -> -M
 over 20 s, held 2 s, -M -> +M over 40 s (t = SWEEP_START .. SWEEP_START +
 2 RAMP), held to 64 s: the whole moment-rotation curve on one rising ramp,
 rotation as a function of time as the calibration's reference rows need it
@@ -35,7 +35,7 @@ catalogue's loading branches differ from it by the viscous lag only).
 
 The catalogue solves each test as statics (SOLUTIONS "statics", the
 default: the tests are quasi-static, and the column is fitted on them) or
-runs the dynamic ramps above ("ramp", hhneck-segments --protocol ramp): the
+runs the dynamic ramps above ("ramp", python3 -m hhneck.validation.segments --protocol ramp): the
 same deck with a STATICS card, one equilibrium per 0.01 N m of the
 moment table (rates zero, so the viscous lag of the ramps is absent: the
 rotations are the limit of ever slower ramps), read by the same readers
@@ -52,8 +52,8 @@ relative to the lower one minus its neutral value (for OC-C2 the sum of the
 C1 and head angles about the same axis, exact for a planar motion).
 
 API: moment_table, sweep_time, write_deck, case_name, run_case, rotation_curve, rotations_at, data_branches,
-rate_curve, catalogue (all cases; hhneck.catalogue writes docs/catalogue.md).
-Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
+rate_curve, catalogue (all cases; hhneck.validation.catalogue writes docs/catalogue.md).
+Command: python3 -m hhneck.validation.segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
 [--protocol statics|ramp]
 (hhneck-catalogue writes the report).
 """
@@ -66,8 +66,8 @@ import tempfile
 
 import numpy as np
 
-from . import iso18571
-from .paths import project_root
+from .. import ratings
+from ..paths import project_root
 
 ROOT = project_root()
 MODEL_DECK = os.path.join(ROOT, "input", "head_neck_54dof.inp")
@@ -362,7 +362,7 @@ MOMENT_AS_TIME = 0.01
 def rate_curve(grid, reference, model):
     """ISO/TS 18571 of a moment-rotation curve: rotation as a function of
     the moment (in place of time, MOMENT_AS_TIME), on the 0.01 N m grid."""
-    return iso18571.rate(np.asarray(grid) * MOMENT_AS_TIME, reference, model)
+    return ratings.rate(np.asarray(grid) * MOMENT_AS_TIME, reference, model)
 
 
 def _run_timed(args):
@@ -447,10 +447,10 @@ def _rated_case(case, t, rot, wall, stderr, panjabi, night):
 
 
 def main(argv=None):
-    """hhneck-segments: run and rate the segment cases, print one line each
+    """python3 -m hhneck.validation.segments: run and rate the segment cases, print one line each
     (the catalogue command, hhneck-catalogue, writes them into
     docs/catalogue.md)."""
-    p = argparse.ArgumentParser(prog="hhneck-segments", description=__doc__.split("\n\n")[0])
+    p = argparse.ArgumentParser(prog="python3 -m hhneck.validation.segments", description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="C4-C5 only (the test suite's form)")
     p.add_argument("--exe", help="the hhneck executable (default $HHNECK, else fpm's release build)")
     p.add_argument("--data", default=DATA_DIR, help="the pmhs_neck data folder")

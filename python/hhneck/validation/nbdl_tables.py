@@ -1,11 +1,11 @@
 """Writes the T1 input tables of the NBDL sled decks from the volunteer runs
 in reference/:
 
-    hhneck-nbdl-tables
+    python3 -m hhneck.validation.nbdl_tables
 
 input/nbdl15g_t1.inp (runs 1635-1644, n = 7) and input/nbdl12g_t1.inp (runs
 1607-1617, n = 10): T1 x- and z-acceleration [g] and sagittal rotation, each
-run filtered (SAE J211/1, the filter of hhneck.compare_nbdl), mean over the
+run filtered (SAE J211/1, the filter of hhneck.tools.compare_nbdl), mean over the
 runs, every 1 ms from 0 to 299 ms. The x-acceleration and the rotation are
 filtered CFC 60; the z-acceleration CFC 20: above about 20 Hz the runs' T1
 z-accelerations are out of phase with each other (a mount ringing at 50-60 Hz,
@@ -25,7 +25,7 @@ its peaks. The same factor on the z-acceleration and the rotation, and the
 
 Other runs of the same kind (a directory with the same CHANNEL.csv files):
 
-    hhneck-nbdl-tables --data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]
+    python3 -m hhneck.validation.nbdl_tables --data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]
 
 writes input/NAME_t1.inp (same filters, mean over the directory's runs) and
 input/NAME.inp (the 12 g deck with that drive; --into: another directory
@@ -39,7 +39,7 @@ are written every 1 ms over the runs' span whatever their sampling step. Runs
 whose pulse starts more than 10 ms away from the shipped runs' (their mean T1
 x-acceleration first below -1 g at about 52 ms) get a warning that says how
 far to shift their time_ms. The comments that name DIR and the deck go on
-continuation comment cards when they pass column 80 (hhneck.deck_fields);
+continuation comment cards when they pass column 80 (hhneck.decks);
 an INCLUDE card (--into) or H5FILE card (--name) that would pass it is
 refused, and neither deck is written.
 """
@@ -50,9 +50,9 @@ import sys
 
 import numpy as np
 
-from .deck_fields import CardError, check_cards, comment_cards, hold, write_decks
-from .nbdl import cfc, channel_file, has_channel, peak, runs, stop
-from .paths import project_path
+from ..decks import CardError, check_cards, comment_cards, hold, write_decks
+from ..volunteers import cfc, channel_file, has_channel, peak, runs, stop
+from ..paths import project_path
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
@@ -90,7 +90,7 @@ def pulse_onset(t, data):
 
 def t1_peak_mean(sev):
     """Mean over the runs of the T1 x-acceleration peak (g, each run CFC 60,
-    the peak of hhneck.compare_nbdl), as reference-data.md section 3 has it."""
+    the peak of hhneck.tools.compare_nbdl), as reference-data.md section 3 has it."""
     t, data, _ = runs("T1_XAccel", sev)
     dt = (t[1] - t[0]) * 1e-3
     return float(np.mean([peak(t, cfc(r, 60, dt), -1)[0] for r in data]))
@@ -211,7 +211,7 @@ def new_case(folder, name, rot_unit=None, into=None):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="hhneck-nbdl-tables", description=__doc__.split("\n\n")[0],
+    p = argparse.ArgumentParser(prog="python3 -m hhneck.validation.nbdl_tables", description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--data", metavar="DIR", help="a directory of other runs (CHANNEL.csv files)")
     p.add_argument("--name", help="the new case's name (with --data)")

@@ -47,7 +47,7 @@ for C6-C7; extension positive), head-T1 angle = -(change of the head's
 planar angle about y in T1's sagittal plane, from the result file's
 rotation matrices: ANGLES), retraction = HT1_DX [mm] (head mass centre
 relative to T1 in T1's axes, from the start). Reference: each corridor
-outline's midline, the outline named (REFERENCE; hhneck.specimen_data),
+outline's midline, the outline named (REFERENCE; hhneck.validation.specimen_data),
 rated by ISO/TS 18571 over the times the corridor covers (0.3-126 ms) and
 the run covers (to 130 ms), no offsets.
 
@@ -137,8 +137,9 @@ import tomllib
 
 import numpy as np
 
-from . import iso18571, segments, specimen_data
-from .nbdl import cfc
+from .. import ratings
+from . import segments, specimen_data
+from ..volunteers import cfc
 
 #: the folder of the catalogue's case files
 CASES_DIR = os.path.join(segments.ROOT, "reference", "cases")
@@ -287,7 +288,7 @@ def _case(case):
 #: channel, the scale to the data's sign, whether taken from its value at
 #: the start, the CFC class [Hz] the model curve is filtered by, 0 none),
 #: from the case files; the module docstring says why each is what it is.
-#: The catalogue's runs and the calibration's RATED cards (hhneck.calibration)
+#: The catalogue's runs and the calibration's RATED cards (hhneck.validation.calibration)
 #: both read this table.
 CHANNELS = {n: [(e["name"], e["model"], e["scale"], e["tare"], e["cfc"]) for e in c["channels"]]
             for n, c in CASES.items()}
@@ -302,7 +303,7 @@ STEMPER_CHANNELS = [c[0] for c in CHANNELS["stemper"]]
 #: calibration's RATED cards rate: a Fortran channel): HT1_RY equals the
 #: planar angle in a sagittal motion; HEADL_RX and HEADL_RY are Bryant angles.
 ANGLES = {(n, e["name"]): e["angle"] for n, c in CASES.items() for e in c["channels"] if e["angle"]}
-#: the reference curve of each case's channels (hhneck.specimen_data.reference's
+#: the reference curve of each case's channels (hhneck.validation.specimen_data.reference's
 #: curve): the corridor outline named in the data file, or the specimens whose mean is taken
 REFERENCE = {n: c["reference"]["curve"] for n, c in CASES.items() if c["reference"]}
 #: each case's experiment file in the data folder
@@ -578,7 +579,7 @@ def rate_channel(g, ref, lo, hi, t, m):
     end = g[-1]
     g, ref, lo, hi = g[common], ref[common], lo[common], hi[common]
     mi = np.interp(g, t, m)
-    sc = iso18571.rate(g * 1e-3, ref, mi)
+    sc = ratings.rate(g * 1e-3, ref, mi)
     km, kr = int(np.argmax(np.abs(mi))), int(np.argmax(np.abs(ref)))
     sc.update(grid=g, reference=ref, lower=lo, upper=hi, model=mi, peak_model=(mi[km], g[km]),
               peak_ref=(ref[kr], g[kr]), inside=float(np.mean((mi >= lo) & (mi <= hi))),

@@ -3,14 +3,14 @@
       cadaver, force pulses RECONSTRUCTED (the paper's records are not public);
   hybrid3_flexion.inp  the Hybrid III neck pendulum flexion input (49 CFR
       572.33) applied to the human model.
-See reference/cases.md.   hhneck-case-decks (writes into the project, hhneck.paths)
+See reference/cases.md.   python3 -m hhneck.validation.case_decks (writes into the project, hhneck.paths)
 """
 import argparse
 import math
 import sys
 
-from .deck_fields import CardError, held, number_text, write_decks
-from .paths import project_path
+from ..decks import CardError, held, number_text, write_decks
+from ..paths import project_path
 
 def table(name, pts, tscale="0.001", vscale="1.0"):
     out = ["%-8s  %-10s%-10d%-10s%-10s" % ("TABLE", name, len(pts), tscale, vscale)]
@@ -104,14 +104,14 @@ def case_decks():
 
 
 def main(argv=None):
-    argparse.ArgumentParser(prog="hhneck-case-decks", description=__doc__.split("   hhneck")[0].strip(),
+    argparse.ArgumentParser(prog="python3 -m hhneck.validation.case_decks", description=__doc__.split("   python3 -m")[0].strip(),
                             formatter_class=argparse.RawDescriptionHelpFormatter).parse_args(argv)
     try:
         # the project's input/ (hhneck.paths), whatever the working directory;
         # none written if a card passes column 80
         write_decks({project_path(k): v for k, v in case_decks().items()})
     except CardError as e:
-        sys.exit("hhneck-case-decks: %s" % e)
+        sys.exit("python3 -m hhneck.validation.case_decks: %s" % e)
     return 0
 
 
