@@ -32,7 +32,9 @@ import numpy as np
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"),
                 os.path.dirname(os.path.abspath(__file__))]
 from hhneck import run  # noqa: E402
-from hhneck.volunteers import WINDOW, cfc, s3, volunteer_channels  # noqa: E402
+from hhneck.ratings import WINDOW, s3  # noqa: E402
+from hhneck.signals import cfc  # noqa: E402
+from hhneck.volunteers import volunteer_channels  # noqa: E402
 from hhneck.decks import field, is_card  # noqa: E402
 from predict_nbdl8g import ROWS, SEVERITIES, model_peaks, volunteer_peaks  # noqa: E402
 

@@ -34,7 +34,7 @@ import numpy as np
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 from hhneck import run
 from hhneck.validation import segments, specimen_data, specimens  # noqa: E402
-from hhneck.volunteers import s3  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 
 TIMES_MS = (10, 20, 25, 30, 35, 40)
 UPPER_DISCS = ("C2C1", "C1HD")

@@ -30,7 +30,7 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__f
 import h5py  # noqa: E402
 from hhneck.validation import specimens  # noqa: E402
 from hhneck.export import kinematic_to_j211  # noqa: E402
-from hhneck.volunteers import s3  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 
 #: per direction: the data's head-acceleration channels and their axis (0 x, 1 y, 2 z)
 CHANNELS = {"front": (("head_acc_x", 0), ("head_acc_z", 2)), "side": (("head_acc_y", 1), ("head_acc_z", 2))}

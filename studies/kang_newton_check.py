@@ -44,7 +44,7 @@ import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 from hhneck.validation import segments, specimen_data, specimens  # noqa: E402
-from hhneck.volunteers import s3  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 from hhneck.validation.newton_balance import (PAIRS, PLANE, accelerometer_reading, balance, kang_channels,  # noqa: E402
                                    kang_data, kang_pulse, lab_acceleration)
 

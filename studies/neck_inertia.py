@@ -39,7 +39,7 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__f
 import h5py  # noqa: E402
 from hhneck import run
 from hhneck.validation import segments, specimen_data, specimens  # noqa: E402
-from hhneck.volunteers import compare, s3  # noqa: E402
+from hhneck.ratings import compare, s3  # noqa: E402
 from hhneck.export import kinematic_to_j211  # noqa: E402
 
 NECK = ("C7", "C6", "C5", "C4", "C3", "C2", "C1")

@@ -31,7 +31,9 @@ import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 from hhneck.tools.compare_nbdl import run_deck  # noqa: E402
-from hhneck.volunteers import cfc, peak, s3, stop  # noqa: E402
+from hhneck.ratings import peak, s3  # noqa: E402
+from hhneck.signals import cfc  # noqa: E402
+from hhneck.volunteers import stop  # noqa: E402
 from hhneck.decks import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
 
 SEVERITIES = ("8g", "12g", "15g")
@@ -61,7 +63,7 @@ def volunteer_peaks(path="reference/reference-data.md"):
 
 
 def model_peaks(h5):
-    """The model's six peaks, each channel CFC 60 (hhneck.volunteers.model_channels)."""
+    """The model's six peaks, each channel CFC 60 (hhneck.ratings.model_channels)."""
     import h5py
     f = h5py.File(h5, "r")
     tm = f["time"][:] * 1e3

@@ -42,7 +42,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path[:0] = [os.path.join(ROOT, "python"), HERE]
 from hhneck import run  # noqa: E402
-from hhneck.volunteers import s3  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 from feedback_nbdl import fit_arguments, reduced_deck, run_calibrations, score  # noqa: E402
 from predict_nbdl8g import ROWS, bindings, fitted_values, volunteer_peaks  # noqa: E402
 import rest_motion  # noqa: E402

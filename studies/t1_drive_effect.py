@@ -18,7 +18,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.volunteers import compare, s3, stop  # noqa: E402
+from hhneck.ratings import compare, s3  # noqa: E402
+from hhneck.volunteers import stop  # noqa: E402
 from hhneck.validation.nbdl_tables import t1_tables  # noqa: E402
 from hhneck.decks import CardError, hold, is_card, write_decks  # noqa: E402
 

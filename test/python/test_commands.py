@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from conftest import PACKAGE, ROOT, hhneck_executable, hhneck_module, short_deck
-import hhneck.volunteers as nbdl
+import hhneck.ratings as ratings
 
 
 def scripts():
@@ -219,7 +219,7 @@ def test_compare_nbdl_model_against_itself(tmp_path):
     h5 = tmp_path / "model.h5"
     with h5py.File(h5, "w") as f:
         f["time"] = t
-        for ch in nbdl.MODEL.values():
+        for ch in ratings.MODEL.values():
             f["channels/" + ch] = ax if ch == "HEAD_AX" else np.zeros_like(t)
     runs = tmp_path / "runs"
     runs.mkdir()

@@ -260,8 +260,8 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
         links = re.findall(r"\(validation\.md(#[^)]+)\)", stops[0])
         assert links and set(links) <= headings, title
     # the NBDL row: the decks run here, rated as hhneck-compare-nbdl rates them
-    from hhneck import volunteers as nbdl_lib
+    from hhneck import ratings
     nbdl = next(l for l in text.splitlines() if l.startswith("| NBDL 15 g (prediction), 12 g (calibration) |"))
     for sev in ("15g", "12g"):
-        chans, peaks, overall = nbdl_lib.compare(sev, str(tmp_path / "nbdl" / ("nbdl%s.h5" % sev)))[:3]
+        chans, peaks, overall = ratings.compare(sev, str(tmp_path / "nbdl" / ("nbdl%s.h5" % sev)))[:3]
         assert "CORA-style %.3f" % overall in nbdl and 0.5 < overall <= 1.0

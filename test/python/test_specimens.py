@@ -13,7 +13,7 @@ import pytest
 
 from conftest import hhneck_executable
 from hhneck.validation import segments, specimen_data, specimens
-from hhneck.volunteers import cfc
+from hhneck.signals import cfc
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,7 @@ Without --h5 it runs input/nbdlSEVg.inp for each case (hhneck.run.run_deck:
 $HHNECK, else the project's release build). Volunteer data: reference/nbdl_15g
 (runs 1635-1644) and reference/nbdl_12g (runs 1607-1617), raw, every 0.5 ms.
 The project's input/, reference/ and docs/ are meant (hhneck.paths), from
-any working directory; the computations are hhneck.volunteers's. Every volunteer
+any working directory; the computations are hhneck.ratings'. Every volunteer
 run and the model are filtered CFC 60 (SAE J211/1, as the library does).
 
 Rated channels (the head's kinematics): x- and z-acceleration, angular
@@ -38,8 +38,9 @@ import tempfile
 import numpy as np
 
 from .. import run
-from ..volunteers import RATED, REPORTED, SEVERITIES, compare, s3
 from ..paths import project_path
+from ..ratings import RATED, REPORTED, compare, s3
+from ..volunteers import SEVERITIES
 
 def tables(sev, chans, peaks, overall, nrun):
     sevt = sev.replace("g", " g")

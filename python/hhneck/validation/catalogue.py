@@ -44,9 +44,9 @@ import time
 
 import numpy as np
 
-from .. import run, volunteers
+from .. import ratings, run
 from . import newton_balance, segments, specimens
-from ..volunteers import s3
+from ..ratings import s3
 
 REPORT = os.path.join(segments.ROOT, "docs", "catalogue.md")
 NBDL_GOAL = 0.85        # CORA-style, at both severities (the goal of the catalogue)
@@ -305,7 +305,7 @@ def nbdl_score(sev, exe=None, workdir=None):
                      h5=os.path.join(work, "nbdl%s.h5" % sev), cwd=segments.ROOT)
     with open(os.path.join(work, "nbdl%s.err" % sev), "w") as f:
         f.write(r.stderr)
-    chans, peaks, overall = volunteers.compare(sev, r.h5)[:3]
+    chans, peaks, overall = ratings.compare(sev, r.h5)[:3]
     return dict(cora=float(overall), iso=float(np.mean([c["iso"] for c in chans if c["rated"]])),
                 peaks=sum(bool(p["ok_peak"]) for p in peaks), npeaks=len(peaks),
                 warnings=segments.warning_lines(r.stderr))

@@ -51,8 +51,10 @@ import sys
 import numpy as np
 
 from ..decks import CardError, check_cards, comment_cards, hold, write_decks
-from ..volunteers import cfc, channel_file, has_channel, peak, runs, stop
 from ..paths import project_path
+from ..ratings import peak
+from ..signals import cfc
+from ..volunteers import channel_file, has_channel, runs, stop
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)

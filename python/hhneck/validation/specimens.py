@@ -139,7 +139,7 @@ import numpy as np
 
 from .. import ratings
 from . import segments, specimen_data
-from ..volunteers import cfc
+from ..signals import cfc
 
 #: the folder of the catalogue's case files
 CASES_DIR = os.path.join(segments.ROOT, "reference", "cases")
