@@ -56,7 +56,7 @@ import sys
 import numpy as np
 
 from . import segments, specimens
-from ..decks import field, is_card, number_field, set_field, write_deck
+from ..decks import card, field, is_card, number_field, set_field, write_deck
 from ..paths import project_path, project_root
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
@@ -137,7 +137,7 @@ def write_segment_case(case, workdir, data_dir=segments.DATA_DIR, model=segments
         f.write(",".join(["time_ms"] + [c[0] for c in cols]) + "\n")
         for i, t in enumerate(times):
             f.write(",".join(["%.6f" % t] + ["%.9g" % c[1][i] for c in cols]) + "\n")
-    rated = [("RATED     C01       HT1_%-6s%s%-10sSTART     SAMPLES" % (coord, number_field(sign), ""))]
+    rated = [card("RATED", "C01", "HT1_" + coord, number_field(sign), "", "START", "SAMPLES")]
     return os.path.basename(deck), ref, rated
 
 
@@ -168,9 +168,8 @@ def write_reference(case, path, data_dir=segments.DATA_DIR):
             f.write(",".join(["%.4f" % t] + ["%.9g" % c[1][i] if c[2][i] else "" for c in cols]) + "\n")
     rated = []
     for col, _, model, scale, minus, start, cls in chans:
-        rated.append(("RATED     %-10s%-10s%s%-10s%-10s%-10s%s" % (col, model, number_field(scale), minus,
-                                                                   "START" if start else "", "",
-                                                                   cls or "")).rstrip())
+        rated.append(card("RATED", col, model, number_field(scale), minus, "START" if start else "", "",
+                          "%s" % (cls or "")))
     return rated
 
 
@@ -193,8 +192,8 @@ def case_cards(case, workdir, weight=1.0, data_dir=segments.DATA_DIR, model=segm
     """The CASE (with its weight unless 1), DATA and RATED card images of
     `case`, its deck and reference written to workdir (write_case)."""
     deck, ref, rated = write_case(case, workdir, data_dir, model)
-    return [("CASE      %-60s%s" % (deck, number_field(weight) if weight != 1.0 else "")).rstrip(),
-            "DATA      %s" % ref] + rated
+    return [card("CASE", deck, None, None, None, None, None, number_field(weight) if weight != 1.0 else None),
+            card("DATA", ref)] + rated
 
 
 def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, values=None, seed=1,
@@ -212,16 +211,17 @@ def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, va
         if os.path.abspath(model) != os.path.abspath(copy):
             shutil.copyfile(model, copy)
         model = copy
-    lines = [("TITLE     CATALOGUE CALIBRATION: %s" % " ".join(c.upper() for c in cases))[:80]]
+    lines = [card("TITLE", ("CATALOGUE CALIBRATION: %s" % " ".join(c.upper() for c in cases))[:70], strip=False)]
     for case in cases:
         lines += case_cards(case, workdir, weights.get(case, 1.0), data_dir, model or segments.MODEL_DECK)
     lines.append("*         window (ms; volunteer cases only) CFC tolerance metric")
     lines.append("RATING    0.0       200.0     60        10.0      ISO18571")
-    lines.append("FIT       NELDER    %-10d%-10d%-10d" % (0 if values is not None else evals, starts, seed))
+    lines.append(card("FIT", "NELDER", *["%d" % n for n in (0 if values is not None else evals, starts, seed)],
+                      strip=False))
     lines += param_cards(params)
     if values is not None:
         lines += values_cards(values)
-        lines.append("CURVES    %s_curves.csv" % name)
+        lines.append(card("CURVES", name + "_curves.csv"))
     path = os.path.join(workdir, name + ".inp")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -292,14 +292,13 @@ def param_card(lines, p, model):
 
 def param_cards(params):
     """PARAM card images of PARAMS-style tuples."""
-    return [("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], number_field(p[4]),
-                                                   number_field(p[5]), p[6])).rstrip() for p in params]
+    return [card("PARAM", p[0], p[1], p[2], p[3], number_field(p[4]), number_field(p[5]), p[6]) for p in params]
 
 
 def values_cards(values):
     """VALUES card images of a list of values, seven to a card."""
     vals = list(values)
-    return ["VALUES    " + "".join(number_field(v) for v in vals[k:k + 7]) for k in range(0, len(vals), 7)]
+    return [card("VALUES", *[number_field(v) for v in vals[k:k + 7]], strip=False) for k in range(0, len(vals), 7)]
 
 
 def model_deck_with(params, values, path, model=segments.MODEL_DECK):
@@ -314,7 +313,7 @@ def model_deck_with(params, values, path, model=segments.MODEL_DECK):
             k = param_card(lines, p, model)
             lines[k] = set_field(lines[k], int(p[1][5:]), number_field(v).strip())
         else:
-            lines.append(("SCALE     %-10s%-10s%-10s%s" % (p[0], p[2], p[3], number_field(v))).rstrip())
+            lines.append(card("SCALE", p[0], p[2], p[3], number_field(v)))
     write_deck(path, lines)
 
 

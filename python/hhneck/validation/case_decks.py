@@ -9,16 +9,13 @@ import argparse
 import math
 import sys
 
-from ..decks import CardError, held, number_text, write_decks
+from ..decks import CardError, card, held, number_text, write_decks
 from ..paths import project_path
 
 def table(name, pts, tscale="0.001", vscale="1.0"):
-    out = ["%-8s  %-10s%-10d%-10s%-10s" % ("TABLE", name, len(pts), tscale, vscale)]
+    out = [card("TABLE", name, "%d" % len(pts), tscale, vscale, strip=False)]
     for i in range(0, len(pts), 3):
-        row = " " * 10
-        for (t, v) in pts[i:i + 3]:
-            row += "%-10s%-10s" % (number_text(round(t, 4)), number_text(round(v, 3)))
-        out.append(row.rstrip())
+        out.append(card("", *[number_text(round(x, d)) for (t, v) in pts[i:i + 3] for x, d in ((t, 4), (v, 3))]))
     return out
 
 def halfsine(t0, dur, peak, dt=0.5):
@@ -47,11 +44,11 @@ def case_decks():
             "*   %s" % pulse,
             "* T1 (torso) is held fixed; the force acts on the forehead, horizontally",
             "* rearward in R, from t = 5 ms. Written by hhneck-case-decks.",
-            "TITLE     CASE %s FOREHEAD PENDULUM IMPACT (RECONSTRUCTED FORCE PULSE)" % case,
+            card("TITLE", "CASE %s FOREHEAD PENDULUM IMPACT (RECONSTRUCTED FORCE PULSE)" % case),
             "*         end (s)   step (s)  print (s) method    rtol      atol",
             "CONTROL   0.1       5.0E-5    0.001     ROS34PW2  1.0E-4    1.0E-7",
             "OUTPUT    1.0E-4",
-            "H5FILE    case%s.h5" % case,
+            card("H5FILE", "case%s.h5" % case),
             "HOLD      POSTURE",
             "INCLUDE   input/head_neck_54dof.inp",
         ]
@@ -94,7 +91,7 @@ def case_decks():
         "HOLD      POSTURE",
         "INCLUDE   input/head_neck_54dof.inp",
         "*         body      coord     kind      table     x0 (m)    v0 (m/s)",
-        "PRESCRIB  T1        TX        ACCEL     PENDULUM  0.0       %.4f" % V0,
+        card("PRESCRIB", "T1", "TX", "ACCEL", "PENDULUM", "0.0", "%.4f" % V0),
     ]
     L += [held("T1", q) for q in ("TY", "TZ", "RX", "RY", "RZ")]
     L += ["* pendulum acceleration [g] against time [ms] (a deceleration: negative)"]

@@ -50,7 +50,7 @@ import sys
 
 import numpy as np
 
-from ..decks import CardError, check_cards, comment_cards, hold, write_decks
+from ..decks import CardError, Right, card, check_cards, comment_cards, hold, write_decks
 from ..paths import project_path
 from ..ratings import peak
 from ..signals import cfc
@@ -71,9 +71,9 @@ def table(name, t, mean, scale):
     runs are sampled on whole milliseconds, as the shipped ones are)."""
     tt = np.arange(np.ceil(t[0] - 1e-9), np.floor(t[-1] + 1e-9) + 1.0) + 0.0   # + 0.0: no "-0.0"
     vv = np.interp(tt, t, mean)
-    out = ["%-8s  %-10s%10d%10s%10s" % ("TABLE", name, len(tt), "0.001", scale)]
+    out = [card("TABLE", name, Right("%d" % len(tt)), Right("0.001"), Right(scale))]
     for i in range(0, len(tt), 3):
-        out.append(" " * 10 + "".join("%10.1f%10.4f" % (a, b) for a, b in zip(tt[i:i + 3], vv[i:i + 3])))
+        out.append(card("", *[Right(x) for a, b in zip(tt[i:i + 3], vv[i:i + 3]) for x in ("%.1f" % a, "%.4f" % b)]))
     return out
 
 
@@ -118,7 +118,7 @@ def t1_tables_8g():
     for line in t1_tables("12g"):
         if line.startswith("TABLE"):
             f = line.split()
-            line = "%-8s  %-10s%10s%10s%10s" % ("TABLE", f[1], f[2], f[3], "%.6g" % (float(f[4]) * s))
+            line = card("TABLE", f[1], Right(f[2]), Right(f[3]), Right("%.6g" % (float(f[4]) * s)))
         if not line.startswith("*"):
             lines.append(line)
     return lines
@@ -197,9 +197,9 @@ def new_case(folder, name, rot_unit=None, into=None):
         if line.startswith("*") and not any(l.startswith("TITLE") for l in out):
             continue                      # the 12 g deck's own header
         if line.startswith("TITLE"):
-            line = "%-10s%s" % ("TITLE", ("T1 DRIVEN BY THE MEAN OF %d RUNS: %s" % (len(cols), name)).upper()[:70])
+            line = card("TITLE", ("T1 DRIVEN BY THE MEAN OF %d RUNS: %s" % (len(cols), name)).upper()[:70], strip=False)
         elif line.startswith("H5FILE"):
-            line = "%-10s%s.h5" % ("H5FILE", name)
+            line = card("H5FILE", name + ".h5")
         out.append(line.replace("input/nbdl12g_t1.inp", tables))
     try:
         # both checked before either is written: a card beyond column 80 (the

@@ -67,6 +67,7 @@ import tempfile
 import numpy as np
 
 from .. import ratings
+from ..decks import card
 from ..paths import project_root
 
 ROOT = project_root()
@@ -171,47 +172,47 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
     kept = []
     for b in card_blocks(model):
         f = _fields(b[0])
-        card = f[0]
-        if card in drop or (card == "SCALE" and f[2] in dropped_families):
+        name = f[0]
+        if name in drop or (name == "SCALE" and f[2] in dropped_families):
             continue
-        if card == "BODY" and f[1] in bodies:
+        if name == "BODY" and f[1] in bodies:
             line = b[0]
             if f[1] == lower:              # the fixed lower body: the root, its frame the lab's
                 line = line[:20] + "R".ljust(10) + line[30:]
             kept.append([line])
-        elif card in UPPER_CARDS and f[1] in uppers:
-            if disc_only and card in JOINT_RESISTANCE_CARDS:
+        elif name in UPPER_CARDS and f[1] in uppers:
+            if disc_only and name in JOINT_RESISTANCE_CARDS:
                 continue
             kept.append(b)
-        elif card in ELEMENT_CARDS and f[2] in bodies and f[3] in bodies:
-            if disc_only and card != "DISC":
+        elif name in ELEMENT_CARDS and f[2] in bodies and f[3] in bodies:
+            if disc_only and name != "DISC":
                 continue
             kept.append(b)
-        elif card == "SCALE" and f[2] in SCALED_FAMILIES:
+        elif name == "SCALE" and f[2] in SCALED_FAMILIES:
             if disc_only and f[2] != "DISCS":
                 continue
             kept.append(b)
     if not any(_fields(b[0])[0] == "DISC" for b in kept):
         raise ValueError("%s: no disc joins %s in %s" % (segment, " ".join(bodies), model))
     table = moment_table(peak, protocol)
-    pts = "".join("%-10s%-10s" % ("%.6g" % t, "%.6g" % m) for t, m in table)
+    pts = ["%.6g" % x for point in table for x in point]
     head = [
-        "TITLE     %s" % (title or "SEGMENT TEST %s %s TO %.3g N M" % (segment, motion.upper(), peak))[:70],
+        card("TITLE", (title or "SEGMENT TEST %s %s TO %.3g N M" % (segment, motion.upper(), peak))[:70]),
         "*         end (s)   step (s)  print (s) method    rtol      atol",
-        "CONTROL   %-10s1.0E-4    1.0       ROS34PW2  1.0E-5    1.0E-8" % ("%.6g" % T_END),
+        card("CONTROL", "%.6g" % T_END, "1.0E-4", "1.0", "ROS34PW2", "1.0E-5", "1.0E-8"),
         "OUTPUT    1.0E-2",
-        "H5FILE    %s" % (os.path.splitext(os.path.basename(path))[0] + ".h5"),
+        card("H5FILE", os.path.splitext(os.path.basename(path))[0] + ".h5"),
         "GRAVITY   0.0       0.0       0.0",
-        "HEADNECK  %-10s%-10s" % (uppers[-1], lower),
-        "LOCK      %-10sTX        TY        TZ        RX        RY        RZ" % lower,
+        card("HEADNECK", uppers[-1], lower),
+        card("LOCK", lower, "TX", "TY", "TZ", "RX", "RY", "RZ"),
         "*         the pure moment: %s about the lower body's axes" % motion,
-        "TABLE     MOMENT    %d" % len(table),
-        "          " + pts[:60],
-        "          " + pts[60:],
-        "COUPLE    %-10sR         MOMENT    %-10s%-10s%-10s" % ((uppers[-1],) + tuple("%.1f" % v for v in vec)),
+        card("TABLE", "MOMENT", "%d" % len(table)),
+        card("", *pts[:6]),
+        card("", *pts[6:]),
+        card("COUPLE", uppers[-1], "R", "MOMENT", *["%.1f" % v for v in vec]),
     ]
     if statics:                            # equilibria at the table's times, one per grid moment
-        head.append("STATICS   0.0       %-10s%s" % ("%.6g" % T_END, ("%.8g" % (RAMP * GRID_STEP / peak))[:10]))
+        head.append(card("STATICS", "0.0", "%.6g" % T_END, ("%.8g" % (RAMP * GRID_STEP / peak))[:10]))
     if len(uppers) > 1:                    # the moment acts on the top body; say so
         head.insert(1, "* %s: the moment on %s, %s free between" % (segment, uppers[-1], " ".join(uppers[:-1])))
     lines = [line.rstrip() for line in head + [line for b in kept for line in b]]

@@ -139,6 +139,7 @@ import numpy as np
 
 from .. import ratings
 from . import segments, specimen_data
+from ..decks import card
 from ..signals import cfc
 
 #: the folder of the catalogue's case files
@@ -405,7 +406,7 @@ def _held_t1(driven, t1_slope, body="T1"):
     """PRESCRIB CONSTANT cards of the potted body's coordinates but those
     `driven`: its pitch RY the tilt that gives the T1 slope t1_slope [deg]."""
     tilt = t1_slope - model_t1_slope()
-    return ["PRESCRIB  %-10s%s        CONSTANT  %s" % (body, c, "%-10.4f" % tilt if c == "RY" else "")
+    return [card("PRESCRIB", body, c, "CONSTANT", "%.4f" % tilt if c == "RY" else None)
             for c in ("TX", "TY", "TZ", "RX", "RY", "RZ") if c not in driven]
 
 
@@ -465,28 +466,26 @@ def case_deck(case, workdir, support=None, muscles=None, data_dir=segments.DATA_
         raise ValueError("muscles: PASSIVE or REFLEX, not %r" % muscles)
     body = c["potting"]["body"]
     name = run_name(c["name"], support, muscles)
-    lines = ["TITLE     %s (%s, MUSCLES %s)" % (c["deck_title"], support, muscles),
+    lines = [card("TITLE", "%s (%s, MUSCLES %s)" % (c["deck_title"], support, muscles)),
              "*         end (s)   step (s)  print (s) method    rtol      atol",
-             "CONTROL   %-10g1.0E-4    0.005     ROS34PW2  %-10s%s" % (c["end_time"], _e(c["rtol"]), _e(c["atol"])),
+             card("CONTROL", "%g" % c["end_time"], "1.0E-4", "0.005", "ROS34PW2", _e(c["rtol"]), _e(c["atol"])),
              "SOLVER    ABA       STRUCT",
              "OUTPUT    1.0E-4",
-             "H5FILE    %s.h5" % name]
+             card("H5FILE", name + ".h5")]
     lines += [] if support == "CLAMP" else _support_cards(support)
-    lines += ["INCLUDE   %s" % (model or c["model"])] + (c["clamp"] if support == "CLAMP" else [])
+    lines += [card("INCLUDE", model or c["model"])] + (c["clamp"] if support == "CLAMP" else [])
     tables = _pulse_tables(c, workdir, data_dir)
     for _, table, fname, n in tables:
-        lines += ["TABLE     %-10s%-10d1.0       1.0       CSV" % (table, n), "          %s" % fname]
-    lines += ["PRESCRIB  %-10s%s        ACCEL     %-10s0.0       0.0" % (body, q, table) for q, table, _, _ in tables]
+        lines += [card("TABLE", table, "%d" % n, "1.0", "1.0", "CSV"), card("", fname)]
+    lines += [card("PRESCRIB", body, q, "ACCEL", table, "0.0", "0.0") for q, table, _, _ in tables]
     if c["loadcell"]:
         lc = c["loadcell"]
-        lines.append("LOADCELL  %-10s%-10s%-10.4f%-10.4f%-10.4f%s" % ((lc["name"], lc["body"]) + tuple(lc["point"])
-                                                                   + (lc["axes"],)))
-    lines += [h.rstrip() for h in _held_t1([q for q, _, _, _ in tables], c["potting"]["slope"]
-                                           if t1_slope is None else t1_slope, body)]
+        lines.append(card("LOADCELL", lc["name"], lc["body"], *["%.4f" % v for v in lc["point"]], lc["axes"]))
+    lines += _held_t1([q for q, _, _, _ in tables], c["potting"]["slope"] if t1_slope is None else t1_slope, body)
     if muscles == "PASSIVE":
         for act in ("FLEX", "EXT"):
             for k, field in ((2, "U0"), (3, "U1")):
-                lines.append("CHANGE    %-10sFIELD%d    ACTIVATE  %-10sSET       0.0" % (act[:4] + field, k, act))
+                lines.append(card("CHANGE", act[:4] + field, "FIELD%d" % k, "ACTIVATE", act, "SET", "0.0"))
     deck = os.path.join(workdir, name + ".inp")
     with open(deck, "w") as f:
         f.write("\n".join(lines) + "\n")
