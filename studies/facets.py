@@ -148,13 +148,9 @@ def coupling(exe=None, peak=1.0):
                     text = f.read()
                 with open(model, "w") as f:
                     f.write(text + "\n".join(facet_cards(joints=[joint])) + "\n")
-            saved = segments.ELEMENT_CARDS
-            segments.ELEMENT_CARDS = saved + ("FACET",)
-            try:
-                deck = os.path.join(work, "%s_%d.inp" % (seg, with_facets))
-                segments.write_deck(deck, seg, "lateral_bending", peak, model=model)
-            finally:
-                segments.ELEMENT_CARDS = saved
+            deck = os.path.join(work, "%s_%d.inp" % (seg, with_facets))
+            segments.write_deck(deck, seg, "lateral_bending", peak, model=model,
+                                elements=segments.ELEMENT_CARDS + ("FACET",))
             h5 = deck[:-4] + ".h5"
             run.run_deck(deck, executable=exe, h5=h5, cwd=work)
             upper = segments.SEGMENTS[seg][1][-1]
@@ -225,7 +221,7 @@ def scratch_project(work, with_facets):
 
 def run_catalogue(root, report, exe, quick, jobs):
     """hhneck.validation.catalogue on the scratch project `root` (FACET added to the segment decks' cards)."""
-    code = ("import sys; from hhneck import segments; segments.ELEMENT_CARDS += ('FACET',); "
+    code = ("import sys; from hhneck.validation import segments; segments.ELEMENT_CARDS += ('FACET',); "
             "from hhneck.validation.catalogue import main; sys.exit(main(sys.argv[1:]))")
     cmd = [sys.executable, "-c", code, "--exe", exe, "--data", segments.DATA_DIR, "--report", report]
     cmd += (["--quick"] if quick else []) + (["--jobs", str(jobs)] if jobs else [])

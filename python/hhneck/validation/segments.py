@@ -152,7 +152,7 @@ def sweep_time(moment, peak):
 
 
 def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None, drop=(),
-               protocol="loading", statics=False):
+               protocol="loading", statics=False, elements=ELEMENT_CARDS):
     """Write the deck of one segment test (module docstring) to `path`:
     `segment` a key of SEGMENTS, `motion` of MOTIONS, `peak` the moment [N m].
     disc_only keeps the discs alone (the closed-form check of the tests).
@@ -163,6 +163,8 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
     moment_table). statics: a STATICS card solves the deck as equilibria
     at load times 0, dt, ... T_END, dt = RAMP GRID_STEP / peak (every grid
     moment of the loading ramps is a level), instead of the dynamic run.
+    elements: the element cards taken when they join two of the segment's
+    bodies (default ELEMENT_CARDS; a study adds its own, such as FACET).
     Returns the channel names of the upper bodies' rotation coordinate."""
     lower, uppers = SEGMENTS[segment]
     coord, _, vec = MOTIONS[motion]
@@ -184,7 +186,7 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
             if disc_only and name in JOINT_RESISTANCE_CARDS:
                 continue
             kept.append(b)
-        elif name in ELEMENT_CARDS and f[2] in bodies and f[3] in bodies:
+        elif name in elements and f[2] in bodies and f[3] in bodies:
             if disc_only and name != "DISC":
                 continue
             kept.append(b)
