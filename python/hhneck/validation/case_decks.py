@@ -101,7 +101,8 @@ def case_decks():
 
 
 def main(argv=None):
-    argparse.ArgumentParser(prog="python3 -m hhneck.validation.case_decks", description=__doc__.split("   python3 -m")[0].strip(),
+    argparse.ArgumentParser(prog="python3 -m hhneck.validation.case_decks",
+                            description=__doc__.split("   python3 -m")[0].strip(),
                             formatter_class=argparse.RawDescriptionHelpFormatter).parse_args(argv)
     try:
         # the project's input/ (hhneck.paths), whatever the working directory;

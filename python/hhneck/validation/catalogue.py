@@ -65,7 +65,8 @@ def segment_section(results, figdir, relto):
              "**Calibration**: the passive column is fitted to these data alone (`python3 -m "
              "hhneck.validation.fit_column`: the discs' bending and torsion fractions and the range-of-motion factors "
              "to the two sources' mean ISO/TS 18571, the tests solved as statics, the neutral-zone springs "
-             "refitted by `python3 -m hhneck.validation.fit_joints` at every candidate, the other elements' moment subtracted); "
+             "refitted by `python3 -m hhneck.validation.fit_joints` at every candidate, the other elements' "
+             "moment subtracted); "
              "the springs of OC–C2's joints take Panjabi's C0–C1 and C1–C2. Set-up and signs: "
              "`python/hhneck/validation/segments.py` (its docstring): the lower body fixed, a pure moment ramped on "
              "the upper one (for OC–C2 on the head, C1 free), no gravity, no muscles, the discs, ligaments, "
@@ -197,7 +198,8 @@ def stops_line(title, misses):
 
 def newton_lines(rows):
     """Markdown lines of a Kang case's Newton balance (newton_balance.kang_rows)."""
-    lines = ["Newton's law between the head and the load cell (`hhneck.validation.newton_balance`): F = Mh a_head(t + s) + "
+    lines = ["Newton's law between the head and the load cell (`hhneck.validation.newton_balance`): "
+             "F = Mh a_head(t + s) + "
              "Mn a_T1(t) fitted by least squares along each axis, the lag s on a 0.5 ms grid; channels on one time "
              "base fit near s = 0 with Mh near a head's mass, and the model's rows, which obey the law by "
              "construction, check the method (docs/validation.md, \"Do the specimens' head and load cell obey "
@@ -221,7 +223,8 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
     {title: {(support, muscles): rated}})."""
     lines = ["## Specimen sled tests", "",
              "**Prediction**: nothing of the model was fitted to these data; set-ups in "
-             "the case files of `reference/cases` (docs/case-files.md), built by `python/hhneck/validation/specimens.py` "
+             "the case files of `reference/cases` (docs/case-files.md), built by "
+             "`python/hhneck/validation/specimens.py` "
              "(its docstring names each decision of the data's README).", ""]
     for title, (rated, not_rated) in cases.items():
         lines += ["### %s" % title, "", SPECIMEN_NOTES.get(title) or "(no set-up note in its case file)", "",
@@ -341,7 +344,8 @@ def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, 
     inside = sum(int(np.sum((r["model"] >= r["lower"]) & (r["model"] <= r["upper"]))) for r in night)
     levels = sum(len(r["levels"]) for r in night)
     lines = ["# Validation catalogue", "",
-             "Written by `hhneck-catalogue` (python/hhneck/validation/catalogue.py); do not edit by hand. Every curve is "
+             "Written by `hhneck-catalogue` (python/hhneck/validation/catalogue.py); do not edit by hand. "
+             "Every curve is "
              "rated by ISO/TS 18571 through `objective-rating-metrics` (the implementation the open human-body "
              "model catalogues use). Data: `shared/data/pmhs_neck` (its README: sources, signs, decisions).", ""]
     if status:

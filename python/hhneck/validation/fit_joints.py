@@ -469,7 +469,8 @@ def main(argv=None):
     p.add_argument("--data", default=segments.DATA_DIR, help="the pmhs_neck data folder")
     p.add_argument("--csv", default=CSV_PATH, help="the table to write (default reference/nz_springs.csv)")
     p.add_argument("--upper-cervical", action="store_true",
-                   help="first fit the upper-cervical factors (hhneck.validation.upper_cervical) on the deck without them, "
+                   help="first fit the upper-cervical factors (hhneck.validation.upper_cervical) on the deck "
+                        "without them, "
                         "then the springs on the deck with them")
     p.add_argument("--upper-csv", default=upper_cervical.CSV_PATH,
                    help="where --upper-cervical writes its factors (default reference/upper_cervical.csv)")
@@ -481,7 +482,8 @@ def main(argv=None):
     t0 = time.perf_counter()
     if a.check:
         if not _has_nzspring(a.model):
-            print("python3 -m hhneck.validation.fit_joints: %s has no NZSPRING card (write it with python3 -m hhneck.validation.model_deck "
+            print("python3 -m hhneck.validation.fit_joints: %s has no NZSPRING card (write it with "
+                  "python3 -m hhneck.validation.model_deck "
                   "--nz-springs %s)" % (a.model, os.path.relpath(a.csv, project_root())), file=sys.stderr)
             return 1
         res = check(a.exe, a.model, a.data, a.work, a.jobs)
