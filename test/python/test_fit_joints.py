@@ -143,7 +143,7 @@ def _csv_rows():
 def test_csv_round_trip(tmp_path):
     path = str(tmp_path / "nz.csv")
     fj.write_csv(path, _csv_rows())
-    assert open(path).readline().startswith("# written by hhneck-fit-joints")
+    assert open(path).readline().startswith("# written by python3 -m hhneck.validation.fit_joints")
     rows = fj.read_csv(path)
     assert [r["body"] for r in rows] == ["HEAD", "C4", "C7"] and list(rows[0]) == list(fj.CSV_COLUMNS)
     assert float(rows[1]["ths_plus_deg"]) == 12.3456 and rows[2]["sources_minus"] == fj.PANJABI
@@ -167,7 +167,7 @@ def test_generator_writes_one_nzspring_card_per_row_in_ten_column_fields(tmp_pat
     first = lines.index(cards[0])
     assert last_rom < first < min(i for i, l in enumerate(lines) if l.startswith("SCALE"))
     assert all(l.startswith("*") for l in lines[last_rom + 1:first])
-    assert "Panjabi" in "".join(lines[last_rom + 1:first]) and "hhneck-fit-joints" in "".join(lines[last_rom + 1:first])
+    assert "Panjabi" in "".join(lines[last_rom + 1:first]) and "hhneck.validation.fit_joints" in "".join(lines[last_rom + 1:first])
     # the program reads them: case 6-2 with this model deck passes hhneck --check
     _program_takes(tmp_path, lines)
 

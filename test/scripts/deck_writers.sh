@@ -54,7 +54,7 @@ flat = "x" * 200
 cards = comment_cards(flat)
 check([len(c) for c in cards] == [80, 80, 46] and joined(cards) == flat,
       "comment_cards: a text without a blank or '/' broken at column 80 exactly")
-text = "the runs in %s (T1 tables by hhneck-nbdl-tables --data)." % path
+text = "the runs in %s (T1 tables by python3 -m hhneck.validation.nbdl_tables --data)." % path
 cards = comment_cards(text)
 check(all(len(c) <= 80 and not c.endswith(" ") for c in cards) and joined(cards) == text,
       "comment_cards: a sentence around the path, no card ending in a blank, joined the sentence again")

@@ -140,7 +140,7 @@ def search(start, exe, work, jobs=None, max_eval=MAX_EVAL, log=lambda s: print(s
 def write_csv(path, x, best):
     """reference/column_fit.csv: a comment line, then name, value, lower, upper, J."""
     with open(path, "w", newline="") as f:
-        f.write("# written by python3 -m hhneck.fit_column: the passive column's factors fitted to the segment "
+        f.write("# written by python3 -m hhneck.validation.fit_column: the passive column's factors fitted to the segment "
                 "tests (Panjabi 2001, Nightingale 2007); J = 1 - mean of the two sources' mean ISO/TS 18571 "
                 "(Panjabi %.4f, Nightingale %.4f)\n" % (best["panjabi"], best["nightingale"]))
         w = csv.writer(f, lineterminator="\n")

@@ -377,7 +377,8 @@ def write_csv(path, rows):
     """reference/nz_springs.csv: a comment line naming the command, the
     header CSV_COLUMNS, one row per (body, coord)."""
     with open(path, "w", newline="") as f:
-        f.write("# written by hhneck-fit-joints (python/hhneck/fit_joints.py): NZSPRING constants of every "
+        f.write("# written by python3 -m hhneck.validation.fit_joints (python/hhneck/validation/fit_joints.py): "
+                "NZSPRING constants of every "
                 "joint coordinate, M0 [N m], ths [deg], per side (plus = the coordinate's positive direction) "
                 "the points used, the rms rotation residual [deg], the data sources and the rule; "
                 "C7 takes C6-C7 (assumed)\n")

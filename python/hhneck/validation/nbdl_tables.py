@@ -112,7 +112,7 @@ def t1_tables_8g():
         "* (8 g mean T1 x-acceleration peak, reference/reference-data.md",
         "* section 3) / %.2f g (the 12 g runs' mean peak, each run CFC 60)." % abs(t1_peak_mean("12g")),
         "* The same factor on z and rotation and the 12 g time course are",
-        "* assumptions. Written by hhneck-nbdl-tables.",
+        "* assumptions. Written by hhneck.validation.nbdl_tables.",
         "* Time in ms (scale 0.001 s).",
     ]
     for line in t1_tables("12g"):
@@ -134,7 +134,7 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60, data=None, case=None):
         "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
         "* (the z-acceleration CFC %d: its runs are out of phase above about" % z_cfc,
         "* 20 Hz), mean over the runs, every 1 ms. Written by",
-    ] + comment_cards("hhneck-nbdl-tables from reference/nbdl_%s (Ewing & Thomas" % sev) + [
+    ] + comment_cards("hhneck.validation.nbdl_tables from reference/nbdl_%s (Ewing & Thomas" % sev) + [
         "* 1972, NHTSA Biomechanics Test Database, via IMMC-UWaterloo/ARCGen).",
         "* Time in ms (scale 0.001 s).",
     ]
@@ -189,7 +189,7 @@ def new_case(folder, name, rot_unit=None, into=None):
         deck = f.read().splitlines()
     out = (comment_cards("%s: the 54-DOF head/neck model with T1 driven by the mean of the %d runs"
                          % (name, len(cols)))
-           + comment_cards("in %s (T1 tables by hhneck-nbdl-tables --data)." % folder)
+           + comment_cards("in %s (T1 tables by python3 -m hhneck.validation.nbdl_tables --data)." % folder)
            + ["* Compare: hhneck-compare-nbdl --case X --out OUT"]
            + comment_cards("  --data X=%s" % folder)
            + comment_cards("  --deck X=%s" % os.path.join(named, name + ".inp")))

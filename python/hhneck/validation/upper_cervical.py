@@ -61,7 +61,7 @@ JOINT_PAIRS = (("C2", "C1"), ("C1", "HEAD"))
 TARGETS = (("f_lig", ("C1_C2", "axial_rotation")), ("f_rot", ("C1_C2", "flexion_extension")))
 F_MIN = 1e-3
 BISECTIONS = 12
-MARKER = "* UPPER CERVICAL (hhneck.upper_cervical):"
+MARKER = "* UPPER CERVICAL (hhneck.validation.upper_cervical):"
 
 
 def _joins(f):
@@ -82,8 +82,8 @@ def scale_cards(lines, f_rot, f_lig):
                 out.append(MARKER)
                 out.append("* discs C2-C1, C1-HEAD: Iy, J x %s; their ligaments: l1, l2 x %s" % (
                     number_text(f_rot), number_text(f_lig)))
-                out.append("* (reference/upper_cervical.csv: fitted to Panjabi 2001 by hhneck-fit-joints")
-                out.append("* before the neutral-zone springs).")
+                out.append("* (reference/upper_cervical.csv: fitted to Panjabi 2001 by")
+                out.append("* hhneck.validation.fit_joints before the neutral-zone springs).")
                 marked = True
             if f[0] == "LIGAMENT":
                 line = scale_fields(line, (4, 5), f_lig)
@@ -206,7 +206,8 @@ def write_csv(path, fit):
     """reference/upper_cervical.csv: a comment line, then factor, value,
     segment, motion, model_deg, target_deg."""
     with open(path, "w", newline="") as f:
-        f.write("# written by hhneck-fit-joints (python/hhneck/upper_cervical.py): the C2-C1 and C1-HEAD "
+        f.write("# written by python3 -m hhneck.validation.fit_joints (python/hhneck/validation/upper_cervical.py): "
+                "the C2-C1 and C1-HEAD "
                 "ligaments' l1, l2 (f_lig) and discs' Iy, J (f_rot) factors, each the largest at which the "
                 "segment case turns as far as the data at its largest moment (springs dropped)\n")
         w = csv.writer(f, lineterminator="\n")
