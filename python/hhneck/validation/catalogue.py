@@ -108,9 +108,9 @@ def segment_section(results, figdir, relto):
     return lines
 
 
-def figure(src, rows, figdir):
-    """One figure per source: every moment-rotation curve, model against
-    data (None when figdir is None)."""
+def _pyplot(figdir):
+    """matplotlib.pyplot on the Agg backend; None when figdir is None (no
+    figures asked for) or matplotlib is missing."""
     if figdir is None:
         return None
     try:
@@ -118,6 +118,15 @@ def figure(src, rows, figdir):
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
+        return None
+    return plt
+
+
+def figure(src, rows, figdir):
+    """One figure per source: every moment-rotation curve, model against
+    data (None when figdir is None)."""
+    plt = _pyplot(figdir)
+    if plt is None:
         return None
     n = len(rows)
     cols = min(n, 7)
@@ -271,13 +280,8 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
 
 
 def _case_figure(title, rated, figdir):
-    if figdir is None:
-        return None
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
+    plt = _pyplot(figdir)
+    if plt is None:
         return None
     n = len(rated)
     fig, axes = plt.subplots(1, n, figsize=(2.45 * n, 2.6), squeeze=False)
