@@ -19,7 +19,7 @@ echo "hhneck-animate of a 0.3 s run (input/nbdl15g.inp to 0.3 s), package $pkg, 
 for ext in $formats; do
     PYTHONPATH=$pkg python3 - "$tmp/run03.h5" "$tmp/anim.$ext" <<'PY'
 import resource, sys, time
-from hhneck import animate
+from hhneck.tools import animate
 t0, c0 = time.perf_counter(), time.process_time()
 animate.main([sys.argv[1], sys.argv[2], "--quiet"])
 wall, cpu = time.perf_counter() - t0, time.process_time() - c0

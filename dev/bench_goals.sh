@@ -14,7 +14,7 @@
 #      a scratch virtual environment (PIN_VENV, default ~/.cache/hhneck-pin-venv,
 #      created on first use; a development tool, not a dependency of the
 #      program); without it the line says so;
-#   3. the whole catalogue (hhneck.catalogue) in CPU time against the
+#   3. the whole catalogue (hhneck.validation.catalogue) in CPU time against the
 #      recorded 45 s (goal >= 10x);
 #   4. the 12 g calibration (input/calibrate_nbdl12g.inp cut to 40
 #      evaluations, 20 starting points) per evaluation, scaled to the
@@ -115,7 +115,7 @@ fi
 
 # 3. the whole catalogue against the recorded 45 s
 if [ "$quick" = 0 ]; then
-    /usr/bin/time -f '%U %S %e' -o "$tmp/cat.time" env PYTHONPATH="$PWD/python" python3 -m hhneck.catalogue \
+    /usr/bin/time -f '%U %S %e' -o "$tmp/cat.time" env PYTHONPATH="$PWD/python" python3 -m hhneck.validation.catalogue \
         --exe "$exe" --out "$tmp/cat" --report "$tmp/cat/catalogue.md" > /dev/null 2>&1 || true
     cpu=$(awk '{print $1 + $2}' "$tmp/cat.time")
     goal "3. whole catalogue vs the recorded 45 s (CPU)" "$(python3 -c "print(45 / $cpu)")" 10 ge \

@@ -3,11 +3,11 @@
 # "Calibration"). The fits write their values into the parameter table
 # reference/model_parameters.csv (status fitted, the stage named) or their own
 # deck, and the model deck is regenerated from the table
-# (python3 -m hhneck.model_deck; reference/parameters.md):
+# (python3 -m hhneck.validation.model_deck; reference/parameters.md):
 #   1. the passive column from the segment tests alone (Panjabi 2001,
-#      Nightingale 2007): python3 -m hhneck.fit_column fits the discs' bending
+#      Nightingale 2007): python3 -m hhneck.validation.fit_column fits the discs' bending
 #      and torsion fractions and the range-of-motion factors, the neutral-zone
-#      springs refitted by hhneck-fit-joints at every candidate
+#      springs refitted by python3 -m hhneck.validation.fit_joints at every candidate
 #      -> reference/column_fit.csv and reference/nz_springs.csv, written into
 #      the table's rows (stages segments and nz_springs). Deterministic; about
 #      20 minutes on two shared cores (60 evaluations of 48 segment runs as
@@ -32,12 +32,12 @@ export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"
 exe=$(fpm run --profile release --runner echo 2>/dev/null | tail -1)
 case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
 export HHNECK=$exe
-${FIT_COLUMN:-python3 -m hhneck.fit_column} --max-eval "${MAX_EVAL:-60}"
-python3 -m hhneck.model_deck --record segments reference/column_fit.csv
-python3 -m hhneck.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp
+${FIT_COLUMN:-python3 -m hhneck.validation.fit_column} --max-eval "${MAX_EVAL:-60}"
+python3 -m hhneck.validation.model_deck --record segments reference/column_fit.csv
+python3 -m hhneck.validation.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp
 if [ -f dev/fit_controller.sh ]; then
     sh dev/fit_controller.sh
 fi
-python3 -m hhneck.model_deck --output input/head_neck_54dof.inp
+python3 -m hhneck.validation.model_deck --output input/head_neck_54dof.inp
 echo "fit_model.sh: reference/model_parameters.csv written from reference/column_fit.csv and" \
      "reference/nz_springs.csv, input/head_neck_54dof.inp from it" >&2

@@ -27,7 +27,7 @@ for build in native debug; do
     for c in $REFERENCE_LISTINGS; do
         reference_listing "$exe" "$c" > "$tmp/$c.txt" 2> /dev/null
         printf '%s build: ' "$build"
-        if python3 -m hhneck.compare_listing "$tmp/$c.txt" "reference/outputs/$c.txt"; then
+        if python3 -m hhneck.tools.compare_listing "$tmp/$c.txt" "reference/outputs/$c.txt"; then
             pass=$((pass + 1))
         else
             fail=$((fail + 1))

@@ -9,7 +9,7 @@ volunteers' (studies/predict_nbdl8g.py). Two parts answer where that comes
 from.
 
 1. The braking arc, per volunteer run at 12 g and 15 g (each rotation CFC 60,
-   its derivative the angular velocity, as hhneck.compare_nbdl reads them)
+   its derivative the angular velocity, as hhneck.tools.compare_nbdl reads them)
    and for the model at 8, 12 and 15 g: the time and head rotation at the
    angular velocity's peak (where the braking starts), the largest rotation
    and its time, and the arc between them. reference/ has no 8 g time
@@ -32,8 +32,10 @@ import numpy as np
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"),
                 os.path.dirname(os.path.abspath(__file__))]
 from hhneck import run  # noqa: E402
-from hhneck.nbdl import WINDOW, cfc, s3, volunteer_channels  # noqa: E402
-from hhneck.deck_fields import field, is_card  # noqa: E402
+from hhneck.ratings import WINDOW, s3  # noqa: E402
+from hhneck.signals import cfc  # noqa: E402
+from hhneck.volunteers import volunteer_channels  # noqa: E402
+from hhneck.decks import field, is_card  # noqa: E402
 from predict_nbdl8g import ROWS, SEVERITIES, model_peaks, volunteer_peaks  # noqa: E402
 
 CALIBRATION = "input/calibrate_nbdl12g.inp"   # the calibration of the shipped parameters

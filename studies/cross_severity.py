@@ -21,8 +21,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.nbdl import stop  # noqa: E402
-from hhneck.deck_fields import CardError, field_text, write_deck  # noqa: E402
+from hhneck.volunteers import stop  # noqa: E402
+from hhneck.decks import CardError, field_text, write_deck  # noqa: E402
 
 FITS = [("15 g alone", "15g"), ("12 g alone", "12g"), ("both", "both")]
 

@@ -15,17 +15,17 @@ phi = sagittal - 90 deg on the left, 90 deg - sagittal on the right: a
 facet at less than 90 deg faces posteromedially), k = E A / t of the
 cartilage layer. Nothing here is fitted.
 
---coupling: the catalogue's segment test deck (hhneck.segments.write_deck)
+--coupling: the catalogue's segment test deck (hhneck.validation.segments.write_deck)
 of every subaxial segment, lateral bending to +-1 N m as a quasi-static
 ramp (STATICS), with the model deck's cards alone and with the facets'
 cards of that joint; for each, the lateral bend and the coupled axial
 rotation of the upper body at +-1 N m and their ratio (axial rotation per
 degree of lateral bending, the sign + when both turn to the same side).
 
---catalogue: hhneck.catalogue twice, on a scratch copy of the project
+--catalogue: hhneck.validation.catalogue twice, on a scratch copy of the project
 whose model deck is the shipped one with input/facets.inp's cards appended
 (the catalogue has no option for another model deck; the segment decks
-take a model card only when hhneck.segments.ELEMENT_CARDS lists it, so the
+take a model card only when hhneck.validation.segments.ELEMENT_CARDS lists it, so the
 run adds FACET there), and a table of every rated row's score without and
 with the facets.
 """
@@ -40,14 +40,14 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path[:0] = [os.path.join(ROOT, "python")]
-from hhneck import segments  # noqa: E402
+from hhneck.validation import segments  # noqa: E402
 
 TABLE = os.path.join(ROOT, "reference", "facet_parameters.csv")
 DECK = os.path.join(ROOT, "input", "facets.inp")
 #: joint -> (lower body, upper body)
 JOINTS = {"C2-C3": ("C3", "C2"), "C3-C4": ("C4", "C3"), "C4-C5": ("C5", "C4"), "C5-C6": ("C6", "C5"),
           "C6-C7": ("C7", "C6"), "C7-T1": ("T1", "C7")}
-#: the catalogue's subaxial segments (hhneck.segments.SEGMENTS) and their joints
+#: the catalogue's subaxial segments (hhneck.validation.segments.SEGMENTS) and their joints
 SEGMENT_JOINT = {"C2_C3": "C2-C3", "C3_C4": "C3-C4", "C4_C5": "C4-C5", "C5_C6": "C5-C6", "C6_C7": "C6-C7"}
 
 
@@ -148,13 +148,9 @@ def coupling(exe=None, peak=1.0):
                     text = f.read()
                 with open(model, "w") as f:
                     f.write(text + "\n".join(facet_cards(joints=[joint])) + "\n")
-            saved = segments.ELEMENT_CARDS
-            segments.ELEMENT_CARDS = saved + ("FACET",)
-            try:
-                deck = os.path.join(work, "%s_%d.inp" % (seg, with_facets))
-                segments.write_deck(deck, seg, "lateral_bending", peak, model=model)
-            finally:
-                segments.ELEMENT_CARDS = saved
+            deck = os.path.join(work, "%s_%d.inp" % (seg, with_facets))
+            segments.write_deck(deck, seg, "lateral_bending", peak, model=model,
+                                elements=segments.ELEMENT_CARDS + ("FACET",))
             h5 = deck[:-4] + ".h5"
             run.run_deck(deck, executable=exe, h5=h5, cwd=work)
             upper = segments.SEGMENTS[seg][1][-1]
@@ -224,9 +220,9 @@ def scratch_project(work, with_facets):
 
 
 def run_catalogue(root, report, exe, quick, jobs):
-    """hhneck.catalogue on the scratch project `root` (FACET added to the segment decks' cards)."""
-    code = ("import sys; from hhneck import segments; segments.ELEMENT_CARDS += ('FACET',); "
-            "from hhneck.catalogue import main; sys.exit(main(sys.argv[1:]))")
+    """hhneck.validation.catalogue on the scratch project `root` (FACET added to the segment decks' cards)."""
+    code = ("import sys; from hhneck.validation import segments; segments.ELEMENT_CARDS += ('FACET',); "
+            "from hhneck.validation.catalogue import main; sys.exit(main(sys.argv[1:]))")
     cmd = [sys.executable, "-c", code, "--exe", exe, "--data", segments.DATA_DIR, "--report", report]
     cmd += (["--quick"] if quick else []) + (["--jobs", str(jobs)] if jobs else [])
     env = dict(os.environ, HHNECK_ROOT=root, PYTHONPATH=os.path.join(ROOT, "python"))

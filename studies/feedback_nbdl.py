@@ -32,8 +32,8 @@ import tempfile
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"),
                 os.path.dirname(os.path.abspath(__file__))]
 from hhneck import run  # noqa: E402
-from hhneck.nbdl import compare, s3  # noqa: E402
-from hhneck.deck_fields import field, number_field  # noqa: E402
+from hhneck.ratings import compare, s3  # noqa: E402
+from hhneck.decks import field, number_field  # noqa: E402
 from braking_nbdl import model_arc  # noqa: E402
 from predict_nbdl8g import ROWS, SEVERITIES, bindings, fitted_values, model_peaks, volunteer_peaks  # noqa: E402
 

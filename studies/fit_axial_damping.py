@@ -30,10 +30,10 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.nbdl import stop  # noqa: E402
+from hhneck.volunteers import stop  # noqa: E402
 from cross_severity import params, rating_text  # noqa: E402
-from hhneck.deck_fields import CardError, field, is_card, set_field, write_decks  # noqa: E402
-from hhneck import model_deck  # noqa: E402
+from hhneck.decks import CardError, field, is_card, set_field, write_decks  # noqa: E402
+from hhneck.validation import model_deck  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 CALIBRATION = "input/calibrate_nbdl.inp"

@@ -7,7 +7,7 @@ The specimens' heads stay nearly still while the sled pulls T1 rearward
 (head x-acceleration -0.43 g at 20 ms, -1.09 g at 25 ms; the pulse is at
 103 m/s^2 at 20 ms), then turn sharply (-11 g at 38 ms). The model's head
 follows T1 at once (-2.3 g at 20 ms). The shipped Kang front deck
-(python/hhneck/specimens.py, HOLD POSTURE) runs with one coupling between
+(python/hhneck/validation/specimens.py, HOLD POSTURE) runs with one coupling between
 T1 and the head changed at a time (CHANGE cards, nothing refitted):
 
 * the discs' bending and torsion damping (DISCS VBEND, the retardation
@@ -32,8 +32,9 @@ import tempfile
 import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
-from hhneck import run, segments, specimen_data, specimens  # noqa: E402
-from hhneck.nbdl import s3  # noqa: E402
+from hhneck import run
+from hhneck.validation import segments, specimen_data, specimens  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 
 TIMES_MS = (10, 20, 25, 30, 35, 40)
 UPPER_DISCS = ("C2C1", "C1HD")

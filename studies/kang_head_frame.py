@@ -4,7 +4,7 @@ the lab's, the head's own axes, or as the head's accelerometer reads them?
 
     python3 studies/kang_head_frame.py
 
-The shipped Kang decks (python/hhneck/specimens.py, HOLD POSTURE) run once
+The shipped Kang decks (python/hhneck/validation/specimens.py, HOLD POSTURE) run once
 each; every head-acceleration channel of the data (front: x, z; side: y,
 z; SAE J211 signs) is rated by ISO/TS 18571 on the catalogue's window
 against three readings of the same run:
@@ -16,7 +16,7 @@ against three readings of the same run:
   from its value at t = 0, what a head-mounted accelerometer tared upright
   senses (the catalogue's choice).
 Each reading filtered by the channel's CFC class, as the catalogue filters
-it (hhneck.specimens.CHANNELS). For each: the score, the model's peak and
+it (hhneck.validation.specimens.CHANNELS). For each: the score, the model's peak and
 its time against the reference's, and the largest head rotation of the run
 (what separates the frames).
 """
@@ -28,9 +28,9 @@ import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 import h5py  # noqa: E402
-from hhneck import specimens  # noqa: E402
+from hhneck.validation import specimens  # noqa: E402
 from hhneck.export import kinematic_to_j211  # noqa: E402
-from hhneck.nbdl import s3  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 
 #: per direction: the data's head-acceleration channels and their axis (0 x, 1 y, 2 z)
 CHANNELS = {"front": (("head_acc_x", 0), ("head_acc_z", 2)), "side": (("head_acc_y", 1), ("head_acc_z", 2))}

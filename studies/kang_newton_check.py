@@ -4,7 +4,7 @@ Newton's second law together, in time?
 
     python3 studies/kang_newton_check.py
 
-The load cell carries everything above it (hhneck.newton_balance, whose
+The load cell carries everything above it (hhneck.validation.newton_balance, whose
 functions this study runs): its force (the load on the part above, SAE
 J211 axes, tared) is the sum of m (a - g) over the head and the neck, less
 its value at rest. Two terms hold nearly all of it: the head's lab-frame
@@ -43,9 +43,9 @@ import tempfile
 import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
-from hhneck import segments, specimen_data, specimens  # noqa: E402
-from hhneck.nbdl import s3  # noqa: E402
-from hhneck.newton_balance import (PAIRS, PLANE, accelerometer_reading, balance, kang_channels,  # noqa: E402
+from hhneck.validation import segments, specimen_data, specimens  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
+from hhneck.validation.newton_balance import (PAIRS, PLANE, accelerometer_reading, balance, kang_channels,  # noqa: E402
                                    kang_data, kang_pulse, lab_acceleration)
 
 

@@ -19,8 +19,8 @@ import sys
 import tempfile
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
-from hhneck import specimens  # noqa: E402
-from hhneck.nbdl import s3  # noqa: E402
+from hhneck.validation import specimens  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 
 #: the notebook's shifts of the front corridors' times [ms]
 SHIFTS = {"head_acc_z": -25.0, "head_rot_y": -5.0}

@@ -5,7 +5,7 @@ model is potted at T3, its data speak of "the loadcell at T1".)
 
     python3 studies/kang_t3_potting.py
 
-The shipped Kang decks (python/hhneck/specimens.py, HOLD POSTURE) pot T1:
+The shipped Kang decks (python/hhneck/validation/specimens.py, HOLD POSTURE) pot T1:
 T1 moves with the sled, and the load cell cuts T1 from C7. Here two upper
 thoracic bodies are added below T1 and T3 is potted instead:
 
@@ -50,7 +50,7 @@ import tempfile
 import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
-from hhneck import segments, specimens  # noqa: E402
+from hhneck.validation import segments, specimens  # noqa: E402
 
 MODEL_DECK = os.path.join(segments.ROOT, "input", "head_neck_54dof.inp")
 VERTEBRA_MASS = 0.523                      # C7's (S1); a thoracic vertebra's assumed (A)

@@ -30,7 +30,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.nbdl import cfc, runs  # noqa: E402
+from hhneck.signals import cfc  # noqa: E402
+from hhneck.volunteers import runs  # noqa: E402
 
 MM_PER_MS2 = 9.80665e-3      # 1 g in mm/ms^2
 TIMES = (100.0, 150.0, 250.0)

@@ -4,7 +4,7 @@ what would lighter cervical segments change in every case?
 
     python3 studies/neck_inertia.py
 
-1. The shipped Kang decks (python/hhneck/specimens.py, HOLD POSTURE) run;
+1. The shipped Kang decks (python/hhneck/validation/specimens.py, HOLD POSTURE) run;
    the load cell's tared force along the pulse (side: Fy, front: Fx, in
    T1's axes) is split into each body's m a from the bodies' mass-centre
    positions (central differences of /bodies/position): the head's part
@@ -37,8 +37,9 @@ import numpy as np
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")]
 import h5py  # noqa: E402
-from hhneck import run, segments, specimen_data, specimens  # noqa: E402
-from hhneck.nbdl import compare, s3  # noqa: E402
+from hhneck import run
+from hhneck.validation import segments, specimen_data, specimens  # noqa: E402
+from hhneck.ratings import compare, s3  # noqa: E402
 from hhneck.export import kinematic_to_j211  # noqa: E402
 
 NECK = ("C7", "C6", "C5", "C4", "C3", "C2", "C1")

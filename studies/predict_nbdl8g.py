@@ -7,7 +7,7 @@
 reference/ holds no 8 g time histories, only the 8 g peaks of
 reference/reference-data.md section 3 (n = 10 runs, each CFC 60). The deck
 input/nbdl8g.inp drives T1 with the 12 g mean drive scaled to the 8 g mean T1
-peak (hhneck-nbdl-tables). This runs it (and the 12 g and 15 g decks:
+peak (python3 -m hhneck.validation.nbdl_tables). This runs it (and the 12 g and 15 g decks:
 the shipped set is fitted to the 12 g runs, calibration; 15 g is its
 prediction) and prints, per severity, the model's
 peaks with the same definitions as section 3 -- T1 and head x-acceleration
@@ -30,9 +30,11 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.compare_nbdl import run_deck  # noqa: E402
-from hhneck.nbdl import cfc, peak, s3, stop  # noqa: E402
-from hhneck.deck_fields import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
+from hhneck.tools.compare_nbdl import run_deck  # noqa: E402
+from hhneck.ratings import peak, s3  # noqa: E402
+from hhneck.signals import cfc  # noqa: E402
+from hhneck.volunteers import stop  # noqa: E402
+from hhneck.decks import CardError, check_cards, field, is_card, set_field, write_deck  # noqa: E402
 
 SEVERITIES = ("8g", "12g", "15g")
 # (row label of reference-data.md section 3, model channel, sign of the peak)
@@ -61,7 +63,7 @@ def volunteer_peaks(path="reference/reference-data.md"):
 
 
 def model_peaks(h5):
-    """The model's six peaks, each channel CFC 60 (hhneck.nbdl.model_channels)."""
+    """The model's six peaks, each channel CFC 60 (hhneck.ratings.model_channels)."""
     import h5py
     f = h5py.File(h5, "r")
     tm = f["time"][:] * 1e3

@@ -47,9 +47,11 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.nbdl import cfc, runs, volunteer_channels, peak, stop  # noqa: E402
-from hhneck import nbdl_tables as make_nbdl_tables  # noqa: E402
-from hhneck.deck_fields import CardError, check_cards, field, held, is_card, set_field, write_deck  # noqa: E402
+from hhneck.ratings import peak  # noqa: E402
+from hhneck.signals import cfc  # noqa: E402
+from hhneck.volunteers import runs, stop, volunteer_channels  # noqa: E402
+from hhneck.validation import nbdl_tables as make_nbdl_tables  # noqa: E402
+from hhneck.decks import CardError, check_cards, field, held, is_card, set_field, write_deck  # noqa: E402
 
 MODEL = "input/head_neck_54dof.inp"
 HISTORIES = ("FLEX", "EXT")  # the model deck's ACTIVATE cards

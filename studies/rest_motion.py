@@ -29,7 +29,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 from hhneck import run  # noqa: E402
-from hhneck.deck_fields import is_card, set_field, write_deck  # noqa: E402
+from hhneck.decks import is_card, set_field, write_deck  # noqa: E402
 
 FRACTIONS = (0.6, 0.45, 0.35)
 REST = """TITLE     THE MODEL AT REST, T1 HELD, PERTURBED

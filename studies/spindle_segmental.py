@@ -6,10 +6,10 @@ its discs, and what does that column give the catalogue?
     python3 studies/spindle_segmental.py [--fit LABEL=LISTING ...]
 
 The segmental column is docs/validation.md's "Segmental muscles" deck at
-its starting point: python3 -m hhneck.model_deck --segmental yes --sub-bend
+its starting point: python3 -m hhneck.validation.model_deck --segmental yes --sub-bend
 0.2 (a multifidus-like extensor and an intertransversarius per subaxial
 level and side, the subaxial discs' bending at 0.2), its neutral-zone
-springs refitted by hhneck-fit-joints (written into the copy's parameter
+springs refitted by python3 -m hhneck.validation.fit_joints (written into the copy's parameter
 table), the shipped calibration's starting point otherwise (the steps 1-2
 of `SEGMENTAL=1 dev/fit_model.sh`), built in a scratch copy of the repository (shared/ beside it as a link). On it,
 without --fit, two calibrations run side by side (release build):
@@ -42,7 +42,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path[:0] = [os.path.join(ROOT, "python"), HERE]
 from hhneck import run  # noqa: E402
-from hhneck.nbdl import s3  # noqa: E402
+from hhneck.ratings import s3  # noqa: E402
 from feedback_nbdl import fit_arguments, reduced_deck, run_calibrations, score  # noqa: E402
 from predict_nbdl8g import ROWS, bindings, fitted_values, volunteer_peaks  # noqa: E402
 import rest_motion  # noqa: E402
@@ -81,7 +81,7 @@ def scratch_copy(tmp):
 def generate(copy, env, fit):
     """The copy's model deck from the generator and the copy's parameter table: the segmental column
     at the values of `fit` (a listing)."""
-    subprocess.run([sys.executable, "-m", "hhneck.model_deck", "--fit", fit, "--output",
+    subprocess.run([sys.executable, "-m", "hhneck.validation.model_deck", "--fit", fit, "--output",
                     "input/head_neck_54dof.inp"] + SEGMENTAL, cwd=copy, env=env, check=True)
 
 
@@ -92,9 +92,9 @@ def segmental_column(copy, env, tmp):
     values = deck_values(os.path.join(copy, "input/calibrate_nbdl12g.inp"))
     open(start, "w").write("".join("PARAM %s = %.9g\n" % nv for nv in values))
     generate(copy, env, start)
-    subprocess.run([sys.executable, "-c", "from hhneck.fit_joints import main; main([])"], cwd=copy, env=env,
+    subprocess.run([sys.executable, "-c", "from hhneck.validation.fit_joints import main; main([])"], cwd=copy, env=env,
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    subprocess.run([sys.executable, "-m", "hhneck.model_deck", "--record", "nz_springs", "reference/nz_springs.csv"],
+    subprocess.run([sys.executable, "-m", "hhneck.validation.model_deck", "--record", "nz_springs", "reference/nz_springs.csv"],
                    cwd=copy, env=env, check=True, stderr=subprocess.DEVNULL)
     generate(copy, env, start)
     return start
@@ -137,7 +137,7 @@ def catalogue_row(copy, env, listing, tmp, label):
     """The catalogue on the copy's column at the disc and stop factors of `listing`."""
     generate(copy, env, listing)
     report = os.path.join(tmp, "catalogue_%s.md" % re.sub(r"\W", "_", label))
-    subprocess.run([sys.executable, "-m", "hhneck.catalogue", "--out", os.path.join(tmp, "cat"), "--report", report],
+    subprocess.run([sys.executable, "-m", "hhneck.validation.catalogue", "--out", os.path.join(tmp, "cat"), "--report", report],
                    cwd=copy, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     cells = []
     for line in open(report):

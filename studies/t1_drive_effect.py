@@ -2,7 +2,7 @@
 """The effect of each measured T1 motion on the head: runs the NBDL decks with
 T1 driven by x only, x + sagittal rotation, x + z + rotation with the z
 acceleration filtered CFC 60 like the others (the drive before the z filter)
-and x + z + rotation as shipped (z CFC 20; hhneck-nbdl-tables), and
+and x + z + rotation as shipped (z CFC 20; python3 -m hhneck.validation.nbdl_tables), and
 prints a Markdown table of the overall CORA-style rating and the
 head peaks (hhneck-compare-nbdl) for both severities.
 
@@ -18,9 +18,10 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from hhneck.nbdl import compare, s3, stop  # noqa: E402
-from hhneck.nbdl_tables import t1_tables  # noqa: E402
-from hhneck.deck_fields import CardError, hold, is_card, write_decks  # noqa: E402
+from hhneck.ratings import compare, s3  # noqa: E402
+from hhneck.volunteers import stop  # noqa: E402
+from hhneck.validation.nbdl_tables import t1_tables  # noqa: E402
+from hhneck.decks import CardError, hold, is_card, write_decks  # noqa: E402
 
 # (label, T1 coordinates held instead of driven, CFC class of the z table or None as shipped)
 VARIANTS = [

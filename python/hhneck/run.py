@@ -31,7 +31,7 @@ import sys
 import tempfile
 from dataclasses import dataclass
 
-from .deck_fields import CardError, field_text
+from .decks import CardError, card, field_text
 from .paths import find_project, project_root
 from .results import read_channels, read_results
 
@@ -74,8 +74,7 @@ def change_card(name, kind, target, item="", op="SET", value="", f7=""):
     only: field F2 of the target card); a field that does not fit its 10
     columns raises CardError."""
     fields = [name, kind, target, item, op, value, f7]
-    return ("%-10s" % "CHANGE" + "".join(field_text(v, "field F%d of the CHANGE card" % n)
-                                         for n, v in enumerate(fields, start=1))).rstrip()
+    return card("CHANGE", *[field_text(v, "field F%d of the CHANGE card" % n) for n, v in enumerate(fields, start=1)])
 
 
 def package_project():

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from conftest import hhneck_module
-from hhneck import animate
+from hhneck.tools import animate
 
 
 def components(path):
@@ -72,14 +72,14 @@ def test_strip_of_two_views_and_auto_animation(lateral_file, tmp_path):
     animation of the lateral run: front and 3-D views."""
     from PIL import Image
     strip, gif = str(tmp_path / "strip.png"), str(tmp_path / "a.gif")
-    r = hhneck_module("animate", lateral_file, gif, "--strip", strip, "--view", "front,side", "--every", "0.01",
+    r = hhneck_module("tools.animate", lateral_file, gif, "--strip", strip, "--view", "front,side", "--every", "0.01",
                       "--slow", "1", "--fps", "100", "--dpi", "20", "--quiet")
     assert r.returncode == 0, r.stderr
     assert "(3 key frames), views: front, side" in r.stdout            # 0, 10, 20 ms
     # the strip: 3 columns, 1 row a view, 2 views: (2.2 * 3 + 1) x (2.7 * 2 + 0.6) inches at dpi 20 + 20
     assert Image.open(strip).size == (round(7.6 * 40), round(6.0 * 40))
     assert "(3 frames), views: front, side" in r.stdout
-    r = hhneck_module("animate", lateral_file, gif, "--slow", "1", "--fps", "100", "--dpi", "20", "--quiet")
+    r = hhneck_module("tools.animate", lateral_file, gif, "--slow", "1", "--fps", "100", "--dpi", "20", "--quiet")
     assert r.returncode == 0, r.stderr
     assert "(3 frames), views: front, iso" in r.stdout
     im = Image.open(gif)
@@ -87,6 +87,6 @@ def test_strip_of_two_views_and_auto_animation(lateral_file, tmp_path):
 
 
 def test_unknown_view_refused(result_file, tmp_path):
-    r = hhneck_module("animate", result_file, "--strip", tmp_path / "s.png", "--view", "back")
+    r = hhneck_module("tools.animate", result_file, "--strip", tmp_path / "s.png", "--view", "back")
     assert r.returncode == 2 and "unknown view back" in r.stderr
     assert not (tmp_path / "s.png").exists()

@@ -1,12 +1,12 @@
 """The calibration objective's ISO/TS 18571 (src/sweeps/hn_calibrate.f90 with
 src/analysis/hn_iso18571.f90) against objective-rating-metrics
-(hhneck.iso18571) on the same two curves: a calibration deck in
+(hhneck.ratings) on the same two curves: a calibration deck in
 evaluate-only form (FIT with 0 evaluations, RATING F5 ISO18571) writes the
 curves it rated (CURVES card) and prints each channel's scores to six
 digits; the package, given those curves, gives the same scores. Two kinds
 of case: the NBDL 15 g volunteers (their mean on the RATING window) and the
 Stemper 2004 specimen case with a reference CSV and RATED cards
-(hhneck.calibration), whose case mean is the catalogue's; segment cases
+(hhneck.validation.calibration), whose case mean is the catalogue's; segment cases
 (protocol "sweep", rows rated as samples) against the package and the
 catalogue. Then the leave-one-out command's quick form: the
 table it writes, the fitted value within its bounds, and the prediction
@@ -21,7 +21,8 @@ import pandas as pd
 import pytest
 
 from conftest import hhneck_executable
-from hhneck import calibration, iso18571, segments, specimens
+from hhneck import ratings as iso18571
+from hhneck.validation import calibration, segments, specimens
 
 # printed to 6 decimals: the rounding is 5e-7; the tolerance is far above it
 # and far below a score difference that matters (1e-3)
@@ -109,7 +110,7 @@ def test_reference_case_agrees_with_the_package(tmp_path):
     # the reference CSV carries each channel on its own rows: C01 (C2-C3) starts later than C03 (C4-C5)
     ref = pd.read_csv(tmp_path / "stemper_reference.csv")
     assert ref.C03.first_valid_index() < ref.C01.first_valid_index()
-    # the same channels as the catalogue (hhneck.specimens.CHANNELS): the
+    # the same channels as the catalogue (hhneck.validation.specimens.CHANNELS): the
     # Fortran case mean is the catalogue's mean over the same channels, to the
     # resampling of the reference onto the CSV's common grid (within 0.005;
     # a wrong channel, sign or start moves a channel's score by far more)
@@ -120,7 +121,7 @@ def test_reference_case_agrees_with_the_package(tmp_path):
 
 def test_filtered_reference_case_agrees_with_the_catalogue(tmp_path):
     # Kang side: every model curve filtered by its CFC class (RATED F7, from
-    # hhneck.specimens.CHANNELS) in Fortran as the catalogue filters it in
+    # hhneck.validation.specimens.CHANNELS) in Fortran as the catalogue filters it in
     # Python: each channel's score agrees to the reference's resampling
     # (0.005), where the curves unfiltered move the load cell's Fy by 0.036
     # and the head's y-acceleration by 0.014, and the classes 60 and 180

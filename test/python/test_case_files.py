@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from conftest import hhneck_executable
-from hhneck import catalogue, segments, specimen_data, specimens
+from hhneck.validation import catalogue, segments, specimen_data, specimens
 
 
 def test_given_cases_are_files():

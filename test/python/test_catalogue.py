@@ -1,4 +1,4 @@
-"""The catalogue command (python/hhneck/catalogue.py) as a user runs it:
+"""The catalogue command (python/hhneck/validation/catalogue.py) as a user runs it:
 its report goes outside the project's docs unless asked, its folders are
 made and checked before any run, its report is rewritten as each case ends
 so that a failed case or an interruption keeps what was done, a progress
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from conftest import hhneck_executable
-from hhneck import catalogue, segments, specimens
+from hhneck.validation import catalogue, segments, specimens
 
 DOCS = os.path.join(segments.ROOT, "docs")
 WARNING = "hhneck: WARNING: 1 joint rotation(s) past the physiological range plus margin; largest: simulated"

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from conftest import hhneck_executable
-from hhneck import segments
+from hhneck.validation import segments
 
 G, MASS, KT, KR, ARM = 9.80665, 2.0, 1.0e5, 1.0e3, 0.1
 

@@ -5,7 +5,7 @@ springs, and their SCALE factors) is sourced, assumed, or fitted by a
 segment stage (segments, nz_springs), never by a volunteer fit; the shipped
 deck's passive cards carry the table's values and its muscles are passive;
 and the fit is code: one joint's springs fitted again on the shipped deck
-by hhneck.fit_joints (the others' run as statics, as hhneck.fit_column
+by hhneck.validation.fit_joints (the others' run as statics, as hhneck.validation.fit_column
 runs it) are the table's, and the least squares of those points returns them
 (M0 three times off fits the points worse)."""
 import math
@@ -14,9 +14,9 @@ import os
 import pytest
 
 from conftest import ROOT, hhneck_executable
-from hhneck import fit_column, fit_joints, segments
-from hhneck import model_deck as md
-from hhneck.deck_fields import field
+from hhneck.validation import fit_column, fit_joints, segments
+from hhneck.validation import model_deck as md
+from hhneck.decks import field
 
 SEGMENT_STAGES = ("segments", "nz_springs")
 

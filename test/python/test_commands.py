@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from conftest import PACKAGE, ROOT, hhneck_executable, hhneck_module, short_deck
-import hhneck.nbdl as nbdl
+import hhneck.ratings as ratings
 
 
 def scripts():
@@ -35,14 +35,16 @@ COMMANDS = scripts()
 
 
 def test_the_command_table():
+    """The user commands only (docs/architecture.md, "Python package"): the
+    validation pipeline's steps run as python3 -m hhneck.validation.MODULE."""
     assert sorted(COMMANDS) == sorted("hhneck-" + n for n in (
         "animate", "xdmf", "compare-nbdl", "plot-sensitivity", "plot-corridor", "plot-work-precision", "export",
-        "results", "iso18571", "compare-listing", "compare-sweeps", "nbdl-tables", "case-decks", "run-deck",
-        "segments", "catalogue", "calibrate-catalogue", "fit-joints"))
+        "results", "iso18571", "compare-listing", "compare-sweeps", "run-deck", "catalogue"))
     for cmd, (module, func) in COMMANDS.items():
         assert module.startswith("hhneck.") and func == "main", cmd
-        assert cmd == "hhneck-" + module.split(".")[1].replace("_", "-") or cmd in (
-            "hhneck-run-deck", "hhneck-calibrate-catalogue"), cmd
+        assert cmd == "hhneck-" + module.split(".")[-1].replace("_", "-") or (cmd, module) in (
+            ("hhneck-run-deck", "hhneck.run"), ("hhneck-iso18571", "hhneck.ratings")), cmd
+        assert module.count(".") == 1 or module.split(".")[1] in ("tools", "validation"), cmd
 
 
 @pytest.mark.parametrize("cmd", sorted(COMMANDS))
@@ -100,7 +102,7 @@ def test_xdmf_nodes_are_the_bodies(result_file, tmp_path):
     import xml.etree.ElementTree as ET
     h5 = tmp_path / "r.h5"
     shutil.copy(result_file, h5)
-    r = hhneck_module("xdmf", h5, "--every", "0.005")
+    r = hhneck_module("tools.xdmf", h5, "--every", "0.005")
     assert r.returncode == 0, r.stderr
     assert "(5 time steps, 9 bodies," in r.stdout                          # 0, 5, 10, 15, 20 ms
     root = ET.parse(str(tmp_path / "r.xmf")).getroot()
@@ -119,7 +121,7 @@ def test_compare_listing_itself_and_a_changed_number(result_file, tmp_path):
     r = subprocess.run([hhneck_executable(), "--no-h5", "--no-progress"], input=short_deck(), cwd=ROOT,
                        capture_output=True, text=True)
     listing.write_text(r.stdout)
-    ok = hhneck_module("compare_listing", listing, listing)
+    ok = hhneck_module("tools.compare_listing", listing, listing)
     assert ok.returncode == 0 and ok.stdout.startswith("PASS") and "largest deviation 0.00 of the tolerance" in ok.stdout
     # the head's peak x-acceleration row of the peaks table, its maximum 10 % larger
     lines = r.stdout.splitlines()
@@ -128,7 +130,7 @@ def test_compare_listing_itself_and_a_changed_number(result_file, tmp_path):
     lines[k] = lines[k].replace(f[2], "%.4E" % (1.1 * float(f[2])), 1)
     bad = tmp_path / "b.txt"
     bad.write_text("\n".join(lines) + "\n")
-    r = hhneck_module("compare_listing", bad, listing)
+    r = hhneck_module("tools.compare_listing", bad, listing)
     assert r.returncode == 1 and r.stdout.startswith("FAIL") and "line %d" % (k + 1) in r.stdout
 
 
@@ -136,12 +138,12 @@ def test_iso18571_identical_and_halved(tmp_path, capsys):
     """Identical curves rate 1 (the command in a process of its own); a
     curve halved rates what rate() gives (main() in this process: the
     package compiles its scoring on first use, some 15 s a process)."""
-    from hhneck import iso18571
+    from hhneck import ratings as iso18571
     t = np.arange(0, 0.02 + 1e-12, 1e-4)                                  # 201 samples at 10 kHz
     ref = np.sin(2 * np.pi * 50 * t) * np.exp(-50 * t)
     same = tmp_path / "same.csv"
     np.savetxt(same, np.column_stack([t, ref, ref]), delimiter=",")
-    r = hhneck_module("iso18571", same)
+    r = hhneck_module("ratings", same)
     assert r.returncode == 0, r.stderr
     scores = {k: float(v) for k, v in (l.split() for l in r.stdout.splitlines())}
     assert scores == {k: 1.0 for k in ("corridor", "phase", "magnitude", "slope", "overall")}
@@ -174,7 +176,7 @@ def sweep_file(tmp_path_factory):
 
 def test_plot_sensitivity_table_is_the_file(sweep_file, tmp_path):
     png, md = tmp_path / "s.png", tmp_path / "s.md"
-    r = hhneck_module("plot_sensitivity", sweep_file, png, "--markdown", md)
+    r = hhneck_module("tools.plot_sensitivity", sweep_file, png, "--markdown", md)
     assert r.returncode == 0, r.stderr
     assert png.stat().st_size > 1000
     rows = [l.strip("|").split("|") for l in md.read_text().splitlines()]
@@ -191,7 +193,7 @@ def test_plot_sensitivity_table_is_the_file(sweep_file, tmp_path):
 
 
 def test_compare_sweeps(sweep_file, tmp_path):
-    r = hhneck_module("compare_sweeps", sweep_file, sweep_file, "--expect-failed", 0)
+    r = hhneck_module("tools.compare_sweeps", sweep_file, sweep_file, "--expect-failed", 0)
     assert r.returncode == 0, r.stdout + r.stderr
     assert r.stdout.splitlines()[-1] == "13 passed, 0 failed"
     other = tmp_path / "other.h5"
@@ -200,7 +202,7 @@ def test_compare_sweeps(sweep_file, tmp_path):
         out = f["runs/outputs"][()]
         out[1, 0] = np.nextafter(out[1, 0], np.inf)                         # one ulp up
         f["runs/outputs"][...] = out
-    r = hhneck_module("compare_sweeps", sweep_file, other)
+    r = hhneck_module("tools.compare_sweeps", sweep_file, other)
     assert r.returncode == 1 and "FAIL  runs/outputs identical" in r.stdout
     assert r.stdout.splitlines()[-1] == "8 passed, 1 failed"
 
@@ -217,7 +219,7 @@ def test_compare_nbdl_model_against_itself(tmp_path):
     h5 = tmp_path / "model.h5"
     with h5py.File(h5, "w") as f:
         f["time"] = t
-        for ch in nbdl.MODEL.values():
+        for ch in ratings.MODEL.values():
             f["channels/" + ch] = ax if ch == "HEAD_AX" else np.zeros_like(t)
     runs = tmp_path / "runs"
     runs.mkdir()
@@ -226,7 +228,7 @@ def test_compare_nbdl_model_against_itself(tmp_path):
         for k in range(len(t)):
             f.write("%.1f,%.17g,%.17g,%.17g\n" % (1e3 * t[k], 0.9 * ax[k], ax[k], 1.1 * ax[k]))
     out = tmp_path / "out"
-    r = hhneck_module("compare_nbdl", "--data", "syn=%s" % runs, "--case", "syn", "--h5", "syn=%s" % h5,
+    r = hhneck_module("tools.compare_nbdl", "--data", "syn=%s" % runs, "--case", "syn", "--h5", "syn=%s" % h5,
                       "--out", out)
     assert r.returncode == 0, r.stderr
     row = [l for l in r.stdout.splitlines() if l.startswith("| head x-acceleration (g) |")][0]
@@ -254,7 +256,7 @@ def test_plot_corridor_share_inside(tmp_path):
     for sev in ("15g", "12g"):
         np.savetxt(tmp_path / ("c_nbdl%s.csv" % sev), np.column_stack(data), delimiter=",",
                    header=",".join(cols), comments="")
-    r = hhneck_module("plot_corridor", tmp_path / "c", tmp_path / "c.png")
+    r = hhneck_module("tools.plot_corridor", tmp_path / "c", tmp_path / "c.png")
     assert r.returncode == 0, r.stderr
     share = 100.0 * np.sum((t >= 30) & (t < 140)) / np.sum((t >= 30) & (t <= 250))     # 110 of 221 samples
     lines = r.stdout.splitlines()
@@ -265,10 +267,10 @@ def test_plot_corridor_share_inside(tmp_path):
 
 def test_plot_work_precision(tmp_path):
     from PIL import Image
-    from hhneck import plot_work_precision as wp
+    from hhneck.tools import plot_work_precision as wp
     src = os.path.join(ROOT, "docs", "work_precision.csv")
     png = tmp_path / "wp.png"
-    r = hhneck_module("plot_work_precision", src, png)
+    r = hhneck_module("tools.plot_work_precision", src, png)
     assert r.returncode == 0, r.stderr
     rows, cases = wp.read_rows(src)
     assert Image.open(png).size == (5 * len(cases) * 110, 8 * 110)
@@ -282,11 +284,11 @@ def test_plot_work_precision(tmp_path):
 # --- the deck writers --------------------------------------------------------------
 
 def test_case_decks_are_the_shipped_decks(tmp_path):
-    """hhneck-case-decks writes into the project it is given (HHNECK_ROOT: one made here, so that the
+    """python3 -m hhneck.validation.case_decks writes into the project it is given (HHNECK_ROOT: one made here, so that the
     tree's own decks are not rewritten) the shipped decks, and nothing else."""
     (tmp_path / "input").mkdir()
     os.symlink(os.path.join(ROOT, "fpm.toml"), str(tmp_path / "fpm.toml"))
-    r = hhneck_module("case_decks", cwd=str(tmp_path), env={"HHNECK_ROOT": str(tmp_path)})
+    r = hhneck_module("validation.case_decks", cwd=str(tmp_path), env={"HHNECK_ROOT": str(tmp_path)})
     assert r.returncode == 0, r.stderr
     written = sorted(os.listdir(tmp_path / "input"))
     assert written == ["case6-1.inp", "case6-2.inp", "case6-5.inp", "hybrid3_flexion.inp"]
@@ -306,7 +308,7 @@ def short_dir():
 def test_nbdl_tables_of_the_shipped_12g_runs(short_dir):
     """--data with the shipped 12 g runs: the T1 tables of input/nbdl12g_t1.inp."""
     tmp_path = short_dir
-    r = hhneck_module("nbdl_tables", "--data", os.path.join("reference", "nbdl_12g"), "--name", "again12",
+    r = hhneck_module("validation.nbdl_tables", "--data", os.path.join("reference", "nbdl_12g"), "--name", "again12",
                       "--into", tmp_path)
     assert r.returncode == 0, r.stderr
     assert "read as rad" in r.stderr

@@ -6,7 +6,7 @@ differs by the listing's resolution (printed as 0 on one machine) passes,
 one of three resolutions fails."""
 import os
 
-import hhneck.compare_listing as cl
+import hhneck.tools.compare_listing as cl
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 

@@ -1,4 +1,4 @@
-"""The neutral-zone spring fit (python/hhneck/fit_joints.py) against
+"""The neutral-zone spring fit (python/hhneck/validation/fit_joints.py) against
 independent truth: the sinh fit recovers the constants of exact synthetic
 points; the subtraction of the other elements' moment, on a synthetic run
 whose rotation is the moment over known stiffnesses, leaves M - K theta and
@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 
 from conftest import ROOT, hhneck_executable, hhneck_module
-from hhneck import fit_joints as fj
-from hhneck import segments
-from hhneck import model_deck as md
+from hhneck.validation import fit_joints as fj
+from hhneck.validation import segments
+from hhneck.validation import model_deck as md
 from test_segments import _disc_card
 from test_upper_cervical import _generate
 
@@ -143,7 +143,7 @@ def _csv_rows():
 def test_csv_round_trip(tmp_path):
     path = str(tmp_path / "nz.csv")
     fj.write_csv(path, _csv_rows())
-    assert open(path).readline().startswith("# written by hhneck-fit-joints")
+    assert open(path).readline().startswith("# written by python3 -m hhneck.validation.fit_joints")
     rows = fj.read_csv(path)
     assert [r["body"] for r in rows] == ["HEAD", "C4", "C7"] and list(rows[0]) == list(fj.CSV_COLUMNS)
     assert float(rows[1]["ths_plus_deg"]) == 12.3456 and rows[2]["sources_minus"] == fj.PANJABI
@@ -167,7 +167,7 @@ def test_generator_writes_one_nzspring_card_per_row_in_ten_column_fields(tmp_pat
     first = lines.index(cards[0])
     assert last_rom < first < min(i for i, l in enumerate(lines) if l.startswith("SCALE"))
     assert all(l.startswith("*") for l in lines[last_rom + 1:first])
-    assert "Panjabi" in "".join(lines[last_rom + 1:first]) and "hhneck-fit-joints" in "".join(lines[last_rom + 1:first])
+    assert "Panjabi" in "".join(lines[last_rom + 1:first]) and "hhneck.validation.fit_joints" in "".join(lines[last_rom + 1:first])
     # the program reads them: case 6-2 with this model deck passes hhneck --check
     _program_takes(tmp_path, lines)
 
@@ -203,7 +203,7 @@ def test_generator_refuses_a_row_of_an_unknown_body(tmp_path):
     rows = _csv_rows()
     rows[0]["body"] = "C8"
     fj.write_csv(path, rows)
-    r = hhneck_module("model_deck", "--nz-springs", path)
+    r = hhneck_module("validation.model_deck", "--nz-springs", path)
     assert r.returncode != 0 and "C8" in r.stderr
 
 
@@ -243,7 +243,7 @@ def test_write_deck_takes_or_drops_the_nzspring_cards(tmp_path):
 
 def test_others_of_a_disc_alone_are_its_closed_form(tmp_path):
     """C4-C5 flexion with the disc alone, solved as statics (as
-    hhneck.fit_column runs the others): M_o(theta) is d1 Iy/h theta, the
+    hhneck.validation.fit_column runs the others): M_o(theta) is d1 Iy/h theta, the
     disc's closed form, within 0.2 %; a wrong stiffness, side or sign is off
     by far more."""
     exe = hhneck_executable()

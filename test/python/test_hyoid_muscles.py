@@ -1,4 +1,4 @@
-"""The eight cervical muscles mapped from the HYOID neck model (hhneck.hyoid_muscles,
+"""The eight cervical muscles mapped from the HYOID neck model (hhneck.validation.hyoid_muscles,
 reference/parameters.md S22): the parameter table holds what the mapping
 computes from the shared data (no hand-copied value); the model's F0 =
 PCSA x sigma_max gives back the data's F0; each mapped line is the data's
@@ -15,8 +15,8 @@ import os
 import pytest
 
 from conftest import ROOT
-from hhneck import hyoid_muscles as hm
-from hhneck import model_deck as md
+from hhneck.validation import hyoid_muscles as hm
+from hhneck.validation import model_deck as md
 
 pytestmark = pytest.mark.skipif(not os.path.isdir(hm.data_dir()), reason="shared/data/neck_muscles is not beside the project")
 

@@ -5,7 +5,7 @@ find the project's decks and volunteer runs (a short deck run with its
 INCLUDE of the shipped model deck, the NBDL 12 g T1 tables written again
 from the shipped runs, equal to the shipped ones); a copy of the package
 outside the project finds it through HHNECK_ROOT, and says so when
-HHNECK_ROOT is not set; hhneck-case-decks writes the decks into the
+HHNECK_ROOT is not set; python3 -m hhneck.validation.case_decks writes the decks into the
 project it is given."""
 import json
 import os
@@ -20,8 +20,24 @@ import pytest
 from conftest import PACKAGE, ROOT, SHORT_END, hhneck_executable, package_env, short_deck
 from test_commands import COMMANDS
 
-MODULES = sorted(f[:-3] for f in os.listdir(os.path.join(PACKAGE, "hhneck"))
-                 if f.endswith(".py") and f != "__init__.py")
+
+def package_modules():
+    """Every module of python/hhneck and of its subpackages, named from
+    hhneck ("paths", "tools", "tools.animate", "validation.catalogue", ...),
+    found in the folders (not from the probe)."""
+    out = []
+    top = os.path.join(PACKAGE, "hhneck")
+    for folder, dirs, files in os.walk(top):
+        dirs[:] = sorted(d for d in dirs if os.path.isfile(os.path.join(folder, d, "__init__.py")))
+        prefix = os.path.relpath(folder, top).replace(os.sep, ".")
+        prefix = "" if prefix == "." else prefix + "."
+        if prefix:
+            out.append(prefix[:-1])
+        out += [prefix + f[:-3] for f in files if f.endswith(".py") and f != "__init__.py"]
+    return sorted(out)
+
+
+MODULES = package_modules()
 
 
 def python(code, cwd, env=None):
@@ -81,7 +97,8 @@ def elsewhere(tmp_path_factory):
 
 def test_the_module_list():
     """The package's modules, counted from the folder (not from the probe)."""
-    assert len(MODULES) >= 20 and "paths" in MODULES and "nbdl" in MODULES
+    assert len(MODULES) >= 28 and "paths" in MODULES and "volunteers" in MODULES
+    assert "tools.animate" in MODULES and "validation.catalogue" in MODULES and "validation" in MODULES
 
 
 @pytest.mark.parametrize("name", MODULES)
@@ -124,9 +141,9 @@ def test_run_a_shipped_deck_elsewhere(elsewhere, tmp_path):
 
 
 def test_nbdl_runs_elsewhere(elsewhere):
-    """hhneck.nbdl reads the project's 12 g runs (runs 1607-1617, n = 10,
+    """hhneck.volunteers reads the project's 12 g runs (runs 1607-1617, n = 10,
     every 0.5 ms; reference/cases.md) from elsewhere."""
-    r = python("from hhneck import nbdl; t, runs, cols = nbdl.runs('T1_XAccel', '12g'); "
+    r = python("from hhneck import volunteers; t, runs, cols = volunteers.runs('T1_XAccel', '12g'); "
                "print(runs.shape[0], t[1] - t[0], cols[0])", elsewhere[0])
     assert r.returncode == 0, r.stderr[-2000:]
     n, step, first = r.stdout.split()
@@ -134,12 +151,12 @@ def test_nbdl_runs_elsewhere(elsewhere):
 
 
 def test_nbdl_tables_elsewhere():
-    """hhneck-nbdl-tables --data (the shipped 12 g runs) from elsewhere: it
+    """python3 -m hhneck.validation.nbdl_tables --data (the shipped 12 g runs) from elsewhere: it
     reads the project's input/nbdl12g.inp, and its T1 tables are those of
     the shipped input/nbdl12g_t1.inp, line for line."""
     d = tempfile.mkdtemp(prefix="hh")   # short: the INCLUDE card names it within 80 columns
     try:
-        r = module("nbdl_tables", "--data", os.path.join(ROOT, "reference", "nbdl_12g"), "--name", "again12",
+        r = module("validation.nbdl_tables", "--data", os.path.join(ROOT, "reference", "nbdl_12g"), "--name", "again12",
                    "--into", d, cwd=d)
         assert r.returncode == 0, r.stderr[-2000:]
 
@@ -175,12 +192,12 @@ def test_copy_without_hhneck_root(copied):
 
 
 def test_copy_with_hhneck_root(copied):
-    """With HHNECK_ROOT the copy finds the project: its modules import, and nbdl reads the 15 g runs (n = 7)."""
+    """With HHNECK_ROOT the copy finds the project: its modules import, and volunteers reads the 15 g runs (n = 7)."""
     d, env = copied
     env = dict(env, HHNECK_ROOT=ROOT)
     imported = probe(d, env)[0]
     assert imported == {m: "" for m in MODULES}
-    r = python("from hhneck import nbdl, paths; print(paths.__file__); print(nbdl.runs('T1_XAccel', '15g')[1].shape[0])",
+    r = python("from hhneck import paths, volunteers; print(paths.__file__); print(volunteers.runs('T1_XAccel', '15g')[1].shape[0])",
                d, env)
     assert r.returncode == 0, r.stderr[-2000:]
     assert r.stdout.split() == [os.path.join(d, "hhneck", "paths.py"), "7"]
@@ -193,14 +210,14 @@ def test_copy_with_a_wrong_hhneck_root(copied, tmp_path):
 
 
 def test_case_decks_elsewhere(tmp_path):
-    """hhneck-case-decks from elsewhere writes the decks of a project (HHNECK_ROOT: one made here, so that
+    """python3 -m hhneck.validation.case_decks from elsewhere writes the decks of a project (HHNECK_ROOT: one made here, so that
     the tree's own decks are not rewritten) equal to the shipped ones."""
     proj = tmp_path / "proj"
     (proj / "input").mkdir(parents=True)
     os.symlink(os.path.join(ROOT, "fpm.toml"), str(proj / "fpm.toml"))
     os.symlink(os.path.join(ROOT, "reference"), str(proj / "reference"))
     (tmp_path / "elsewhere").mkdir()
-    r = module("case_decks", cwd=str(tmp_path / "elsewhere"), env=dict(package_env(), HHNECK_ROOT=str(proj)))
+    r = module("validation.case_decks", cwd=str(tmp_path / "elsewhere"), env=dict(package_env(), HHNECK_ROOT=str(proj)))
     assert r.returncode == 0, r.stderr[-2000:]
     for name in ("case6-1", "case6-2", "case6-5", "hybrid3_flexion"):
         with open(str(proj / "input" / (name + ".inp"))) as a, open(os.path.join(ROOT, "input", name + ".inp")) as b:

@@ -1,4 +1,4 @@
-"""hhneck.iso18571 against the package objective-rating-metrics itself,
+"""hhneck.ratings against the package objective-rating-metrics itself,
 and the expected scores of the Fortran agreement test
 (test/unit/data/iso18571_expected.csv, read by test/unit/test_iso18571.pf)
 regenerated here from the package and compared with the file, so that the
@@ -22,7 +22,7 @@ import pytest
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 if __name__ == "__main__":
     sys.path.insert(0, os.path.join(ROOT, "python"))
-from hhneck import iso18571  # noqa: E402
+from hhneck import ratings as iso18571  # noqa: E402
 from objective_rating_metrics.rating import ISO18571  # noqa: E402
 
 EXPECTED = os.path.join(ROOT, "test", "unit", "data", "iso18571_expected.csv")

@@ -1,4 +1,4 @@
-"""The model deck from its parameter table (python/hhneck/model_deck.py,
+"""The model deck from its parameter table (python/hhneck/validation/model_deck.py,
 reference/model_parameters.csv; reference/parameters.md): the shipped deck
 regenerated from the table, from a folder outside the repository, is
 input/head_neck_54dof.inp byte for byte; every row of the table is read and
@@ -21,9 +21,9 @@ import subprocess
 import pytest
 
 from conftest import ROOT, hhneck_executable, hhneck_module
-from hhneck import fit_joints, segments
-from hhneck import model_deck as md
-from hhneck.deck_fields import field
+from hhneck.validation import fit_joints, segments
+from hhneck.validation import model_deck as md
+from hhneck.decks import field
 
 SHIPPED_TABLE = os.path.join(ROOT, "reference", "model_parameters.csv")
 COLUMN_CSV = os.path.join(ROOT, "reference", "column_fit.csv")
@@ -66,7 +66,7 @@ def _moved(name):
 
 def test_regenerated_from_any_folder_is_the_shipped_deck_byte_for_byte(tmp_path):
     out = tmp_path / "deck.inp"
-    r = hhneck_module("model_deck", "--output", out, cwd=tmp_path)
+    r = hhneck_module("validation.model_deck", "--output", out, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     with open(segments.MODEL_DECK, "rb") as f:
         assert out.read_bytes() == f.read()
@@ -204,7 +204,7 @@ def test_the_fitted_rows_are_what_the_fits_wrote(tmp_path):
     copy = tmp_path / "t.csv"
     shutil.copy(SHIPPED_TABLE, copy)
     for stage, path in (("segments", COLUMN_CSV), ("nz_springs", os.path.join(ROOT, "reference", "nz_springs.csv"))):
-        r = hhneck_module("model_deck", "--table", copy, "--record", stage, path, cwd=tmp_path)
+        r = hhneck_module("validation.model_deck", "--table", copy, "--record", stage, path, cwd=tmp_path)
         assert r.returncode == 0 and r.stdout == "", r.stderr
     assert copy.read_bytes() == open(SHIPPED_TABLE, "rb").read()
 
@@ -223,7 +223,7 @@ def test_a_column_fit_lands_in_its_rows_and_the_deck(tmp_path):
     shutil.copy(SHIPPED_TABLE, table)
     deck = tmp_path / "input" / "head_neck_54dof.inp"
     deck.parent.mkdir()
-    r = hhneck_module("model_deck", "--table", table, "--record", "segments", "fit.csv", "--output", deck,
+    r = hhneck_module("validation.model_deck", "--table", table, "--record", "segments", "fit.csv", "--output", deck,
                       cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     for row in md.read_table(str(table)):
@@ -246,7 +246,7 @@ def test_a_column_fit_lands_in_its_rows_and_the_deck(tmp_path):
 
 
 def _spring_csv(path, change=None):
-    """reference/nz_springs.csv through hhneck-fit-joints' writer's format,
+    """reference/nz_springs.csv through python3 -m hhneck.validation.fit_joints' writer's format,
     with (body, coord, column, value) `change` applied."""
     rows = fit_joints.read_csv(os.path.join(ROOT, "reference", "nz_springs.csv"))
     if change:
@@ -264,7 +264,7 @@ def test_recorded_springs_land_in_their_rows(tmp_path):
     table = tmp_path / "t.csv"
     shutil.copy(SHIPPED_TABLE, table)
     _spring_csv(tmp_path / "nz.csv", ("C5", "RY", "ths_minus_deg", "12.5"))
-    r = hhneck_module("model_deck", "--table", table, "--record", "nz_springs", tmp_path / "nz.csv", cwd=tmp_path)
+    r = hhneck_module("validation.model_deck", "--table", table, "--record", "nz_springs", tmp_path / "nz.csv", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     new, old = md.read_table(str(table)), _rows()
     assert [(a["name"], a["value"]) for a, b in zip(new, old) if a != b] == [("nz.C5.RY.ths_minus_deg", "12.5")]
@@ -294,7 +294,7 @@ def test_the_writer_refuses_what_it_cannot_use(tmp_path, stage, text, message):
             w.writerows(rows[1:])
     else:
         src.write_text(text)
-    r = hhneck_module("model_deck", "--table", table, "--record", stage, src, "--output", tmp_path / "d.inp",
+    r = hhneck_module("validation.model_deck", "--table", table, "--record", stage, src, "--output", tmp_path / "d.inp",
                       cwd=tmp_path)
     assert r.returncode == 1 and message in r.stderr and "not written" in r.stderr, r.stderr
     assert table.read_bytes() == open(SHIPPED_TABLE, "rb").read() and not (tmp_path / "d.inp").exists()
@@ -313,7 +313,7 @@ def test_a_bad_table_is_refused_naming_the_line(tmp_path, edit, message):
     text = open(SHIPPED_TABLE).read()
     table.write_text(edit(text))
     assert table.read_text() != text
-    r = hhneck_module("model_deck", "--table", table, "--output", tmp_path / "d.inp", cwd=tmp_path)
+    r = hhneck_module("validation.model_deck", "--table", table, "--output", tmp_path / "d.inp", cwd=tmp_path)
     assert r.returncode == 1 and message in r.stderr, r.stderr
     assert not (tmp_path / "d.inp").exists()
 

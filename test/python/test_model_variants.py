@@ -1,4 +1,4 @@
-"""The deck generator's model variants (python3 -m hhneck.model_deck; the
+"""The deck generator's model variants (python3 -m hhneck.validation.model_deck; the
 experiments of docs/validation.md "The upper cervical joints" and
 "Segmental muscles"), each against the shipped deck: --suboccipital yes
 adds exactly the four suboccipital muscles per side with F0 = sectional
@@ -13,7 +13,7 @@ import subprocess
 import pytest
 
 from conftest import ROOT, hhneck_executable
-from hhneck import segments
+from hhneck.validation import segments
 from test_upper_cervical import _cards, _generate
 
 def _program_reads(tmp_path, lines):
@@ -125,7 +125,7 @@ def test_values_listing_regenerates_the_shipped_deck(tmp_path):
     # generator's --fit reads them (the starting point of dev/fit_model.sh
     # and the joint fit's, calibration.values_listing), and the springs of
     # reference/nz_springs.csv give the shipped deck byte for byte
-    from hhneck import calibration
+    from hhneck.validation import calibration
     listing = tmp_path / "values.txt"
     listing.write_text(calibration.values_listing())
     assert listing.read_text().count("PARAM ") == 15

@@ -1,11 +1,11 @@
-"""hhneck.newton_balance: the lag fit against a force built with a known
+"""hhneck.validation.newton_balance: the lag fit against a force built with a known
 lag and masses (closed form), and the head's lab acceleration from an
 accelerometer's reading against the reading derived by hand from the SAE
 J211 right-hand rule, in both planes."""
 import numpy as np
 import pytest
 
-from hhneck import newton_balance as nb
+from hhneck.validation import newton_balance as nb
 
 
 def _bump(t, t0, w):

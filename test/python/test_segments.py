@@ -1,4 +1,4 @@
-"""The segment-test set-up of the catalogue (python/hhneck/segments.py)
+"""The segment-test set-up of the catalogue (python/hhneck/validation/segments.py)
 against closed forms: a functional spinal unit with its disc alone under a
 pure moment turns by M/K, K the disc's bending stiffness d1 Iy/h (or its
 torsional G J/h) as the deck's DISC card and SCALE factors give it; with
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from conftest import hhneck_executable
-from hhneck import segments
+from hhneck.validation import segments
 
 
 def _disc_and_scales(deck, name):
@@ -198,7 +198,7 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
     """The catalogue command's quick form (C4-C5 of each source and motion):
     every case in the report, its data column the data file's own values,
     its model column the result file's rotation at the ramp times."""
-    from hhneck import catalogue
+    from hhneck.validation import catalogue
     report = tmp_path / "new" / "folder" / "catalogue.md"          # a report folder that does not exist: created
     assert catalogue.main(["--quick", "--exe", exe, "--out", str(tmp_path), "--report", str(report),
                            "--jobs", "2"]) == 0
@@ -260,8 +260,8 @@ def test_catalogue_quick_form_reports_what_the_runs_and_data_say(tmp_path, exe):
         links = re.findall(r"\(validation\.md(#[^)]+)\)", stops[0])
         assert links and set(links) <= headings, title
     # the NBDL row: the decks run here, rated as hhneck-compare-nbdl rates them
-    from hhneck import nbdl as nbdl_lib
+    from hhneck import ratings
     nbdl = next(l for l in text.splitlines() if l.startswith("| NBDL 15 g (prediction), 12 g (calibration) |"))
     for sev in ("15g", "12g"):
-        chans, peaks, overall = nbdl_lib.compare(sev, str(tmp_path / "nbdl" / ("nbdl%s.h5" % sev)))[:3]
+        chans, peaks, overall = ratings.compare(sev, str(tmp_path / "nbdl" / ("nbdl%s.h5" % sev)))[:3]
         assert "CORA-style %.3f" % overall in nbdl and 0.5 < overall <= 1.0

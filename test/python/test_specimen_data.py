@@ -1,4 +1,4 @@
-"""The specimen cases' data readers (python/hhneck/specimen_data.py):
+"""The specimen cases' data readers (python/hhneck/validation/specimen_data.py):
 corridor outlines split into their bounds against a band of known
 boundaries, specimens averaged, and the pulses' velocity changes against
 the figures the data's README gives."""
@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pytest
 
-from hhneck import segments, specimen_data as sd
+from hhneck.validation import segments, specimen_data as sd
 
 DATA = segments.DATA_DIR
 

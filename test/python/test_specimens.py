@@ -1,5 +1,5 @@
 """The Stemper 2004 and Kang 2018 specimen set-ups of the catalogue
-(python/hhneck/specimens.py): the decks take the source's pulses and passive
+(python/hhneck/validation/specimens.py): the decks take the source's pulses and passive
 muscles, the T1 drive gives the pulse's velocity change, the rated channels
 (the Fortran run's own) agree with a second computation from the result
 file's body positions, rotation matrices and joint angles, and the Kang
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from conftest import hhneck_executable
-from hhneck import segments, specimen_data, specimens
-from hhneck.nbdl import cfc
+from hhneck.validation import segments, specimen_data, specimens
+from hhneck.signals import cfc
 
 
 @pytest.fixture(scope="module")

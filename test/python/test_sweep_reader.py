@@ -17,7 +17,7 @@ import h5py
 import numpy as np
 import pytest
 
-import hhneck.plot_sensitivity as ps
+import hhneck.tools.plot_sensitivity as ps
 import hhneck.results as hr
 from conftest import ROOT, hhneck_executable
 

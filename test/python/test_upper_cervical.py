@@ -1,4 +1,4 @@
-"""The upper-cervical factors (python/hhneck/upper_cervical.py) against
+"""The upper-cervical factors (python/hhneck/validation/upper_cervical.py) against
 independent truth: scale_cards changes exactly the C2-C1 and C1-HEAD
 discs' Iy and J and their ligaments' l1 and l2, by the factors, and the
 program reads the result; range_edge is the hand distance from a NEUTRAL
@@ -15,13 +15,13 @@ import tempfile
 import pytest
 
 from conftest import ROOT, hhneck_executable, hhneck_module
-from hhneck import fit_joints, segments
-from hhneck import upper_cervical as uc
+from hhneck.validation import fit_joints, segments
+from hhneck.validation import upper_cervical as uc
 
 def _generate(*args):
-    """The lines of the model deck the generator (python3 -m hhneck.model_deck
+    """The lines of the model deck the generator (python3 -m hhneck.validation.model_deck
     ARGS) writes, run outside the repository."""
-    r = hhneck_module("model_deck", *args, cwd=tempfile.gettempdir())
+    r = hhneck_module("validation.model_deck", *args, cwd=tempfile.gettempdir())
     assert r.returncode == 0, r.stderr
     return r.stdout.splitlines()
 

@@ -66,7 +66,7 @@ def vtk_read(result_file, tmp_path_factory):
     d = tmp_path_factory.mktemp("xdmf")
     h5 = str(d / "short.h5")
     shutil.copy(result_file, h5)
-    r = hhneck_module("xdmf", h5, "--every", "0.005")
+    r = hhneck_module("tools.xdmf", h5, "--every", "0.005")
     assert r.returncode == 0, r.stderr
     v = subprocess.run([sys.executable, "-c", READER, str(d / "short.xmf")], capture_output=True, text=True,
                        cwd=str(d))

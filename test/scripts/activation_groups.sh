@@ -23,7 +23,7 @@ import sys
 import h5py
 import numpy as np
 sys.path.insert(0, "python")
-from hhneck.deck_fields import field, is_card
+from hhneck.decks import field, is_card
 c = h5py.File(sys.argv[1], "r")["channels"]
 model = open(sys.argv[2]).read().splitlines()
 ctrl = open(sys.argv[3]).read().splitlines()
@@ -60,7 +60,7 @@ cp input/volunteer_controller.inp "$tmp/four/input/"
 python3 - "$tmp/two/input/volunteer_controller.inp" <<'PY'
 import sys
 sys.path.insert(0, "python")
-from hhneck.deck_fields import field, is_card, set_field
+from hhneck.decks import field, is_card, set_field
 merge = {"FLEXR": "FLEXL", "EXTR": "EXTL"}
 out, skip = [], False
 for l in open("input/volunteer_controller.inp").read().splitlines():

@@ -74,7 +74,7 @@ print(("PASS" if units and not missing else "FAIL") +
 EOF
 
 # --- a small GIF (6 frames: 0 to 100 ms every 20 ms) and a key-frame strip
-"$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/small.gif" --slow 1 --fps 50 --dpi 30 --quiet \
+"$PY" -m hhneck.tools.animate "$tmp/c62.h5" "$tmp/small.gif" --slow 1 --fps 50 --dpi 30 --quiet \
     --strip "$tmp/strip.png" > "$tmp/anim.out" 2> "$tmp/anim.err"
 check "animate.py writes a GIF and a strip (exit $?)" $?
 pycheck "$tmp" <<'EOF'
@@ -92,14 +92,14 @@ print(("PASS" if st.format == "PNG" and "(6 key frames)" in out else "FAIL") +
 EOF
 
 # --- MP4: one clear line when ffmpeg is missing; an H.264 file when present
-PATH=/nonexistent "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/no.mp4" > "$tmp/mp4.out" 2> "$tmp/mp4.err"
+PATH=/nonexistent "$PY" -m hhneck.tools.animate "$tmp/c62.h5" "$tmp/no.mp4" > "$tmp/mp4.out" 2> "$tmp/mp4.err"
 rc=$?
 lines=$(wc -l < "$tmp/mp4.err")
 grep -q "apt-get install ffmpeg" "$tmp/mp4.err" && grep -q "gif" "$tmp/mp4.err" \
     && [ "$rc" -eq 2 ] && [ "$lines" -eq 1 ] && [ ! -e "$tmp/no.mp4" ]
 check "MP4 without ffmpeg: exit $rc, $lines line naming apt-get install ffmpeg and .gif, no file" $?
 if command -v ffmpeg > /dev/null 2>&1; then
-    "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/small.mp4" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
+    "$PY" -m hhneck.tools.animate "$tmp/c62.h5" "$tmp/small.mp4" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
     rc=$?
     frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
              -of csv=p=0 "$tmp/small.mp4" 2> /dev/null)
@@ -117,13 +117,13 @@ for a in "$@"; do out=$a; done
 cat > "$out"
 SH
 chmod +x "$tmp/fakebin/ffmpeg"
-PATH="$tmp/fakebin:$PATH" "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/raw" --slow 1 --fps 50 --dpi 30 --quiet \
+PATH="$tmp/fakebin:$PATH" "$PY" -m hhneck.tools.animate "$tmp/c62.h5" "$tmp/raw" --slow 1 --fps 50 --dpi 30 --quiet \
     > /dev/null 2>&1
 rc=$?
 size=$(wc -c < "$tmp/raw.mp4" 2> /dev/null || echo 0)
 [ "$rc" -eq 0 ] && [ "$size" -eq $((6 * 360 * 210 * 4)) ]
 check "OUT without a suffix and ffmpeg on PATH: OUT.mp4, ffmpeg given 6 raw frames of 360x210 RGBA ($size bytes)" $?
-PATH=/nonexistent "$PY" -m hhneck.animate "$tmp/c62.h5" "$tmp/plain" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
+PATH=/nonexistent "$PY" -m hhneck.tools.animate "$tmp/c62.h5" "$tmp/plain" --slow 1 --fps 50 --dpi 30 --quiet > /dev/null 2>&1
 rc=$?
 [ "$rc" -eq 0 ] && [ "$(head -c 6 "$tmp/plain.gif" 2> /dev/null)" = "GIF89a" ] && [ ! -e "$tmp/plain.mp4" ]
 check "OUT without a suffix and no ffmpeg: OUT.gif (exit $rc)" $?
@@ -133,7 +133,7 @@ pycheck "$tmp/c62.h5" input/head_neck_54dof.inp <<'EOF'
 import sys
 sys.path.insert(0, "python")
 import h5py, numpy as np
-from hhneck import animate
+from hhneck.tools import animate
 f = h5py.File(sys.argv[1], "r")
 cards = [l for l in open(sys.argv[2]) if not l.startswith("*")]
 bodies = [l.split()[1] for l in cards if l.startswith("BODY ")]
@@ -187,13 +187,13 @@ shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "a") as f:
     del f["model/elements"]
 EOF
-"$PY" -m hhneck.animate "$tmp/old.h5" "$tmp/old.gif" --slow 1 --fps 20 --dpi 20 --quiet > /dev/null 2> "$tmp/old.err"
+"$PY" -m hhneck.tools.animate "$tmp/old.h5" "$tmp/old.gif" --slow 1 --fps 20 --dpi 20 --quiet > /dev/null 2> "$tmp/old.err"
 rc=$?
 [ "$rc" -eq 0 ] && [ -s "$tmp/old.gif" ] && grep -q "no /model/elements" "$tmp/old.err"
 check "a file without /model/elements: GIF of the bodies and one warning (exit $rc)" $?
 
 # --- XDMF: well formed, every referenced dataset exists with the declared shape
-"$PY" -m hhneck.xdmf "$tmp/c62.h5" > "$tmp/xdmf.out" 2>&1
+"$PY" -m hhneck.tools.xdmf "$tmp/c62.h5" > "$tmp/xdmf.out" 2>&1
 check "write_xdmf.py writes c62.xmf and c62.elements.h5 (exit $?)" $?
 pycheck "$tmp/c62.xmf" "$tmp/c62.h5" input/head_neck_54dof.inp <<'EOF'
 import sys, os

@@ -1,13 +1,13 @@
 #!/bin/sh
 # Every deck the tools write is a deck the program takes: each card
 # within 80 columns, comment cards too (a long path in a comment goes on
-# continuation comment cards, hhneck.deck_fields), and `hhneck --check`
+# continuation comment cards, hhneck.decks), and `hhneck --check`
 # passes on it, with the tools' files under a directory path of more than 120
 # characters. A data card that a long path would push beyond column 80 (an
 # INCLUDE or CASE card naming a file there) is refused with a message naming
 # the line. The shipped decks are what their writers write
-# (hhneck.model_deck from reference/model_parameters.csv, hhneck.case_decks,
-# hhneck.nbdl_tables).
+# (hhneck.validation.model_deck from reference/model_parameters.csv, hhneck.validation.case_decks,
+# hhneck.validation.nbdl_tables).
 # make_nbdl_tables.py --data with a long data folder: new_nbdl_case.sh.
 . test/scripts/lib/checks.sh
 root=$(pwd)
@@ -34,7 +34,7 @@ valid() {
 py_checks - <<'PY'
 import sys
 sys.path.insert(0, "python")
-from hhneck.deck_fields import CardError, check_cards, comment_cards, field_text, set_field
+from hhneck.decks import CardError, check_cards, comment_cards, field_text, set_field
 
 def check(ok, what):
     print(("PASS  " if ok else "FAIL  ") + what)
@@ -54,7 +54,7 @@ flat = "x" * 200
 cards = comment_cards(flat)
 check([len(c) for c in cards] == [80, 80, 46] and joined(cards) == flat,
       "comment_cards: a text without a blank or '/' broken at column 80 exactly")
-text = "the runs in %s (T1 tables by hhneck-nbdl-tables --data)." % path
+text = "the runs in %s (T1 tables by python3 -m hhneck.validation.nbdl_tables --data)." % path
 cards = comment_cards(text)
 check(all(len(c) <= 80 and not c.endswith(" ") for c in cards) and joined(cards) == text,
       "comment_cards: a sentence around the path, no card ending in a blank, joined the sentence again")
@@ -92,9 +92,9 @@ ln -s "$root/reference" "$long/proj/reference"
 ln -s "$root/fpm.toml" "$long/proj/fpm.toml"
 cp input/nbdl15g.inp input/nbdl12g.inp input/nbdl8g.inp input/volunteer_controller.inp "$long/proj/input/"
 (cd "$long/proj" && export HHNECK_ROOT="$long/proj" &&
-     python3 -m hhneck.model_deck --output input/head_neck_54dof.inp &&
-     python3 -m hhneck.case_decks && python3 -m hhneck.nbdl_tables)
-check "hhneck.model_deck, hhneck.case_decks and hhneck.nbdl_tables run (exit $?)" [ $? -eq 0 ]
+     python3 -m hhneck.validation.model_deck --output input/head_neck_54dof.inp &&
+     python3 -m hhneck.validation.case_decks && python3 -m hhneck.validation.nbdl_tables)
+check "hhneck.validation.model_deck, hhneck.validation.case_decks and hhneck.validation.nbdl_tables run (exit $?)" [ $? -eq 0 ]
 for f in head_neck_54dof case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g_t1 nbdl12g_t1 nbdl8g_t1; do
     check "input/$f.inp as written: within 80 columns, the shipped deck" written "$long/proj/input/$f.inp" "input/$f.inp"
 done
@@ -102,20 +102,20 @@ for f in case6-1 case6-2 case6-5 hybrid3_flexion nbdl15g nbdl12g nbdl8g; do
     check "input/$f.inp with the written decks it includes: hhneck --check passes" valid "$long/proj" "input/$f.inp"
 done
 
-# hhneck.model_deck's other postures, and --fit with a listing under the
+# hhneck.validation.model_deck's other postures, and --fit with a listing under the
 # long path (the shipped values: the shipped deck)
 for opt in "--posture straight" "--posture seated-held" "--t1-slope 20 --lordosis 10"; do
     # shellcheck disable=SC2086
-    python3 -m hhneck.model_deck $opt > "$long/proj/input/head_neck_54dof.inp"
-    check "hhneck.model_deck $opt: within 80 columns" within80 "$long/proj/input/head_neck_54dof.inp"
-    check "hhneck.model_deck $opt: hhneck --check passes on case 6-2 with it" valid "$long/proj" input/case6-2.inp
+    python3 -m hhneck.validation.model_deck $opt > "$long/proj/input/head_neck_54dof.inp"
+    check "hhneck.validation.model_deck $opt: within 80 columns" within80 "$long/proj/input/head_neck_54dof.inp"
+    check "hhneck.validation.model_deck $opt: hhneck --check passes on case 6-2 with it" valid "$long/proj" input/case6-2.inp
 done
 # a calibration listing's PARAM lines, in the order of the calibration's
 # PARAM cards, with the values of the shipped model deck
 python3 - input/head_neck_54dof.inp input/calibrate_nbdl.inp "$long/fit listing.txt" <<'PY'
 import sys
 sys.path.insert(0, "python")
-from hhneck.deck_fields import field, is_card
+from hhneck.decks import field, is_card
 deck = open(sys.argv[1]).read().splitlines()
 par = {field(l, 1): field(l, 4) for l in deck if is_card(l, "SCALE")}
 for hist, s in (("FLEX", "F"), ("EXT", "E")):
@@ -124,8 +124,8 @@ for hist, s in (("FLEX", "F"), ("EXT", "E")):
 names = [field(l, 1) for l in open(sys.argv[2]).read().splitlines() if is_card(l, "PARAM")]
 open(sys.argv[3], "w").write("".join("PARAM %-10s= %s\n" % (n, par[n]) for n in names))
 PY
-python3 -m hhneck.model_deck --fit "$long/fit listing.txt" > "$long/proj/input/head_neck_54dof.inp"
-check "hhneck.model_deck --fit LISTING (shipped values): the shipped deck" \
+python3 -m hhneck.validation.model_deck --fit "$long/fit listing.txt" > "$long/proj/input/head_neck_54dof.inp"
+check "hhneck.validation.model_deck --fit LISTING (shipped values): the shipped deck" \
     cmp -s "$long/proj/input/head_neck_54dof.inp" input/head_neck_54dof.inp
 
 # The tools that write decks into a temporary directory to run them: valid
@@ -137,7 +137,7 @@ check "t1_drive_effect.py: every variant's deck and T1 tables within 80 columns,
     python3 - "$HHNECK" "$tmp/t1" "$long/t1" <<'PY'
 import os, subprocess, sys
 sys.path[:0] = ["python", "studies"]
-from hhneck.deck_fields import CardError
+from hhneck.decks import CardError
 import t1_drive_effect as t
 hhneck, short, long = sys.argv[1:4]
 bad = []
@@ -165,7 +165,7 @@ check "probe_x_trough.py: every probe's deck, model deck and T1 tables within 80
     python3 - "$HHNECK" "$tmp/probe" "$long/probe" <<'PY'
 import os, subprocess, sys
 sys.path[:0] = ["python", "studies"]
-from hhneck.deck_fields import CardError
+from hhneck.decks import CardError
 import probe_x_trough as p
 hhneck, short, long = sys.argv[1:4]
 os.makedirs(short)
@@ -196,7 +196,7 @@ check "predict_nbdl8g.py --fit LISTING (under the long path): the 8 g deck and i
     python3 - "$HHNECK" "$long/fit listing.txt" "$tmp" "$long" <<'PY'
 import os, subprocess, sys
 sys.path[:0] = ["python", "studies"]
-from hhneck.deck_fields import CardError
+from hhneck.decks import CardError
 import predict_nbdl8g as p
 hhneck, listing, short, long = sys.argv[1:5]
 model = open("input/head_neck_54dof.inp").read()
@@ -223,7 +223,7 @@ check "fit_axial_damping.py: the calibration decks and their case and model deck
     python3 - "$HHNECK" "$tmp/fits" "$long/fits" <<'PY'
 import os, subprocess, sys
 sys.path[:0] = ["python", "studies"]
-from hhneck.deck_fields import CardError
+from hhneck.decks import CardError
 import fit_axial_damping as f
 hhneck, short, long = sys.argv[1:4]
 model = open(f.MODEL).read()
@@ -251,13 +251,13 @@ check "cross_severity.py: the scoring decks of a listing under the long path, wr
     python3 - "$HHNECK" "$long/fit listing.txt" "$long" <<'PY'
 import os, subprocess, sys
 sys.path[:0] = ["python", "studies"]
-from hhneck.deck_fields import CardError, write_deck
+from hhneck.decks import CardError, write_deck
 import cross_severity as c
 hhneck, listing, long = sys.argv[1:4]
 # the shipped values clipped into the study's PARAM ranges (the calibration
 # refuses VALUES outside them; the model deck's VBEND and its histories'
 # delays now lie outside this earlier study's ranges)
-from hhneck.deck_fields import field, is_card
+from hhneck.decks import field, is_card
 ranges = {field(l, 1): (float(field(l, 5)), float(field(l, 6)))
           for l in open("input/calibrate_nbdl.inp").read().splitlines() if is_card(l, "PARAM")}
 values = ["%.6g" % min(max(float(v), ranges[n][0]), ranges[n][1]) for n, v in c.params(listing)]
@@ -384,7 +384,7 @@ check "neck_inertia.py: the Kang and Stemper decks with its CHANGE cards (the ne
 import os, sys
 sys.path[:0] = ["python", "studies", "test/scripts/lib"]
 import neck_inertia as n
-from hhneck import specimens
+from hhneck.validation import specimens
 from study_decks import deck_problems
 hhneck, short = sys.argv[1:3]
 work = os.path.join(short, "neck_inertia")
@@ -431,7 +431,7 @@ check "kang_early_coupling.py: its Kang front decks (CHANGE cards; the upper two
 import os, sys
 sys.path[:0] = ["python", "studies", "test/scripts/lib"]
 import kang_early_coupling as k
-from hhneck import segments
+from hhneck.validation import segments
 from study_decks import deck_problems
 hhneck, short = sys.argv[1:3]
 bad = []

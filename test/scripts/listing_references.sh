@@ -25,7 +25,7 @@ export PYTHONPATH
 tmp=$(mktemp -d)
 pass=0; fail=0
 compare() {
-    if python3 -m hhneck.compare_listing "$1" "$2"; then
+    if python3 -m hhneck.tools.compare_listing "$1" "$2"; then
         pass=$((pass + 1))
     else
         fail=$((fail + 1))

@@ -37,5 +37,5 @@ check "2-rank sweep ends with exit code 6: members failed (got $rc_mpi)" [ "$rc_
 check "some but not all of the 12 members diverge ($nfailed listed as failed)" \
     sh -c '[ "$1" -ge 1 ] && [ "$1" -lt 12 ]' sh "$nfailed"
 [ "$nfail" -eq 0 ] || tail -n 5 "$tmp/serial.err" "$tmp/mpi.err"
-py_checks -m hhneck.compare_sweeps "$tmp/serial.h5" "$tmp/mpi.h5" --expect-failed "$nfailed"
+py_checks -m hhneck.tools.compare_sweeps "$tmp/serial.h5" "$tmp/mpi.h5" --expect-failed "$nfailed"
 finish

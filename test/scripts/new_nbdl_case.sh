@@ -1,6 +1,6 @@
 #!/bin/sh
 # A deck for volunteer runs that are not shipped, built the way a user would
-# (hhneck-nbdl-tables --data DIR --name NAME) from a copy of a shipped
+# (python3 -m hhneck.validation.nbdl_tables --data DIR --name NAME) from a copy of a shipped
 # data set, must be the shipped case: the same T1 tables as input/nbdl12g_t1.inp
 # and input/nbdl15g_t1.inp (the rotation unit chosen by the rule: radians for
 # the 12 g files, degrees for the 15 g ones), the same head channels when run
@@ -16,8 +16,8 @@
 
 cp -r reference/nbdl_12g "$tmp/runs12"
 cp -r reference/nbdl_15g "$tmp/runs15"
-python3 -m hhneck.nbdl_tables --data "$tmp/runs12" --name trial12 --into "$tmp" 2> "$tmp/unit12.txt"
-python3 -m hhneck.nbdl_tables --data "$tmp/runs15" --name trial15 --into "$tmp" 2> "$tmp/unit15.txt"
+python3 -m hhneck.validation.nbdl_tables --data "$tmp/runs12" --name trial12 --into "$tmp" 2> "$tmp/unit12.txt"
+python3 -m hhneck.validation.nbdl_tables --data "$tmp/runs15" --name trial15 --into "$tmp" 2> "$tmp/unit15.txt"
 for s in 12 15; do
     grep -v '^\*' "input/nbdl${s}g_t1.inp" > "$tmp/shipped$s.txt"
     grep -v '^\*' "$tmp/trial${s}_t1.inp" > "$tmp/new$s.txt"
@@ -36,9 +36,9 @@ a, b = (h5py.File(f, "r")["channels"] for f in sys.argv[1:3])
 names = ("HEAD_AX", "HEAD_AZ", "HEAD_ALPHY", "HEAD_OMEGY", "HEAD_THETY", "OC_FX", "OC_FZ", "OC_MY")
 sys.exit(0 if all(np.array_equal(a[n][:], b[n][:]) for n in names) else 1)
 PY
-python3 -m hhneck.compare_nbdl --data new="$tmp/runs12" --case new --h5 new="$tmp/new.h5" --out "$tmp/o1" \
+python3 -m hhneck.tools.compare_nbdl --data new="$tmp/runs12" --case new --h5 new="$tmp/new.h5" --out "$tmp/o1" \
     | sed 's/NBDL new/NBDL 12 g/; s/rating new/rating 12 g/' > "$tmp/t1.md"
-python3 -m hhneck.compare_nbdl --case 12g --h5 12g="$tmp/shipped.h5" --out "$tmp/o2" > "$tmp/t2.md"
+python3 -m hhneck.tools.compare_nbdl --case 12g --h5 12g="$tmp/shipped.h5" --out "$tmp/o2" > "$tmp/t2.md"
 check "compare_nbdl.py --data rates the new case" grep -q "Overall CORA-style rating 12 g" "$tmp/t1.md"
 check "and prints the shipped 12 g comparison" cmp -s "$tmp/t1.md" "$tmp/t2.md"
 
@@ -46,7 +46,7 @@ check "and prints the shipped 12 g comparison" cmp -s "$tmp/t1.md" "$tmp/t2.md"
 # shipped 12 g deck with those two PRESCRIB cards made CONSTANT.
 cp -r reference/nbdl_12g "$tmp/xonly"
 rm "$tmp/xonly/T1_YrotDisp.csv" "$tmp/xonly/T1_ZAccel.csv"
-python3 -m hhneck.nbdl_tables --data "$tmp/xonly" --name xonly --into "$tmp" 2> "$tmp/xonly.err"
+python3 -m hhneck.validation.nbdl_tables --data "$tmp/xonly" --name xonly --into "$tmp" 2> "$tmp/xonly.err"
 check "no T1 rotation or z file: the deck holds RY and TZ" sh -c \
     "grep -q '^PRESCRIB  T1        RY        CONSTANT' '$tmp/xonly.inp' && grep -q '^PRESCRIB  T1        TZ        CONSTANT' '$tmp/xonly.inp'"
 check "and says so on stderr" sh -c "grep -q 'T1_YrotDisp.csv not in' '$tmp/xonly.err' && grep -q 'T1_ZAccel.csv not in' '$tmp/xonly.err'"
@@ -66,7 +66,7 @@ PY
 # four rated channels, each as in the full comparison.
 cp -r reference/nbdl_12g "$tmp/noalpha"
 rm "$tmp/noalpha/Head_YrotAccel.csv"
-python3 -m hhneck.compare_nbdl --data na="$tmp/noalpha" --case na --h5 na="$tmp/shipped.h5" --out "$tmp/o3" > "$tmp/t3.md"
+python3 -m hhneck.tools.compare_nbdl --data na="$tmp/noalpha" --case na --h5 na="$tmp/shipped.h5" --out "$tmp/o3" > "$tmp/t3.md"
 check "no head angular acceleration file: rated over the four channels the runs have" python3 - "$tmp/t2.md" "$tmp/t3.md" <<'PY'
 import re
 import sys
@@ -82,7 +82,7 @@ PY
 # Another sampling step (every third sample: 1.5 ms): tables every 1 ms.
 mkdir "$tmp/coarse"
 for f in reference/nbdl_12g/*.csv; do awk 'NR == 1 || NR % 3 == 2' "$f" > "$tmp/coarse/${f##*/}"; done
-python3 -m hhneck.nbdl_tables --data "$tmp/coarse" --name coarse --into "$tmp" 2> /dev/null
+python3 -m hhneck.validation.nbdl_tables --data "$tmp/coarse" --name coarse --into "$tmp" 2> /dev/null
 check "runs sampled every 1.5 ms give tables every 1 ms (0-298 ms)" \
     grep -q '^TABLE     T1XACC           299     0.001' "$tmp/coarse_t1.inp"
 
@@ -92,14 +92,14 @@ mkdir "$tmp/early"
 for f in reference/nbdl_12g/*.csv; do
     awk -F, 'BEGIN { OFS = "," } NR == 1 { print; next } { $1 = $1 - 40; print }' "$f" > "$tmp/early/${f##*/}"
 done
-python3 -m hhneck.nbdl_tables --data "$tmp/early" --name early --into "$tmp" 2> "$tmp/early.err"
+python3 -m hhneck.validation.nbdl_tables --data "$tmp/early" --name early --into "$tmp" 2> "$tmp/early.err"
 check "a pulse 40 ms early: the warning says to shift time_ms by +40 ms" \
     grep -q "first passes -1 g at 12.0 ms.*shift the runs' time_ms by +40 ms" "$tmp/early.err"
 check "the shipped runs: no such warning" sh -c "! grep -q 'first passes' '$tmp/unit12.txt' '$tmp/unit15.txt'"
 cp -r reference/nbdl_12g "$tmp/still"
 awk -F, 'BEGIN { OFS = "," } NR == 1 { print; next } { for (i = 2; i <= NF; i++) $i = 0; print }' \
     reference/nbdl_12g/T1_XAccel.csv > "$tmp/still/T1_XAccel.csv"
-python3 -m hhneck.nbdl_tables --data "$tmp/still" --name still --into "$tmp" 2> "$tmp/still.err"
+python3 -m hhneck.validation.nbdl_tables --data "$tmp/still" --name still --into "$tmp" 2> "$tmp/still.err"
 rc=$?
 check "no sled pulse in the T1 x-acceleration: refused (exit $rc)" sh -c \
     "[ $rc -ne 0 ] && grep -q 'never passes -1 g' '$tmp/still.err' && [ ! -e '$tmp/still.inp' ]"
@@ -107,13 +107,13 @@ check "no sled pulse in the T1 x-acceleration: refused (exit $rc)" sh -c \
 # Broken data: refused with the file's name, never a Python traceback.
 cp -r reference/nbdl_12g "$tmp/broken"
 rm "$tmp/broken/T1_XAccel.csv"
-python3 -m hhneck.nbdl_tables --data "$tmp/broken" --name broken --into "$tmp" 2> "$tmp/b1.err"
+python3 -m hhneck.validation.nbdl_tables --data "$tmp/broken" --name broken --into "$tmp" 2> "$tmp/b1.err"
 rc=$?
 check "no T1 x-acceleration file: refused (exit $rc), naming the file" sh -c \
     "[ $rc -ne 0 ] && grep -q 'T1_XAccel.csv not found' '$tmp/b1.err' && ! grep -q Traceback '$tmp/b1.err'"
 cp reference/nbdl_12g/T1_XAccel.csv "$tmp/broken/"
 sed -i '5s/,[^,]*,/,,/' "$tmp/broken/Head_ZAccel.csv"
-python3 -m hhneck.compare_nbdl --data b="$tmp/broken" --case b --h5 b="$tmp/shipped.h5" --out "$tmp/o4" \
+python3 -m hhneck.tools.compare_nbdl --data b="$tmp/broken" --case b --h5 b="$tmp/shipped.h5" --out "$tmp/o4" \
     > /dev/null 2> "$tmp/b2.err"
 rc=$?
 check "an empty value in a run: refused (exit $rc), naming the file" sh -c \
@@ -129,7 +129,7 @@ data=$long/the_runs_1607_to_1617_copied_from_the_shipped_twelve_g_set
 mkdir -p "$long"
 cp -r reference/nbdl_12g "$data"
 check "the data folder path has ${#data} characters (at least 120)" [ ${#data} -ge 120 ]
-python3 -m hhneck.nbdl_tables --data "$data" --name long12 --into "$tmp" 2> "$tmp/long.err"
+python3 -m hhneck.validation.nbdl_tables --data "$data" --name long12 --into "$tmp" 2> "$tmp/long.err"
 check "its decks written (exit $?)" [ $? -eq 0 ]
 check "every card of both decks within 80 columns" \
     sh -c "[ -z \"\$(awk 'length > 80' '$tmp/long12.inp' '$tmp/long12_t1.inp')\" ]"
@@ -151,13 +151,13 @@ sys.exit(0 if wrapped(deck, ["in %s (T1 tables" % data, "--data X=%s" % data])
 PY
 check "its T1 tables equal the shipped 12 g ones" sh -c \
     "grep -v '^\*' '$tmp/long12_t1.inp' | cmp -s - '$tmp/shipped12.txt'"
-python3 -m hhneck.nbdl_tables --data "$data" --name long12 --into "$long" 2> "$tmp/into.err"
+python3 -m hhneck.validation.nbdl_tables --data "$data" --name long12 --into "$long" 2> "$tmp/into.err"
 rc=$?
 check "an --into directory too long for the INCLUDE card: refused (exit $rc), naming the line, nothing written" sh -c \
     "[ $rc -ne 0 ] && grep -q 'long12.inp, line [0-9]*: the INCLUDE card has [0-9]* columns' '$tmp/into.err' &&
      ! grep -q Traceback '$tmp/into.err' && [ ! -e '$long/long12.inp' ] && [ ! -e '$long/long12_t1.inp' ]"
 name=runs_of_a_volunteer_series_with_a_name_long_enough_to_pass_column_80
-python3 -m hhneck.nbdl_tables --data "$data" --name "$name" --into "$tmp" 2> "$tmp/name.err"
+python3 -m hhneck.validation.nbdl_tables --data "$data" --name "$name" --into "$tmp" 2> "$tmp/name.err"
 rc=$?
 check "a name too long for the H5FILE card: refused (exit $rc), naming the line, nothing written" sh -c \
     "[ $rc -ne 0 ] && grep -q 'line [0-9]*: the H5FILE card has [0-9]* columns' '$tmp/name.err' &&

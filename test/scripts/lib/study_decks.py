@@ -4,7 +4,7 @@ folder (where its relative INCLUDEs are found), the model decks found
 through -I ROOT."""
 import subprocess
 
-from hhneck import segments
+from hhneck.validation import segments
 
 
 def deck_problems(hhneck, text, work, label):

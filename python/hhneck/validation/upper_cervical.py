@@ -1,5 +1,5 @@
 """The upper-cervical joints' passive elements scaled to the segment data
-of Panjabi et al. 2001 (hhneck.segments; data in shared/data/pmhs_neck).
+of Panjabi et al. 2001 (hhneck.validation.segments; data in shared/data/pmhs_neck).
 
 The model deck joins C2-C1 (atlanto-axial) and C1-HEAD (atlanto-occipital)
 by the paper's disc law with the skull-C3 rotational stiffness of S1 and by
@@ -10,7 +10,7 @@ rotation than that lumped set: at 1 N m C1-C2 turns 22.1 / -32.7 deg (the
 deck's elements, springs dropped: 12.6) and flexes 12.2 / -12.1 deg (3.94
 / -5.81). Stiffness cannot be taken away by the neutral-zone springs
 (NZSPRING, in parallel), so two factors of these two joints can be fitted
-before the springs (hhneck-fit-joints --upper-cervical runs this first;
+before the springs (python3 -m hhneck.validation.fit_joints --upper-cervical runs this first;
 not the shipped model's flow, docs/validation.md "The upper cervical
 joints" says why):
 
@@ -37,7 +37,7 @@ beyond these elements. Found by bisection in log f (BISECTIONS steps);
 the rotation grows monotonically as a factor falls.
 
 The factors are written to reference/upper_cervical.csv; the deck
-generator (python3 -m hhneck.model_deck) writes the model deck's cards
+generator (python3 -m hhneck.validation.model_deck) writes the model deck's cards
 through scale_cards, the same function the fit runs its cases on, and the
 deck says so in a comment line (MARKER). A deck that has the line is not
 fitted again (its cards would be scaled twice).
@@ -51,8 +51,8 @@ import os
 import tempfile
 
 from . import segments
-from .deck_fields import number_text, scale_fields, write_deck
-from .paths import project_path
+from ..decks import number_text, scale_fields, write_deck
+from ..paths import project_path
 
 CSV_PATH = project_path("reference", "upper_cervical.csv")
 #: (lower, upper) body pairs of the atlanto-axial and atlanto-occipital joints
@@ -61,7 +61,7 @@ JOINT_PAIRS = (("C2", "C1"), ("C1", "HEAD"))
 TARGETS = (("f_lig", ("C1_C2", "axial_rotation")), ("f_rot", ("C1_C2", "flexion_extension")))
 F_MIN = 1e-3
 BISECTIONS = 12
-MARKER = "* UPPER CERVICAL (hhneck.upper_cervical):"
+MARKER = "* UPPER CERVICAL (hhneck.validation.upper_cervical):"
 
 
 def _joins(f):
@@ -82,8 +82,8 @@ def scale_cards(lines, f_rot, f_lig):
                 out.append(MARKER)
                 out.append("* discs C2-C1, C1-HEAD: Iy, J x %s; their ligaments: l1, l2 x %s" % (
                     number_text(f_rot), number_text(f_lig)))
-                out.append("* (reference/upper_cervical.csv: fitted to Panjabi 2001 by hhneck-fit-joints")
-                out.append("* before the neutral-zone springs).")
+                out.append("* (reference/upper_cervical.csv: fitted to Panjabi 2001 by")
+                out.append("* hhneck.validation.fit_joints before the neutral-zone springs).")
                 marked = True
             if f[0] == "LIGAMENT":
                 line = scale_fields(line, (4, 5), f_lig)
@@ -173,7 +173,7 @@ def fit_factors(exe, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, work
     had to reach (the data's, or the range edge where that is less)."""
     if deck_has_factors(model):
         raise ValueError("%s already has the upper-cervical factors; fit them on the deck without them "
-                         "(python3 -m hhneck.model_deck --upper-cervical none)" % model)
+                         "(python3 -m hhneck.validation.model_deck --upper-cervical none)" % model)
     work = workdir or tempfile.mkdtemp(prefix="hhneck-upper-cervical-")
     os.makedirs(work, exist_ok=True)
     with open(model) as f:
@@ -206,7 +206,8 @@ def write_csv(path, fit):
     """reference/upper_cervical.csv: a comment line, then factor, value,
     segment, motion, model_deg, target_deg."""
     with open(path, "w", newline="") as f:
-        f.write("# written by hhneck-fit-joints (python/hhneck/upper_cervical.py): the C2-C1 and C1-HEAD "
+        f.write("# written by python3 -m hhneck.validation.fit_joints (python/hhneck/validation/upper_cervical.py): "
+                "the C2-C1 and C1-HEAD "
                 "ligaments' l1, l2 (f_lig) and discs' Iy, J (f_rot) factors, each the largest at which the "
                 "segment case turns as far as the data at its largest moment (springs dropped)\n")
         w = csv.writer(f, lineterminator="\n")

@@ -47,7 +47,7 @@ for C6-C7; extension positive), head-T1 angle = -(change of the head's
 planar angle about y in T1's sagittal plane, from the result file's
 rotation matrices: ANGLES), retraction = HT1_DX [mm] (head mass centre
 relative to T1 in T1's axes, from the start). Reference: each corridor
-outline's midline, the outline named (REFERENCE; hhneck.specimen_data),
+outline's midline, the outline named (REFERENCE; hhneck.validation.specimen_data),
 rated by ISO/TS 18571 over the times the corridor covers (0.3-126 ms) and
 the run covers (to 130 ms), no offsets.
 
@@ -137,8 +137,10 @@ import tomllib
 
 import numpy as np
 
-from . import iso18571, segments, specimen_data
-from .nbdl import cfc
+from .. import ratings
+from . import segments, specimen_data
+from ..decks import card
+from ..signals import cfc
 
 #: the folder of the catalogue's case files
 CASES_DIR = os.path.join(segments.ROOT, "reference", "cases")
@@ -287,7 +289,7 @@ def _case(case):
 #: channel, the scale to the data's sign, whether taken from its value at
 #: the start, the CFC class [Hz] the model curve is filtered by, 0 none),
 #: from the case files; the module docstring says why each is what it is.
-#: The catalogue's runs and the calibration's RATED cards (hhneck.calibration)
+#: The catalogue's runs and the calibration's RATED cards (hhneck.validation.calibration)
 #: both read this table.
 CHANNELS = {n: [(e["name"], e["model"], e["scale"], e["tare"], e["cfc"]) for e in c["channels"]]
             for n, c in CASES.items()}
@@ -302,7 +304,7 @@ STEMPER_CHANNELS = [c[0] for c in CHANNELS["stemper"]]
 #: calibration's RATED cards rate: a Fortran channel): HT1_RY equals the
 #: planar angle in a sagittal motion; HEADL_RX and HEADL_RY are Bryant angles.
 ANGLES = {(n, e["name"]): e["angle"] for n, c in CASES.items() for e in c["channels"] if e["angle"]}
-#: the reference curve of each case's channels (hhneck.specimen_data.reference's
+#: the reference curve of each case's channels (hhneck.validation.specimen_data.reference's
 #: curve): the corridor outline named in the data file, or the specimens whose mean is taken
 REFERENCE = {n: c["reference"]["curve"] for n, c in CASES.items() if c["reference"]}
 #: each case's experiment file in the data folder
@@ -404,7 +406,7 @@ def _held_t1(driven, t1_slope, body="T1"):
     """PRESCRIB CONSTANT cards of the potted body's coordinates but those
     `driven`: its pitch RY the tilt that gives the T1 slope t1_slope [deg]."""
     tilt = t1_slope - model_t1_slope()
-    return ["PRESCRIB  %-10s%s        CONSTANT  %s" % (body, c, "%-10.4f" % tilt if c == "RY" else "")
+    return [card("PRESCRIB", body, c, "CONSTANT", "%.4f" % tilt if c == "RY" else None)
             for c in ("TX", "TY", "TZ", "RX", "RY", "RZ") if c not in driven]
 
 
@@ -464,28 +466,26 @@ def case_deck(case, workdir, support=None, muscles=None, data_dir=segments.DATA_
         raise ValueError("muscles: PASSIVE or REFLEX, not %r" % muscles)
     body = c["potting"]["body"]
     name = run_name(c["name"], support, muscles)
-    lines = ["TITLE     %s (%s, MUSCLES %s)" % (c["deck_title"], support, muscles),
+    lines = [card("TITLE", "%s (%s, MUSCLES %s)" % (c["deck_title"], support, muscles)),
              "*         end (s)   step (s)  print (s) method    rtol      atol",
-             "CONTROL   %-10g1.0E-4    0.005     ROS34PW2  %-10s%s" % (c["end_time"], _e(c["rtol"]), _e(c["atol"])),
+             card("CONTROL", "%g" % c["end_time"], "1.0E-4", "0.005", "ROS34PW2", _e(c["rtol"]), _e(c["atol"])),
              "SOLVER    ABA       STRUCT",
              "OUTPUT    1.0E-4",
-             "H5FILE    %s.h5" % name]
+             card("H5FILE", name + ".h5")]
     lines += [] if support == "CLAMP" else _support_cards(support)
-    lines += ["INCLUDE   %s" % (model or c["model"])] + (c["clamp"] if support == "CLAMP" else [])
+    lines += [card("INCLUDE", model or c["model"])] + (c["clamp"] if support == "CLAMP" else [])
     tables = _pulse_tables(c, workdir, data_dir)
     for _, table, fname, n in tables:
-        lines += ["TABLE     %-10s%-10d1.0       1.0       CSV" % (table, n), "          %s" % fname]
-    lines += ["PRESCRIB  %-10s%s        ACCEL     %-10s0.0       0.0" % (body, q, table) for q, table, _, _ in tables]
+        lines += [card("TABLE", table, "%d" % n, "1.0", "1.0", "CSV"), card("", fname)]
+    lines += [card("PRESCRIB", body, q, "ACCEL", table, "0.0", "0.0") for q, table, _, _ in tables]
     if c["loadcell"]:
         lc = c["loadcell"]
-        lines.append("LOADCELL  %-10s%-10s%-10.4f%-10.4f%-10.4f%s" % ((lc["name"], lc["body"]) + tuple(lc["point"])
-                                                                   + (lc["axes"],)))
-    lines += [h.rstrip() for h in _held_t1([q for q, _, _, _ in tables], c["potting"]["slope"]
-                                           if t1_slope is None else t1_slope, body)]
+        lines.append(card("LOADCELL", lc["name"], lc["body"], *["%.4f" % v for v in lc["point"]], lc["axes"]))
+    lines += _held_t1([q for q, _, _, _ in tables], c["potting"]["slope"] if t1_slope is None else t1_slope, body)
     if muscles == "PASSIVE":
         for act in ("FLEX", "EXT"):
             for k, field in ((2, "U0"), (3, "U1")):
-                lines.append("CHANGE    %-10sFIELD%d    ACTIVATE  %-10sSET       0.0" % (act[:4] + field, k, act))
+                lines.append(card("CHANGE", act[:4] + field, "FIELD%d" % k, "ACTIVATE", act, "SET", "0.0"))
     deck = os.path.join(workdir, name + ".inp")
     with open(deck, "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -578,7 +578,7 @@ def rate_channel(g, ref, lo, hi, t, m):
     end = g[-1]
     g, ref, lo, hi = g[common], ref[common], lo[common], hi[common]
     mi = np.interp(g, t, m)
-    sc = iso18571.rate(g * 1e-3, ref, mi)
+    sc = ratings.rate(g * 1e-3, ref, mi)
     km, kr = int(np.argmax(np.abs(mi))), int(np.argmax(np.abs(ref)))
     sc.update(grid=g, reference=ref, lower=lo, upper=hi, model=mi, peak_model=(mi[km], g[km]),
               peak_ref=(ref[kr], g[kr]), inside=float(np.mean((mi >= lo) & (mi <= hi))),

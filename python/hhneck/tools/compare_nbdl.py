@@ -7,13 +7,13 @@ Without --h5 it runs input/nbdlSEVg.inp for each case (hhneck.run.run_deck:
 $HHNECK, else the project's release build). Volunteer data: reference/nbdl_15g
 (runs 1635-1644) and reference/nbdl_12g (runs 1607-1617), raw, every 0.5 ms.
 The project's input/, reference/ and docs/ are meant (hhneck.paths), from
-any working directory; the computations are hhneck.nbdl's. Every volunteer
+any working directory; the computations are hhneck.ratings'. Every volunteer
 run and the model are filtered CFC 60 (SAE J211/1, as the library does).
 
 Rated channels (the head's kinematics): x- and z-acceleration, angular
 acceleration, angular velocity, rotation; each gets a CORA-style rating
 (method in docs/validation.md) and the overall rating of a case is their
-mean; each gets its ISO/TS 18571 rating too (hhneck.iso18571, reference =
+mean; each gets its ISO/TS 18571 rating too (hhneck.ratings, reference =
 the volunteers' mean, same window), and their mean. The head displacements relative to T1 are reported and rated but not
 in the overall rating (their frames and points are not documented).
 Peaks: x-acceleration, z-acceleration dip and rebound, angular acceleration,
@@ -24,7 +24,7 @@ number has three significant digits.
 
 Other runs of the same kind (a directory with the same CHANNEL.csv files,
 columns time_ms,run_...): `--data NAME=DIR --case NAME` compares the deck
-input/nbdlNAME.inp (or `--deck NAME=DECK`) with them; hhneck-nbdl-tables
+input/nbdlNAME.inp (or `--deck NAME=DECK`) with them; python3 -m hhneck.validation.nbdl_tables
 --data DIR --name nbdlNAME writes that deck and its T1 tables. A channel
 whose file the directory lacks is left out (the overall rating is the mean
 over the rated channels present, and the table names the missing ones); a
@@ -37,9 +37,10 @@ import tempfile
 
 import numpy as np
 
-from . import run
-from .nbdl import RATED, REPORTED, SEVERITIES, compare, s3
-from .paths import project_path
+from .. import run
+from ..paths import project_path
+from ..ratings import RATED, REPORTED, compare, s3
+from ..volunteers import SEVERITIES
 
 def tables(sev, chans, peaks, overall, nrun):
     sevt = sev.replace("g", " g")

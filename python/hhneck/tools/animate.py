@@ -27,7 +27,7 @@ import sys
 import h5py
 import numpy as np
 
-from .results import text, text_list
+from ..results import text, text_list
 
 TENSION_CMAP = "YlOrRd"     # ligaments and muscles: tension from 0 to the run's peak
 DISC_CMAP = "coolwarm"      # discs: axial force, compression blue, tension red

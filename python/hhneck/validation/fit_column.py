@@ -14,7 +14,7 @@ names each bound's source or says it is assumed):
  - ROMK, ROMT0: the range-of-motion resistance's stiffness and e-fold
    excess (the stops the Nightingale moments reach);
  - the neutral-zone springs (NZSPRING) of every joint, refitted by
-   hhneck.fit_joints at every candidate on the deck with the candidate's
+   hhneck.validation.fit_joints at every candidate on the deck with the candidate's
    other elements (the springs carry what the data ask beyond them).
 
 Not fitted (the table's rows as they are, sourced or assumed): the
@@ -25,7 +25,7 @@ SIGMA, a muscle property.
 
 Objective: J = 1 - (R_P + R_N) / 2, R_P and R_N the mean ISO/TS 18571
 ratings of the Panjabi (21 curves) and Nightingale (3 curves) segment
-cases as the catalogue rates them (hhneck.segments), solved as statics
+cases as the catalogue rates them (hhneck.validation.segments), solved as statics
 (the ramps' zero-rate limit) for the springs' fit and the rating alike.
 Optimizer: a deterministic coordinate search in the logarithm of each
 parameter from START (not the table's values, so that a rerun reproduces
@@ -39,7 +39,7 @@ reference/nz_springs.csv of the best point; dev/fit_model.sh records both
 into reference/model_parameters.csv (stages segments and nz_springs) and
 writes the model deck from it.
 
-Command: python3 -m hhneck.fit_column [--exe HHNECK] [--work DIR]
+Command: python3 -m hhneck.validation.fit_column [--exe HHNECK] [--work DIR]
 [--jobs N] [--max-eval N] [--csv PATH] [--springs PATH] [--evaluate]
 (--evaluate: J at the table's values, nothing written).
 """
@@ -54,7 +54,7 @@ import time
 import numpy as np
 
 from . import fit_joints, model_deck, segments
-from .paths import project_path
+from ..paths import project_path
 
 CSV_PATH = project_path("reference", "column_fit.csv")
 #: (row, lower, upper): the fitted rows and their bounds (reference/parameters.md)
@@ -84,7 +84,7 @@ def objective(results):
 
 def evaluate(x, exe, work, jobs=None, rows=None):
     """Rate the column at `x` ({row: value} over the table's rows): the
-    deck with x, the springs refitted on it (hhneck.fit_joints, statics),
+    deck with x, the springs refitted on it (hhneck.validation.fit_joints, statics),
     the segment cases rated with them. Returns dict J, panjabi, nightingale,
     springs (the CSV written in `work`), deck, results."""
     os.makedirs(work, exist_ok=True)
@@ -140,7 +140,7 @@ def search(start, exe, work, jobs=None, max_eval=MAX_EVAL, log=lambda s: print(s
 def write_csv(path, x, best):
     """reference/column_fit.csv: a comment line, then name, value, lower, upper, J."""
     with open(path, "w", newline="") as f:
-        f.write("# written by python3 -m hhneck.fit_column: the passive column's factors fitted to the segment "
+        f.write("# written by python3 -m hhneck.validation.fit_column: the passive column's factors fitted to the segment "
                 "tests (Panjabi 2001, Nightingale 2007); J = 1 - mean of the two sources' mean ISO/TS 18571 "
                 "(Panjabi %.4f, Nightingale %.4f)\n" % (best["panjabi"], best["nightingale"]))
         w = csv.writer(f, lineterminator="\n")
@@ -151,7 +151,7 @@ def write_csv(path, x, best):
 
 def main(argv=None):
     """Fit the column (or, with --evaluate, rate the table's) and write the CSVs."""
-    ap = argparse.ArgumentParser(prog="python3 -m hhneck.fit_column", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python3 -m hhneck.validation.fit_column", description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", help="the hhneck executable (default $HHNECK, else fpm's release build)")
     ap.add_argument("--work", help="working directory (default a temporary folder)")
     ap.add_argument("--jobs", type=int, help="runs at a time (default: the cores)")

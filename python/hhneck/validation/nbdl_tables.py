@@ -1,11 +1,11 @@
 """Writes the T1 input tables of the NBDL sled decks from the volunteer runs
 in reference/:
 
-    hhneck-nbdl-tables
+    python3 -m hhneck.validation.nbdl_tables
 
 input/nbdl15g_t1.inp (runs 1635-1644, n = 7) and input/nbdl12g_t1.inp (runs
 1607-1617, n = 10): T1 x- and z-acceleration [g] and sagittal rotation, each
-run filtered (SAE J211/1, the filter of hhneck.compare_nbdl), mean over the
+run filtered (SAE J211/1, the filter of hhneck.tools.compare_nbdl), mean over the
 runs, every 1 ms from 0 to 299 ms. The x-acceleration and the rotation are
 filtered CFC 60; the z-acceleration CFC 20: above about 20 Hz the runs' T1
 z-accelerations are out of phase with each other (a mount ringing at 50-60 Hz,
@@ -25,7 +25,7 @@ its peaks. The same factor on the z-acceleration and the rotation, and the
 
 Other runs of the same kind (a directory with the same CHANNEL.csv files):
 
-    hhneck-nbdl-tables --data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]
+    python3 -m hhneck.validation.nbdl_tables --data DIR --name NAME [--rot-unit deg|rad] [--into DIR2]
 
 writes input/NAME_t1.inp (same filters, mean over the directory's runs) and
 input/NAME.inp (the 12 g deck with that drive; --into: another directory
@@ -39,7 +39,7 @@ are written every 1 ms over the runs' span whatever their sampling step. Runs
 whose pulse starts more than 10 ms away from the shipped runs' (their mean T1
 x-acceleration first below -1 g at about 52 ms) get a warning that says how
 far to shift their time_ms. The comments that name DIR and the deck go on
-continuation comment cards when they pass column 80 (hhneck.deck_fields);
+continuation comment cards when they pass column 80 (hhneck.decks);
 an INCLUDE card (--into) or H5FILE card (--name) that would pass it is
 refused, and neither deck is written.
 """
@@ -50,9 +50,11 @@ import sys
 
 import numpy as np
 
-from .deck_fields import CardError, check_cards, comment_cards, hold, write_decks
-from .nbdl import cfc, channel_file, has_channel, peak, runs, stop
-from .paths import project_path
+from ..decks import CardError, Right, card, check_cards, comment_cards, hold, write_decks
+from ..paths import project_path
+from ..ratings import peak
+from ..signals import cfc
+from ..volunteers import channel_file, has_channel, runs, stop
 
 Z_CFC = 20   # filter class of the T1 z-acceleration (the others: CFC 60)
 T1_PEAK_8G = 17.4   # g: mean T1 x-acceleration peak of the 8 g runs (reference/reference-data.md section 3)
@@ -69,9 +71,9 @@ def table(name, t, mean, scale):
     runs are sampled on whole milliseconds, as the shipped ones are)."""
     tt = np.arange(np.ceil(t[0] - 1e-9), np.floor(t[-1] + 1e-9) + 1.0) + 0.0   # + 0.0: no "-0.0"
     vv = np.interp(tt, t, mean)
-    out = ["%-8s  %-10s%10d%10s%10s" % ("TABLE", name, len(tt), "0.001", scale)]
+    out = [card("TABLE", name, Right("%d" % len(tt)), Right("0.001"), Right(scale))]
     for i in range(0, len(tt), 3):
-        out.append(" " * 10 + "".join("%10.1f%10.4f" % (a, b) for a, b in zip(tt[i:i + 3], vv[i:i + 3])))
+        out.append(card("", *[Right(x) for a, b in zip(tt[i:i + 3], vv[i:i + 3]) for x in ("%.1f" % a, "%.4f" % b)]))
     return out
 
 
@@ -90,7 +92,7 @@ def pulse_onset(t, data):
 
 def t1_peak_mean(sev):
     """Mean over the runs of the T1 x-acceleration peak (g, each run CFC 60,
-    the peak of hhneck.compare_nbdl), as reference-data.md section 3 has it."""
+    the peak of hhneck.tools.compare_nbdl), as reference-data.md section 3 has it."""
     t, data, _ = runs("T1_XAccel", sev)
     dt = (t[1] - t[0]) * 1e-3
     return float(np.mean([peak(t, cfc(r, 60, dt), -1)[0] for r in data]))
@@ -110,13 +112,13 @@ def t1_tables_8g():
         "* (8 g mean T1 x-acceleration peak, reference/reference-data.md",
         "* section 3) / %.2f g (the 12 g runs' mean peak, each run CFC 60)." % abs(t1_peak_mean("12g")),
         "* The same factor on z and rotation and the 12 g time course are",
-        "* assumptions. Written by hhneck-nbdl-tables.",
+        "* assumptions. Written by hhneck.validation.nbdl_tables.",
         "* Time in ms (scale 0.001 s).",
     ]
     for line in t1_tables("12g"):
         if line.startswith("TABLE"):
             f = line.split()
-            line = "%-8s  %-10s%10s%10s%10s" % ("TABLE", f[1], f[2], f[3], "%.6g" % (float(f[4]) * s))
+            line = card("TABLE", f[1], Right(f[2]), Right(f[3]), Right("%.6g" % (float(f[4]) * s)))
         if not line.startswith("*"):
             lines.append(line)
     return lines
@@ -132,7 +134,7 @@ def t1_tables(sev, z_cfc=Z_CFC, x_cfc=60, data=None, case=None):
         "* z-acceleration [g], sagittal rotation [%s]; each run CFC 60" % c["rot_unit"],
         "* (the z-acceleration CFC %d: its runs are out of phase above about" % z_cfc,
         "* 20 Hz), mean over the runs, every 1 ms. Written by",
-    ] + comment_cards("hhneck-nbdl-tables from reference/nbdl_%s (Ewing & Thomas" % sev) + [
+    ] + comment_cards("hhneck.validation.nbdl_tables from reference/nbdl_%s (Ewing & Thomas" % sev) + [
         "* 1972, NHTSA Biomechanics Test Database, via IMMC-UWaterloo/ARCGen).",
         "* Time in ms (scale 0.001 s).",
     ]
@@ -187,7 +189,7 @@ def new_case(folder, name, rot_unit=None, into=None):
         deck = f.read().splitlines()
     out = (comment_cards("%s: the 54-DOF head/neck model with T1 driven by the mean of the %d runs"
                          % (name, len(cols)))
-           + comment_cards("in %s (T1 tables by hhneck-nbdl-tables --data)." % folder)
+           + comment_cards("in %s (T1 tables by python3 -m hhneck.validation.nbdl_tables --data)." % folder)
            + ["* Compare: hhneck-compare-nbdl --case X --out OUT"]
            + comment_cards("  --data X=%s" % folder)
            + comment_cards("  --deck X=%s" % os.path.join(named, name + ".inp")))
@@ -195,9 +197,9 @@ def new_case(folder, name, rot_unit=None, into=None):
         if line.startswith("*") and not any(l.startswith("TITLE") for l in out):
             continue                      # the 12 g deck's own header
         if line.startswith("TITLE"):
-            line = "%-10s%s" % ("TITLE", ("T1 DRIVEN BY THE MEAN OF %d RUNS: %s" % (len(cols), name)).upper()[:70])
+            line = card("TITLE", ("T1 DRIVEN BY THE MEAN OF %d RUNS: %s" % (len(cols), name)).upper()[:70], strip=False)
         elif line.startswith("H5FILE"):
-            line = "%-10s%s.h5" % ("H5FILE", name)
+            line = card("H5FILE", name + ".h5")
         out.append(line.replace("input/nbdl12g_t1.inp", tables))
     try:
         # both checked before either is written: a card beyond column 80 (the
@@ -211,7 +213,7 @@ def new_case(folder, name, rot_unit=None, into=None):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="hhneck-nbdl-tables", description=__doc__.split("\n\n")[0],
+    p = argparse.ArgumentParser(prog="python3 -m hhneck.validation.nbdl_tables", description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--data", metavar="DIR", help="a directory of other runs (CHANNEL.csv files)")
     p.add_argument("--name", help="the new case's name (with --data)")

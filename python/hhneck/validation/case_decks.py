@@ -3,22 +3,19 @@
       cadaver, force pulses RECONSTRUCTED (the paper's records are not public);
   hybrid3_flexion.inp  the Hybrid III neck pendulum flexion input (49 CFR
       572.33) applied to the human model.
-See reference/cases.md.   hhneck-case-decks (writes into the project, hhneck.paths)
+See reference/cases.md.   python3 -m hhneck.validation.case_decks (writes into the project, hhneck.paths)
 """
 import argparse
 import math
 import sys
 
-from .deck_fields import CardError, held, number_text, write_decks
-from .paths import project_path
+from ..decks import CardError, card, held, number_text, write_decks
+from ..paths import project_path
 
 def table(name, pts, tscale="0.001", vscale="1.0"):
-    out = ["%-8s  %-10s%-10d%-10s%-10s" % ("TABLE", name, len(pts), tscale, vscale)]
+    out = [card("TABLE", name, "%d" % len(pts), tscale, vscale, strip=False)]
     for i in range(0, len(pts), 3):
-        row = " " * 10
-        for (t, v) in pts[i:i + 3]:
-            row += "%-10s%-10s" % (number_text(round(t, 4)), number_text(round(v, 3)))
-        out.append(row.rstrip())
+        out.append(card("", *[number_text(round(x, d)) for (t, v) in pts[i:i + 3] for x, d in ((t, 4), (v, 3))]))
     return out
 
 def halfsine(t0, dur, peak, dt=0.5):
@@ -46,12 +43,12 @@ def case_decks():
             "* forehead impact the paper describes (reference/cases.md):",
             "*   %s" % pulse,
             "* T1 (torso) is held fixed; the force acts on the forehead, horizontally",
-            "* rearward in R, from t = 5 ms. Written by hhneck-case-decks.",
-            "TITLE     CASE %s FOREHEAD PENDULUM IMPACT (RECONSTRUCTED FORCE PULSE)" % case,
+            "* rearward in R, from t = 5 ms. Written by hhneck.validation.case_decks.",
+            card("TITLE", "CASE %s FOREHEAD PENDULUM IMPACT (RECONSTRUCTED FORCE PULSE)" % case),
             "*         end (s)   step (s)  print (s) method    rtol      atol",
             "CONTROL   0.1       5.0E-5    0.001     ROS34PW2  1.0E-4    1.0E-7",
             "OUTPUT    1.0E-4",
-            "H5FILE    case%s.h5" % case,
+            card("H5FILE", "case%s.h5" % case),
             "HOLD      POSTURE",
             "INCLUDE   input/head_neck_54dof.inp",
         ]
@@ -84,7 +81,7 @@ def case_decks():
         "* the torso, so the GRAVITY card reverses it in the model's upright frame.",
         "* Corridors (reference-data.md): head rotation 64-78 deg at 57-64 ms; OC",
         "* moment 65-80 lbf ft (88-108 N m) at 47-58 ms, back to 0 at 97-107 ms.",
-        "* Written by hhneck-case-decks.",
+        "* Written by hhneck.validation.case_decks.",
         "TITLE     HYBRID III NECK PENDULUM FLEXION INPUT (49 CFR 572.33), HUMAN MODEL",
         "*         end (s)   step (s)  print (s) method    rtol      atol",
         "CONTROL   0.15      5.0E-5    0.002     ROS34PW2  1.0E-4    1.0E-7",
@@ -94,7 +91,7 @@ def case_decks():
         "HOLD      POSTURE",
         "INCLUDE   input/head_neck_54dof.inp",
         "*         body      coord     kind      table     x0 (m)    v0 (m/s)",
-        "PRESCRIB  T1        TX        ACCEL     PENDULUM  0.0       %.4f" % V0,
+        card("PRESCRIB", "T1", "TX", "ACCEL", "PENDULUM", "0.0", "%.4f" % V0),
     ]
     L += [held("T1", q) for q in ("TY", "TZ", "RX", "RY", "RZ")]
     L += ["* pendulum acceleration [g] against time [ms] (a deceleration: negative)"]
@@ -104,14 +101,15 @@ def case_decks():
 
 
 def main(argv=None):
-    argparse.ArgumentParser(prog="hhneck-case-decks", description=__doc__.split("   hhneck")[0].strip(),
+    argparse.ArgumentParser(prog="python3 -m hhneck.validation.case_decks",
+                            description=__doc__.split("   python3 -m")[0].strip(),
                             formatter_class=argparse.RawDescriptionHelpFormatter).parse_args(argv)
     try:
         # the project's input/ (hhneck.paths), whatever the working directory;
         # none written if a card passes column 80
         write_decks({project_path(k): v for k, v in case_decks().items()})
     except CardError as e:
-        sys.exit("hhneck-case-decks: %s" % e)
+        sys.exit("python3 -m hhneck.validation.case_decks: %s" % e)
     return 0
 
 

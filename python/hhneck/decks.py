@@ -2,11 +2,19 @@
 them (docs/deck-format.md: 80-column card images; columns 1-10 the card
 name, field Fn columns 10n+1 .. 10n+10; a comment card starts with `*`).
 
-Every deck a tool writes goes through check_cards() (write_decks() does it
-for decks written to files): a card beyond column 80 is refused, since the
-program refuses it too. Comments that hold text of any length (a path, a
-name) are made with comment_cards(), which wraps them over continuation
-comment cards instead of losing any of the text."""
+    from hhneck.decks import card, Right
+    card("TABLE", "IMPACT", "35", "0.001", 1.0)    # 'TABLE     IMPACT    35        0.001     1.0'
+    card("", Right("1.0"), Right("-0.5000"))       # a continuation card of right-aligned numbers
+
+card() is the one writer of a data card: every module that writes decks
+lays its cards out through it. Every deck a tool writes goes through
+check_cards() (write_decks() does it for decks written to files): a card
+beyond column 80 is refused, since the program refuses it too. Comments
+that hold text of any length (a path, a name) are made with
+comment_cards(), which wraps them over continuation comment cards instead
+of losing any of the text. Fields of existing cards: field(), set_field(),
+scale_fields(), is_card(); numbers as fields: number_text(),
+number_field(), card_number()."""
 
 COLUMNS = 80     # the width of a card image
 FIELD = 10       # the width of a field
@@ -14,6 +22,60 @@ FIELD = 10       # the width of a field
 
 class CardError(ValueError):
     """A card that does not fit its columns (the deck is not written)."""
+
+
+class Right(str):
+    """A field's text that card() right-aligns in its 10 columns (a deck of
+    right-aligned numbers, such as the NBDL T1 tables)."""
+
+
+def card_number(value):
+    """A number as card() writes it: %g with the most significant digits
+    (6 down to 1) within 9 columns (a blank column before the next field),
+    a decimal point always ("3.0", "0.0"), the exponent as E (1.5E-5);
+    text is returned as it is. ValueError when no form fits."""
+    if isinstance(value, str):
+        return value
+    if value == 0:
+        return "0.0"
+    for p in range(6, 0, -1):
+        s = "%.*g" % (p, value)
+        if "e" in s:
+            m, e = s.split("e")
+            s = m + "E" + str(int(e))
+        elif "." not in s:
+            s = s + ".0"
+        if len(s) <= 9:
+            return s
+    raise ValueError(value)
+
+
+def card(name, *fields, strip=True):
+    """The card image of card `name` with the fields F1, F2, ... `fields`:
+    the name in columns 1-10, field Fn from column 10n+1, left-aligned in
+    its 10 columns (a Right text right-aligned). A field None is blank; a
+    number is written by card_number(); text as it is. A text wider than
+    its 10 columns runs on over the next fields (a title, a file name):
+    they must be None, else CardError (they would shift). strip: trailing
+    blanks dropped; strip=False keeps every field padded to its 10
+    columns, the last one too."""
+    if len(name) > FIELD:
+        raise CardError("card name %r is wider than %d columns" % (name, FIELD))
+    line = name
+    for n, value in enumerate(fields, start=1):
+        start = FIELD * n
+        if value is None:
+            if len(line) <= start:
+                line = line.ljust(start + FIELD)
+            continue
+        if len(line) > start and line[start:].strip():
+            raise CardError("%s card: field F%d (%r) would start after column %d, where the text before it "
+                            "ends" % (name or "continuation", n, value, len(line)))
+        text = card_number(value)
+        line = line[:start].ljust(start) + (text.rjust(FIELD) if isinstance(text, Right) else text.ljust(FIELD))
+    if not fields:
+        line = line.ljust(FIELD)
+    return line.rstrip() if strip else line
 
 
 def comment_cards(text):
@@ -154,7 +216,7 @@ def is_card(line, card, item=None):
 
 def held(body, coord):
     """A PRESCRIB card that holds a body's coordinate at its initial value."""
-    return "%-10s%-10s%-10sCONSTANT" % ("PRESCRIB", body, coord)
+    return card("PRESCRIB", body, coord, "CONSTANT")
 
 
 def hold(lines, body, coords):

@@ -5,8 +5,8 @@ scapulae and the cervical parts of splenius, semispinalis, longissimus and
 iliocostalis, each from T1 (the data's ribcage, spine and scapula, welded to
 T1) to one vertebra, C2 to C5.
 
-    python3 -m hhneck.hyoid_muscles --update     # their rows of the table
-    python3 -m hhneck.hyoid_muscles              # the rows, printed
+    python3 -m hhneck.validation.hyoid_muscles --update     # their rows of the table
+    python3 -m hhneck.validation.hyoid_muscles              # the rows, printed
 
 For each muscle the table (reference/model_parameters.csv) gets, status
 sourced, source S22: the origin (the last path point on T1) and the
@@ -28,7 +28,7 @@ import csv
 import os
 import sys
 
-from hhneck import model_deck as md
+from hhneck.validation import model_deck as md
 from hhneck.paths import project_root
 
 # the model's name of each (KEY: its table rows; + L or R: its HILL cards),
@@ -98,7 +98,7 @@ def rows(p):
     """The table rows (md.read_table's dicts) of MUSCLES on parameter values p."""
     out = []
     for key, m in mapped(p).items():
-        what = "the HYOID model's %s (S22), mapped by hhneck.hyoid_muscles" % m["data"]
+        what = "the HYOID model's %s (S22), mapped by hhneck.validation.hyoid_muscles" % m["data"]
         for end, body in (("origin", "T1"), ("insertion", m["body"])):
             for a, v in zip("xyz", m[end]):
                 side = " (left side; the right mirrored)" if a == "y" else ""
@@ -133,7 +133,7 @@ def update(table=md.TABLE):
 
 def main(argv=None):
     """Print the rows, or with --update write them into the table; 0, else 1."""
-    ap = argparse.ArgumentParser(prog="python3 -m hhneck.hyoid_muscles", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python3 -m hhneck.validation.hyoid_muscles", description=__doc__.split("\n\n")[0])
     ap.add_argument("--update", action="store_true", help="write the rows into the table")
     ap.add_argument("--table", default=md.TABLE, help="the parameter table (default reference/model_parameters.csv)")
     a = ap.parse_args(argv)

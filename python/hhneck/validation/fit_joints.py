@@ -1,5 +1,5 @@
 """Neutral-zone joint springs (NZSPRING cards) fitted to the segment data of
-Panjabi et al. 2001 and Nightingale et al. 2007 (hhneck.segments; data in
+Panjabi et al. 2001 and Nightingale et al. 2007 (hhneck.validation.segments; data in
 shared/data/pmhs_neck).
 
 The NZSPRING law (docs/deck-format.md): on the joint rotation coordinate x
@@ -46,7 +46,7 @@ rms_plus_deg, sources_plus, n_minus, rms_minus_deg, sources_minus,
 method_plus, method_minus, segment, mlin), a table on standard output, and
 the dropped and extrapolated points.
 
-The flow is dev/fit_model.sh: hhneck.fit_column calls this fit (statics)
+The flow is dev/fit_model.sh: hhneck.validation.fit_column calls this fit (statics)
 at every candidate of the column's factors (the discs' bending and torsion
 fractions, the range-of-motion factors), so that the others are the
 candidate's; its best point's springs are written into
@@ -55,14 +55,14 @@ NZSPRING cards, fitting again on a deck that has them gives the same
 constants. --check runs each segment case with the cards and reports the
 rotation at each data moment against the data (model/data).
 
-With --upper-cervical the factors of hhneck.upper_cervical (the C2-C1 and
+With --upper-cervical the factors of hhneck.validation.upper_cervical (the C2-C1 and
 C1-HEAD ligaments, and those discs' flexion bending and torsion) are fitted
 first, on the deck without them (refused on one that has them), written to
 reference/upper_cervical.csv, and the springs fitted on the deck with them
 (an option, not the shipped model's flow: docs/validation.md, "The upper
 cervical joints").
 
-Command: hhneck-fit-joints [--exe HHNECK] [--model DECK] [--data DIR]
+Command: python3 -m hhneck.validation.fit_joints [--exe HHNECK] [--model DECK] [--data DIR]
 [--csv PATH] [--work DIR] [--jobs N] [--check] [--upper-cervical
 [--upper-csv PATH]]
 """
@@ -77,8 +77,8 @@ import time
 import numpy as np
 
 from . import segments, upper_cervical
-from .deck_fields import write_deck
-from .paths import project_path, project_root
+from ..decks import write_deck
+from ..paths import project_path, project_root
 
 CSV_PATH = project_path("reference", "nz_springs.csv")
 #: (body, segment of the data) per joint; C7 on T1 takes C6-C7 (ASSUMED)
@@ -377,7 +377,8 @@ def write_csv(path, rows):
     """reference/nz_springs.csv: a comment line naming the command, the
     header CSV_COLUMNS, one row per (body, coord)."""
     with open(path, "w", newline="") as f:
-        f.write("# written by hhneck-fit-joints (python/hhneck/fit_joints.py): NZSPRING constants of every "
+        f.write("# written by python3 -m hhneck.validation.fit_joints (python/hhneck/validation/fit_joints.py): "
+                "NZSPRING constants of every "
                 "joint coordinate, M0 [N m], ths [deg], per side (plus = the coordinate's positive direction) "
                 "the points used, the rms rotation residual [deg], the data sources and the rule; "
                 "C7 takes C6-C7 (assumed)\n")
@@ -461,15 +462,16 @@ def _has_nzspring(model):
 
 
 def main(argv=None):
-    """hhneck-fit-joints: fit the NZSPRING constants and write the CSV (or,
+    """python3 -m hhneck.validation.fit_joints: fit the NZSPRING constants and write the CSV (or,
     with --check, compare the model with the NZSPRING cards to the data)."""
-    p = argparse.ArgumentParser(prog="hhneck-fit-joints", description=__doc__.split("\n\n")[0])
+    p = argparse.ArgumentParser(prog="python3 -m hhneck.validation.fit_joints", description=__doc__.split("\n\n")[0])
     p.add_argument("--exe", help="the hhneck executable (default $HHNECK, else fpm's release build)")
     p.add_argument("--model", default=segments.MODEL_DECK, help="the model deck (default input/head_neck_54dof.inp)")
     p.add_argument("--data", default=segments.DATA_DIR, help="the pmhs_neck data folder")
     p.add_argument("--csv", default=CSV_PATH, help="the table to write (default reference/nz_springs.csv)")
     p.add_argument("--upper-cervical", action="store_true",
-                   help="first fit the upper-cervical factors (hhneck.upper_cervical) on the deck without them, "
+                   help="first fit the upper-cervical factors (hhneck.validation.upper_cervical) on the deck "
+                        "without them, "
                         "then the springs on the deck with them")
     p.add_argument("--upper-csv", default=upper_cervical.CSV_PATH,
                    help="where --upper-cervical writes its factors (default reference/upper_cervical.csv)")
@@ -481,7 +483,8 @@ def main(argv=None):
     t0 = time.perf_counter()
     if a.check:
         if not _has_nzspring(a.model):
-            print("hhneck-fit-joints: %s has no NZSPRING card (write it with python3 -m hhneck.model_deck "
+            print("python3 -m hhneck.validation.fit_joints: %s has no NZSPRING card (write it with "
+                  "python3 -m hhneck.validation.model_deck "
                   "--nz-springs %s)" % (a.model, os.path.relpath(a.csv, project_root())), file=sys.stderr)
             return 1
         res = check(a.exe, a.model, a.data, a.work, a.jobs)
@@ -504,7 +507,7 @@ def main(argv=None):
         try:
             upper = upper_cervical.fit_factors(exe, a.model, a.data, os.path.join(work, "upper_cervical"))
         except ValueError as e:
-            print("hhneck-fit-joints: %s" % e, file=sys.stderr)
+            print("python3 -m hhneck.validation.fit_joints: %s" % e, file=sys.stderr)
             return 1
         upper_cervical.write_csv(a.upper_csv, upper)
         for name, r in upper.items():

@@ -1,12 +1,17 @@
-"""ISO/TS 18571 objective rating of a model curve against a reference curve,
-by the standard's published implementation, the PyPI package
+"""The ratings of model curves against reference curves: ISO/TS 18571, and
+the CORA-style rating and the peaks of the NBDL cases (method in
+docs/validation.md).
+
+    rate(t, reference, model, window=None, ndigits=None) -> dict     # ISO/TS 18571
+    rate_many(channels, window=None, ndigits=None) -> dict
+    cora(t, model, mean, sd) -> (C, X, score, lag)                    # CORA-style, t in ms
+    compare(sev, h5, data=None) -> (channels, peaks, overall, ...)    # a NBDL run against its volunteers
+
+ISO/TS 18571, by the standard's published implementation, the PyPI package
 objective-rating-metrics (version 1.3, TU Graz, MIT; a dependency of this
 package). Nothing is computed here but the sampling the package needs: the
 corridor, phase, magnitude and slope scores and their weighted overall
 rating are the package's own (class ISO18571, its default parameters).
-
-    rate(t, reference, model, window=None, ndigits=None) -> dict
-    rate_many(channels, window=None, ndigits=None) -> dict
 
 Sampling. The package takes two arrays of the same shape (time, value) and
 does not interpolate; its documentation asks for 10 kHz sampling (the
@@ -25,11 +30,22 @@ values (ndigits < 0 in the package) unless ndigits is given.
 Usage as a program, with a CSV of three columns (time [s], reference, model):
 
     hhneck-iso18571 CURVES.csv [T0 T1]
-"""
+
+The NBDL cases (compare): the rated channels (RATED, the head's
+kinematics) of the model's result file and the volunteers' runs
+(hhneck.volunteers), each filtered CFC 60, over WINDOW: per channel the
+CORA-style rating (cora: corridor C, cross-correlation X, their mean) and
+the ISO/TS 18571 rating against the volunteers' mean; the peaks (PEAKS)
+against the mean +- SD of the runs' peaks; the overall rating, the mean
+of the rated channels' CORA-style ratings. hhneck-compare-nbdl prints
+them (hhneck.tools.compare_nbdl)."""
 import argparse
 import sys
 
 import numpy as np
+
+from . import volunteers
+from .signals import cfc
 
 DT = 1.0e-4          # the package's (and the standard's) sampling: 10 kHz
 MIN_SAMPLES = 16     # fewer samples leave no room for the 9-point slope smoothing
@@ -113,6 +129,116 @@ def rate_many(channels, window=None, ndigits=None):
         raise ValueError("no channels to rate")
     each = {name: rate(t, r, m, window=window, ndigits=ndigits) for name, (t, r, m) in channels.items()}
     return dict(channels=each, overall=float(np.mean([s["overall"] for s in each.values()])))
+
+
+# ---------------------------------------------------------------- the NBDL cases
+
+WINDOW = (30.0, 250.0)   # ms
+RATED = ["head x-acceleration (g)", "head z-acceleration (g)", "head angular acceleration (rad/s2)",
+         "head angular velocity (rad/s)", "head rotation (deg)"]
+REPORTED = ["head x-displacement rel. T1 (mm)", "head z-displacement rel. T1 (mm)"]
+MODEL = {
+    "head x-acceleration (g)": "HEAD_AX",
+    "head z-acceleration (g)": "HEAD_AZ",
+    "head angular acceleration (rad/s2)": "HEAD_ALPHY",
+    "head angular velocity (rad/s)": "HEAD_OMEGY",
+    "head rotation (deg)": "HEAD_THETY",
+    "head x-displacement rel. T1 (mm)": "HEAD_DX",
+    "head z-displacement rel. T1 (mm)": "HEAD_DZ",
+}
+# peak: (label, channel, sign, window ms)
+PEAKS = [
+    ("x-acceleration (g)", "head x-acceleration (g)", -1, (30.0, 250.0)),
+    ("z-acceleration dip (g)", "head z-acceleration (g)", -1, (30.0, 125.0)),
+    ("z-acceleration rebound (g)", "head z-acceleration (g)", +1, (125.0, 250.0)),
+    ("angular acceleration (rad/s2)", "head angular acceleration (rad/s2)", +1, (30.0, 250.0)),
+    ("angular velocity (rad/s)", "head angular velocity (rad/s)", +1, (30.0, 250.0)),
+    ("rotation (deg)", "head rotation (deg)", +1, (30.0, 250.0)),
+]
+
+
+def s3(x):
+    """Three significant digits, without an exponent."""
+    if x == 0 or not np.isfinite(x):
+        return "%g" % x
+    d = max(0, 2 - int(np.floor(np.log10(abs(x)))))
+    return "%.*f" % (d, float("%.3g" % x))
+
+
+def peak(t, x, sign, window=WINDOW):
+    """The extreme of sign*x within the window (ms): (value, time)."""
+    m = (t >= window[0]) & (t <= window[1])
+    i = np.argmax(sign * x[m])
+    return x[m][i], t[m][i]
+
+
+def cora(t, model, mean, sd):
+    """Corridor rating C and cross-correlation rating X (docs/validation.md)."""
+    m = (t >= WINDOW[0]) & (t <= WINDOW[1])
+    y, r, s = model[m], mean[m], sd[m]
+    floor = 0.05 * np.max(np.abs(r))
+    inner = np.maximum(s, floor)
+    outer = np.maximum(3 * s, 3 * floor)
+    d = np.abs(y - r)
+    c = np.where(d <= inner, 1.0, np.where(d >= outer, 0.0, ((outer - d) / (outer - inner)) ** 2))
+    C = c.mean()
+    dt = t[1] - t[0]
+    maxlag = int(round(30.0 / dt))
+    best, lag = -2, 0
+    for k in range(-maxlag, maxlag + 1):
+        lo, hi = max(0, k), len(y) + min(0, k)
+        a = y[lo - k:hi - k]
+        rho = np.corrcoef(a, r[lo:hi])[0, 1]
+        if rho > best:
+            best, lag = rho, k
+    shift = abs(lag) * dt
+    EP = 1.0 if shift <= 2.0 else max(0.0, (30.0 - shift) / (30.0 - 2.0))
+    EV = ((1 + best) / 2) ** 2
+    a_m, a_r = np.sum(y ** 2), np.sum(r ** 2)
+    ES = min(a_m, a_r) / max(a_m, a_r)
+    X = (EP + EV + ES) / 3
+    return C, X, 0.5 * C + 0.5 * X, lag * dt
+
+
+def model_channels(h5):
+    """The model's rated and reported channels of result file h5, filtered
+    CFC 60: (t_ms, {label: values})."""
+    import h5py
+    with h5py.File(h5, "r") as f:
+        tm = f["time"][:] * 1e3
+        dtm = (tm[1] - tm[0]) * 1e-3
+        return tm, {k: cfc(f["channels"][v][:], 60, dtm) for k, v in MODEL.items()}
+
+
+def compare(sev, h5, data=None):
+    """Ratings and peaks of one case against its runs (in directory `data`,
+    default volunteers.data_dir(sev)): (channel rows, peak rows, overall, the curves,
+    the model's curves, the number of runs)."""
+    vol, cols = volunteers.volunteer_channels(sev, data)
+    tm, model = model_channels(h5)
+    chans, peaks, curves = [], [], {}
+    for label, (t, data) in vol.items():
+        mi = np.interp(t, tm, model[label])
+        mean, sd = data.mean(axis=0), data.std(axis=0, ddof=1)
+        m = (t >= WINDOW[0]) & (t <= WINDOW[1])
+        C, X, score, lag = cora(t, mi, mean, sd)
+        inside = np.mean(np.abs(mi[m] - mean[m]) <= sd[m])
+        iso = rate(t * 1e-3, mean, mi, window=(WINDOW[0] * 1e-3, WINDOW[1] * 1e-3))["overall"]
+        chans.append(dict(label=label, C=C, X=X, score=score, lag=lag, inside=inside, iso=iso,
+                          rated=label in RATED))
+        curves[label] = (t, data, mean, sd)
+    for plabel, label, sign, win in PEAKS:
+        if label not in curves:
+            continue                        # the case's runs do not have the channel
+        t, data, mean, sd = curves[label]
+        mi = np.interp(t, tm, model[label])
+        pk = np.array([peak(t, r, sign, win) for r in data])
+        mp, mt = peak(t, mi, sign, win)
+        pm, ps, tmn, tsd = pk[:, 0].mean(), pk[:, 0].std(ddof=1), pk[:, 1].mean(), pk[:, 1].std(ddof=1)
+        peaks.append(dict(label=plabel, mp=mp, mt=mt, pm=pm, ps=ps, tmn=tmn, tsd=tsd,
+                          z=(mp - pm) / ps, ok_peak=abs(mp - pm) <= ps, ok_time=abs(mt - tmn) <= 10.0))
+    overall = np.mean([c["score"] for c in chans if c["rated"]])
+    return chans, peaks, overall, curves, (tm, model), len(cols)
 
 
 def main(argv=None):

@@ -3,16 +3,16 @@ ISO/TS 18571 (objective-rating-metrics) and writes a report with a table
 and a figure per source (docs/catalogue.md when asked for it).
 
 Cases in it now: the quasi-static segment tests of Panjabi et al. 2001 (21
-curves) and Nightingale et al. 2007 (3), set up by hhneck.segments; the
+curves) and Nightingale et al. 2007 (3), set up by hhneck.validation.segments; the
 specimen sled tests of Stemper 2004 (rear, 7 channels, with three variants
 of its set-up) and Kang 2018 (front and side, the head's 3 kinematic channels
 and the T1 load cell's 3 each, with the settled start as a variant), set up
-by hhneck.specimens from their case files (reference/cases, or the folder
+by hhneck.validation.specimens from their case files (reference/cases, or the folder
 --cases names; docs/case-files.md): every rated case file of the folder is
 built, run and rated, so a new direction or severity is a new file. The NBDL volunteer sleds (15 g, 12 g) are run and rated
 as hhneck-compare-nbdl rates them (docs/validation.md has their tables).
 Under each Kang case, the Newton balance of its head and load cell
-(hhneck.newton_balance), the data's and the model's. Under each case or
+(hhneck.validation.newton_balance), the data's and the model's. Under each case or
 source that misses its goal, a "What stops it" line names what misses,
 from this run's ratings (the mean's shortfall, every channel or curve
 below 0.50 with the peaks), and links the sections of docs/validation.md
@@ -44,8 +44,9 @@ import time
 
 import numpy as np
 
-from . import nbdl, newton_balance, run, segments, specimens
-from .nbdl import s3
+from .. import ratings, run
+from . import newton_balance, segments, specimens
+from ..ratings import s3
 
 REPORT = os.path.join(segments.ROOT, "docs", "catalogue.md")
 NBDL_GOAL = 0.85        # CORA-style, at both severities (the goal of the catalogue)
@@ -62,11 +63,12 @@ def segment_section(results, figdir, relto):
     moment-rotation curve) and a figure written to figdir."""
     lines = ["## Segment tests (quasi-static pure moments)", "",
              "**Calibration**: the passive column is fitted to these data alone (`python3 -m "
-             "hhneck.fit_column`: the discs' bending and torsion fractions and the range-of-motion factors "
+             "hhneck.validation.fit_column`: the discs' bending and torsion fractions and the range-of-motion factors "
              "to the two sources' mean ISO/TS 18571, the tests solved as statics, the neutral-zone springs "
-             "refitted by `hhneck-fit-joints` at every candidate, the other elements' moment subtracted); "
+             "refitted by `python3 -m hhneck.validation.fit_joints` at every candidate, the other elements' "
+             "moment subtracted); "
              "the springs of OC–C2's joints take Panjabi's C0–C1 and C1–C2. Set-up and signs: "
-             "`python/hhneck/segments.py` (its docstring): the lower body fixed, a pure moment ramped on "
+             "`python/hhneck/validation/segments.py` (its docstring): the lower body fixed, a pure moment ramped on "
              "the upper one (for OC–C2 on the head, C1 free), no gravity, no muscles, the discs, ligaments, "
              "joint-limit dampers, range-of-motion elements and neutral-zone springs of the model deck "
              "joining the segment's bodies. Rotation of the upper body relative to the lower at each moment level on the loading "
@@ -106,9 +108,9 @@ def segment_section(results, figdir, relto):
     return lines
 
 
-def figure(src, rows, figdir):
-    """One figure per source: every moment-rotation curve, model against
-    data (None when figdir is None)."""
+def _pyplot(figdir):
+    """matplotlib.pyplot on the Agg backend; None when figdir is None (no
+    figures asked for) or matplotlib is missing."""
     if figdir is None:
         return None
     try:
@@ -116,6 +118,15 @@ def figure(src, rows, figdir):
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
+        return None
+    return plt
+
+
+def figure(src, rows, figdir):
+    """One figure per source: every moment-rotation curve, model against
+    data (None when figdir is None)."""
+    plt = _pyplot(figdir)
+    if plt is None:
         return None
     n = len(rows)
     cols = min(n, 7)
@@ -155,7 +166,7 @@ STOPS = {"Panjabi 2001": SEGMENT_SECTIONS, "Nightingale 2007": SEGMENT_SECTIONS}
 
 def register_case(case):
     """Take a case file's report texts (its note, SAFER score and sections
-    of what stops it; hhneck.specimens.load_case) into the report's tables."""
+    of what stops it; hhneck.validation.specimens.load_case) into the report's tables."""
     SPECIMEN_NOTES[case["title"]] = case["note"]
     if case["safer"]:
         SAFER[case["title"]] = case["safer"]
@@ -196,7 +207,8 @@ def stops_line(title, misses):
 
 def newton_lines(rows):
     """Markdown lines of a Kang case's Newton balance (newton_balance.kang_rows)."""
-    lines = ["Newton's law between the head and the load cell (`hhneck.newton_balance`): F = Mh a_head(t + s) + "
+    lines = ["Newton's law between the head and the load cell (`hhneck.validation.newton_balance`): "
+             "F = Mh a_head(t + s) + "
              "Mn a_T1(t) fitted by least squares along each axis, the lag s on a 0.5 ms grid; channels on one time "
              "base fit near s = 0 with Mh near a head's mass, and the model's rows, which obey the law by "
              "construction, check the method (docs/validation.md, \"Do the specimens' head and load cell obey "
@@ -220,7 +232,8 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
     {title: {(support, muscles): rated}})."""
     lines = ["## Specimen sled tests", "",
              "**Prediction**: nothing of the model was fitted to these data; set-ups in "
-             "the case files of `reference/cases` (docs/case-files.md), built by `python/hhneck/specimens.py` "
+             "the case files of `reference/cases` (docs/case-files.md), built by "
+             "`python/hhneck/validation/specimens.py` "
              "(its docstring names each decision of the data's README).", ""]
     for title, (rated, not_rated) in cases.items():
         lines += ["### %s" % title, "", SPECIMEN_NOTES.get(title) or "(no set-up note in its case file)", "",
@@ -267,13 +280,8 @@ def specimen_section(cases, variants, figdir, relto, newton=None):
 
 
 def _case_figure(title, rated, figdir):
-    if figdir is None:
-        return None
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
+    plt = _pyplot(figdir)
+    if plt is None:
         return None
     n = len(rated)
     fig, axes = plt.subplots(1, n, figsize=(2.45 * n, 2.6), squeeze=False)
@@ -304,7 +312,7 @@ def nbdl_score(sev, exe=None, workdir=None):
                      h5=os.path.join(work, "nbdl%s.h5" % sev), cwd=segments.ROOT)
     with open(os.path.join(work, "nbdl%s.err" % sev), "w") as f:
         f.write(r.stderr)
-    chans, peaks, overall = nbdl.compare(sev, r.h5)[:3]
+    chans, peaks, overall = ratings.compare(sev, r.h5)[:3]
     return dict(cora=float(overall), iso=float(np.mean([c["iso"] for c in chans if c["rated"]])),
                 peaks=sum(bool(p["ok_peak"]) for p in peaks), npeaks=len(peaks),
                 warnings=segments.warning_lines(r.stderr))
@@ -340,7 +348,8 @@ def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, 
     inside = sum(int(np.sum((r["model"] >= r["lower"]) & (r["model"] <= r["upper"]))) for r in night)
     levels = sum(len(r["levels"]) for r in night)
     lines = ["# Validation catalogue", "",
-             "Written by `hhneck-catalogue` (python/hhneck/catalogue.py); do not edit by hand. Every curve is "
+             "Written by `hhneck-catalogue` (python/hhneck/validation/catalogue.py); do not edit by hand. "
+             "Every curve is "
              "rated by ISO/TS 18571 through `objective-rating-metrics` (the implementation the open human-body "
              "model catalogues use). Data: `shared/data/pmhs_neck` (its README: sources, signs, decisions).", ""]
     if status:

@@ -7,16 +7,16 @@ table's numbers or arithmetic on them (the derived card values of
 reference/parameters.md); the structure (bodies, which ligaments and muscles
 join which bodies, the card layout) is this module's.
 
-    python3 -m hhneck.model_deck --output input/head_neck_54dof.inp
-    python3 -m hhneck.model_deck [options] > DECK
+    python3 -m hhneck.validation.model_deck --output input/head_neck_54dof.inp
+    python3 -m hhneck.validation.model_deck [options] > DECK
 
 A fit writes its values into the table, never into the deck by hand
 (dev/fit_model.sh), then regenerates the deck:
 
-    python3 -m hhneck.model_deck --record segments reference/column_fit.csv
-    python3 -m hhneck.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp
+    python3 -m hhneck.validation.model_deck --record segments reference/column_fit.csv
+    python3 -m hhneck.validation.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp
 
-(stage segments: the CSV hhneck.fit_column writes, the column's factors
+(stage segments: the CSV hhneck.validation.fit_column writes, the column's factors
 fitted to the segment tests; stage nz_springs: the neutral-zone springs of
 that fit, reference/nz_springs.csv). The deck is the specimen state: its
 52 Hill muscles are passive (their activation histories FLEX and EXT at
@@ -30,11 +30,11 @@ a straight column, seated-held the seated angles as an initial deflection
 of the straight neutral; --t1-slope and --lordosis (deg) another seated
 posture; --nz-springs CSV the neutral-zone springs of that CSV (a file not
 written yet: no springs; none: no springs either); --upper-cervical CSV the upper-cervical factors of
-hhneck.upper_cervical; --suboccipital yes the four suboccipital muscles per
+hhneck.validation.upper_cervical; --suboccipital yes the four suboccipital muscles per
 side; --segmental yes two segmental muscles per subaxial level and side;
 --cervical yes the eight cervical muscles of S22 per side (scalenes, levator
 scapulae, the cervical splenius, semispinalis, longissimus, iliocostalis:
-hhneck.hyoid_muscles); --sub-bend F the subaxial discs' own bending Ix, Iy times F; --sub-flexion F
+hhneck.validation.hyoid_muscles); --sub-bend F the subaxial discs' own bending Ix, Iy times F; --sub-flexion F
 the flexion-extension bending Iy of the discs C3-C4 ... C7-T1 times F.
 
 Pure arithmetic on the table's numbers: no solver code lives here.
@@ -49,14 +49,15 @@ import re
 import sys
 
 from . import segments, upper_cervical
-from .deck_fields import CardError, check_cards, scale_fields
+from ..decks import CardError, card, check_cards, scale_fields
+from ..decks import card_number as fmt  # noqa: F401 (the tests' md.fmt)
 
 TABLE = os.path.join(segments.ROOT, "reference", "model_parameters.csv")
 COLUMNS = ("name", "value", "unit", "status", "source", "stage", "description")
 STATUSES = ("sourced", "assumed", "fitted")
 #: the fit stages that write rows: (the source tag of the data they fit, what --record reads)
-STAGES = {"nz_springs": ("S21", "the CSV of hhneck-fit-joints (reference/nz_springs.csv)"),
-          "segments": ("S21", "the CSV of hhneck.fit_column (reference/column_fit.csv)")}
+STAGES = {"nz_springs": ("S21", "the CSV of python3 -m hhneck.validation.fit_joints (reference/nz_springs.csv)"),
+          "segments": ("S21", "the CSV of hhneck.validation.fit_column (reference/column_fit.csv)")}
 #: the rows of the passive column (discs, ligaments, joint stops, neutral-zone
 #: springs) by name prefix or name: constraint 1 (docs/validation.md,
 #: "Calibration"), no volunteer fit writes them
@@ -160,7 +161,7 @@ def read_fit(listing):
 
 
 def read_nz_springs(path):
-    """The rows of a hhneck-fit-joints CSV (comment lines skipped):
+    """The rows of a python3 -m hhneck.validation.fit_joints CSV (comment lines skipped):
     [(body, coord, {column: text} of NZ_COLUMNS)], each M0 and ths > 0 (an
     empty mlin: NZ_MLIN)."""
     with open(path, newline="") as f:
@@ -182,7 +183,7 @@ def read_nz_springs(path):
 
 
 def read_column_fit(path):
-    """The (name, value text) rows of a hhneck.fit_column CSV (comment lines
+    """The (name, value text) rows of a hhneck.validation.fit_column CSV (comment lines
     skipped; columns name, value, ...); DeckError for none or a value that
     is not a finite number."""
     with open(path, newline="") as f:
@@ -200,7 +201,7 @@ def record(rows, stage, path):
     stage's source tag. Stage nz_springs: every nz.BODY.COORD.COLUMN row
     from the CSV's row of BODY, COORD, which must cover the table's springs
     and name no other; stage segments: the rows named by the CSV of
-    hhneck.fit_column (read_column_fit), each a row of the table. The
+    hhneck.validation.fit_column (read_column_fit), each a row of the table. The
     names written, in order; DeckError (the table untouched) otherwise."""
     if stage not in STAGES:
         raise DeckError("stage %r; expected one of %s" % (stage, ", ".join(STAGES)))
@@ -237,32 +238,8 @@ SOURCES = """\
 """
 
 
-def fmt(v):
-    """A number in at most 9 columns (fields are 10 wide: one blank between)."""
-    if isinstance(v, str):
-        return v
-    if v == 0:
-        return "0.0"
-    for p in range(6, 0, -1):
-        s = "%.*g" % (p, v)
-        if "e" in s:
-            m, e = s.split("e")
-            s = m + "E" + str(int(e))
-        elif "." not in s:
-            s = s + ".0"
-        if len(s) <= 9:
-            return s
-    raise ValueError(v)
-
-
-def card(key, *fields):
-    s = "%-8s  " % key
-    for f in fields:
-        s += "%-10s" % ("" if f is None else fmt(f))
-    return s.rstrip()        # within 80 columns: checked with the whole deck (check_cards)
-
-
 def cont(*fields):
+    """A continuation card (no name) of `fields` (decks.card)."""
     return card("", *fields)
 
 
@@ -291,7 +268,7 @@ SUBOCCIPITAL_MUSCLES = (("RCPMAJ", "C2", "HEAD"), ("RCPMIN", "C1", "HEAD"), ("OC
 # intertransversarius IT from the lower vertebra to the upper one, on EXT, straight
 SEGMENTAL_LEVELS = (("T1", "C7"), ("C7", "C6"), ("C6", "C5"), ("C5", "C4"), ("C4", "C3"), ("C3", "C2"))
 SEGMENTAL_KINDS = ("MU", "IT")
-# the cervical muscles of S22 (--cervical yes, shipped; hhneck.hyoid_muscles maps
+# the cervical muscles of S22 (--cervical yes, shipped; hhneck.validation.hyoid_muscles maps
 # their rows from the HYOID model): the scalenes, levator scapulae and the cervical
 # parts of splenius, semispinalis, longissimus and iliocostalis, T1 to C2-C5, straight
 CERVICAL_MUSCLES = (("SCALA", "T1", "C4"), ("SCALM", "T1", "C3"), ("SCALP", "T1", "C5"), ("LEVS", "T1", "C2"),
@@ -528,7 +505,8 @@ def _muscles(w, p, geo, muscles):
         w("* The cervical muscles %s" % ", ".join(cervical))
         w("* (scalenes, levator scapulae, the cervical splenius, semispinalis,")
         w("* longissimus, iliocostalis) are S22's: origins, insertions, F0, lopt and")
-        w("* lf/lopt mapped from the HYOID model by hhneck.hyoid_muscles, straight.")
+        w("* lf/lopt mapped from the HYOID model by hhneck.validation.hyoid_muscles,")
+        w("* straight.")
     w("* F0 = PCSA x sigma_max, sigma_max %.2f MPa (x SIGMA); PCSA A; optimal" % (sigma_max / 1e6))
     w("* fibre length lopt and, on the FIBRE cards, the fibre length over lopt in the")
     w("* neutral posture S22 (the mapping in reference/model_parameters.csv; a muscle")
@@ -607,18 +585,20 @@ def _springs_and_scales(w, p, nz_springs):
         w("* NEUTRAL-ZONE SPRINGS on the joint rotations: D = x - x_neutral; for D >= 0")
         w("* Q = -M0+ sinh(D/ths+), for D < 0 Q = +M0- sinh(-D/ths-), continued linearly")
         w("* beyond |Q| = Mlin (the data's largest moment). M0 (N m), ths (deg) fitted by")
-        w("* hhneck-fit-joints (reference/nz_springs.csv) to the segment tests of Panjabi")
-        w("* et al. 2001 (0.33-1 N m) and Nightingale et al. 2007 (C4-C5, C6-C7 flexion-")
-        w("* extension, to 3.5 N m), less the moment the other elements carry there (the")
-        w("* discs' bending and torsion at the fractions NZBEND and NZTORS below); C7-T1")
-        w("* takes the C6-C7 values (A). + is the coordinate's positive direction.")
+        w("* hhneck.validation.fit_joints (reference/nz_springs.csv) to the segment tests")
+        w("* of Panjabi et al. 2001 (0.33-1 N m) and Nightingale et al. 2007 (C4-C5, C6-C7")
+        w("* flexion-extension, to 3.5 N m), less the moment the other elements carry")
+        w("* there (the discs' bending and torsion at the fractions NZBEND and NZTORS")
+        w("* below); C7-T1 takes the C6-C7 values (A). + is the coordinate's positive")
+        w("* direction.")
         w("*         body      coord     M0+ (N m) ths+(deg) M0- (N m) ths-(deg) Mlin (N m)")
         for row in nz:
             w(card("NZSPRING", *row))
     w("*")
     w("* FACTORS on the values above (reference/parameters.md): the column's, fitted")
-    w("* to the segment tests alone (hhneck.fit_column, reference/column_fit.csv) or")
-    w("* sourced; SIGMA the muscles' stress, sourced. No volunteer fit moves them.")
+    w("* to the segment tests alone (hhneck.validation.fit_column,")
+    w("* reference/column_fit.csv) or sourced; SIGMA the muscles' stress, sourced. No")
+    w("* volunteer fit moves them.")
     w("* VBEND: S1's time constant 0.1 s over the discs' bending fraction NZBEND, so")
     w("* that the discs carry S1's damping coefficient (10 % of its stiffness per s).")
     w("*         name      family    item      factor")
@@ -716,7 +696,7 @@ def deck_lines(p, posture="seated", t1_slope=None, lordosis=None, nz_springs=Non
 # ---------------------------------------------------------------- command
 
 def _parser():
-    ap = argparse.ArgumentParser(prog="python3 -m hhneck.model_deck", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python3 -m hhneck.validation.model_deck", description=__doc__.split("\n\n")[0])
     ap.add_argument("--table", default=TABLE, help="the parameter table (default reference/model_parameters.csv)")
     ap.add_argument("--record", nargs=2, metavar=("STAGE", "FILE"),
                     help="first write the values of fit stage STAGE (%s) from FILE into the table"

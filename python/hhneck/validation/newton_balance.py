@@ -15,7 +15,7 @@ mass; a model obeys the law by construction, so its own curves check the
 method. The head's lab acceleration comes from its accelerometer's tared
 reading and the head's rotation (lab_acceleration).
 
-The Kang 2018 cases' channels (hhneck.specimens' names and signs): PLANE,
+The Kang 2018 cases' channels (hhneck.validation.specimens' names and signs): PLANE,
 PAIRS; balance() gives the rows of one case (docs/validation.md, "Do the
 specimens' head and load cell obey Newton's law together?"; the
 catalogue prints them under each Kang case).
@@ -84,7 +84,7 @@ def fit_lag(cell, head, pulse, window, lags=LAGS):
 
 def _peak_time(curve):
     """The time of a curve's largest magnitude where the Kang rating
-    searches it (hhneck.specimens.KANG_PEAK_SEARCH)."""
+    searches it (hhneck.validation.specimens.KANG_PEAK_SEARCH)."""
     t, v = curve
     lo, hi = specimens.KANG_PEAK_SEARCH
     keep = (t >= lo - 1e-9) & (t <= hi + 1e-9)
@@ -127,7 +127,7 @@ def kang_pulse(data_dir):
 def kang_data(direction, data_dir, channels=None):
     """{channel: (t [ms], reference)} of a Kang case's data (the corridor
     midline or the specimens' mean, as the catalogue rates them:
-    hhneck.specimens.REFERENCE): the channels its balance reads, or those
+    hhneck.validation.specimens.REFERENCE): the channels its balance reads, or those
     named."""
     case = "kang_" + direction
     path = os.path.join(data_dir, specimens.DATA_FILE[case])
@@ -136,7 +136,7 @@ def kang_data(direction, data_dir, channels=None):
 
 
 def kang_rows(direction, model, data_dir):
-    """{"model": balance rows of the model's catalogue curves (hhneck.specimens.
+    """{"model": balance rows of the model's catalogue curves (hhneck.validation.specimens.
     model_channels), "specimens": those of the data's references}, the
     window from the data's; the pulse of the data folder, along the case's
     drive."""

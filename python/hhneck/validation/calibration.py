@@ -1,8 +1,8 @@
 """Calibration over the catalogue, and its leave-one-out test: for each
 group of cases -- a specimen case (Stemper 2004 rear, Kang 2018 front and
-side; the decks of hhneck.specimens) or, with --segments, a segment source
+side; the decks of hhneck.validation.specimens) or, with --segments, a segment source
 (Panjabi 2001's 21 curves, Nightingale 2007's 3; the decks of
-hhneck.segments) -- fit the passive parameters to the other groups with
+hhneck.validation.segments) -- fit the passive parameters to the other groups with
 `hhneck --calibrate` (ISO/TS 18571 objective, RATING F5 ISO18571; each
 group weighs 1, its curves equally) and score the group left out with the
 fitted values: a prediction, since it took no part in its fit.
@@ -13,23 +13,23 @@ fitted values: a prediction, since it took no part in its fit.
     leave_one_out(workdir, groups=None, params=PARAMS, evals=..., starts=..., jobs=1) -> rows
     volunteer_scores(params, values, workdir) -> (NBDL case means, largest real part at rest)
 
-Segment cases (write_segment_case): the segment deck of hhneck.segments
+Segment cases (write_segment_case): the segment deck of hhneck.validation.segments
 with protocol "sweep" (the whole moment-rotation curve on one rising
 moment ramp), its reference the data on the catalogue's 0.01 N m grid,
 each row at the time its moment is applied, rated row by row (RATED F6
 SAMPLES) as the catalogue rates rotation against moment.
 
 Reference CSVs: each case's rated channels, their reference curve (the
-corridor's midline or the specimens' mean, hhneck.specimen_data) and
+corridor's midline or the specimens' mean, hhneck.validation.specimen_data) and
 bounds, on the common grid k 0.1 ms (each channel linearly interpolated
 from its own 0.1 ms grid onto the grid points its curve covers, the
-window hhneck.specimens.rated_reference rates; Kang: 0 to 1.2 x the time
+window hhneck.validation.specimens.rated_reference rates; Kang: 0 to 1.2 x the time
 of the reference's largest magnitude in 0-99.9 ms), empty cells elsewhere. The model channel of each column is a
 RATED card: the sign changes, "from the start" and the CFC class of
-hhneck.specimens.
+hhneck.validation.specimens.
 The rated channels and their model channels are those of the catalogue
-(hhneck.specimens.CHANNELS), load cells included; where the catalogue
-rates a head angle the result file has no channel of (hhneck.specimens.
+(hhneck.validation.specimens.CHANNELS), load cells included; where the catalogue
+rates a head angle the result file has no channel of (hhneck.validation.specimens.
 ANGLES: the Kang head rotations, integrals of the angular velocity), the
 RATED card rates the file's nearest (its Bryant angle).
 
@@ -40,10 +40,10 @@ calibration deck uses; the ligaments' stiffness a factor 2 either way).
 The shipped model deck is not changed: the fitted values are reported.
 
 No fit here moves a passive parameter to the volunteers: the shipped
-column is fitted to the segment tests alone (hhneck.fit_column), the
+column is fitted to the segment tests alone (hhneck.validation.fit_column), the
 volunteers fit the controller alone (input/calibrate_controller.inp).
 
-Usage: hhneck-calibrate-catalogue WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
+Usage: python3 -m hhneck.validation.calibration WORKDIR [--quick] [--segments] [--evals N] [--starts N] [--jobs N]
        [--table FILE]
 """
 import argparse
@@ -56,8 +56,8 @@ import sys
 import numpy as np
 
 from . import segments, specimens
-from .deck_fields import field, is_card, number_field, set_field, write_deck
-from .paths import project_path, project_root
+from ..decks import card, field, is_card, number_field, set_field, write_deck
+from ..paths import project_path, project_root
 
 GRID = 0.1   # ms: the reference CSVs' time step (the data's and ISO 18571's 10 kHz)
 
@@ -72,11 +72,11 @@ PARAMS = [
 ]
 QUICK_PARAMS = PARAMS[4:5]
 
-# case: (data file stem, Kang window); the rated channels are hhneck.specimens.CHANNELS,
+# case: (data file stem, Kang window); the rated channels are hhneck.validation.specimens.CHANNELS,
 # each a reference column C01, C02, ... of the case's CSV
 CASES = {"stemper": ("stemper2004_1p8ms", False), "kang_front": ("kang2018_front", True),
          "kang_side": ("kang2018_side", True)}
-#: the segment sources of the catalogue (hhneck.segments): source -> its peak moment [N m]
+#: the segment sources of the catalogue (hhneck.validation.segments): source -> its peak moment [N m]
 SEGMENT_SOURCES = {"panjabi": 1.0, "nightingale": 3.5}
 
 
@@ -105,7 +105,7 @@ def _segment_key(case):
 
 
 def write_segment_case(case, workdir, data_dir=segments.DATA_DIR, model=segments.MODEL_DECK):
-    """The deck of segment case `case` (protocol "sweep" of hhneck.segments)
+    """The deck of segment case `case` (protocol "sweep" of hhneck.validation.segments)
     and its reference CSV in workdir: (deck, reference, RATED card lines).
     The reference: the data's mean rotation [deg] on the catalogue's 0.01 N m
     grid from -M to +M (Nightingale with its lower and upper bounds), each
@@ -137,7 +137,7 @@ def write_segment_case(case, workdir, data_dir=segments.DATA_DIR, model=segments
         f.write(",".join(["time_ms"] + [c[0] for c in cols]) + "\n")
         for i, t in enumerate(times):
             f.write(",".join(["%.6f" % t] + ["%.9g" % c[1][i] for c in cols]) + "\n")
-    rated = [("RATED     C01       HT1_%-6s%s%-10sSTART     SAMPLES" % (coord, number_field(sign), ""))]
+    rated = [card("RATED", "C01", "HT1_" + coord, number_field(sign), "", "START", "SAMPLES")]
     return os.path.basename(deck), ref, rated
 
 
@@ -168,9 +168,8 @@ def write_reference(case, path, data_dir=segments.DATA_DIR):
             f.write(",".join(["%.4f" % t] + ["%.9g" % c[1][i] if c[2][i] else "" for c in cols]) + "\n")
     rated = []
     for col, _, model, scale, minus, start, cls in chans:
-        rated.append(("RATED     %-10s%-10s%s%-10s%-10s%-10s%s" % (col, model, number_field(scale), minus,
-                                                                   "START" if start else "", "",
-                                                                   cls or "")).rstrip())
+        rated.append(card("RATED", col, model, number_field(scale), minus, "START" if start else "", "",
+                          "%s" % (cls or "")))
     return rated
 
 
@@ -193,8 +192,8 @@ def case_cards(case, workdir, weight=1.0, data_dir=segments.DATA_DIR, model=segm
     """The CASE (with its weight unless 1), DATA and RATED card images of
     `case`, its deck and reference written to workdir (write_case)."""
     deck, ref, rated = write_case(case, workdir, data_dir, model)
-    return [("CASE      %-60s%s" % (deck, number_field(weight) if weight != 1.0 else "")).rstrip(),
-            "DATA      %s" % ref] + rated
+    return [card("CASE", deck, None, None, None, None, None, number_field(weight) if weight != 1.0 else None),
+            card("DATA", ref)] + rated
 
 
 def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, values=None, seed=1,
@@ -212,16 +211,17 @@ def calibration_deck(name, cases, workdir, params=PARAMS, evals=40, starts=8, va
         if os.path.abspath(model) != os.path.abspath(copy):
             shutil.copyfile(model, copy)
         model = copy
-    lines = [("TITLE     CATALOGUE CALIBRATION: %s" % " ".join(c.upper() for c in cases))[:80]]
+    lines = [card("TITLE", ("CATALOGUE CALIBRATION: %s" % " ".join(c.upper() for c in cases))[:70], strip=False)]
     for case in cases:
         lines += case_cards(case, workdir, weights.get(case, 1.0), data_dir, model or segments.MODEL_DECK)
     lines.append("*         window (ms; volunteer cases only) CFC tolerance metric")
     lines.append("RATING    0.0       200.0     60        10.0      ISO18571")
-    lines.append("FIT       NELDER    %-10d%-10d%-10d" % (0 if values is not None else evals, starts, seed))
+    lines.append(card("FIT", "NELDER", *["%d" % n for n in (0 if values is not None else evals, starts, seed)],
+                      strip=False))
     lines += param_cards(params)
     if values is not None:
         lines += values_cards(values)
-        lines.append("CURVES    %s_curves.csv" % name)
+        lines.append(card("CURVES", name + "_curves.csv"))
     path = os.path.join(workdir, name + ".inp")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -292,14 +292,13 @@ def param_card(lines, p, model):
 
 def param_cards(params):
     """PARAM card images of PARAMS-style tuples."""
-    return [("PARAM     %-10s%-10s%-10s%-10s%s%s%s" % (p[0], p[1], p[2], p[3], number_field(p[4]),
-                                                   number_field(p[5]), p[6])).rstrip() for p in params]
+    return [card("PARAM", p[0], p[1], p[2], p[3], number_field(p[4]), number_field(p[5]), p[6]) for p in params]
 
 
 def values_cards(values):
     """VALUES card images of a list of values, seven to a card."""
     vals = list(values)
-    return ["VALUES    " + "".join(number_field(v) for v in vals[k:k + 7]) for k in range(0, len(vals), 7)]
+    return [card("VALUES", *[number_field(v) for v in vals[k:k + 7]], strip=False) for k in range(0, len(vals), 7)]
 
 
 def model_deck_with(params, values, path, model=segments.MODEL_DECK):
@@ -314,7 +313,7 @@ def model_deck_with(params, values, path, model=segments.MODEL_DECK):
             k = param_card(lines, p, model)
             lines[k] = set_field(lines[k], int(p[1][5:]), number_field(v).strip())
         else:
-            lines.append(("SCALE     %-10s%-10s%-10s%s" % (p[0], p[2], p[3], number_field(v))).rstrip())
+            lines.append(card("SCALE", p[0], p[2], p[3], number_field(v)))
     write_deck(path, lines)
 
 
@@ -441,7 +440,7 @@ def volunteer_text(cases, rest):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="hhneck-calibrate-catalogue",
+    ap = argparse.ArgumentParser(prog="python3 -m hhneck.validation.calibration",
                                  description="Leave-one-out calibration of the passive parameters over the "
                                              "specimen cases, and with --segments the segment sources "
                                              "(ISO/TS 18571).")

@@ -27,7 +27,7 @@ import h5py
 import matplotlib
 import numpy as np
 
-from .results import text, text_list
+from ..results import text, text_list
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

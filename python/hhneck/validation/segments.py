@@ -14,7 +14,7 @@ of them), and only the elements joining the specimen's bodies: the discs,
 ligaments, joint-limit dampers, range-of-motion resistance and neutral-zone
 springs (NZSPRING) of the model deck, with its SCALE factors of those
 families. write_deck and run_case can drop given cards (drop=("NZSPRING",):
-the other elements alone, as hhneck.fit_joints needs them). The deck is written
+the other elements alone, as hhneck.validation.fit_joints needs them). The deck is written
 from the model deck (input/head_neck_54dof.inp) card for card, nothing
 retyped, so a change of the model is a change of every segment test.
 
@@ -26,7 +26,7 @@ time d2b/d1, which carries S1's damping coefficient on the discs' share of
 the stiffness) lag the rotation on the ramps; the statics below are the
 ramps' zero-rate limit, on which the column is fitted and the catalogue
 rates it.
-The calibration's protocol (protocol="sweep", hhneck.calibration): 0 -> -M
+The calibration's protocol (protocol="sweep", hhneck.validation.calibration): 0 -> -M
 over 20 s, held 2 s, -M -> +M over 40 s (t = SWEEP_START .. SWEEP_START +
 2 RAMP), held to 64 s: the whole moment-rotation curve on one rising ramp,
 rotation as a function of time as the calibration's reference rows need it
@@ -35,7 +35,7 @@ catalogue's loading branches differ from it by the viscous lag only).
 
 The catalogue solves each test as statics (SOLUTIONS "statics", the
 default: the tests are quasi-static, and the column is fitted on them) or
-runs the dynamic ramps above ("ramp", hhneck-segments --protocol ramp): the
+runs the dynamic ramps above ("ramp", python3 -m hhneck.validation.segments --protocol ramp): the
 same deck with a STATICS card, one equilibrium per 0.01 N m of the
 moment table (rates zero, so the viscous lag of the ramps is absent: the
 rotations are the limit of ever slower ramps), read by the same readers
@@ -52,8 +52,8 @@ relative to the lower one minus its neutral value (for OC-C2 the sum of the
 C1 and head angles about the same axis, exact for a planar motion).
 
 API: moment_table, sweep_time, write_deck, case_name, run_case, rotation_curve, rotations_at, data_branches,
-rate_curve, catalogue (all cases; hhneck.catalogue writes docs/catalogue.md).
-Command: hhneck-segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
+rate_curve, catalogue (all cases; hhneck.validation.catalogue writes docs/catalogue.md).
+Command: python3 -m hhneck.validation.segments [--quick] [--exe HHNECK] [--out DIR] [--jobs N]
 [--protocol statics|ramp]
 (hhneck-catalogue writes the report).
 """
@@ -66,8 +66,9 @@ import tempfile
 
 import numpy as np
 
-from . import iso18571
-from .paths import project_root
+from .. import ratings
+from ..decks import card
+from ..paths import project_root
 
 ROOT = project_root()
 MODEL_DECK = os.path.join(ROOT, "input", "head_neck_54dof.inp")
@@ -151,7 +152,7 @@ def sweep_time(moment, peak):
 
 
 def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, title=None, drop=(),
-               protocol="loading", statics=False):
+               protocol="loading", statics=False, elements=ELEMENT_CARDS):
     """Write the deck of one segment test (module docstring) to `path`:
     `segment` a key of SEGMENTS, `motion` of MOTIONS, `peak` the moment [N m].
     disc_only keeps the discs alone (the closed-form check of the tests).
@@ -162,6 +163,8 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
     moment_table). statics: a STATICS card solves the deck as equilibria
     at load times 0, dt, ... T_END, dt = RAMP GRID_STEP / peak (every grid
     moment of the loading ramps is a level), instead of the dynamic run.
+    elements: the element cards taken when they join two of the segment's
+    bodies (default ELEMENT_CARDS; a study adds its own, such as FACET).
     Returns the channel names of the upper bodies' rotation coordinate."""
     lower, uppers = SEGMENTS[segment]
     coord, _, vec = MOTIONS[motion]
@@ -171,47 +174,47 @@ def write_deck(path, segment, motion, peak, model=MODEL_DECK, disc_only=False, t
     kept = []
     for b in card_blocks(model):
         f = _fields(b[0])
-        card = f[0]
-        if card in drop or (card == "SCALE" and f[2] in dropped_families):
+        name = f[0]
+        if name in drop or (name == "SCALE" and f[2] in dropped_families):
             continue
-        if card == "BODY" and f[1] in bodies:
+        if name == "BODY" and f[1] in bodies:
             line = b[0]
             if f[1] == lower:              # the fixed lower body: the root, its frame the lab's
                 line = line[:20] + "R".ljust(10) + line[30:]
             kept.append([line])
-        elif card in UPPER_CARDS and f[1] in uppers:
-            if disc_only and card in JOINT_RESISTANCE_CARDS:
+        elif name in UPPER_CARDS and f[1] in uppers:
+            if disc_only and name in JOINT_RESISTANCE_CARDS:
                 continue
             kept.append(b)
-        elif card in ELEMENT_CARDS and f[2] in bodies and f[3] in bodies:
-            if disc_only and card != "DISC":
+        elif name in elements and f[2] in bodies and f[3] in bodies:
+            if disc_only and name != "DISC":
                 continue
             kept.append(b)
-        elif card == "SCALE" and f[2] in SCALED_FAMILIES:
+        elif name == "SCALE" and f[2] in SCALED_FAMILIES:
             if disc_only and f[2] != "DISCS":
                 continue
             kept.append(b)
     if not any(_fields(b[0])[0] == "DISC" for b in kept):
         raise ValueError("%s: no disc joins %s in %s" % (segment, " ".join(bodies), model))
     table = moment_table(peak, protocol)
-    pts = "".join("%-10s%-10s" % ("%.6g" % t, "%.6g" % m) for t, m in table)
+    pts = ["%.6g" % x for point in table for x in point]
     head = [
-        "TITLE     %s" % (title or "SEGMENT TEST %s %s TO %.3g N M" % (segment, motion.upper(), peak))[:70],
+        card("TITLE", (title or "SEGMENT TEST %s %s TO %.3g N M" % (segment, motion.upper(), peak))[:70]),
         "*         end (s)   step (s)  print (s) method    rtol      atol",
-        "CONTROL   %-10s1.0E-4    1.0       ROS34PW2  1.0E-5    1.0E-8" % ("%.6g" % T_END),
+        card("CONTROL", "%.6g" % T_END, "1.0E-4", "1.0", "ROS34PW2", "1.0E-5", "1.0E-8"),
         "OUTPUT    1.0E-2",
-        "H5FILE    %s" % (os.path.splitext(os.path.basename(path))[0] + ".h5"),
+        card("H5FILE", os.path.splitext(os.path.basename(path))[0] + ".h5"),
         "GRAVITY   0.0       0.0       0.0",
-        "HEADNECK  %-10s%-10s" % (uppers[-1], lower),
-        "LOCK      %-10sTX        TY        TZ        RX        RY        RZ" % lower,
+        card("HEADNECK", uppers[-1], lower),
+        card("LOCK", lower, "TX", "TY", "TZ", "RX", "RY", "RZ"),
         "*         the pure moment: %s about the lower body's axes" % motion,
-        "TABLE     MOMENT    %d" % len(table),
-        "          " + pts[:60],
-        "          " + pts[60:],
-        "COUPLE    %-10sR         MOMENT    %-10s%-10s%-10s" % ((uppers[-1],) + tuple("%.1f" % v for v in vec)),
+        card("TABLE", "MOMENT", "%d" % len(table)),
+        card("", *pts[:6]),
+        card("", *pts[6:]),
+        card("COUPLE", uppers[-1], "R", "MOMENT", *["%.1f" % v for v in vec]),
     ]
     if statics:                            # equilibria at the table's times, one per grid moment
-        head.append("STATICS   0.0       %-10s%s" % ("%.6g" % T_END, ("%.8g" % (RAMP * GRID_STEP / peak))[:10]))
+        head.append(card("STATICS", "0.0", "%.6g" % T_END, ("%.8g" % (RAMP * GRID_STEP / peak))[:10]))
     if len(uppers) > 1:                    # the moment acts on the top body; say so
         head.insert(1, "* %s: the moment on %s, %s free between" % (segment, uppers[-1], " ".join(uppers[:-1])))
     lines = [line.rstrip() for line in head + [line for b in kept for line in b]]
@@ -362,7 +365,7 @@ MOMENT_AS_TIME = 0.01
 def rate_curve(grid, reference, model):
     """ISO/TS 18571 of a moment-rotation curve: rotation as a function of
     the moment (in place of time, MOMENT_AS_TIME), on the 0.01 N m grid."""
-    return iso18571.rate(np.asarray(grid) * MOMENT_AS_TIME, reference, model)
+    return ratings.rate(np.asarray(grid) * MOMENT_AS_TIME, reference, model)
 
 
 def _run_timed(args):
@@ -447,10 +450,10 @@ def _rated_case(case, t, rot, wall, stderr, panjabi, night):
 
 
 def main(argv=None):
-    """hhneck-segments: run and rate the segment cases, print one line each
+    """python3 -m hhneck.validation.segments: run and rate the segment cases, print one line each
     (the catalogue command, hhneck-catalogue, writes them into
     docs/catalogue.md)."""
-    p = argparse.ArgumentParser(prog="hhneck-segments", description=__doc__.split("\n\n")[0])
+    p = argparse.ArgumentParser(prog="python3 -m hhneck.validation.segments", description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="C4-C5 only (the test suite's form)")
     p.add_argument("--exe", help="the hhneck executable (default $HHNECK, else fpm's release build)")
     p.add_argument("--data", default=DATA_DIR, help="the pmhs_neck data folder")
