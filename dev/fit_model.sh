@@ -4,6 +4,8 @@
 # reference/model_parameters.csv (status fitted, the stage named) or their own
 # deck, and the model deck is regenerated from the table
 # (python3 -m hhneck.validation.model_deck; reference/parameters.md):
+#   0. the cervical muscles' rows mapped from the published neck-muscle model
+#      (python3 -m hhneck.validation.hyoid_muscles --update; seconds);
 #   1. the passive column from the segment tests alone (Panjabi 2001,
 #      Nightingale 2007): python3 -m hhneck.validation.fit_column fits the discs' bending
 #      and torsion fractions and the range-of-motion factors, the neutral-zone
@@ -32,6 +34,7 @@ export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"
 exe=$(fpm run --profile release --runner echo 2>/dev/null | tail -1)
 case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
 export HHNECK=$exe
+python3 -m hhneck.validation.hyoid_muscles --update
 ${FIT_COLUMN:-python3 -m hhneck.validation.fit_column} --max-eval "${MAX_EVAL:-60}"
 python3 -m hhneck.validation.model_deck --record segments reference/column_fit.csv
 python3 -m hhneck.validation.model_deck --record nz_springs reference/nz_springs.csv --output input/head_neck_54dof.inp

@@ -328,8 +328,10 @@ def test_fit_model_writes_the_table_then_the_deck(tmp_path):
     by a command that writes reference/column_fit.csv with ROMK at 2.5 and
     reference/nz_springs.csv with C5 RY ths- at 12.5 deg: the table's rows
     of both stages are what the step wrote, every other row unchanged, and
-    the deck is the generator's from that table."""
+    the deck is the generator's from that table; the cervical muscles'
+    rows, mapped again from the shared data beside the copy, unchanged."""
     copy = tmp_path / "tree"
+    os.symlink(os.path.join(os.path.dirname(ROOT), "shared"), tmp_path / "shared")
     for d in ("dev", "input", "reference", "python"):
         shutil.copytree(os.path.join(ROOT, d), copy / d, ignore=shutil.ignore_patterns("__pycache__", "*.h5"))
     shutil.copy(os.path.join(ROOT, "fpm.toml"), copy / "fpm.toml")    # the copy is a project (hhneck.paths)
