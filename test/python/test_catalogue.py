@@ -135,3 +135,19 @@ def test_an_interrupted_run_keeps_the_cases_done(tmp_path, monkeypatch, capsys):
     assert "**Incomplete**: interrupted during two; not run: three." in text
     assert "### %s" % title in text and "| head_T1_angle |" in text
     assert "interrupted during two" in capsys.readouterr().err
+
+
+def test_required_scores_and_their_margins():
+    """The summary's required column: the given specimen cases' required
+    scores come from their case files, the segment sources' from the
+    catalogue; a score just below its requirement is "no" with its margin
+    to three significant digits, even where the printed mean would round
+    onto the requirement (0.68055 prints as 0.681)."""
+    from hhneck.validation import catalogue as cat
+    assert cat.REQUIRED["Stemper 2004 rear 1.8 m/s"] == 0.681
+    assert cat.REQUIRED["Kang 2018 side 14 km/h"] == 0.644
+    assert cat.REQUIRED["Nightingale 2007"] == 0.586
+    assert cat.met_cell(0.68055, 0.681) == "no (-0.00045)"
+    assert cat.met_cell(0.812, 0.80) == "yes (+0.012)"
+    assert cat.required_cells("Stemper 2004 rear 1.8 m/s", 0.687) == "≥ 0.681 (SAFER HBM v11) | yes (+0.006)"
+    assert cat.required_cells("a case with none", 0.5) == "none given | —"

@@ -192,6 +192,7 @@ def load_case(path):
          "source": _need(d, "source", str, w), "deck_title": _need(d, "deck_title", str, w),
          "end_time": _need(d, "end_time", float, w), "note": _need(d, "note", str, w, ""),
          "stops": _need(d, "stops", list, w, []), "safer": _need(d, "safer", str, w, ""),
+         "required": _need(d, "required", float, w, 0.0),
          "newton_balance": _need(d, "newton_balance", str, w, ""),
          "rated": _need(d, "rated", bool, w, True), "order": _need(d, "order", int, w, 100),
          "rtol": _need(d, "rtol", float, w, 1.0e-3), "atol": _need(d, "atol", float, w, 1.0e-5), "model": _need(d, "model", str, w, "input/head_neck_54dof.inp")}
