@@ -179,7 +179,7 @@ def deep_extensor(f0):
     vias on C7 ... C3."""
     return extra_muscles([(name, "T1", "C2", f0, "0.06", (-0.035, 0.02 * side, 0.005), (-0.04, 0.01 * side, 0.0),
                            [(body, (-0.03, 0.018 * side, 0.0)) for body in ("C7", "C6", "C5", "C4", "C3")])
-                          for name, side in (("SSCVL", 1), ("SSCVR", -1))])
+                          for name, side in (("DEXTL", 1), ("DEXTR", -1))])
 
 
 def segmental_extensors(f0):
