@@ -114,27 +114,64 @@ contains
         real(wp), intent(in) :: t                    !! time [s]
         integer, intent(in), optional :: skip        !! a feedback loop left out (its number)
         integer :: k, k_skip
-        act = zero
         k_skip = 0
         if (present(skip)) k_skip = skip
+        act = history_activation(this, e, t)
+        if (.not. loops_apply(this, e)) return
+        do k = 1, size(this%feedbacks)
+            if (k /= k_skip .and. this%feedbacks(k)%muscle == e) &
+                act = min(one, act + this%state(this%feedbacks(k)%state))
+        end do
+    end function muscle_activation
+
+    !> Activations of every muscle at time t, as muscle_activation gives
+    !! them one by one, with one pass over the stretch loops (each muscle's
+    !! loops still added in the loops' order): O(muscles + loops).
+    pure subroutine muscle_activations(this, t, act)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t                    !! time [s]
+        real(wp), intent(out) :: act(:)              !! (count) each muscle's activation
+        integer :: e, k
+        do e = 1, size(this%items)
+            act(e) = history_activation(this, e, t)
+        end do
+        do k = 1, size(this%feedbacks)
+            e = this%feedbacks(k)%muscle
+            if (e < 1) cycle
+            if (loops_apply(this, e)) act(e) = min(one, act(e) + this%state(this%feedbacks(k)%state))
+        end do
+    end subroutine muscle_activations
+
+    !> Muscle e's activation without its stretch loops: its history's state
+    !! (the closed form where the family has no states set), or its table.
+    pure real(wp) function history_activation(this, e, t) result(act)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: e                     !! muscle number
+        real(wp), intent(in) :: t                    !! time [s]
+        act = zero
         associate (m => this%items(e))
             if (m%law == muscle_hill) then
                 if (m%history > 0) then
-                    if (.not. allocated(this%state)) then
+                    if (allocated(this%state)) then
+                        act = this%state(m%history)
+                    else
                         act = activation_value(this%activations(m%history), t)
-                        return
                     end if
-                    act = this%state(m%history)
-                    do k = 1, size(this%feedbacks)
-                        if (k /= k_skip .and. this%feedbacks(k)%muscle == e) &
-                            act = min(one, act + this%state(this%feedbacks(k)%state))
-                    end do
                 end if
             else if (m%activation > 0) then
                 act = table_value(this%tables(m%activation), t)
             end if
         end associate
-    end function muscle_activation
+    end function history_activation
+
+    !> Whether muscle e's stretch loops add to its activation: a Hill
+    !! muscle with a history, the family's states set.
+    pure logical function loops_apply(this, e)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: e                     !! muscle number
+        loops_apply = allocated(this%state)
+        if (loops_apply) loops_apply = this%items(e)%law == muscle_hill .and. this%items(e)%history > 0
+    end function loops_apply
 
     !> Rest lengths not given: the neutral path lengths.
     pure subroutine muscle_neutral(this, kin)
@@ -154,12 +191,9 @@ contains
         real(wp), intent(inout) :: out(:, :)          !! (3, nm) tension [N], length [m], activation
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
-        integer :: e
         associate (gm => work%g)
             call muscle_geometries(kin, this%items, gm, work%seg)
-            do e = 1, size(this%items)
-                out(3, e) = muscle_activation(this, e, t)
-            end do
+            call muscle_activations(this, t, out(3, :))
             out(1, :) = muscle_tension(this%items, gm%length, gm%rate, out(3, :))
             out(2, :) = gm%length
             call apply_muscle_tensions(loads, kin, this%items, work%seg, out(1, :))
@@ -182,11 +216,8 @@ contains
         real(wp), intent(out) :: sw(:)                !! (switch_count) the switching functions
         type(line_geometry_t) :: gm(size(this%items)), gseg(max_via + 1, size(this%items))
         real(wp) :: act(size(this%items))
-        integer :: e
         call muscle_geometries(kin, this%items, gm, gseg)
-        do e = 1, size(this%items)
-            act(e) = muscle_activation(this, e, t)
-        end do
+        call muscle_activations(this, t, act)
         sw = muscle_law_value(this%items, gm%length, gm%rate, act)
     end subroutine muscle_switching
 
