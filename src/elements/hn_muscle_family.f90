@@ -36,7 +36,8 @@ module hn_muscle_family
     use hn_feedback, only: feedback_t, feedback_due, feedback_sample, stretch_sample, feedback_times
     use hn_sorting, only: merge_times
     use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
-                                apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
+                                apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via, &
+                                mirror_muscles, muscle_tensions
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, check_range
     use hn_line_family, only: line_family_t, line_table
@@ -60,6 +61,8 @@ module hn_muscle_family
         type(activation_t), allocatable :: activations(:)    !! activation histories of Hill-type muscles
         type(feedback_t), allocatable :: feedbacks(:)        !! postural feedback loops on those histories
         integer :: nread = 0   !! muscles read from the deck so far (items holds room for every card until end_cards)
+        !> mirror_muscles of the items, set with the neutral lengths (unallocated: none)
+        integer, allocatable :: mirror(:)
     contains
         procedure :: read_card => muscle_read_card
         procedure :: end_cards => muscle_end_cards
@@ -178,6 +181,7 @@ contains
         class(muscle_family_t), intent(inout) :: this   !! the family; out: rest lengths set
         type(kinematics_t), intent(in) :: kin           !! kinematics of the neutral configuration
         call set_neutral_lengths(kin, this%items)
+        this%mirror = mirror_muscles(this%items)
     end subroutine muscle_neutral
 
     !> Tensions along every muscle's path; power absorbed.
@@ -192,9 +196,9 @@ contains
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
         associate (gm => work%g)
-            call muscle_geometries(kin, this%items, gm, work%seg)
+            call muscle_geometries(kin, this%items, gm, work%seg, this%mirror)
             call muscle_activations(this, t, out(3, :))
-            out(1, :) = muscle_tension(this%items, gm%length, gm%rate, out(3, :))
+            call muscle_tensions(this%items, gm, out(3, :), out(1, :), this%mirror)
             out(2, :) = gm%length
             call apply_muscle_tensions(loads, kin, this%items, work%seg, out(1, :))
             energy%p_muscle = energy%p_muscle + sum(out(1, :)*gm%rate)
@@ -216,7 +220,7 @@ contains
         real(wp), intent(out) :: sw(:)                !! (switch_count) the switching functions
         type(line_geometry_t) :: gm(size(this%items)), gseg(max_via + 1, size(this%items))
         real(wp) :: act(size(this%items))
-        call muscle_geometries(kin, this%items, gm, gseg)
+        call muscle_geometries(kin, this%items, gm, gseg, this%mirror)
         call muscle_activations(this, t, act)
         sw = muscle_law_value(this%items, gm%length, gm%rate, act)
     end subroutine muscle_switching
