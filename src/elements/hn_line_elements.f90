@@ -23,6 +23,7 @@ module hn_line_elements
               apply_line_tensions, attachment_point, set_neutral_lengths, path_points
     public :: spring_t, spring_tension, spring_energy, ligament_t, ligament_tension, ligament_energy
     public :: muscle_t, muscle_tension, muscle_law_value, muscle_geometries, apply_muscle_tensions, muscle_path_points
+    public :: mirror_muscles, sagittal_state, muscle_tensions
 
     integer, parameter, public :: muscle_passive = 1, muscle_hill = 2   !! muscle laws: eq 11, Hill-type
     integer, parameter, public :: max_via = 8   !! via points of one muscle path
@@ -321,17 +322,119 @@ contains
 
     !> Path geometry of every muscle of a list, and of each path's segments
     !! (inout: the unused segment slots are not cleared on every call).
-    pure subroutine muscle_geometries(kin, muscles, g, seg)
+    pure subroutine muscle_geometries(kin, muscles, g, seg, mirror)
         type(kinematics_t), intent(in) :: kin        !! kinematics of the tree
         type(muscle_t), intent(in) :: muscles(:)     !! the muscles
         type(line_geometry_t), intent(out) :: g(:)   !! (size(muscles)) their path geometry
         type(line_geometry_t), intent(inout), contiguous :: seg(:, :)  !! (max_via + 1, size(muscles)) their segments'
                                                                         !! geometry (nvia + 1 set per muscle, the rest left)
-        integer :: e
+        integer, intent(in), optional :: mirror(:)   !! mirror_muscles: in a sagittal state an image is its pair's mirrored
+        integer :: e, i, k
+        logical :: sym
+        sym = .false.
+        if (present(mirror)) sym = any(mirror > 0)
+        if (sym) sym = sagittal_state(kin)
         do e = 1, size(muscles)
-            call muscle_geometry(kin, muscles(e), g(e), seg(:, e))
+            i = 0
+            if (sym) i = mirror(e)
+            if (i == 0) then
+                call muscle_geometry(kin, muscles(e), g(e), seg(:, e))
+            else
+                g(e) = image(g(i))
+                do k = 1, muscles(e)%nvia + 1
+                    seg(k, e) = image(seg(k, i))
+                end do
+            end if
         end do
+    contains
+        pure type(line_geometry_t) function image(a)
+            type(line_geometry_t), intent(in) :: a
+            image = a
+            image%pa(2) = -a%pa(2)
+            image%pb(2) = -a%pb(2)
+            image%unit(2) = -a%unit(2)
+        end function image
     end subroutine muscle_geometries
+
+    !> Mirror pairs of a list of muscles: mirror(e) = i < e when muscle e
+    !! is the exact image of muscle i in the sagittal (xz) plane -- the
+    !! same bodies, law, parameters and rest length, every point's y
+    !! negated -- else 0 (their activations may differ: who uses the pair
+    !! compares them). Each muscle is the image of one other at most.
+    pure function mirror_muscles(muscles) result(mirror)
+        type(muscle_t), intent(in) :: muscles(:)   !! the muscles (rest lengths set)
+        integer :: mirror(size(muscles))
+        integer :: e, i
+        mirror = 0
+        do e = 1, size(muscles)
+            do i = 1, e - 1
+                if (mirror(i) /= 0 .or. any(mirror == i)) cycle
+                if (mirror_pair(muscles(i), muscles(e))) then
+                    mirror(e) = i
+                    exit
+                end if
+            end do
+        end do
+    end function mirror_muscles
+
+    !> Whether muscle b is the exact image of muscle a in the xz plane.
+    pure logical function mirror_pair(a, b)
+        type(muscle_t), intent(in) :: a, b
+        integer :: k
+        mirror_pair = a%body_a == b%body_a .and. a%body_b == b%body_b .and. a%law == b%law .and. a%nvia == b%nvia .and. &
+                      a%m1 == b%m1 .and. a%m2 == b%m2 .and. a%fmax == b%fmax .and. a%length0 == b%length0 .and. &
+                      all(transfer(a%hill, [zero]) == transfer(b%hill, [zero])) .and. &
+                      mirrored(a%point_a, b%point_a) .and. mirrored(a%point_b, b%point_b)
+        do k = 1, a%nvia
+            if (.not. mirror_pair) return
+            mirror_pair = a%via_body(k) == b%via_body(k) .and. mirrored(a%via_point(:, k), b%via_point(:, k))
+        end do
+    contains
+        pure logical function mirrored(p, q)
+            real(wp), intent(in) :: p(3), q(3)
+            mirrored = p(1) == q(1) .and. p(2) == -q(2) .and. p(3) == q(3)
+        end function mirrored
+    end function mirror_pair
+
+    !> The tensions of a list of muscles; with mirror (mirror_muscles), an
+    !! image whose length, rate and activation are its pair's takes its
+    !! pair's tension (the same law and parameters give the same value).
+    pure subroutine muscle_tensions(muscles, g, act, tension, mirror)
+        type(muscle_t), intent(in) :: muscles(:)     !! the muscles
+        type(line_geometry_t), intent(in) :: g(:)    !! (size(muscles)) their path geometry
+        real(wp), intent(in) :: act(:)               !! (size(muscles)) their activations
+        real(wp), intent(out) :: tension(:)          !! (size(muscles)) their tensions [N]
+        integer, intent(in), optional :: mirror(:)   !! (size(muscles)) each image's pair, else 0
+        integer :: e, i
+        do e = 1, size(muscles)
+            i = 0
+            if (present(mirror)) i = mirror(e)
+            if (i > 0) then
+                if (g(e)%length == g(i)%length .and. g(e)%rate == g(i)%rate .and. act(e) == act(i)) then
+                    tension(e) = tension(i)
+                    cycle
+                end if
+            end if
+            tension(e) = muscle_tension(muscles(e), g(e)%length, g(e)%rate, act(e))
+        end do
+    end subroutine muscle_tensions
+
+    !> Whether the state of kin is exactly its own image in the xz plane:
+    !! every body on the plane (y = 0, no y velocity), turned about y
+    !! only (no x or z angular velocity). Then the image of a point has
+    !! the image of its position and velocity, to the last bit.
+    pure logical function sagittal_state(kin)
+        type(kinematics_t), intent(in) :: kin   !! kinematics of the tree
+        integer :: k
+        sagittal_state = .false.
+        do k = 1, size(kin%r, 2)
+            if (kin%r(2, k) /= zero .or. kin%v(2, k) /= zero .or. kin%omega(1, k) /= zero .or. &
+                kin%omega(3, k) /= zero) return
+            if (kin%s(1, 2, k) /= zero .or. kin%s(2, 1, k) /= zero .or. kin%s(2, 3, k) /= zero .or. &
+                kin%s(3, 2, k) /= zero) return
+        end do
+        sagittal_state = .true.
+    end function sagittal_state
 
     !> Apply the muscles' tensions along their paths: on every segment the
     !! tension pulls its two points together (at a via point the two

@@ -36,7 +36,8 @@ module hn_muscle_family
     use hn_feedback, only: feedback_t, feedback_due, feedback_sample, stretch_sample, feedback_times
     use hn_sorting, only: merge_times
     use hn_line_elements, only: muscle_t, line_geometry_t, muscle_geometries, muscle_tension, muscle_law_value, &
-                                apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via
+                                apply_muscle_tensions, set_neutral_lengths, muscle_path_points, muscle_hill, max_via, &
+                                mirror_muscles, muscle_tensions
     use hn_element_family, only: element_family_t, family_work_t, family_channel_t, element_table_t, max_family_items, item_len, &
                                  warning_len, check_range
     use hn_line_family, only: line_family_t, line_table
@@ -60,6 +61,8 @@ module hn_muscle_family
         type(activation_t), allocatable :: activations(:)    !! activation histories of Hill-type muscles
         type(feedback_t), allocatable :: feedbacks(:)        !! postural feedback loops on those histories
         integer :: nread = 0   !! muscles read from the deck so far (items holds room for every card until end_cards)
+        !> mirror_muscles of the items, set with the neutral lengths (unallocated: none)
+        integer, allocatable :: mirror(:)
     contains
         procedure :: read_card => muscle_read_card
         procedure :: end_cards => muscle_end_cards
@@ -114,33 +117,71 @@ contains
         real(wp), intent(in) :: t                    !! time [s]
         integer, intent(in), optional :: skip        !! a feedback loop left out (its number)
         integer :: k, k_skip
-        act = zero
         k_skip = 0
         if (present(skip)) k_skip = skip
+        act = history_activation(this, e, t)
+        if (.not. loops_apply(this, e)) return
+        do k = 1, size(this%feedbacks)
+            if (k /= k_skip .and. this%feedbacks(k)%muscle == e) &
+                act = min(one, act + this%state(this%feedbacks(k)%state))
+        end do
+    end function muscle_activation
+
+    !> Activations of every muscle at time t, as muscle_activation gives
+    !! them one by one, with one pass over the stretch loops (each muscle's
+    !! loops still added in the loops' order): O(muscles + loops).
+    pure subroutine muscle_activations(this, t, act)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        real(wp), intent(in) :: t                    !! time [s]
+        real(wp), intent(out) :: act(:)              !! (count) each muscle's activation
+        integer :: e, k
+        do e = 1, size(this%items)
+            act(e) = history_activation(this, e, t)
+        end do
+        do k = 1, size(this%feedbacks)
+            e = this%feedbacks(k)%muscle
+            if (e < 1) cycle
+            if (loops_apply(this, e)) act(e) = min(one, act(e) + this%state(this%feedbacks(k)%state))
+        end do
+    end subroutine muscle_activations
+
+    !> Muscle e's activation without its stretch loops: its history's state
+    !! (the closed form where the family has no states set), or its table.
+    pure real(wp) function history_activation(this, e, t) result(act)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: e                     !! muscle number
+        real(wp), intent(in) :: t                    !! time [s]
+        act = zero
         associate (m => this%items(e))
             if (m%law == muscle_hill) then
                 if (m%history > 0) then
-                    if (.not. allocated(this%state)) then
+                    if (allocated(this%state)) then
+                        act = this%state(m%history)
+                    else
                         act = activation_value(this%activations(m%history), t)
-                        return
                     end if
-                    act = this%state(m%history)
-                    do k = 1, size(this%feedbacks)
-                        if (k /= k_skip .and. this%feedbacks(k)%muscle == e) &
-                            act = min(one, act + this%state(this%feedbacks(k)%state))
-                    end do
                 end if
             else if (m%activation > 0) then
                 act = table_value(this%tables(m%activation), t)
             end if
         end associate
-    end function muscle_activation
+    end function history_activation
+
+    !> Whether muscle e's stretch loops add to its activation: a Hill
+    !! muscle with a history, the family's states set.
+    pure logical function loops_apply(this, e)
+        class(muscle_family_t), intent(in) :: this   !! the family
+        integer, intent(in) :: e                     !! muscle number
+        loops_apply = allocated(this%state)
+        if (loops_apply) loops_apply = this%items(e)%law == muscle_hill .and. this%items(e)%history > 0
+    end function loops_apply
 
     !> Rest lengths not given: the neutral path lengths.
     pure subroutine muscle_neutral(this, kin)
         class(muscle_family_t), intent(inout) :: this   !! the family; out: rest lengths set
         type(kinematics_t), intent(in) :: kin           !! kinematics of the neutral configuration
         call set_neutral_lengths(kin, this%items)
+        this%mirror = mirror_muscles(this%items)
     end subroutine muscle_neutral
 
     !> Tensions along every muscle's path; power absorbed.
@@ -154,13 +195,10 @@ contains
         real(wp), intent(inout) :: out(:, :)          !! (3, nm) tension [N], length [m], activation
         type(family_work_t), intent(inout) :: work    !! scratch (line geometry)
         type(family_energy_t), intent(inout) :: energy !! energy stored, power dissipated and absorbed, the family's added
-        integer :: e
         associate (gm => work%g)
-            call muscle_geometries(kin, this%items, gm, work%seg)
-            do e = 1, size(this%items)
-                out(3, e) = muscle_activation(this, e, t)
-            end do
-            out(1, :) = muscle_tension(this%items, gm%length, gm%rate, out(3, :))
+            call muscle_geometries(kin, this%items, gm, work%seg, this%mirror)
+            call muscle_activations(this, t, out(3, :))
+            call muscle_tensions(this%items, gm, out(3, :), out(1, :), this%mirror)
             out(2, :) = gm%length
             call apply_muscle_tensions(loads, kin, this%items, work%seg, out(1, :))
             energy%p_muscle = energy%p_muscle + sum(out(1, :)*gm%rate)
@@ -182,11 +220,8 @@ contains
         real(wp), intent(out) :: sw(:)                !! (switch_count) the switching functions
         type(line_geometry_t) :: gm(size(this%items)), gseg(max_via + 1, size(this%items))
         real(wp) :: act(size(this%items))
-        integer :: e
-        call muscle_geometries(kin, this%items, gm, gseg)
-        do e = 1, size(this%items)
-            act(e) = muscle_activation(this, e, t)
-        end do
+        call muscle_geometries(kin, this%items, gm, gseg, this%mirror)
+        call muscle_activations(this, t, act)
         sw = muscle_law_value(this%items, gm%length, gm%rate, act)
     end subroutine muscle_switching
 
