@@ -140,7 +140,7 @@ goal "4. 12 g calibration vs the recorded 12.5 min (2 508 evaluations)" \
     "$(python3 -c "print(f'{$t2 / 40:.3g} s per evaluation on $(nproc) cores, {$t1 / 40:.3g} s on one thread: {$t1 / $t2:.3g}x; $same')")"
 
 # 5. the sagittal scene against the full model
-"$(path --example scene_bench)" > "$tmp/scene.txt" 2>&1 || true   # its later scenes may stop it
+"$(path --example scene_bench)" > "$tmp/scene.txt" 2>&1 || true
 # a scene's row: its label (right-aligned), DOF, free, wall, evaluations and five differences
 full=$(awk '/ full 54-DOF model / {print $(NF - 6); exit}' "$tmp/scene.txt")
 sag=$(awk '/ sagittal / {print $(NF - 6); exit}' "$tmp/scene.txt")
