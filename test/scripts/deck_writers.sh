@@ -161,6 +161,35 @@ except CardError as e:
 sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
 PY
 
+check "controller_variants.py: every variant's decks within 80 columns, hhneck --check passes, the edits as named" \
+    python3 - "$HHNECK" "$tmp/cv" <<'PY'
+import os, subprocess, sys
+sys.path[:0] = ["python", "studies"]
+import controller_variants as cv
+hhneck, tmp = sys.argv[1:3]
+os.makedirs(tmp)
+bad = []
+shipped = open("input/volunteer_controller.inp").read().splitlines()
+for name in cv.VARIANTS:
+    d = cv.write_variant(tmp, name)
+    ctl = open(os.path.join(d, "input", "volunteer_controller.inp")).read().splitlines()
+    nbdl = open(os.path.join(d, "input", "nbdl15g.inp")).read()
+    changed = {l[:8] for a, l in zip(shipped, ctl) if a != l and not l.startswith(" ")}
+    want = {"shipped": set(), "no head loops": {"FEEDBACK"}, "no stretch loops": {"SPINDLE "},
+            "bracing only": {"FEEDBACK", "SPINDLE "}, "loops, no bracing": {"ACTIVATE"}, "no controller": set()}[name]
+    if changed != want or ("volunteer_controller.inp" in nbdl) == (name == "no controller"):
+        bad.append("%s: cards changed %s, controller included %s" % (name, sorted(changed), "volunteer_controller" in nbdl))
+    for deck in ["nbdl15g", "volunteer_rest", "rear5g_return"] + ["volunteer_rest_" + p for p, _, _ in cv.PUSHES]:
+        path = os.path.join(d, "input", deck + ".inp")
+        if any(len(l) > 80 for f in (path, os.path.join(d, "input", "volunteer_controller.inp"))
+               for l in open(f).read().splitlines()):
+            bad.append("%s beyond column 80" % path)
+        r = subprocess.run([hhneck, "--check"], stdin=open(path), cwd=d, capture_output=True, text=True)
+        if r.returncode:
+            bad.append("%s: %s" % (path, r.stderr.strip()))
+sys.exit("\n".join(bad) or None)   # the failures, if any, on stderr
+PY
+
 check "probe_x_trough.py: every probe's deck, model deck and T1 tables within 80 columns, hhneck --check passes" \
     python3 - "$HHNECK" "$tmp/probe" "$long/probe" <<'PY'
 import os, subprocess, sys
