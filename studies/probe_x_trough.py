@@ -5,7 +5,7 @@
 
 The model's head x-acceleration has a first trough near 97 ms, where the
 volunteers' peak is, and a deeper second one near 110 ms, which makes its
-peak 11.8 ms late (docs/validation.md, "What limits the fit"). This runs the
+peak 11.8 ms late (docs/validation-history.md, "What limits the fit"). This runs the
 case deck with one change at a time to the shipped model deck (copies in a
 temporary directory; nothing in input/ is changed) and prints, per change,
 the head x-acceleration (CFC 60) at 97 and 109 ms, its peak and the peak's

@@ -5,7 +5,7 @@ its discs, and what does that column give the catalogue?
 
     python3 studies/spindle_segmental.py [--fit LABEL=LISTING ...]
 
-The segmental column is docs/validation.md's "Segmental muscles" deck at
+The segmental column is docs/validation-history.md's "Segmental muscles" deck at
 its starting point: python3 -m hhneck.validation.model_deck --segmental yes --sub-bend
 0.2 (a multifidus-like extensor and an intertransversarius per subaxial
 level and side, the subaxial discs' bending at 0.2), its neutral-zone

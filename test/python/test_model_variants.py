@@ -1,6 +1,6 @@
 """The deck generator's model variants (python3 -m hhneck.validation.model_deck; the
 experiments of docs/validation.md "The upper cervical joints" and
-"Segmental muscles"), each against the shipped deck: --suboccipital yes
+docs/validation-history.md "Segmental muscles"), each against the shipped deck: --suboccipital yes
 adds exactly the four suboccipital muscles per side with F0 = sectional
 area x sigma_max; --segmental yes exactly two muscles per subaxial level
 and side, each joining adjacent vertebrae; --sub-bend F scales exactly the

@@ -23,7 +23,7 @@ that fit, reference/nz_springs.csv). The deck is the specimen state: its
 zero); the volunteer state adds the controller (input/volunteer_controller.inp,
 included after it).
 
-Variants (experiments, not the shipped model; docs/validation.md):
+Variants (experiments, not the shipped model; docs/validation-history.md):
 --fit LISTING takes the PARAM values of a calibration listing in place of
 the table's rows of those names (the table unchanged); --posture straight
 a straight column, seated-held the seated angles as an initial deflection
@@ -263,7 +263,7 @@ MUSCLES = (("SCM", "T1", "HEAD"), ("SPLC", "C7", "HEAD"), ("TRAP", "T1", "HEAD")
 # cervical joints"): extensors of C0-C2 on EXT, straight
 SUBOCCIPITAL_MUSCLES = (("RCPMAJ", "C2", "HEAD"), ("RCPMIN", "C1", "HEAD"), ("OCI", "C2", "C1"),
                         ("OCS", "C1", "HEAD"))
-# the segmental muscles (--segmental yes; docs/validation.md "Segmental muscles"):
+# the segmental muscles (--segmental yes; docs/validation-history.md "Segmental muscles"):
 # at every subaxial level per side a multifidus-like extensor MU and an
 # intertransversarius IT from the lower vertebra to the upper one, on EXT, straight
 SEGMENTAL_LEVELS = (("T1", "C7"), ("C7", "C6"), ("C6", "C5"), ("C5", "C4"), ("C4", "C3"), ("C3", "C2"))
