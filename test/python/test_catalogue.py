@@ -151,3 +151,11 @@ def test_required_scores_and_their_margins():
     assert cat.met_cell(0.812, 0.80) == "yes (+0.012)"
     assert cat.required_cells("Stemper 2004 rear 1.8 m/s", 0.687) == "≥ 0.681 (SAFER HBM v11) | yes (+0.006)"
     assert cat.required_cells("a case with none", 0.5) == "none given | —"
+
+
+def test_segment_goal_cell_says_yes_only_at_every_level():
+    """The summary's goal cell of a source with ±1 SD ranges: yes at every
+    level inside, no with the count otherwise (it once said no at 30 of 30)."""
+    from hhneck.validation import catalogue as cat
+    assert cat.segment_goal_cell(30, 30) == "yes: 30 of 30 levels inside ±1 SD"
+    assert cat.segment_goal_cell(26, 30) == "no: 26 of 30 levels inside ±1 SD"

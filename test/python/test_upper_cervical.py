@@ -169,3 +169,21 @@ def test_fitted_factors_are_the_largest_that_reach_the_target(tmp_path):
             assert got5 < want, (name, got5, want)
     assert min(found.values()) < 1.0 or all(fit[n]["model_deg"] >= fit[n]["target_deg"] for n in fit)
 
+
+
+def test_fit_factors_at_bound_takes_the_bound_where_no_factor_reaches(tmp_path, monkeypatch):
+    """A joint whose other elements hold it below the target at every
+    factor (rotation 10 / (1 + f) deg against 22 deg): ValueError naming
+    the factor, or with at_bound the bound F_MIN (a column fit's candidate
+    rated with its ligaments there); a reachable target is unaffected."""
+    deck = tmp_path / "plain.inp"
+    deck.write_text("\n".join(_generate()) + "\n")
+    monkeypatch.setattr(uc.segments, "load_panjabi", lambda d=None: {})
+    monkeypatch.setattr(uc, "_rotation_reached", lambda exe, lines, target, work, data: (10.0, 22.0))
+    with pytest.raises(ValueError, match="f_lig C1_C2 axial_rotation"):
+        uc.fit_factors("unused", str(deck), workdir=str(tmp_path / "w"))
+    fit = uc.fit_factors("unused", str(deck), workdir=str(tmp_path / "w"), at_bound=True)
+    assert fit["f_lig"]["value"] == fit["f_rot"]["value"] == uc.F_MIN
+    monkeypatch.setattr(uc, "_rotation_reached", lambda exe, lines, target, work, data: (30.0, 22.0))
+    fit = uc.fit_factors("unused", str(deck), workdir=str(tmp_path / "w"), at_bound=True)
+    assert fit["f_lig"]["value"] == fit["f_rot"]["value"] == 1.0

@@ -203,6 +203,13 @@ def required_cells(title, score):
     return "≥ %.3f (SAFER HBM v11) | %s" % (REQUIRED[title], met_cell(score, REQUIRED[title]))
 
 
+def segment_goal_cell(inside, levels):
+    """The summary's goal cell of a segment source with ranges: yes when the
+    model's rotation is inside ±1 SD at every one of its `levels`, else no,
+    with how many are."""
+    return "%s: %d of %d levels inside ±1 SD" % ("yes" if inside == levels else "no", inside, levels)
+
+
 def case_summary(rated):
     """(mean, lowest channel, whether the specimen goal is met) of a case's
     ratings ({channel: ISO/TS 18571 scores})."""
@@ -380,7 +387,7 @@ def write_report(results, path, wall, jobs, specimen_cases=None, variants=None, 
               "|---|---|---|---|---|---|---|---|"]
     for src in sorted({r["source"] for r in seg}):
         rows = [r for r in seg if r["source"] == src]
-        met = "no: %d of %d levels inside ±1 SD" % (inside, levels) if src.startswith("Nightingale") else \
+        met = segment_goal_cell(inside, levels) if src.startswith("Nightingale") else \
             "no ranges in the data (mean only); see model/data"
         smean = float(np.mean([r["iso"]["overall"] for r in rows]))
         lines.append("| %s | segment, pure moment | %d | %.3f | %s | %s | %s |" % (

@@ -15,7 +15,12 @@ names each bound's source or says it is assumed):
    excess (the stops the Nightingale moments reach);
  - the neutral-zone springs (NZSPRING) of every joint, refitted by
    hhneck.validation.fit_joints at every candidate on the deck with the candidate's
-   other elements (the springs carry what the data ask beyond them).
+   other elements (the springs carry what the data ask beyond them);
+ - with --upper-cervical (an experiment, not the shipped flow:
+   docs/validation.md, "The upper cervical joints"), the upper-cervical
+   factors of hhneck.validation.upper_cervical too, fitted on each
+   candidate's deck before its springs (at the bound 0.001 where no factor
+   reaches the data), written to --upper.
 
 Not fitted (the table's rows as they are, sourced or assumed): the
 ligaments (S2), the discs' axial and shear stiffness (AXIAL, SHEAR) and
@@ -41,6 +46,7 @@ writes the model deck from it.
 
 Command: python3 -m hhneck.validation.fit_column [--exe HHNECK] [--work DIR]
 [--jobs N] [--max-eval N] [--csv PATH] [--springs PATH] [--evaluate]
+[--upper-cervical [--upper PATH]]
 (--evaluate: J at the table's values, nothing written).
 """
 import argparse
@@ -53,7 +59,7 @@ import time
 
 import numpy as np
 
-from . import fit_joints, model_deck, segments
+from . import fit_joints, model_deck, segments, upper_cervical
 from ..paths import project_path
 
 CSV_PATH = project_path("reference", "column_fit.csv")
@@ -82,35 +88,47 @@ def objective(results):
     return 1.0 - 0.5 * sum(means), means[0], means[1]
 
 
-def evaluate(x, exe, work, jobs=None, rows=None):
+def evaluate(x, exe, work, jobs=None, rows=None, upper=False):
     """Rate the column at `x` ({row: value} over the table's rows): the
-    deck with x, the springs refitted on it (hhneck.validation.fit_joints, statics),
-    the segment cases rated with them. Returns dict J, panjabi, nightingale,
-    springs (the CSV written in `work`), deck, results."""
+    deck with x (with `upper`, its upper-cervical factors fitted on it,
+    hhneck.validation.upper_cervical), the springs refitted on it
+    (hhneck.validation.fit_joints, statics), the segment cases rated with
+    them. Returns dict J, panjabi, nightingale, springs and upper (the CSVs
+    written in `work`; upper None without `upper`), deck, results."""
     os.makedirs(work, exist_ok=True)
     p = model_deck.table_values(rows or model_deck.read_table())
     p.update(x)
     deck = os.path.join(work, "model.inp")
-    with open(deck, "w") as f:      # the springs' runs drop the NZSPRING cards: the table's do not matter
-        f.write("\n".join(model_deck.deck_lines(p)) + "\n")
+    kw = {}
+
+    def write(**more):
+        with open(deck, "w") as f:
+            f.write("\n".join(model_deck.deck_lines(p, **dict(kw, **more))) + "\n")
+    write()                  # the springs' runs drop the NZSPRING cards: the table's do not matter
+    ucsv = None
+    if upper:
+        found = upper_cervical.fit_factors(exe, deck, workdir=os.path.join(work, "upper"), at_bound=True)
+        ucsv = os.path.join(work, "upper_cervical.csv")
+        upper_cervical.write_csv(ucsv, found)
+        kw["upper_cervical_csv"] = ucsv
+        write()
     nz_rows, _ = fit_joints.fit_joints(exe, deck, workdir=os.path.join(work, "others"), jobs=jobs, statics=True)
     springs = os.path.join(work, "nz_springs.csv")
     fit_joints.write_csv(springs, nz_rows)
-    with open(deck, "w") as f:
-        f.write("\n".join(model_deck.deck_lines(p, nz_springs=springs)) + "\n")
+    write(nz_springs=springs)
     res = segments.catalogue(exe, workdir=os.path.join(work, "rated"), jobs=jobs, solution="statics", model=deck)
     j, rp, rn = objective(res)
-    return dict(J=j, panjabi=rp, nightingale=rn, springs=springs, deck=deck, results=res)
+    return dict(J=j, panjabi=rp, nightingale=rn, springs=springs, upper=ucsv, deck=deck, results=res)
 
 
-def search(start, exe, work, jobs=None, max_eval=MAX_EVAL, log=lambda s: print(s, flush=True)):
+def search(start, exe, work, jobs=None, max_eval=MAX_EVAL, log=lambda s: print(s, flush=True), upper=False):
     """The coordinate search of the module docstring from `start` ({row:
     value}); returns (best x, its evaluate dict, number of evaluations)."""
     n = [0]
 
     def ev(x):
         n[0] += 1
-        r = evaluate(x, exe, os.path.join(work, "e%03d" % n[0]), jobs)
+        r = evaluate(x, exe, os.path.join(work, "e%03d" % n[0]), jobs, upper=upper)
         log("eval %3d  J %.5f  (Panjabi %.3f, Nightingale %.3f)  %s" % (
             n[0], r["J"], r["panjabi"], r["nightingale"], "  ".join("%s %.4g" % kv for kv in x.items())))
         return r
@@ -160,20 +178,26 @@ def main(argv=None):
     ap.add_argument("--springs", default=fit_joints.CSV_PATH,
                     help="the springs' CSV to write (default reference/nz_springs.csv)")
     ap.add_argument("--evaluate", action="store_true", help="rate the table's values only; nothing written")
+    ap.add_argument("--upper-cervical", action="store_true",
+                    help="fit the upper-cervical factors at every candidate too (an experiment)")
+    ap.add_argument("--upper", default=upper_cervical.CSV_PATH,
+                    help="with --upper-cervical, the factors' CSV to write (default reference/upper_cervical.csv)")
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     exe = a.exe or segments.default_executable()
     work = a.work or tempfile.mkdtemp(prefix="hhneck-fit-column-")
     if a.evaluate:
         p = model_deck.table_values(model_deck.read_table())
-        r = evaluate({name: p[name] for name, _, _ in PARAMS}, exe, work, a.jobs)
+        r = evaluate({name: p[name] for name, _, _ in PARAMS}, exe, work, a.jobs, upper=a.upper_cervical)
         print("J %.5f (Panjabi %.4f, Nightingale %.4f) at the table's values (%.0f s)"
               % (r["J"], r["panjabi"], r["nightingale"], time.perf_counter() - t0))
         return 0
-    x, best, n = search(START, exe, work, a.jobs, a.max_eval)
+    x, best, n = search(START, exe, work, a.jobs, a.max_eval, upper=a.upper_cervical)
     write_csv(a.csv, x, best)
-    with open(best["springs"]) as f, open(a.springs, "w") as g:
-        g.write(f.read())
+    for got, path in ((best["springs"], a.springs), (best["upper"], a.upper)):
+        if got:
+            with open(got) as f, open(path, "w") as g:
+                g.write(f.read())
     print("best J %.5f (Panjabi %.4f, Nightingale %.4f) after %d evaluations, %.0f s; wrote %s and %s"
           % (best["J"], best["panjabi"], best["nightingale"], n, time.perf_counter() - t0, a.csv, a.springs))
     return 0

@@ -10,9 +10,10 @@ rotation than that lumped set: at 1 N m C1-C2 turns 22.1 / -32.7 deg (the
 deck's elements, springs dropped: 12.6) and flexes 12.2 / -12.1 deg (3.94
 / -5.81). Stiffness cannot be taken away by the neutral-zone springs
 (NZSPRING, in parallel), so two factors of these two joints can be fitted
-before the springs (python3 -m hhneck.validation.fit_joints --upper-cervical runs this first;
-not the shipped model's flow, docs/validation.md "The upper cervical
-joints" says why):
+before the springs (python3 -m hhneck.validation.fit_joints --upper-cervical runs this first,
+python3 -m hhneck.validation.fit_column --upper-cervical at every candidate
+of the column; not the shipped model's flow, docs/validation.md "The upper
+cervical joints" says why):
 
  f_lig  multiplies l1 and l2 of every LIGAMENT card joining the two bodies
         of either joint;
@@ -166,11 +167,14 @@ def largest_factor(rotation, want, f_min=F_MIN, steps=BISECTIONS):
     return max(f_min, _round_down(math.exp(lo)))
 
 
-def fit_factors(exe, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, workdir=None):
+def fit_factors(exe, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, workdir=None, at_bound=False):
     """f_lig, then f_rot (module docstring) for the deck `model`; a dict
     {name: {"value", "segment", "motion", "model_deg", "target_deg"}}: the
     rotation of the segment case at the fitted value and the rotation it
-    had to reach (the data's, or the range edge where that is less)."""
+    had to reach (the data's, or the range edge where that is less). Where
+    even F_MIN does not reach the target (the joint's other elements hold
+    it): ValueError, or with `at_bound` the factor F_MIN (a column fit's
+    candidate is then rated with its ligaments at the bound)."""
     if deck_has_factors(model):
         raise ValueError("%s already has the upper-cervical factors; fit them on the deck without them "
                          "(python3 -m hhneck.validation.model_deck --upper-cervical none)" % model)
@@ -194,7 +198,9 @@ def fit_factors(exe, model=segments.MODEL_DECK, data_dir=segments.DATA_DIR, work
         try:
             value = largest_factor(lambda v: reached(v)[0], want)
         except ValueError as e:
-            raise ValueError("%s: %s %s %s" % (model, name, target[0], target[1])) from e
+            if not at_bound:
+                raise ValueError("%s: %s %s %s" % (model, name, target[0], target[1])) from e
+            value = F_MIN
         found[name] = value
         got, want = reached(value)
         out[name] = {"value": value, "segment": target[0], "motion": target[1], "model_deg": got,
