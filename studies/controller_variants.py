@@ -128,18 +128,23 @@ def runs(d):
     return out
 
 
+def g3(v):
+    """v to three significant digits, trailing zeros kept (0.440, 45.0)."""
+    return ("%#.3g" % v).rstrip(".")
+
+
 def table(results):
     """The Markdown table of every variant's scores."""
     def ended(t, end):
-        return "" if t > end - 1e-3 else " (ends at %.3g s)" % t
+        return "" if t > end - 1e-3 else " (ends at %s s)" % g3(t)
     lines = ["| controller | NBDL 12 g CORA / ISO (calibration) | NBDL 15 g CORA / ISO (prediction) | "
              "largest rotation in 10 s at rest, pushed (5, 5) / (−5, −5) / (10, 0) / (10, 10) deg/s (deg) | "
              "rear 5 g: peak, at 600 ms (deg) | lateral 7 g: peak, at 600 ms (deg) |",
              "|---|---|---|---|---|---|"]
     for name, r in results.items():
-        rest = " / ".join("%.3g%s" % (a, ended(t, 10.0)) for a, t in r["rest"])
-        ret = ["%.3g, %.3g%s" % (pk, end, ended(t, 0.6)) for pk, end, t in (r["rear5g_return"],
-                                                                              r["lateral7g_return"])]
+        rest = " / ".join("%s%s" % (g3(a), ended(t, 10.0)) for a, t in r["rest"])
+        ret = ["%s, %s%s" % (g3(pk), g3(end), ended(t, 0.6)) for pk, end, t in (r["rear5g_return"],
+                                                                                r["lateral7g_return"])]
         lines.append("| %s | %.3f / %.3f | %.3f / %.3f | %s | %s | %s |" % (
             name, r["12g"][0], r["12g"][1], r["15g"][0], r["15g"][1], rest, ret[0], ret[1]))
     return "\n".join(lines)
