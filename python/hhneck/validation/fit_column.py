@@ -198,8 +198,9 @@ def main(argv=None):
         if got:
             with open(got) as f, open(path, "w") as g:
                 g.write(f.read())
-    print("best J %.5f (Panjabi %.4f, Nightingale %.4f) after %d evaluations, %.0f s; wrote %s and %s"
-          % (best["J"], best["panjabi"], best["nightingale"], n, time.perf_counter() - t0, a.csv, a.springs))
+    print("best J %.5f (Panjabi %.4f, Nightingale %.4f) after %d evaluations, %.0f s; wrote %s, %s%s"
+          % (best["J"], best["panjabi"], best["nightingale"], n, time.perf_counter() - t0, a.csv, a.springs,
+             " and " + a.upper if best["upper"] else ""))
     return 0
 
 
