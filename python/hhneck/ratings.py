@@ -10,8 +10,10 @@ docs/validation.md).
 ISO/TS 18571, by the standard's published implementation, the PyPI package
 objective-rating-metrics (version 1.3, TU Graz, MIT; a dependency of this
 package). Nothing is computed here but the sampling the package needs: the
-corridor, phase, magnitude and slope scores and their weighted overall
-rating are the package's own (class ISO18571, its default parameters).
+corridor, phase, magnitude and slope scores are the package's own (class
+ISO18571, its default parameters), and the overall rating is its weighted
+sum of them, with the package's weights in its order (its overall_rating()
+to the bit, without computing the four scores a second time).
 
 Sampling. The package takes two arrays of the same shape (time, value) and
 does not interpolate; its documentation asks for 10 kHz sampling (the
@@ -50,6 +52,9 @@ from .signals import cfc
 DT = 1.0e-4          # the package's (and the standard's) sampling: 10 kHz
 MIN_SAMPLES = 16     # fewer samples leave no room for the 9-point slope smoothing
 SCORES = ("corridor", "phase", "magnitude", "slope", "overall")
+#: the standard's weights of the corridor, phase, magnitude and slope scores
+#: in the overall rating (the package's defaults, handed to it explicitly)
+WEIGHTS = dict(w_z=0.4, w_p=0.2, w_m=0.2, w_s=0.2)
 
 
 def resample(t, *curves):
@@ -112,13 +117,15 @@ def rate(t, reference, model, window=None, ndigits=None):
         raise ValueError("%d samples at 10 kHz: at least %d needed" % (grid.size, MIN_SAMPLES))
     if np.max(np.abs(ref)) == 0 or np.ptp(ref) == 0:
         raise ValueError("the reference curve is zero or constant: nothing to rate against")
-    iso = _package_class()(np.column_stack((grid, ref)), np.column_stack((grid, mod)), dt=DT)
-    nd = -1 if ndigits is None else ndigits
-    return dict(corridor=float(iso.corridor_rating(ndigits=nd)),
-                phase=float(iso.phase_rating(ndigits=nd)),
-                magnitude=float(iso.magnitude_rating(ndigits=nd)),
-                slope=float(iso.slope_rating(ndigits=nd)),
-                overall=float(iso.overall_rating(ndigits=nd)))
+    iso = _package_class()(np.column_stack((grid, ref)), np.column_stack((grid, mod)), dt=DT, **WEIGHTS)
+    z, e_p, e_m, e_s = (iso.corridor_rating(ndigits=-1), iso.phase_rating(ndigits=-1),
+                        iso.magnitude_rating(ndigits=-1), iso.slope_rating(ndigits=-1))
+    # the package's overall_rating() computes the four scores again (its
+    # magnitude score's DTW twice per rating): the same weighted sum of the
+    # same unrounded scores, in its order, is its overall rating to the bit
+    overall = WEIGHTS["w_z"] * z + WEIGHTS["w_p"] * e_p + WEIGHTS["w_m"] * e_m + WEIGHTS["w_s"] * e_s
+    scores = dict(corridor=z, phase=e_p, magnitude=e_m, slope=e_s, overall=overall)
+    return {k: float(v if ndigits is None or ndigits < 0 else round(v, ndigits=ndigits)) for k, v in scores.items()}
 
 
 def rate_many(channels, window=None, ndigits=None):
