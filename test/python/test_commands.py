@@ -57,16 +57,22 @@ def test_help(cmd):
 
 def test_console_commands_on_path():
     """When pip installed this project's package (tools/setup.sh), every
-    command is on PATH and answers --help."""
+    command is on PATH as pip's launcher of its module's main (whose --help
+    test_help runs), and a launcher runs: its interpreter imports this
+    project's package."""
     r = subprocess.run([sys.executable, "-c", "import hhneck, os; print(os.path.realpath(hhneck.__file__))"],
                        cwd="/", capture_output=True, text=True)
     if r.returncode != 0 or os.path.dirname(os.path.dirname(r.stdout.strip())) != os.path.realpath(PACKAGE):
         pytest.skip("the package is not installed from this project (tools/setup.sh installs it)")
-    for cmd in COMMANDS:
+    for cmd, (module, func) in COMMANDS.items():
         path = shutil.which(cmd)
         assert path, "%s not on PATH" % cmd
-        h = subprocess.run([path, "--help"], capture_output=True, text=True)
-        assert h.returncode == 0 and h.stdout.startswith("usage: %s" % cmd), cmd
+        assert os.access(path, os.X_OK), path
+        with open(path) as f:
+            launcher = f.read()
+        assert re.search(r"^from %s import %s$" % (re.escape(module), func), launcher, re.M), (cmd, launcher)
+    h = subprocess.run([shutil.which("hhneck-results"), "--help"], capture_output=True, text=True, cwd="/")
+    assert h.returncode == 0 and h.stdout.startswith("usage: hhneck-results"), h.stderr
 
 
 # --- result files ------------------------------------------------------------
