@@ -38,45 +38,15 @@ import shutil
 import sys
 import tempfile
 
-import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 from hhneck import ratings, run  # noqa: E402
 from hhneck.paths import project_path  # noqa: E402
+from hhneck.results import rotation_from_start  # noqa: E402
+from hhneck.validation.controller_variants import PUSHES, edited, pushed_rest, without_controller  # noqa: E402
 
-#: the rest deck's pushes (C3 RX, C4 RY initial rates, deg/s) beside its own 5, 5
-PUSHES = (("back", -5.0, -5.0), ("side", 10.0, 0.0), ("both", 10.0, 10.0))
 VARIANTS = ("shipped", "no head loops", "no stretch loops", "bracing only", "loops, no bracing", "no controller")
-
-
-def edited(lines, feedback=True, spindle=True, bracing=True):
-    """The controller deck's `lines` with the head loops' (FEEDBACK), the
-    stretch loops' (SPINDLE) gains or the bracing (ACTIVATE base levels,
-    fields 3 and 4) set to zero where False."""
-    out, key = [], ""
-    for line in lines:
-        if line[:10].strip() and not line.startswith("*"):
-            key = line[:8].strip()
-        if line.startswith("FEEDBACK") and not feedback:
-            line = line[:40] + "%-10s%-10s" % ("0.0", "0.0") + line[60:]
-        elif key == "FEEDBACK" and not feedback and not line[:10].strip() and line.strip():
-            line = " " * 10 + "0.0"
-        elif line.startswith("SPINDLE") and not spindle:
-            line = line[:20] + "%-10s%-10s" % ("0.0", "0.0") + line[40:70] + ("0.0" if line[70:].strip() else "")
-        elif line.startswith("ACTIVATE") and not bracing:
-            line = line[:20] + "%-10s%-10s" % ("0.0", "0.0") + line[40:]
-        out.append(line)
-    return out
-
-
-def head_angle(h5):
-    """time [s] and the head's rotation from its start [deg] of a result file."""
-    with h5py.File(h5, "r") as f:
-        k = list(f["model"].attrs["bodies"]).index("HEAD")
-        r = f["bodies/rotation"][:, k]
-        tr = np.sum(r * r[0], axis=(1, 2))
-        return f["time"][:], np.degrees(np.arccos(np.clip((tr - 1) / 2, -1, 1)))
 
 
 def write_variant(tmp, name):
@@ -93,16 +63,12 @@ def write_variant(tmp, name):
             p = os.path.join(d, "input", deck)
             if deck.endswith(".inp"):
                 text = open(p).read()
-                open(p, "w").write(text.replace("INCLUDE   input/volunteer_controller.inp\n", ""))
+                open(p, "w").write(without_controller(text))
     elif name != "shipped":
         open(path, "w").write("\n".join(edited(lines, **flags[name])) + "\n")
     rest = open(os.path.join(d, "input", "volunteer_rest.inp")).read()
-    for push, rx, ry in PUSHES:
-        t = rest.replace("INITIAL   C3        RX        0.0       5.0", "INITIAL   C3        RX        0.0       %-10.4g" % rx)
-        t = t.replace("INITIAL   C4        RY        -3.24     5.0", "INITIAL   C4        RY        -3.24     %-10.4g" % ry)
-        if t == rest:
-            raise SystemExit("controller_variants: the rest deck's INITIAL cards moved")
-        open(os.path.join(d, "input", "volunteer_rest_%s.inp" % push), "w").write(t)
+    for push, text in pushed_rest(rest).items():
+        open(os.path.join(d, "input", "volunteer_rest_%s.inp" % push), "w").write(text)
     return d
 
 
@@ -119,11 +85,11 @@ def runs(d):
         out[sev] = (overall, float(np.mean([c["iso"] for c in chans if c["rated"]])))
     rest = []
     for deck in ["volunteer_rest"] + ["volunteer_rest_" + p for p, _, _ in PUSHES]:
-        t, a = head_angle(go(deck))
+        t, a = rotation_from_start(go(deck))
         rest.append((a.max(), t[-1]))
     out["rest"] = rest
     for deck in ("rear5g_return", "lateral7g_return"):
-        t, a = head_angle(go(deck))
+        t, a = rotation_from_start(go(deck))
         out[deck] = (a.max(), a[-1], t[-1])
     return out
 

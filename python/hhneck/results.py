@@ -18,6 +18,9 @@
         columns value, units, time, t_start, t_end [s] (NaN where a
         criterion has no such time); empty, with df.attrs["note"] saying
         why, when the run computed none.
+    rotation_from_start(path, body="HEAD") -> (t, angle)
+        times [s] and a body's rotation from its start [deg]: the angle of
+        S(t) S(0)^T from the file's body rotations.
     schema_version(f) -> int
         a file's schema_version (1 for files written before it existed).
     read_results(path, channels=None) -> Results
@@ -170,6 +173,21 @@ def read_bodies(path):
     df.attrs["units"] = {"mass": "kg", "Ixx": "kg m^2", "Iyy": "kg m^2", "Izz": "kg m^2",
                          "Ixy": "kg m^2", "Ixz": "kg m^2", "Iyz": "kg m^2"}
     return df
+
+
+def rotation_from_start(path, body="HEAD"):
+    """Times [s] and the rotation of `body` from its start [deg]: the angle
+    of S(t) S(0)^T, S the body's rotation matrix (/bodies/rotation), from
+    the trace: cos(angle) = (tr(S(t) S(0)^T) - 1) / 2."""
+    with h5py.File(path, "r") as f:
+        _expect(f, path, "result")
+        names = text_list(f["model"].attrs["bodies"])
+        if body not in names:
+            raise KeyError("%s: no body %s (bodies: %s)" % (path, body, " ".join(names)))
+        r = f["bodies/rotation"][:, names.index(body)]      # [t, j, i] is S_ij
+        t = np.asarray(f["time"][:], dtype=float)
+    tr = np.sum(r * r[0], axis=(1, 2))
+    return t, np.degrees(np.arccos(np.clip((tr - 1) / 2, -1, 1)))
 
 
 PEAKS = ("nic", "tension", "compression", "shear", "flexion_moment", "extension_moment")

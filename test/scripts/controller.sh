@@ -26,31 +26,16 @@ ln -s "$(pwd)/reference" "$tmp/reference"
 cd "$tmp" || exit 1
 # the controller with every loop gain zero; the return decks without it
 python3 - <<'PY'
+from hhneck.validation.controller_variants import edited, pushed_rest, without_controller
 src = open("input/volunteer_controller.inp").read().splitlines()
-out = []
-key = ""
-for l in src:
-    if l[:10].strip() and not l.startswith("*"):
-        key = l[:8].strip()
-    if l.startswith("FEEDBACK"):
-        l = l[:40] + "%-10s%-10s" % ("0.0", "0.0") + l[60:]
-    elif key == "FEEDBACK" and not l[:10].strip() and l.strip():
-        l = " "*10 + "0.0"      # ki, on the continuation
-    elif l.startswith("SPINDLE"):
-        l = l[:20] + "%-10s%-10s" % ("0.0", "0.0") + l[40:70] + ("0.0" if l[70:].strip() else "")   # kp, kd; ki (F7)
-    out.append(l)
-open("input/controller_zero.inp", "w").write("\n".join(out) + "\n")
+open("input/controller_zero.inp", "w").write("\n".join(edited(src, feedback=False, spindle=False)) + "\n")
 for d in ("rear5g_return", "lateral7g_return"):
     deck = open("input/%s.inp" % d).read()
     open("input/%s_zero.inp" % d, "w").write(deck.replace("volunteer_controller.inp", "controller_zero.inp"))
-    open("input/%s_model.inp" % d, "w").write(deck.replace("INCLUDE   input/volunteer_controller.inp\n", ""))
+    open("input/%s_model.inp" % d, "w").write(without_controller(deck))
 # the rest deck pushed the other ways: C3 RX, C4 RY started at (deg/s)
-rest = open("input/volunteer_rest.inp").read()
-for name, rx, ry in (("back", -5.0, -5.0), ("side", 10.0, 0.0), ("both", 10.0, 10.0)):
-    d = rest.replace("INITIAL   C3        RX        0.0       5.0", "INITIAL   C3        RX        0.0       %-10.4g" % rx)
-    d = d.replace("INITIAL   C4        RY        -3.24     5.0", "INITIAL   C4        RY        -3.24     %-10.4g" % ry)
-    assert d.count("%-10.4g" % rx) and d != rest, "the rest deck's INITIAL cards moved"
-    open("input/volunteer_rest_%s.inp" % name, "w").write(d)
+for name, text in pushed_rest(open("input/volunteer_rest.inp").read()).items():
+    open("input/volunteer_rest_%s.inp" % name, "w").write(text)
 PY
 # the calibration scored at the controller deck's own values (no VALUES, no fit)
 grep -v '^VALUES' input/calibrate_controller.inp | sed 's/^FIT       NELDER    [0-9 ]\{10\}/FIT       NELDER    0         /' > cal0.inp
@@ -62,16 +47,12 @@ for d in volunteer_rest volunteer_rest_back volunteer_rest_side volunteer_rest_b
 done
 
 py_checks - <<'PY'
-import h5py
 import numpy as np
+from hhneck.results import rotation_from_start
 
 def head_angle(name):
     """time [s] and the head's rotation from its start [deg]"""
-    f = h5py.File(name + ".h5", "r")
-    k = list(f["model"].attrs["bodies"]).index("HEAD")
-    r = f["bodies/rotation"][:, k]          # [t, j, i] is S_ij
-    tr = np.sum(r*r[0], axis=(1, 2))        # trace of S(t) S(0)^T
-    return f["time"][:], np.degrees(np.arccos(np.clip((tr - 1)/2, -1, 1)))
+    return rotation_from_start(name + ".h5")
 
 def check(ok, what):
     print(("PASS  " if ok else "FAIL  ") + what)

@@ -15,4 +15,5 @@ model_deck (the model deck input/head_neck_54dof.inp from
 reference/model_parameters.csv), hyoid_muscles (the cervical muscles'
 rows of that table, mapped from the HYOID neck model), case_decks (the pulse-driven case decks
 of input/), nbdl_tables (the T1 drive tables of the NBDL decks, and new
-cases from other runs)."""
+cases from other runs), controller_variants (the volunteer controller's
+parts switched off, and the rest deck's other pushes)."""
