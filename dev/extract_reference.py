@@ -4,7 +4,8 @@ file: /time (nt,), /channels (nt, nch) with attributes `names` and `units`
 (arrays of nch UTF-8 strings, channels in name order), and the code, title
 and status attributes, and schema_version 2 (docs/output-format.md). Files
 before schema version 2 had `names` and `units` as one space-separated
-text each (units with '_' for blanks); test/test_regression.f90 reads both.
+text each (units with '_' for blanks); hhneck.results reads both
+(test/scripts/regression.sh).
     extract_reference.py IN OUT"""
 import sys
 import h5py

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Regenerates the reference outputs of every case deck ON PURPOSE, after a
 # change that is meant to change results (say why in the commit). The
-# regression test (test/test_regression.f90) never writes them.
+# regression check (test/scripts/regression.sh) never writes them.
 #   reference/outputs/CASE.txt   the listing (release build, the deck's sampling;
 #                                CASE_all: the full listing, PRINT ALL, of case
 #                                CASE: test/scripts/lib/reference_listings.sh)
