@@ -15,6 +15,9 @@
 # channel agrees within 1e-4 of its range plus 1e-9 (the out-of-plane
 # channels are roundoff); the energy balance's residual, a measure of the
 # integration error itself, is left out.
+# Release build: the runs are the NBDL 15 g deck's, which the checking build
+# runs end to end in test/unit/test_cases.pf.
+# builds: release
 . test/scripts/lib/checks.sh
 
 "$HHNECK" --h5 "$tmp/shipped.h5" < input/nbdl15g.inp > /dev/null 2>&1

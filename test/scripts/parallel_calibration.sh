@@ -6,6 +6,9 @@
 # least, 17 evaluations) and the two-case deck (15 g and 12 g) scored once
 # at its nominal values, each on one thread and on two (OMP_NUM_THREADS;
 # two threads also on one core), are compared line by line.
+# Release build: the threads as a user's calibration runs them (the
+# checking build runs calibrations in test/unit/test_calibration.pf).
+# builds: release
 . test/scripts/lib/checks.sh
 cut_fit() {   # cut_fit DECK EVALS STARTS: the deck's FIT card cut to EVALS evaluations from STARTS starting points
     sed -e "s/^\(FIT       NELDER    \)2500      300 /\1$(printf '%-10s%-4s' "$2" "$3")/" "$1"
