@@ -41,7 +41,7 @@ generate() {
         log=$(python3 "$PF/bin/funitproc" "$pf" "test/unit/${name}_suite.F90" 2>&1) \
             || { printf '%s\n' "$log" >&2; exit 1; }
         # funit's names each unit uses, the test module's names the suite
-        # uses: half the compile time (tools/pfunit_narrow.py)
+        # uses: a third less build time (tools/pfunit_narrow.py)
         python3 tools/pfunit_narrow.py "$PF/include/funit.mod" "test/unit/${name}_suite.F90" || exit 1
         # the suite function is external: give it an explicit interface, and
         # use the wrapper module funitproc writes beside it so that fpm links

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Narrows the module imports of the suites funitproc generates (called by
-tools/pfunit.sh generate), so that the test programs compile in about half
-the time and mean the same.
+tools/pfunit.sh generate), so that the test programs build in about two
+thirds of the time and mean the same.
 
 gfortran reads a module file whole at every USE of it, and funit's is
 6.6 MB: each generated suite read it three times (the test module, the
