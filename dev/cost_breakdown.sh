@@ -1,13 +1,14 @@
 #!/bin/sh
 # Cost breakdown by instructions (valgrind's callgrind) of the shipped NBDL
-# 15 g run (input/nbdl15g.inp, HDF5 every 0.1 ms) and of one calibration
-# member (input/calibrate_nbdl12g.inp scored once at its parameters'
-# nominal values: the analyses at rest, the run of its rated channels, the
-# ratings), per phase: the evaluation (kinematics, element loads, the
+# 15 g run (input/nbdl15g.inp, HDF5 every 0.1 ms) and of one evaluation of
+# the shipped 12 g calibration (input/calibrate_controller.inp scored once
+# at the controller deck's values: the analyses at rest, the runs of its
+# cases, the ratings), per phase: the evaluation (kinematics, element loads, the
 # articulated-body a_ij/f_i and solve), Jacobians, factorizations, stage
 # solves, step control, the output samples (their evaluation, channels,
-# HDF5 writes), start and finish. Prints the markdown tables of
-# docs/performance.md ("Where the time goes").
+# HDF5 writes), start and finish, and the NBDL run's element loads by
+# family. Prints the markdown tables of docs/performance.md ("Where the
+# time goes").
 # Usage: dev/cost_breakdown.sh [KEEP_DIR]   (a few minutes; the callgrind
 # files are kept in KEEP_DIR when given). Instructions do not depend on the
 # machine's load; the release build's flags are fpm's release profile.
@@ -27,9 +28,10 @@ export OMP_NUM_THREADS=1   # one thread: each phase's instructions in one place
 
 valgrind --tool=callgrind --callgrind-out-file="$out/nbdl.cg" "$exe" --h5 "$out/nbdl.h5" --overwrite \
     input/nbdl15g.inp > "$out/nbdl.lst" 2> "$out/nbdl.err"
-# the 12 g calibration deck scored once (FIT max evals 0) at the nominal
-# values of its PARAM cards (its VALUES cards dropped)
-sed -e '/^VALUES/d' -e 's/^\(FIT       NELDER    \)[0-9 ]\{10\}/\10         /' input/calibrate_nbdl12g.inp \
+# the shipped 12 g calibration (input/calibrate_controller.inp) scored once
+# (FIT max evals 0) at the controller deck's own values (its VALUES cards
+# dropped): the 12 g case and the standing, return and rest cases
+sed -e '/^VALUES/d' -e 's/^\(FIT       NELDER    \)[0-9 ]\{10\}/\10         /' input/calibrate_controller.inp \
     > "$out/cal.inp"
 valgrind --tool=callgrind --callgrind-out-file="$out/cal.cg" "$exe" --calibrate "$out/cal.inp" \
     > "$out/cal.lst" 2> "$out/cal.err"
@@ -122,24 +124,31 @@ row('finish (assessment, listing, HDF5 criteria and close)', fin, total)
 h5 = incl.get('results_open', 0) + h5w + c('run_finish', 'results_close')[0] + c('run_finish', 'results_criteria')[0]
 row('HDF5 in all (open, writes, criteria, close)', h5, total)
 
+# the element loads by family: every call of compute_loads (the integration's
+# evaluations and the output samples), each family's loads binding under it
+fams = sorted(((ir, n, f) for (p, f), (ir, n) in calls.items() if p == 'compute_loads' and f.endswith('_loads')
+               and f != 'loads_clear'), reverse=True)
+loads_ir = incl.get('compute_loads', 0)
+ncl = max((n for _, n, _ in fams), default=0)
+head('The element loads of the NBDL 15 g run by family (every call of compute_loads)')
+row('element loads (compute_loads)', loads_ir, total, ncl, 'call')
+for ir, n, f in fams:
+    if ir >= 1e-3 * loads_ir:
+        row('&nbsp;&nbsp;' + f.replace('_loads', ''), ir, total, n, 'call')
+
 total, incl, calls = parse(sys.argv[2])
 ev = incl.get('evaluate', 0)
-head('One calibration member: input/calibrate_nbdl12g.inp scored once (nominal values, one thread)')
+head('One evaluation of the 12 g calibration: input/calibrate_controller.inp scored once (the deck\'s values, one thread)')
 row('whole program', total, total)
 row('calibration deck read, cases bound', incl.get('read_calibration', 0), total)
 row('**one evaluation of the objective**', ev, total)
 row('&nbsp;&nbsp;analyses at rest (with and without muscles)', incl.get('case_growth', 0), total)
 run = incl.get('run_member', 0)
-row('&nbsp;&nbsp;the member run (rated channels only, no result file)', run, total)
-adv = incl.get('run_advance_to', 0)
-row('&nbsp;&nbsp;&nbsp;&nbsp;integration', adv, total)
+row('&nbsp;&nbsp;the 12 g member run (rated channels only, no result file)', run, total)
+judge = max((ir for f, ir in incl.items() if f.startswith('standing_excursions')), default=0)
+row('&nbsp;&nbsp;the standing, return and rest cases (their runs)', judge, total)
 rhs, nrhs = integrator_rhs(calls)
-row('&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;of it evaluations', rhs, total, nrhs, 'evaluation')
-out, nout = c('run_execute', 'run_output')
-row('&nbsp;&nbsp;&nbsp;&nbsp;output samples (every 0.1 ms for the CFC filter)', out, total, nout, 'sample')
-row('&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;of it the evaluation at the sample', c('run_output', 'dynamics_outputs')[0], total,
-    nout, 'sample')
-row('&nbsp;&nbsp;&nbsp;&nbsp;case built, start and finish', run - adv - out, total)
+row('&nbsp;&nbsp;&nbsp;&nbsp;integration evaluations of all the runs', rhs, total, nrhs, 'evaluation')
 row('&nbsp;&nbsp;ISO 18571 ratings of the rated channels', incl.get('score_iso_volunteers', 0), total)
 row('&nbsp;&nbsp;CORA-style ratings and peaks', incl.get('score_curves', 0), total)
 EOF
