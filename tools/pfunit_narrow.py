@@ -56,6 +56,8 @@ def units(lines):
 
 
 def narrow(path, funit):
+    """Rewrite the generated suite file `path` in place (module docstring);
+    funit: funit's public names."""
     lines = open(path).read().split("\n")
     name = re.sub(r"_suite\.F90$", "", path.rsplit("/", 1)[-1]).lower()
     spans = units(lines)
