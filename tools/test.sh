@@ -53,7 +53,7 @@ script_times=build/script_times    # seconds per script (and build) and of the P
 TYPICAL_TEST_TIMES="test_scene 31 test_free_bodies 25 test_calibration 23 test_nz_springs 16
     test_stiffened 14 test_feedback 10 test_cases 8"
 TYPICAL_SCRIPT_TIMES="test/scripts/mpi_sweep.sh 85 test/scripts/new_nbdl_case.sh 61
-    test/scripts/readme_commands.sh 38 test/scripts/robustness.sh 25 test/scripts/regression.sh 20 test/scripts/two_clones.sh 21
+    test/scripts/readme_commands.sh 38 test/scripts/robustness.sh 25 test/scripts/regression.sh 20 test/scripts/hot_path_allocations.sh 5 test/scripts/two_clones.sh 21
     test/scripts/activation_groups.sh 20 test/scripts/parallel_calibration.sh 30 test/scripts/animate.sh 16
     test/scripts/results.sh 15 test/scripts/listing_references.sh 15 test/scripts/deck_writers.sh 15
     test/scripts/api_docs.sh 11 test/python/test_commands.py 45 test/python/test_calibration_iso.py 45
