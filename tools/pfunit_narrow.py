@@ -62,57 +62,57 @@ def narrow(path, funit):
     name = re.sub(r"_suite\.F90$", "", path.rsplit("/", 1)[-1]).lower()
     spans = units(lines)
     words = [set(w.lower() for w in WORD.findall("\n".join(code(l) for l in lines[a:b + 1]))) for a, b in spans]
-    # the test module: private but for what the other units take from it
+    inserts = {}     # line number -> the lines that replace it
     test = next((k for k, (a, _) in enumerate(spans) if re.match(r"\s*module\s+%s\s*$" % name, lines[a], re.I)), None)
-    inserts = {}
     if test is not None:
-        a, b = spans[test]
-        text = "\n".join(code(l) for l in lines[a:b + 1])
-        if not re.search(r"^\s*private\s*$", text, re.M | re.I):
-            declared = set()
-            for pat in (r"\b(?:subroutine|function)\s+(\w+)", r"^\s*type\s*(?:,[^:]*)?::\s*(\w+)",
-                        r"^\s*type\s+(\w+)\s*$", r"^\s*interface\s+(\w+)"):
-                declared.update(n.lower() for n in re.findall(pat, text, re.M | re.I))
-            others = set().union(*(w for k, w in enumerate(words) if k != test))
-            public = sorted(declared & others)
-            imp = next(i for i in range(a, b) if re.match(r"\s*implicit\s+none\s*$", lines[i], re.I))
-            new = [lines[imp], "    private"]
-            row = "    public ::"
-            for k, n in enumerate(public):
-                piece = " " + n + ("," if k < len(public) - 1 else "")
-                if len(row) + len(piece) > 100:
-                    new.append(row + " &")
-                    row = "       "
-                row += piece
-            if public:
-                new.append(row)
-            directive = _pf_line(lines, imp + 1)
-            if directive:
-                new.append(directive)
-            inserts[imp] = new
+        inserts.update(_private(lines, spans[test], set().union(*(w for k, w in enumerate(words) if k != test))))
     for k, (a, b) in enumerate(spans):
         for i in range(a, b + 1):
             m = re.match(r"(\s*)use\s+funit\s*$", lines[i], re.I)
             if m:
-                names = sorted(words[k] & funit)
-                inserts[i] = _use_only(m.group(1), names) + ([_pf_line(lines, i + 1)] if _pf_line(lines, i + 1) else [])
+                inserts[i] = _statement(m.group(1) + "use funit, only:", sorted(words[k] & funit),
+                                        m.group(1) + "    ") + _directive(lines, i + 1)
     for i in sorted(inserts, reverse=True):
         lines[i:i + 1] = inserts[i]
     with open(path, "w") as f:
         f.write("\n".join(lines))
 
 
-def _use_only(indent, names):
-    if not names:
-        return [indent + "use funit, only:"]
-    out, row = [], indent + "use funit, only:"
+def _private(lines, span, others):
+    """{line of the test module's IMPLICIT NONE: it, PRIVATE and PUBLIC for
+    the names the other units (`others`, their words) take from it}; {} when
+    the module is private already."""
+    a, b = span
+    text = "\n".join(code(l) for l in lines[a:b + 1])
+    if re.search(r"^\s*private\s*$", text, re.M | re.I):
+        return {}
+    declared = set()
+    for pat in (r"\b(?:subroutine|function)\s+(\w+)", r"^\s*type\s*(?:,[^:]*)?::\s*(\w+)",
+                r"^\s*type\s+(\w+)\s*$", r"^\s*interface\s+(\w+)"):
+        declared.update(n.lower() for n in re.findall(pat, text, re.M | re.I))
+    public = sorted(declared & others)
+    imp = next(i for i in range(a, b) if re.match(r"\s*implicit\s+none\s*$", lines[i], re.I))
+    return {imp: [lines[imp], "    private"] + (_statement("    public ::", public, "       ") if public else []) +
+            _directive(lines, imp + 1)}
+
+
+def _statement(head, names, indent):
+    """`head` followed by the comma-separated names, continued with & on
+    lines starting with `indent` so that none passes 100 columns."""
+    out, row = [], head
     for k, n in enumerate(names):
         piece = " " + n + ("," if k < len(names) - 1 else "")
         if len(row) + len(piece) > 100:
             out.append(row + " &")
-            row = indent + "    "
+            row = indent
         row += piece
     return out + [row]
+
+
+def _directive(lines, i):
+    """[the #line directive of line i] (_pf_line), or [] when there is none."""
+    d = _pf_line(lines, i)
+    return [d] if d else []
 
 
 def _pf_line(lines, i):

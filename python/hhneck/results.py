@@ -18,6 +18,8 @@
         columns value, units, time, t_start, t_end [s] (NaN where a
         criterion has no such time); empty, with df.attrs["note"] saying
         why, when the run computed none.
+    rotation_angle(trace) -> angle
+        the angle [deg] of a rotation matrix from its trace.
     rotation_from_start(path, body="HEAD") -> (t, angle)
         times [s] and a body's rotation from its start [deg]: the angle of
         S(t) S(0)^T from the file's body rotations.
@@ -175,6 +177,12 @@ def read_bodies(path):
     return df
 
 
+def rotation_angle(trace):
+    """The angle [deg] of a rotation matrix (or of each of an array of them)
+    from its trace: cos(angle) = (trace - 1) / 2, clipped against roundoff."""
+    return np.degrees(np.arccos(np.clip((np.asarray(trace) - 1.0) / 2.0, -1.0, 1.0)))
+
+
 def rotation_from_start(path, body="HEAD"):
     """Times [s] and the rotation of `body` from its start [deg]: the angle
     of S(t) S(0)^T, S the body's rotation matrix (/bodies/rotation), from
@@ -186,8 +194,7 @@ def rotation_from_start(path, body="HEAD"):
             raise KeyError("%s: no body %s (bodies: %s)" % (path, body, " ".join(names)))
         r = f["bodies/rotation"][:, names.index(body)]      # [t, j, i] is S_ij
         t = np.asarray(f["time"][:], dtype=float)
-    tr = np.sum(r * r[0], axis=(1, 2))
-    return t, np.degrees(np.arccos(np.clip((tr - 1) / 2, -1, 1)))
+    return t, rotation_angle(np.sum(r * r[0], axis=(1, 2)))      # tr(S(t) S(0)^T)
 
 
 PEAKS = ("nic", "tension", "compression", "shear", "flexion_moment", "extension_moment")

@@ -12,13 +12,12 @@
 # builds: release
 . test/scripts/lib/checks.sh
 cut_fit() {   # cut_fit DECK EVALS STARTS: the deck's FIT card cut to EVALS evaluations from STARTS starting points
-    sed -e "s/^\(FIT       NELDER    \)2500      300 /\1$(printf '%-10s%-4s' "$2" "$3")/" "$1"
+    sed -e "s/^\(FIT       NELDER    \)[0-9 ]\{14\}/\1$(printf '%-10s%-4s' "$2" "$3")/" "$1"
 }
 # the shipped 12 g calibration (the controller's) with its 12 g case and its
 # standing case (the RETURN and REST cases left out), cut to the VALUES
 # point, one starting point and Nelder-Mead's first steps
-grep -v '^RETURN\|^REST ' input/calibrate_controller.inp |
-    sed -e "s/^\(FIT       NELDER    \)180       24  /\1$(printf '%-10s%-4s' 10 2)/" > "$tmp/one_case.inp"
+grep -v '^RETURN\|^REST ' input/calibrate_controller.inp | cut_fit - 10 2 > "$tmp/one_case.inp"
 # the two-case deck judges standing by a run of the volunteer state at rest
 # (a STANDING case, 2 s, joints within 10 deg) in place of the linear margin,
 # which the controller's loops (sampled-data) do not enter

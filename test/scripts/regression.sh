@@ -28,9 +28,9 @@ import sys
 
 import numpy as np
 from hhneck.results import read_channels
+from hhneck.tools.compare_listing import NOISE_FLOOR   # a channel's scale: at least this of its unit's largest
 
 REL_TOL = 1.0e-4        # of a channel's largest reference magnitude
-NOISE_FLOOR = 1.0e-4    # of the largest reference channel of its unit, at least
 tmp = sys.argv[1]
 for case in sys.argv[2:]:
     ref = read_channels("reference/outputs/%s.h5" % case)

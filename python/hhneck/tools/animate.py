@@ -27,7 +27,7 @@ import sys
 import h5py
 import numpy as np
 
-from ..results import text, text_list
+from ..results import rotation_angle, text, text_list
 
 TENSION_CMAP = "YlOrRd"     # ligaments and muscles: tension from 0 to the run's peak
 DISC_CMAP = "coolwarm"      # discs: axial force, compression blue, tension red
@@ -150,12 +150,11 @@ class Result:
             return np.degrees(np.arctan2(s[2, 1], s[2, 2]))
         if view == "top":
             return np.degrees(np.arctan2(s[1, 0], s[0, 0]))
-        return np.degrees(np.arccos(np.clip((np.trace(s) - 1.0) / 2.0, -1.0, 1.0)))
+        return float(rotation_angle(np.trace(s)))
 
     def rotation_angle(self, i, k):
         """Angle of the rotation of body k from its neutral (R-parallel) axes [deg]."""
-        c = (np.trace(self.rot[i, k]) - 1.0) / 2.0
-        return np.degrees(np.arccos(np.clip(c, -1.0, 1.0)))
+        return float(rotation_angle(np.trace(self.rot[i, k])))
 
     def line_ends(self, i, fam):
         """(ne, 2, 3) end points in R of the elements of a family at sample i."""
